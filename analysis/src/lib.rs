@@ -1,0 +1,1 @@
+//! Chronocooked Lab analysis crate (grows with its issue).

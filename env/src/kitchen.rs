@@ -1,0 +1,697 @@
+//! The simulation core: state, reference step order, interact rules and rewards.
+//!
+//! A [`Kitchen`] owns the state and the RNG of one environment but not its
+//! observation buffer: it writes the "codes" observation incrementally into a
+//! slice it is handed, so the scalar env and the vectorised env share one code
+//! path and the vectorised env writes straight into its batch buffer.
+//!
+//! Step order (reference): apply the action (move, or interact — which may pay),
+//! then if the oven is on `timer += 1`, then (tasks with a ready cue) the oven
+//! shows ready if `timer == TD`; then the time limit (`timestep > max_timesteps`).
+
+use crate::action::Action;
+use crate::error::EnvError;
+use crate::info::{Carry, Counter, Events, Info};
+use crate::layout::{Layout, ObjectKind};
+use crate::task::{CueMode, RewardMode, TaskConfig, TaskFamily, TaskParams};
+use rand::{Rng, SeedableRng};
+use rand_xoshiro::Xoshiro256PlusPlus;
+use std::sync::Arc;
+
+/// Number of channels of the "codes" observation.
+pub const CODE_CHANNELS: usize = 6;
+
+/// Options of [`Kitchen::reset`]: fix what the task would otherwise draw at random.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ResetOptions {
+    /// Start cell `(row, col)`; must be free. Drawn uniformly when `None`.
+    pub start: Option<(usize, usize)>,
+    /// Target duration (steps) of this episode. Drawn per task when `None`.
+    pub td: Option<u32>,
+    /// Uncertainty task: force a never-ready (true) or normal (false) episode.
+    pub never_ready: Option<bool>,
+}
+
+/// Result of one step (the observation is written to the caller's buffer).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Transition {
+    /// Reward of this step.
+    pub reward: f32,
+    /// The episode reached a terminal state (delivery; or the time limit in reference mode).
+    pub terminated: bool,
+    /// The episode was cut by the time limit (default mode).
+    pub truncated: bool,
+    /// Step information.
+    pub info: Info,
+}
+
+impl Transition {
+    /// Whether the episode is over.
+    #[inline]
+    pub fn done(&self) -> bool {
+        self.terminated || self.truncated
+    }
+}
+
+/// Task rules, flattened to a small `Copy` value for the hot loop.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Rules {
+    Fixed,
+    Probe { factor: u32 },
+    Bisection { short: u32, long: u32 },
+    Window { mode: RewardMode, under: u32, over: u32, reduced: f32 },
+    Dual { under: u32, over: u32, reduced: f32, sink: f32 },
+    Uncertainty { p_never: f32, over: u32, overcooked: f32, manual: f32 },
+}
+
+/// Immutable, shared description of a task instance.
+#[derive(Debug)]
+pub(crate) struct Spec {
+    pub(crate) config: TaskConfig,
+    pub(crate) family: TaskFamily,
+    pub(crate) layout: Layout,
+    pub(crate) rules: Rules,
+    pub(crate) default_td: u32,
+    pub(crate) tds: Vec<u32>,
+    pub(crate) cue: Option<CueMode>,
+    pub(crate) oven: usize,
+    /// Channel-0 codes of the empty grid (`[R, C, 6]`, other channels 0).
+    pub(crate) background: Vec<u8>,
+}
+
+impl Spec {
+    pub(crate) fn new(config: &TaskConfig) -> Result<Arc<Self>, EnvError> {
+        let layout = config.validate()?;
+        let (rules, default_td, tds, cue) = match &config.params {
+            TaskParams::FixedInterval { td } => (Rules::Fixed, *td, vec![*td], None),
+            TaskParams::PeakInterval { td, probe_factor } => (
+                Rules::Probe {
+                    factor: *probe_factor,
+                },
+                *td,
+                vec![*td],
+                None,
+            ),
+            TaskParams::Bisection { short, long } => (
+                Rules::Bisection {
+                    short: *short,
+                    long: *long,
+                },
+                *short,
+                vec![*short, *long],
+                None,
+            ),
+            TaskParams::MultiTimer {
+                tds,
+                mode,
+                cue,
+                under_buffer,
+                over_buffer,
+                reduced_reward,
+                ..
+            } => (
+                Rules::Window {
+                    mode: *mode,
+                    under: *under_buffer,
+                    over: *over_buffer,
+                    reduced: *reduced_reward,
+                },
+                tds[0],
+                tds.clone(),
+                Some(*cue),
+            ),
+            TaskParams::Dual {
+                td,
+                under_buffer,
+                over_buffer,
+                reduced_reward,
+                sink_reward,
+            } => (
+                Rules::Dual {
+                    under: *under_buffer,
+                    over: *over_buffer,
+                    reduced: *reduced_reward,
+                    sink: *sink_reward,
+                },
+                *td,
+                vec![*td],
+                None,
+            ),
+            TaskParams::Uncertainty {
+                td,
+                never_ready_prob,
+                over_buffer,
+                overcooked_reward,
+                manual_reward,
+            } => (
+                Rules::Uncertainty {
+                    p_never: *never_ready_prob,
+                    over: *over_buffer,
+                    overcooked: *overcooked_reward,
+                    manual: *manual_reward,
+                },
+                *td,
+                vec![*td],
+                None,
+            ),
+        };
+        let oven = layout.cells_of(ObjectKind::Oven)[0];
+        let mut background = vec![0u8; layout.n_cells() * CODE_CHANNELS];
+        for cell in 0..layout.n_cells() {
+            if let Some(kind) = layout.object_at(cell) {
+                background[cell * CODE_CHANNELS] = kind.code();
+            }
+        }
+        Ok(Arc::new(Spec {
+            config: config.clone(),
+            family: config.family(),
+            layout,
+            rules,
+            default_td,
+            tds,
+            cue,
+            oven,
+            background,
+        }))
+    }
+
+    /// Length of one codes observation (`R·C·6`).
+    pub(crate) fn obs_len(&self) -> usize {
+        self.background.len()
+    }
+}
+
+/// Derives the seed of sub-environment `index` from a base seed (SplitMix64 finaliser),
+/// so that runs with neighbouring base seeds do not share streams.
+pub fn derive_seed(base: u64, index: u64) -> u64 {
+    let mut z = base ^ index.wrapping_add(1).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+/// State and RNG of one environment.
+#[derive(Debug, Clone)]
+pub struct Kitchen {
+    pub(crate) spec: Arc<Spec>,
+    rng: Xoshiro256PlusPlus,
+    num_timers: usize,
+    agent: usize,
+    carry: Carry,
+    timer: i32,
+    ready: bool,
+    manual: bool,
+    never_ready: bool,
+    td: u32,
+    timestep: u32,
+    oven_off_time: i32,
+    manual_stop_time: i32,
+    sink_count: u32,
+    last_sink_timer: i32,
+    counter: Option<Counter>,
+    done: bool,
+}
+
+impl Kitchen {
+    pub(crate) fn new(spec: Arc<Spec>, seed: u64) -> Self {
+        let num_timers = match &spec.config.params {
+            TaskParams::MultiTimer { num_timers, .. } => *num_timers,
+            _ => spec.tds.len(),
+        };
+        let agent = spec.layout.free_cells()[0] as usize;
+        let td = spec.default_td;
+        Kitchen {
+            spec,
+            rng: Xoshiro256PlusPlus::seed_from_u64(seed),
+            num_timers,
+            agent,
+            carry: Carry::Nothing,
+            timer: -1,
+            ready: false,
+            manual: false,
+            never_ready: false,
+            td,
+            timestep: 0,
+            oven_off_time: -1,
+            manual_stop_time: -1,
+            sink_count: 0,
+            last_sink_timer: -1,
+            counter: None,
+            done: true,
+        }
+    }
+
+    /// Sets how many TDs of the multi-timer list are active (curricula); other tasks: no-op.
+    pub fn set_num_timers(&mut self, n: usize) -> Result<(), EnvError> {
+        if self.spec.family != TaskFamily::MultiTimer {
+            return Ok(());
+        }
+        if n == 0 || n > self.spec.tds.len() {
+            return Err(EnvError::param(
+                "num_timers",
+                n,
+                format!("integer 1..={} (the length of tds)", self.spec.tds.len()),
+            ));
+        }
+        self.num_timers = n;
+        Ok(())
+    }
+
+    /// Active multi-timer TD count.
+    pub fn num_timers(&self) -> usize {
+        self.num_timers
+    }
+
+    fn check_td_option(&self, td: u32) -> Result<(), EnvError> {
+        if td == 0 || td > 10_000 {
+            return Err(EnvError::reset_option("td", td, "integer 1..=10000"));
+        }
+        match self.spec.cue {
+            Some(CueMode::Value) if td > 255 => Err(EnvError::reset_option(
+                "td",
+                td,
+                "integer 1..=255 (the value cue is a u8)",
+            )),
+            Some(CueMode::Categorical) if !self.spec.tds.contains(&td) => {
+                Err(EnvError::reset_option(
+                    "td",
+                    td,
+                    format!(
+                        "one of the trained TDs {:?} (categorical cues have no code for other TDs)",
+                        self.spec.tds
+                    ),
+                ))
+            }
+            _ => Ok(()),
+        }
+    }
+
+    /// Starts a new episode, reseeding the RNG when `seed` is given, and writes the
+    /// reset observation into `obs` (`[R, C, 6]`, length `R·C·6`).
+    ///
+    /// Draw order (only for what `options` leaves open): start cell, TD, never-ready.
+    pub fn reset(
+        &mut self,
+        seed: Option<u64>,
+        options: &ResetOptions,
+        obs: &mut [u8],
+    ) -> Result<Info, EnvError> {
+        let layout = &self.spec.layout;
+        let start = match options.start {
+            Some((r, c)) => {
+                if !layout.is_free(r, c) {
+                    let free: Vec<String> = layout
+                        .free_cells()
+                        .iter()
+                        .map(|&f| {
+                            let (fr, fc) = layout.coords(f as usize);
+                            format!("{fr},{fc}")
+                        })
+                        .collect();
+                    return Err(EnvError::reset_option(
+                        "start",
+                        format!("{r},{c}"),
+                        format!("a free cell: {}", free.join(" ")),
+                    ));
+                }
+                Some(layout.index(r, c))
+            }
+            None => None,
+        };
+        if let Some(td) = options.td {
+            self.check_td_option(td)?;
+        }
+        if options.never_ready.is_some() && self.spec.family != TaskFamily::Uncertainty {
+            return Err(EnvError::reset_option(
+                "never_ready",
+                options.never_ready.unwrap_or_default(),
+                "only the Uncertainty task has never-ready episodes",
+            ));
+        }
+        if let Some(seed) = seed {
+            self.rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+        }
+        self.reset_state(start, options.td, options.never_ready);
+        self.write_full_obs(obs);
+        Ok(self.info(Events::default(), -1, false))
+    }
+
+    /// Fast reset with everything drawn from the RNG (used by autoreset).
+    #[inline]
+    pub(crate) fn reset_random(&mut self, obs: &mut [u8]) {
+        self.reset_state(None, None, None);
+        self.write_full_obs(obs);
+    }
+
+    fn reset_state(&mut self, start: Option<usize>, td: Option<u32>, never: Option<bool>) {
+        let free = self.spec.layout.free_cells();
+        self.agent = match start {
+            Some(cell) => cell,
+            None => free[self.rng.random_range(0..free.len())] as usize,
+        };
+        self.td = match td {
+            Some(td) => td,
+            None => match self.spec.rules {
+                Rules::Bisection { short, long } => {
+                    if self.rng.random_bool(0.5) {
+                        long
+                    } else {
+                        short
+                    }
+                }
+                Rules::Window { .. } => self.spec.tds[self.rng.random_range(0..self.num_timers)],
+                _ => self.spec.default_td,
+            },
+        };
+        self.never_ready = match (never, self.spec.rules) {
+            (Some(n), _) => n,
+            (None, Rules::Uncertainty { p_never, .. }) => {
+                p_never > 0.0 && self.rng.random_bool(p_never as f64)
+            }
+            _ => false,
+        };
+        self.carry = Carry::Nothing;
+        self.timer = -1;
+        self.ready = false;
+        self.manual = false;
+        self.timestep = 0;
+        self.oven_off_time = -1;
+        self.manual_stop_time = -1;
+        self.sink_count = 0;
+        self.last_sink_timer = -1;
+        self.counter = None;
+        self.done = false;
+    }
+
+    /// Value of observation channel 4 at the oven cell.
+    #[inline]
+    fn oven_code(&self) -> u8 {
+        if self.timer < 0 {
+            0
+        } else if self.ready {
+            2
+        } else {
+            match self.spec.cue {
+                Some(CueMode::Value) => self.td as u8,
+                Some(CueMode::Categorical) => {
+                    1 + self.spec.tds.iter().position(|&t| t == self.td).unwrap_or(0) as u8
+                }
+                None => 1,
+            }
+        }
+    }
+
+    fn write_full_obs(&self, obs: &mut [u8]) {
+        obs.copy_from_slice(&self.spec.background);
+        self.write_dynamic(obs, self.agent);
+    }
+
+    /// Writes the channels that change (agent, carrying, oven) after a move from `old`.
+    #[inline]
+    fn write_dynamic(&self, obs: &mut [u8], old: usize) {
+        let o = old * CODE_CHANNELS;
+        obs[o + 1] = 0;
+        obs[o + 2] = 0;
+        obs[o + 3] = 0;
+        let a = self.agent * CODE_CHANNELS;
+        obs[a + 1] = 1;
+        obs[a + 2] = (self.carry == Carry::Onion) as u8;
+        obs[a + 3] = (self.carry == Carry::Soup) as u8;
+        let v = self.spec.oven * CODE_CHANNELS;
+        obs[v + 4] = self.oven_code();
+        if self.spec.config.debug_timer_channel {
+            obs[v + 5] = (self.timer + 1).clamp(0, 255) as u8;
+        }
+    }
+
+    /// Whether the soup can be taken now (oven on, hands empty checked by the caller).
+    #[inline]
+    fn can_pickup(&self) -> bool {
+        let t = self.timer as i64;
+        match self.spec.rules {
+            Rules::Fixed => t >= self.td as i64,
+            Rules::Probe { factor } => factor > 0 && t >= factor as i64 * self.td as i64,
+            Rules::Bisection { .. } | Rules::Uncertainty { .. } => self.ready,
+            Rules::Window { mode, .. } => match mode {
+                RewardMode::Exact => true,
+                RewardMode::LowerBounded => t >= self.td as i64,
+            },
+            Rules::Dual { .. } => true,
+        }
+    }
+
+    /// Reward for delivering the soup to `counter`.
+    #[inline]
+    fn delivery_reward(&self, counter: Counter) -> f32 {
+        let off = self.oven_off_time as i64;
+        let td = self.td as i64;
+        let window = |under: u32, over: u32, reduced: f32| {
+            if off >= td - under as i64 && off <= td + over as i64 {
+                1.0
+            } else {
+                reduced
+            }
+        };
+        match self.spec.rules {
+            Rules::Fixed | Rules::Probe { .. } => 1.0,
+            Rules::Bisection { short, long } => match counter {
+                Counter::Short if self.td == short => 1.0,
+                Counter::Long if self.td == long => 1.0,
+                _ => 0.0,
+            },
+            Rules::Window {
+                mode,
+                under,
+                over,
+                reduced,
+            } => match mode {
+                RewardMode::Exact => window(under, over, reduced),
+                RewardMode::LowerBounded => {
+                    if off > td + over as i64 {
+                        reduced
+                    } else {
+                        1.0
+                    }
+                }
+            },
+            Rules::Dual {
+                under,
+                over,
+                reduced,
+                ..
+            } => window(under, over, reduced),
+            Rules::Uncertainty {
+                over,
+                overcooked,
+                manual,
+                ..
+            } => {
+                if self.manual {
+                    manual
+                } else if off > td + over as i64 {
+                    overcooked
+                } else {
+                    1.0
+                }
+            }
+        }
+    }
+
+    /// Applies the interact rules (reference order) and returns the reward.
+    #[inline]
+    fn interact(&mut self, events: &mut u16) -> f32 {
+        let Some((kind, _)) = self.spec.layout.adjacent_object(self.agent) else {
+            *events |= Events::NO_EFFECT;
+            return 0.0;
+        };
+        let oven_on = self.timer >= 0;
+        match (kind, self.carry) {
+            (ObjectKind::OnionDispenser, Carry::Nothing) => {
+                self.carry = Carry::Onion;
+                *events |= Events::ONION_TAKEN;
+            }
+            (ObjectKind::Oven, Carry::Onion) if !oven_on => {
+                self.timer = 0;
+                self.ready = false;
+                self.carry = Carry::Nothing;
+                *events |= Events::ONION_IN;
+            }
+            (ObjectKind::Oven, Carry::Nothing) if oven_on => {
+                *events |= Events::OVEN_CHECK;
+                if self.can_pickup() {
+                    self.carry = Carry::Soup;
+                    self.oven_off_time = self.timer;
+                    self.timer = -1;
+                    self.ready = false;
+                    *events |= Events::PICKUP;
+                } else {
+                    *events |= Events::NO_EFFECT;
+                }
+            }
+            (
+                ObjectKind::DeliveryCounter | ObjectKind::ShortCounter | ObjectKind::LongCounter,
+                Carry::Soup,
+            ) => {
+                let counter = match kind {
+                    ObjectKind::ShortCounter => Counter::Short,
+                    ObjectKind::LongCounter => Counter::Long,
+                    _ => Counter::Main,
+                };
+                self.carry = Carry::Nothing;
+                self.counter = Some(counter);
+                *events |= Events::DELIVERY;
+                return self.delivery_reward(counter);
+            }
+            (ObjectKind::RewardSink, _) if oven_on => {
+                if let Rules::Dual { sink, .. } = self.spec.rules {
+                    self.sink_count += 1;
+                    self.last_sink_timer = self.timer;
+                    *events |= Events::SINK;
+                    return sink;
+                }
+                *events |= Events::NO_EFFECT;
+            }
+            (ObjectKind::OvenButton, _) if oven_on && !self.ready => {
+                self.ready = true;
+                self.manual = true;
+                self.manual_stop_time = self.timer;
+                *events |= Events::BUTTON;
+            }
+            _ => *events |= Events::NO_EFFECT,
+        }
+        0.0
+    }
+
+    /// Advances one step and updates `obs` in place (it must hold this env's last observation).
+    #[inline]
+    pub fn step(&mut self, action: Action, obs: &mut [u8]) -> Result<Transition, EnvError> {
+        if self.done {
+            return Err(EnvError::EpisodeOver);
+        }
+        Ok(self.step_unchecked(action, obs))
+    }
+
+    #[inline]
+    pub(crate) fn step_unchecked(&mut self, action: Action, obs: &mut [u8]) -> Transition {
+        let old = self.agent;
+        let timer_at_action = self.timer;
+        let next_to_oven = matches!(
+            self.spec.layout.adjacent_object(old),
+            Some((ObjectKind::Oven, _))
+        );
+        let mut events = 0u16;
+        self.timestep += 1;
+        let reward = if action == Action::Interact {
+            self.interact(&mut events)
+        } else {
+            self.agent = self.spec.layout.move_from(old, action);
+            0.0
+        };
+        if self.timer >= 0 {
+            self.timer += 1;
+            if self.spec.family.shows_ready()
+                && !self.ready
+                && !self.never_ready
+                && self.timer == self.td as i32
+            {
+                self.ready = true;
+                events |= Events::OVEN_READY;
+            }
+        }
+        let delivered = events & Events::DELIVERY != 0;
+        let time_up = self.timestep > self.spec.config.max_timesteps;
+        let (terminated, truncated) = if delivered {
+            (true, false)
+        } else if time_up {
+            if self.spec.config.reference_compat {
+                (true, false)
+            } else {
+                (false, true)
+            }
+        } else {
+            (false, false)
+        };
+        self.done = terminated || truncated;
+        self.write_dynamic(obs, old);
+        Transition {
+            reward,
+            terminated,
+            truncated,
+            info: self.info(Events(events), timer_at_action, next_to_oven),
+        }
+    }
+
+    #[inline]
+    fn info(&self, events: Events, timer_at_action: i32, next_to_oven: bool) -> Info {
+        let (r, c) = self.spec.layout.coords(self.agent);
+        Info {
+            timestep: self.timestep,
+            td: self.td,
+            oven_timer: self.timer,
+            timer_at_action,
+            oven_state: if self.timer < 0 {
+                0
+            } else if self.ready {
+                2
+            } else {
+                1
+            },
+            oven_off_time: self.oven_off_time,
+            counter: self.counter,
+            events,
+            next_to_oven,
+            agent: (r as u8, c as u8),
+            carrying: self.carry,
+            never_ready: self.never_ready,
+            manual_stop_time: self.manual_stop_time,
+            sink_count: self.sink_count,
+            last_sink_timer: self.last_sink_timer,
+        }
+    }
+
+    /// Whether the current episode has ended.
+    pub fn is_done(&self) -> bool {
+        self.done
+    }
+
+    /// A read-only view of the hidden state (for oracles, tests and debugging; never an observation).
+    pub fn state(&self) -> KitchenState {
+        KitchenState {
+            agent: self.spec.layout.coords(self.agent),
+            carry: self.carry,
+            timer: self.timer,
+            ready: self.ready,
+            manual: self.manual,
+            never_ready: self.never_ready,
+            td: self.td,
+            timestep: self.timestep,
+            oven_off_time: self.oven_off_time,
+            done: self.done,
+        }
+    }
+}
+
+/// Snapshot of the hidden state of a [`Kitchen`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct KitchenState {
+    /// Agent `(row, col)`.
+    pub agent: (usize, usize),
+    /// What the agent holds.
+    pub carry: Carry,
+    /// Oven timer (−1 off).
+    pub timer: i32,
+    /// Oven shows ready.
+    pub ready: bool,
+    /// Ready was forced by the manual button.
+    pub manual: bool,
+    /// Never-ready episode (uncertainty).
+    pub never_ready: bool,
+    /// Episode TD (steps).
+    pub td: u32,
+    /// Steps taken.
+    pub timestep: u32,
+    /// Timer at which the soup was taken out (−1 before pickup).
+    pub oven_off_time: i32,
+    /// The episode has ended.
+    pub done: bool,
+}

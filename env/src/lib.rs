@@ -1,0 +1,40 @@
+//! # chronocooked-env
+//!
+//! The Chronocooked benchmark for implicit interval timing: a tiny
+//! Overcooked-like gridworld in which an invisible oven timer must be inferred.
+//!
+//! * [`registry`] — versioned task ids (`FixedInterval-v0`, `Bisection-v0`, …)
+//!   with documented defaults; [`task`] — parameters and validation.
+//! * [`ChronoEnv`] — gymnasium-shaped `reset(seed, options)` / `step(action)`
+//!   with reference semantics (see [`kitchen`] for the exact step order).
+//! * [`VecEnv`] — N envs into preallocated buffers with documented autoreset.
+//! * [`obs`] — the reference "codes" encoding and a one-hot view for networks.
+//! * [`oracle`] — optimal scripted policies; [`render`] — ASCII, PNG, GIF;
+//!   [`trace`] — JSON-lines episode traces.
+
+pub mod action;
+pub mod bench;
+pub mod env;
+pub mod error;
+pub mod info;
+pub mod kitchen;
+pub mod layout;
+pub mod obs;
+pub mod oracle;
+pub mod registry;
+pub mod render;
+pub mod task;
+pub mod trace;
+pub mod vec_env;
+
+pub use action::{Action, parse_action_list};
+pub use env::ChronoEnv;
+pub use error::EnvError;
+pub use info::{Carry, Counter, Events, INFO_KEYS, Info};
+pub use kitchen::{CODE_CHANNELS, Kitchen, KitchenState, ResetOptions, Transition, derive_seed};
+pub use layout::{Layout, ObjectKind};
+pub use obs::{BoxSpace, Discrete, OneHotEncoder};
+pub use oracle::{Oracle, optimal_return};
+pub use registry::{TaskSpec, all_tasks, find_task, make_config, tasks_with_tag};
+pub use task::{CueMode, RewardMode, TaskConfig, TaskFamily, TaskParams};
+pub use vec_env::{Autoreset, VecEnv};

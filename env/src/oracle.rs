@@ -1,0 +1,250 @@
+//! Oracle (optimal scripted) policies and a brute-force optimum for checking them.
+//!
+//! The oracle reads the hidden state (it is a reference policy, not an agent):
+//! shortest paths from precomputed BFS tables plus exact waiting.
+//!
+//! * FI / multi-timer / dual: take the soup at the earliest timer that pays 1
+//!   (`TD`, or `max(1, TD − under_buffer)` when undercooking is possible).
+//! * Peak interval: check the oven at every step from `timer = TD` on (an ideal
+//!   timer's response), which takes the soup once it is released.
+//! * Bisection: take the soup when ready; deliver to the short counter iff
+//!   `TD² < S·L` (geometric-mean boundary for probes; exact for the anchors).
+//! * Dual: spend the wait at the sink and leave exactly in time for the pickup.
+//! * Uncertainty: wait at the oven; if it is still dark at `timer = TD`, press the
+//!   button and take the (reduced) soup. This is also optimal without hidden
+//!   information: the never-ready draw is invisible before TD.
+
+use crate::action::Action;
+use crate::env::ChronoEnv;
+use crate::info::Carry;
+use crate::kitchen::{Kitchen, KitchenState};
+use crate::layout::{Layout, ObjectKind};
+use crate::task::{RewardMode, TaskParams};
+use std::collections::HashMap;
+
+/// Optimal scripted policy for one task instance.
+#[derive(Debug, Clone)]
+pub struct Oracle {
+    layout: Layout,
+    params: TaskParams,
+    /// All-pairs shortest path lengths between cells (moves).
+    dist: Vec<Vec<u32>>,
+}
+
+impl Oracle {
+    /// Builds the oracle for `env`'s task.
+    pub fn new(env: &ChronoEnv) -> Self {
+        let layout = env.layout().clone();
+        let dist = (0..layout.n_cells())
+            .map(|c| layout.distances_to(c))
+            .collect();
+        Oracle {
+            layout,
+            params: env.config().params.clone(),
+            dist,
+        }
+    }
+
+    fn adjacent_to(&self, kind: ObjectKind) -> Vec<usize> {
+        self.layout
+            .free_cells()
+            .iter()
+            .map(|&c| c as usize)
+            .filter(|&c| matches!(self.layout.adjacent_object(c), Some((k, _)) if k == kind))
+            .collect()
+    }
+
+    fn d(&self, a: usize, b: usize) -> u32 {
+        self.dist[b][a]
+    }
+
+    /// Nearest cell of `set` from `from` (ties: the first in row-major order).
+    fn nearest(&self, from: usize, set: &[usize]) -> usize {
+        *set.iter()
+            .min_by_key(|&&c| self.d(from, c))
+            .expect("validated layouts give every object a free neighbour")
+    }
+
+    /// One move along a shortest path from `from` to `to` (`Wait` when already there).
+    fn step_towards(&self, from: usize, to: usize) -> Action {
+        if from == to {
+            return Action::Wait;
+        }
+        let here = self.d(from, to);
+        for a in [Action::Down, Action::Up, Action::Right, Action::Left] {
+            let n = self.layout.move_from(from, a);
+            if n != from && self.d(n, to) < here {
+                return a;
+            }
+        }
+        Action::Wait
+    }
+
+    /// Go to `target` and interact there.
+    fn go_and_interact(&self, from: usize, target: usize) -> Action {
+        if from == target {
+            Action::Interact
+        } else {
+            self.step_towards(from, target)
+        }
+    }
+
+    fn delivery_kind(&self, td: u32) -> ObjectKind {
+        match self.params {
+            TaskParams::Bisection { short, long } => {
+                if (td as u64) * (td as u64) < (short as u64) * (long as u64) {
+                    ObjectKind::ShortCounter
+                } else {
+                    ObjectKind::LongCounter
+                }
+            }
+            _ => ObjectKind::DeliveryCounter,
+        }
+    }
+
+    /// Timer (at action time) of the earliest rewarded pickup, `None` if never.
+    fn pickup_timer(&self, td: u32) -> Option<i32> {
+        let td = td as i32;
+        match &self.params {
+            TaskParams::FixedInterval { .. } => Some(td),
+            TaskParams::PeakInterval { .. } => Some(td),
+            TaskParams::Bisection { .. } | TaskParams::Uncertainty { .. } => Some(td),
+            TaskParams::MultiTimer {
+                mode, under_buffer, ..
+            } => Some(match mode {
+                RewardMode::Exact => (td - *under_buffer as i32).max(1),
+                RewardMode::LowerBounded => td,
+            }),
+            TaskParams::Dual { under_buffer, .. } => Some((td - *under_buffer as i32).max(1)),
+        }
+    }
+
+    /// The oracle's action in `state`.
+    pub fn act(&self, state: &KitchenState) -> Action {
+        let a = self.layout.index(state.agent.0, state.agent.1);
+        let oven_adj = self.adjacent_to(ObjectKind::Oven);
+        let counter_adj = self.adjacent_to(self.delivery_kind(state.td));
+        match state.carry {
+            Carry::Soup => self.go_and_interact(a, self.nearest(a, &counter_adj)),
+            Carry::Onion => {
+                if state.timer < 0 {
+                    self.go_and_interact(a, self.nearest(a, &oven_adj))
+                } else {
+                    Action::Wait // deadlock: cannot happen under the oracle
+                }
+            }
+            Carry::Nothing if state.timer < 0 => {
+                let onion_adj = self.adjacent_to(ObjectKind::OnionDispenser);
+                let best = *onion_adj
+                    .iter()
+                    .min_by_key(|&&x| {
+                        self.d(a, x) + oven_adj.iter().map(|&y| self.d(x, y)).min().unwrap_or(0)
+                    })
+                    .expect("validated layouts have an onion dispenser");
+                self.go_and_interact(a, best)
+            }
+            Carry::Nothing => self.wait_and_pickup(a, state, &oven_adj, &counter_adj),
+        }
+    }
+
+    fn wait_and_pickup(
+        &self,
+        a: usize,
+        s: &KitchenState,
+        oven_adj: &[usize],
+        counter_adj: &[usize],
+    ) -> Action {
+        // Wait at the oven neighbour closest to the delivery counter.
+        let post = *oven_adj
+            .iter()
+            .min_by_key(|&&y| {
+                (
+                    counter_adj.iter().map(|&c| self.d(y, c)).min().unwrap_or(0),
+                    self.d(a, y),
+                )
+            })
+            .expect("validated layouts have an oven");
+        let t = s.timer;
+        let pick = self.pickup_timer(s.td).unwrap_or(i32::MAX);
+        match &self.params {
+            TaskParams::Bisection { .. } => {
+                if s.ready && a == post {
+                    Action::Interact
+                } else {
+                    self.step_towards(a, post)
+                }
+            }
+            TaskParams::Uncertainty { .. } => {
+                if s.ready {
+                    self.go_and_interact(a, post)
+                } else if t >= pick {
+                    let button = self.nearest(a, &self.adjacent_to(ObjectKind::OvenButton));
+                    self.go_and_interact(a, button)
+                } else {
+                    self.step_towards(a, post)
+                }
+            }
+            TaskParams::Dual { .. } => {
+                let sinks = self.adjacent_to(ObjectKind::RewardSink);
+                let sink = *sinks
+                    .iter()
+                    .min_by_key(|&&k| self.d(k, post) + self.d(a, k))
+                    .expect("dual layouts have a sink");
+                let at_sink = sinks.contains(&a);
+                if at_sink && t + (self.d(a, post) as i32) < pick {
+                    Action::Interact
+                } else if !at_sink
+                    && t + (self.d(a, sink) + 1 + self.d(sink, post)) as i32 <= pick
+                {
+                    self.step_towards(a, sink)
+                } else if a == post {
+                    if t >= pick {
+                        Action::Interact
+                    } else {
+                        Action::Wait
+                    }
+                } else {
+                    self.step_towards(a, post)
+                }
+            }
+            _ => {
+                if a == post && t >= pick {
+                    Action::Interact
+                } else if a == post {
+                    Action::Wait
+                } else {
+                    self.step_towards(a, post)
+                }
+            }
+        }
+    }
+}
+
+/// Brute-force maximum undiscounted return from `env`'s current state (exhaustive
+/// search over all action sequences with memoisation on the hidden state).
+///
+/// Cost grows with `cells × timer × steps`: use small `max_timesteps` (tests use ≤ 60).
+pub fn optimal_return(env: &ChronoEnv) -> f64 {
+    fn search(k: &Kitchen, obs: &mut Vec<u8>, memo: &mut HashMap<KitchenState, f64>) -> f64 {
+        let key = k.state();
+        if key.done {
+            return 0.0;
+        }
+        if let Some(&v) = memo.get(&key) {
+            return v;
+        }
+        let mut best = f64::NEG_INFINITY;
+        for a in Action::ALL {
+            let mut next = k.clone();
+            let t = next.step_unchecked(a, obs);
+            let v = t.reward as f64 + search(&next, obs, memo);
+            if v > best {
+                best = v;
+            }
+        }
+        memo.insert(key, best);
+        best
+    }
+    let mut obs = env.obs_codes().to_vec();
+    search(env.kitchen(), &mut obs, &mut HashMap::new())
+}

@@ -1,0 +1,1 @@
+//! Chronocooked Lab models crate (grows with its issue).

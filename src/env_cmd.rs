@@ -1,0 +1,342 @@
+//! `env …` and `bench env` subcommands.
+
+use anyhow::{Context, Result, bail};
+use chronocooked_env::{
+    Action, ChronoEnv, Oracle, ResetOptions, all_tasks, bench, find_task, make_config,
+    parse_action_list, render, task::common_params, trace,
+};
+use clap::{Args, Subcommand, ValueEnum};
+use rand::{Rng, SeedableRng};
+use rand_xoshiro::Xoshiro256PlusPlus;
+use std::io::Write;
+use std::path::PathBuf;
+
+use crate::play;
+
+/// Task, overrides and reset options shared by replay, render and play.
+#[derive(Args, Debug, Clone)]
+pub struct TaskArgs {
+    /// Task id (see `env list`), e.g. FixedInterval-v0, Bisection-v0, MultiTimer-v0.
+    pub task: String,
+    /// Parameter override `key=value` (repeatable); reference names are accepted as aliases
+    /// (e.g. oven_duration, max_timesteps, overcooked_buffer, undercooked_possible).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Reference-compatible mode: the time-limit stop is reported as `terminated`.
+    #[arg(long)]
+    pub reference: bool,
+    /// Start cell `row,col` (must be free); drawn uniformly if omitted.
+    #[arg(long, value_name = "ROW,COL")]
+    pub start: Option<String>,
+    /// Target duration of the episode (steps); drawn by the task if omitted.
+    #[arg(long)]
+    pub td: Option<u32>,
+    /// Uncertainty task: force a never-ready (true) or normal (false) episode.
+    #[arg(long)]
+    pub never_ready: Option<bool>,
+    /// RNG seed for what is not fixed by the options.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+}
+
+impl TaskArgs {
+    /// Builds the env and the reset options.
+    pub fn build(&self) -> Result<(ChronoEnv, ResetOptions)> {
+        let mut overrides = self.set.clone();
+        if self.reference {
+            overrides.push("reference_compat=true".into());
+        }
+        let env = ChronoEnv::from_id(&self.task, &overrides)?;
+        let start = match &self.start {
+            None => None,
+            Some(text) => {
+                let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+                let parsed: Option<(usize, usize)> = match parts.as_slice() {
+                    [r, c] => r.parse().ok().zip(c.parse().ok()),
+                    _ => None,
+                };
+                Some(parsed.with_context(|| {
+                    format!("--start `{text}`: expected ROW,COL with non-negative integers, e.g. 1,1")
+                })?)
+            }
+        };
+        Ok((
+            env,
+            ResetOptions {
+                start,
+                td: self.td,
+                never_ready: self.never_ready,
+            },
+        ))
+    }
+}
+
+/// Which policy drives a rendered episode.
+#[derive(ValueEnum, Clone, Copy, Debug)]
+pub enum RenderPolicy {
+    /// The optimal scripted policy.
+    Oracle,
+    /// Uniformly random actions.
+    Random,
+}
+
+/// `env` subcommands.
+#[derive(Subcommand, Debug)]
+pub enum EnvCommand {
+    /// List registered tasks with tags, defaults and parameters.
+    List {
+        /// Only tasks with this tag.
+        #[arg(long)]
+        tag: Option<String>,
+        /// Print JSON instead of text.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Replay a comma-separated action list; prints JSON lines (reset, then one per step).
+    Replay {
+        #[command(flatten)]
+        task: TaskArgs,
+        /// Action codes, e.g. 3,5,1,5 (0 wait, 1 down, 2 up, 3 right, 4 left, 5 interact).
+        #[arg(long, allow_hyphen_values = true)]
+        actions: String,
+    },
+    /// Render an oracle or random episode as an animated GIF (and optional PNG frames / ASCII).
+    Render {
+        #[command(flatten)]
+        task: TaskArgs,
+        /// Policy that plays the episode.
+        #[arg(long, value_enum, default_value_t = RenderPolicy::Oracle)]
+        policy: RenderPolicy,
+        /// Output GIF path.
+        #[arg(long, default_value = "episode.gif")]
+        out: PathBuf,
+        /// Also write every frame as PNG into this folder.
+        #[arg(long)]
+        png_dir: Option<PathBuf>,
+        /// Print every frame as ASCII.
+        #[arg(long)]
+        ascii: bool,
+        /// Hundredths of a second per GIF frame.
+        #[arg(long, default_value_t = 25)]
+        delay: u16,
+    },
+    /// Play a task in the terminal (arrows/WASD move, space/E interact, . wait, q quit);
+    /// every step is recorded as JSON lines in the same shape as `env replay`.
+    Play {
+        #[command(flatten)]
+        task: TaskArgs,
+        /// JSON-lines file that receives the recording (appended, flushed every step).
+        #[arg(long, default_value = "play.jsonl")]
+        record: PathBuf,
+        /// Number of episodes to play (0 = until q).
+        #[arg(long, default_value_t = 1)]
+        episodes: u32,
+    },
+}
+
+/// `bench` subcommands.
+#[derive(Subcommand, Debug)]
+pub enum BenchCommand {
+    /// Env steps/s on one thread: scalar and vectorised, codes and one-hot, random actions.
+    Env {
+        /// Task id.
+        #[arg(long, default_value = "FixedInterval-v0")]
+        task: String,
+        /// Parameter overrides `key=value`.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Envs in the vectorised runs.
+        #[arg(long, default_value_t = 256)]
+        n_envs: usize,
+        /// Seconds per measurement.
+        #[arg(long, default_value_t = 3.0)]
+        seconds: f64,
+        /// Print JSON lines instead of a table.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+/// Runs an `env` subcommand.
+pub fn run(cmd: EnvCommand) -> Result<()> {
+    match cmd {
+        EnvCommand::List { tag, json } => list(tag.as_deref(), json),
+        EnvCommand::Replay { task, actions } => {
+            let (mut env, options) = task.build()?;
+            let actions = parse_action_list(&actions)?;
+            let lines = trace::replay(&mut env, Some(task.seed), &options, &actions)?;
+            let mut out = std::io::stdout().lock();
+            for line in lines {
+                writeln!(out, "{}", line.to_json())?;
+            }
+            Ok(())
+        }
+        EnvCommand::Render {
+            task,
+            policy,
+            out,
+            png_dir,
+            ascii,
+            delay,
+        } => render_episode(&task, policy, &out, png_dir.as_deref(), ascii, delay),
+        EnvCommand::Play {
+            task,
+            record,
+            episodes,
+        } => play::run(&task, &record, episodes),
+    }
+}
+
+fn list(tag: Option<&str>, json: bool) -> Result<()> {
+    let tasks: Vec<_> = all_tasks()
+        .iter()
+        .filter(|t| tag.is_none_or(|tag| t.tags.contains(&tag)))
+        .collect();
+    if tasks.is_empty() {
+        bail!(
+            "no task has tag `{}` (tags in use: {})",
+            tag.unwrap_or_default(),
+            all_tags().join(", ")
+        );
+    }
+    if json {
+        for t in tasks {
+            let value = serde_json::json!({
+                "id": t.id,
+                "family": t.family,
+                "tags": t.tags,
+                "summary": t.summary,
+                "description": t.description,
+                "source": t.source,
+                "defaults": t.default_config(),
+                "params": t.family.params(),
+            });
+            println!("{value}");
+        }
+        return Ok(());
+    }
+    for t in tasks {
+        let cfg = t.default_config();
+        println!("{}  [{}]", t.id, t.tags.join(", "));
+        println!("  {}", t.summary);
+        println!("  source: {}", t.source);
+        println!("  defaults: {}", serde_json::to_string(&cfg.params)?);
+        println!("  layout: {}  max_timesteps: {}", cfg.layout, cfg.max_timesteps);
+        for p in t.family.params() {
+            let aliases = if p.aliases.is_empty() {
+                String::new()
+            } else {
+                format!(" (alias {})", p.aliases.join(", "))
+            };
+            println!("    {}{}: {} — {}", p.key, aliases, p.allowed, p.doc);
+        }
+        println!();
+    }
+    println!("Parameters of every task:");
+    for p in common_params() {
+        println!("    {}: {} — {}", p.key, p.allowed, p.doc);
+    }
+    Ok(())
+}
+
+fn all_tags() -> Vec<&'static str> {
+    let mut tags: Vec<&str> = all_tasks().iter().flat_map(|t| t.tags.iter().copied()).collect();
+    tags.sort_unstable();
+    tags.dedup();
+    tags
+}
+
+/// Plays one episode with `policy`, returning the codes observations (reset first) and the return.
+pub fn play_episode(
+    env: &mut ChronoEnv,
+    seed: u64,
+    options: &ResetOptions,
+    policy: RenderPolicy,
+) -> Result<(Vec<Vec<u8>>, f64, u32)> {
+    env.reset(Some(seed), options)?;
+    let oracle = Oracle::new(env);
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed ^ 0x5eed);
+    let mut frames = vec![env.obs_codes().to_vec()];
+    let mut total = 0.0;
+    let mut steps = 0;
+    while !env.is_done() {
+        let action = match policy {
+            RenderPolicy::Oracle => oracle.act(&env.state()),
+            RenderPolicy::Random => Action::ALL[rng.random_range(0..Action::COUNT)],
+        };
+        let t = env.step(action)?;
+        total += t.reward as f64;
+        steps += 1;
+        frames.push(env.obs_codes().to_vec());
+    }
+    Ok((frames, total, steps))
+}
+
+fn render_episode(
+    task: &TaskArgs,
+    policy: RenderPolicy,
+    out: &std::path::Path,
+    png_dir: Option<&std::path::Path>,
+    ascii: bool,
+    delay: u16,
+) -> Result<()> {
+    let (mut env, options) = task.build()?;
+    let (frames, total, steps) = play_episode(&mut env, task.seed, &options, policy)?;
+    let layout = env.layout().clone();
+    let family = env.family();
+    let images: Vec<_> = frames
+        .iter()
+        .map(|f| render::frame(&layout, family, f))
+        .collect();
+    render::write_atomic(out, &render::gif_bytes(&images, delay)?)?;
+    if let Some(dir) = png_dir {
+        for (i, img) in images.iter().enumerate() {
+            render::write_atomic(&dir.join(format!("frame_{i:04}.png")), &render::png_bytes(img)?)?;
+        }
+    }
+    if ascii {
+        for (i, f) in frames.iter().enumerate() {
+            println!("step {i}\n{}", render::ascii(&layout, family, f));
+        }
+    }
+    println!(
+        "{}: {:?} policy, {} steps, return {:.3} -> {}",
+        env.config().id,
+        policy,
+        steps,
+        total,
+        out.display()
+    );
+    Ok(())
+}
+
+/// Runs a `bench` subcommand.
+pub fn run_bench(cmd: BenchCommand) -> Result<()> {
+    match cmd {
+        BenchCommand::Env {
+            task,
+            set,
+            n_envs,
+            seconds,
+            json,
+        } => {
+            find_task(&task)?;
+            make_config(&task, &set)?;
+            if n_envs == 0 {
+                bail!("--n-envs must be >= 1");
+            }
+            let rows = bench::run(&task, &set, n_envs, seconds)?;
+            for r in rows {
+                if json {
+                    println!("{}", serde_json::to_string(&r)?);
+                } else {
+                    println!(
+                        "{:<18} {:<8} {:<7} {:>14.0} steps/s  ({} steps in {:.2} s)",
+                        r.task, r.mode, r.encoding, r.steps_per_sec, r.steps, r.seconds
+                    );
+                }
+            }
+            Ok(())
+        }
+    }
+}

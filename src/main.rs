@@ -1,0 +1,48 @@
+//! `chronocooked` — the Chronocooked Lab command line (a thin layer over the crates).
+
+mod demo;
+mod env_cmd;
+mod play;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// Chronocooked Lab: interval timing in RL agents and biological timing models.
+#[derive(Parser)]
+#[command(name = "chronocooked", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Tasks: list, replay action lists, render episodes, play in the terminal.
+    Env {
+        #[command(subcommand)]
+        command: env_cmd::EnvCommand,
+    },
+    /// Run the built-in demo on defaults (oracle episode of every task, GIFs, summary).
+    Demo(demo::DemoArgs),
+    /// Benchmarks (`bench env`: env steps/s).
+    Bench {
+        #[command(subcommand)]
+        command: env_cmd::BenchCommand,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Env { command } => env_cmd::run(command),
+        Command::Demo(args) => demo::run(args),
+        Command::Bench { command } => env_cmd::run_bench(command),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}

@@ -1,0 +1,1 @@
+//! Chronocooked Lab training crate (grows with its issue).
