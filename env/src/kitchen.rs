@@ -338,9 +338,10 @@ impl Kitchen {
 
     /// Fast reset with everything drawn from the RNG (used by autoreset).
     #[inline]
-    pub(crate) fn reset_random(&mut self, obs: &mut [u8]) {
+    pub(crate) fn reset_random(&mut self, obs: &mut [u8]) -> Info {
         self.reset_state(None, None, None);
         self.write_full_obs(obs);
+        self.info(Events::default(), -1, false)
     }
 
     fn reset_state(&mut self, start: Option<usize>, td: Option<u32>, never: Option<bool>) {

@@ -3,13 +3,15 @@
 //! The oracle reads the hidden state (it is a reference policy, not an agent):
 //! shortest paths from precomputed BFS tables plus exact waiting.
 //!
-//! * FI / multi-timer / dual: take the soup at the earliest timer that pays 1
+//! * FI / multi-timer: take the soup at the earliest timer that pays 1
 //!   (`TD`, or `max(1, TD − under_buffer)` when undercooking is possible).
 //! * Peak interval: check the oven at every step from `timer = TD` on (an ideal
 //!   timer's response), which takes the soup once it is released.
 //! * Bisection: take the soup when ready; deliver to the short counter iff
 //!   `TD² < S·L` (geometric-mean boundary for probes; exact for the anchors).
-//! * Dual: spend the wait at the sink and leave exactly in time for the pickup.
+//! * Dual: put the onion in at the oven neighbour closest to the sink, spend the
+//!   wait at the sink and leave exactly in time for the latest rewarded pickup
+//!   (`TD + over_buffer`).
 //! * Uncertainty: wait at the oven; if it is still dark at `timer = TD`, press the
 //!   button and take the (reduced) soup. This is also optimal without hidden
 //!   information: the never-ready draw is invisible before TD.
@@ -115,8 +117,21 @@ impl Oracle {
                 RewardMode::Exact => (td - *under_buffer as i32).max(1),
                 RewardMode::LowerBounded => td,
             }),
-            TaskParams::Dual { under_buffer, .. } => Some((td - *under_buffer as i32).max(1)),
+            // Latest rewarded pickup: every extra step of cooking is one more sink payment.
+            TaskParams::Dual { over_buffer, .. } => Some(td + *over_buffer as i32),
         }
+    }
+
+    /// Dual task: the oven neighbour closest to a sink neighbour. Putting the onion in
+    /// and taking the soup out there maximises the time left for the sink.
+    fn dual_post(&self) -> Option<usize> {
+        if !matches!(self.params, TaskParams::Dual { .. }) {
+            return None;
+        }
+        let sinks = self.adjacent_to(ObjectKind::RewardSink);
+        self.adjacent_to(ObjectKind::Oven)
+            .into_iter()
+            .min_by_key(|&y| sinks.iter().map(|&k| self.d(y, k)).min().unwrap_or(u32::MAX))
     }
 
     /// The oracle's action in `state`.
@@ -128,18 +143,21 @@ impl Oracle {
             Carry::Soup => self.go_and_interact(a, self.nearest(a, &counter_adj)),
             Carry::Onion => {
                 if state.timer < 0 {
-                    self.go_and_interact(a, self.nearest(a, &oven_adj))
+                    let target = self.dual_post().unwrap_or_else(|| self.nearest(a, &oven_adj));
+                    self.go_and_interact(a, target)
                 } else {
                     Action::Wait // deadlock: cannot happen under the oracle
                 }
             }
             Carry::Nothing if state.timer < 0 => {
                 let onion_adj = self.adjacent_to(ObjectKind::OnionDispenser);
+                let to_oven = |x: usize| match self.dual_post() {
+                    Some(y) => self.d(x, y),
+                    None => oven_adj.iter().map(|&y| self.d(x, y)).min().unwrap_or(0),
+                };
                 let best = *onion_adj
                     .iter()
-                    .min_by_key(|&&x| {
-                        self.d(a, x) + oven_adj.iter().map(|&y| self.d(x, y)).min().unwrap_or(0)
-                    })
+                    .min_by_key(|&&x| self.d(a, x) + to_oven(x))
                     .expect("validated layouts have an onion dispenser");
                 self.go_and_interact(a, best)
             }
@@ -154,8 +172,8 @@ impl Oracle {
         oven_adj: &[usize],
         counter_adj: &[usize],
     ) -> Action {
-        // Wait at the oven neighbour closest to the delivery counter.
-        let post = *oven_adj
+        // Wait at the oven neighbour closest to the delivery counter (dual: to the sink).
+        let post = self.dual_post().unwrap_or_else(|| *oven_adj
             .iter()
             .min_by_key(|&&y| {
                 (
@@ -163,7 +181,7 @@ impl Oracle {
                     self.d(a, y),
                 )
             })
-            .expect("validated layouts have an oven");
+            .expect("validated layouts have an oven"));
         let t = s.timer;
         let pick = self.pickup_timer(s.td).unwrap_or(i32::MAX);
         match &self.params {

@@ -57,7 +57,7 @@ pub struct VecEnv {
     pub terminated: Vec<bool>,
     /// Truncated flags of this step `[N]`.
     pub truncated: Vec<bool>,
-    /// Infos of this step `[N]` (of the new episode after a same-step reset).
+    /// Infos of this step `[N]` (the new episode's reset info after an autoreset).
     pub infos: Vec<Info>,
     /// Infos of the last step of episodes that ended this step `[N]`.
     pub final_infos: Vec<Info>,
@@ -172,7 +172,7 @@ impl VecEnv {
             let obs = &mut self.obs[i * len..(i + 1) * len];
             if self.pending_reset[i] {
                 self.pending_reset[i] = false;
-                k.reset_random(obs);
+                self.infos[i] = k.reset_random(obs);
                 self.rewards[i] = 0.0;
                 self.terminated[i] = false;
                 self.truncated[i] = false;
@@ -188,7 +188,7 @@ impl VecEnv {
                 match self.mode {
                     Autoreset::SameStep => {
                         self.final_obs[i * len..(i + 1) * len].copy_from_slice(obs);
-                        k.reset_random(obs);
+                        self.infos[i] = k.reset_random(obs);
                     }
                     Autoreset::NextStep => self.pending_reset[i] = true,
                     Autoreset::Disabled => {}

@@ -1,0 +1,242 @@
+//! Registry-driven `check_env`-style conformance over every registered task, plus the
+//! vectorised env's equivalence with scalar stepping.
+
+use chronocooked_env::{
+    Action, Autoreset, ChronoEnv, INFO_KEYS, ResetOptions, TaskConfig, TaskFamily, VecEnv,
+    all_tasks, derive_seed, make_config,
+};
+use proptest::prelude::*;
+use rand::{Rng, SeedableRng};
+use rand_xoshiro::Xoshiro256PlusPlus;
+
+fn random_episode_trace(env: &mut ChronoEnv, seed: u64, steps: usize) -> Vec<String> {
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+    let mut out = vec![];
+    let info = env.reset(Some(seed), &ResetOptions::default()).unwrap();
+    out.push(format!("{:?}{:?}", env.obs_codes(), info));
+    for _ in 0..steps {
+        let a = Action::ALL[rng.random_range(0..6)];
+        let t = env.step(a).unwrap();
+        out.push(format!("{:?}{:?}", env.obs_codes(), t));
+        if t.done() {
+            let info = env.reset(None, &ResetOptions::default()).unwrap();
+            out.push(format!("reset{:?}{:?}", env.obs_codes(), info));
+        }
+    }
+    out
+}
+
+#[test]
+fn every_task_is_seed_and_step_deterministic() {
+    for spec in all_tasks() {
+        let cfg = spec.default_config();
+        for seed in [0u64, 1, 7, 12345] {
+            let a = random_episode_trace(&mut ChronoEnv::new(&cfg).unwrap(), seed, 800);
+            let b = random_episode_trace(&mut ChronoEnv::new(&cfg).unwrap(), seed, 800);
+            assert_eq!(a, b, "{} seed {seed}", spec.id);
+        }
+        // Different seeds give different start cells somewhere.
+        let mut env = ChronoEnv::new(&cfg).unwrap();
+        let starts: std::collections::HashSet<_> = (0..50)
+            .map(|s| {
+                env.reset(Some(s), &ResetOptions::default()).unwrap();
+                env.state().agent
+            })
+            .collect();
+        assert_eq!(
+            starts.len(),
+            env.layout().free_cells().len(),
+            "{}: 50 seeds should visit every start cell",
+            spec.id
+        );
+    }
+}
+
+#[test]
+fn every_obs_is_in_its_space_and_info_has_every_key() {
+    for spec in all_tasks() {
+        let mut env = ChronoEnv::new(&spec.default_config()).unwrap();
+        let codes = env.codes_space();
+        let onehot = env.onehot_space();
+        assert_eq!(codes.shape, vec![env.layout().rows(), env.layout().cols(), 6]);
+        assert_eq!(onehot.shape[1..], [env.layout().rows(), env.layout().cols()]);
+        assert!(env.action_space().contains(5) && !env.action_space().contains(6));
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(3);
+        env.reset(Some(3), &ResetOptions::default()).unwrap();
+        for _ in 0..3000 {
+            let t = env.step(Action::ALL[rng.random_range(0..6)]).unwrap();
+            assert!(codes.contains(env.obs_codes()), "{}", spec.id);
+            assert!(onehot.contains(&env.obs_onehot()), "{}", spec.id);
+            let json = serde_json::to_value(t.info).unwrap();
+            for key in INFO_KEYS {
+                assert!(json.get(key).is_some(), "{}: info lacks {key}", spec.id);
+            }
+            // The one-hot view has exactly one agent.
+            let plane = env.layout().n_cells();
+            let agent: f32 = env.obs_onehot()[7 * plane..8 * plane].iter().sum();
+            assert_eq!(agent, 1.0);
+            if t.done() {
+                env.reset(None, &ResetOptions::default()).unwrap();
+            }
+        }
+    }
+}
+
+#[test]
+fn the_observation_never_encodes_the_timer() {
+    // Two states that differ only in the hidden timer have identical observations.
+    let mut env = ChronoEnv::from_id("FixedInterval-v0", &["td=20"]).unwrap();
+    let opts = ResetOptions {
+        start: Some((1, 0)),
+        td: None,
+        never_ready: None,
+    };
+    env.reset(Some(0), &opts).unwrap();
+    env.step(Action::Up).unwrap(); // to (0,0), next to the onion
+    env.step(Action::Interact).unwrap();
+    env.step(Action::Down).unwrap(); // (1,0), next to the oven
+    env.step(Action::Interact).unwrap(); // onion in
+    let first = env.obs_codes().to_vec();
+    env.step(Action::Wait).unwrap();
+    assert_eq!(env.obs_codes(), &first[..]);
+    assert!(env.state().timer >= 2);
+}
+
+#[test]
+fn vec_env_matches_scalar_envs_with_derived_seeds() {
+    for spec in all_tasks() {
+        let cfg = spec.default_config();
+        let n = 5;
+        let mut venv = VecEnv::new(&cfg, n, Autoreset::SameStep).unwrap();
+        venv.reset(99);
+        let mut envs: Vec<ChronoEnv> = (0..n)
+            .map(|i| {
+                let mut e = ChronoEnv::new(&cfg).unwrap();
+                e.reset(Some(derive_seed(99, i as u64)), &ResetOptions::default())
+                    .unwrap();
+                e
+            })
+            .collect();
+        let len = venv.obs_len();
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(5);
+        let mut ended = 0;
+        for _ in 0..1500 {
+            let actions: Vec<u8> = (0..n).map(|_| rng.random_range(0..6)).collect();
+            venv.step(&actions).unwrap();
+            for (i, e) in envs.iter_mut().enumerate() {
+                let t = e.step(Action::from_code(actions[i] as i64).unwrap()).unwrap();
+                assert_eq!(venv.rewards[i], t.reward);
+                assert_eq!(venv.terminated[i], t.terminated);
+                assert_eq!(venv.truncated[i], t.truncated);
+                if t.done() {
+                    ended += 1;
+                    assert_eq!(&venv.final_obs[i * len..(i + 1) * len], e.obs_codes());
+                    assert_eq!(venv.final_infos[i], t.info);
+                    let info = e.reset(None, &ResetOptions::default()).unwrap();
+                    assert_eq!(venv.infos[i], info);
+                }
+                assert_eq!(&venv.obs[i * len..(i + 1) * len], e.obs_codes(), "{}", spec.id);
+            }
+        }
+        assert!(ended > 0, "{}: no episode ended", spec.id);
+        // One-hot batch equals the per-env encoding.
+        let per = venv.onehot_encoder().len();
+        let mut batch = vec![0.0; n * per];
+        venv.write_onehot(&mut batch);
+        for (i, e) in envs.iter().enumerate() {
+            assert_eq!(&batch[i * per..(i + 1) * per], &e.obs_onehot()[..]);
+        }
+    }
+}
+
+#[test]
+fn vec_env_next_step_and_disabled_modes() {
+    let cfg = make_config("FixedInterval-v0", &["max_timesteps=2"]).unwrap();
+    let mut v = VecEnv::new(&cfg, 2, Autoreset::NextStep).unwrap();
+    v.reset(1);
+    for _ in 0..3 {
+        v.step(&[0, 0]).unwrap();
+    }
+    assert!(v.truncated.iter().all(|&t| t));
+    let terminal = v.obs.clone();
+    assert_eq!(v.final_obs.len(), terminal.len());
+    v.step(&[0, 0]).unwrap(); // the reset step
+    assert!(v.rewards.iter().all(|&r| r == 0.0));
+    assert!(!v.truncated[0] && !v.terminated[0]);
+    assert_eq!(v.infos[0].timestep, 0, "the reset step reports the new episode's reset info");
+    v.step(&[0, 0]).unwrap();
+    assert_eq!(v.infos[0].timestep, 1);
+
+    let mut d = VecEnv::new(&cfg, 1, Autoreset::Disabled).unwrap();
+    d.reset(1);
+    for _ in 0..3 {
+        d.step(&[0]).unwrap();
+    }
+    assert!(d.step(&[0]).is_err());
+    assert!(v.step(&[0, 9]).is_err(), "action out of range is a typed error");
+    assert!(v.step(&[0]).is_err(), "wrong number of actions is an error");
+}
+
+fn random_config(family_index: usize, knobs: &[u32]) -> TaskConfig {
+    let spec = &all_tasks()[family_index % all_tasks().len()];
+    let k = |i: usize| knobs[i % knobs.len()];
+    let mut sets = vec![format!("max_timesteps={}", k(0) % 300)];
+    match spec.family {
+        TaskFamily::FixedInterval | TaskFamily::Dual | TaskFamily::Uncertainty => {
+            sets.push(format!("td={}", 1 + k(1) % 40));
+        }
+        TaskFamily::PeakInterval => {
+            sets.push(format!("td={}", 1 + k(1) % 40));
+            sets.push(format!("probe_factor={}", k(2) % 6));
+        }
+        TaskFamily::Bisection => {
+            let s = 1 + k(1) % 20;
+            sets.push(format!("short={s}"));
+            sets.push(format!("long={}", s + 1 + k(2) % 20));
+        }
+        TaskFamily::MultiTimer => {
+            let n = 1 + k(1) % 5;
+            let tds: Vec<String> = (0..n).map(|i| (1 + i * (1 + k(2) % 7)).to_string()).collect();
+            sets.push(format!("tds={}", tds.join(",")));
+            sets.push(format!("num_timers={}", 1 + k(3) % n));
+            sets.push(format!("mode={}", if k(4) % 2 == 0 { "exact" } else { "lower_bounded" }));
+            sets.push(format!("cue={}", if k(5) % 2 == 0 { "value" } else { "categorical" }));
+            sets.push(format!("under_buffer={}", k(6) % 5));
+            sets.push(format!("over_buffer={}", k(7) % 5));
+        }
+    }
+    if spec.family == TaskFamily::Uncertainty {
+        sets.push(format!("never_ready_prob={}", (k(3) % 11) as f32 / 10.0));
+    }
+    if k(8) % 3 == 0 {
+        sets.push("reference_compat=true".into());
+    }
+    make_config(spec.id, &sets).expect("generated configs are valid")
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+    #[test]
+    fn random_valid_configs_and_long_random_action_streams_never_panic(
+        family in 0usize..6,
+        knobs in proptest::collection::vec(0u32..1000, 9),
+        actions in proptest::collection::vec(0i64..6, 2000..3000),
+        seed in any::<u64>(),
+    ) {
+        let cfg = random_config(family, &knobs);
+        let mut env = ChronoEnv::new(&cfg).unwrap();
+        let space = env.codes_space();
+        env.reset(Some(seed), &ResetOptions::default()).unwrap();
+        for a in actions {
+            let t = env.step_code(a).unwrap();
+            prop_assert!(space.contains(env.obs_codes()));
+            prop_assert!((-1e-6..=1.0001).contains(&t.reward));
+            prop_assert!(t.info.timestep <= cfg.max_timesteps + 1);
+            if t.done() {
+                prop_assert!(t.terminated != t.truncated || t.terminated);
+                prop_assert!(env.step(Action::Wait).is_err());
+                env.reset(None, &ResetOptions::default()).unwrap();
+            }
+        }
+    }
+}
