@@ -34,14 +34,13 @@ fn conditions(env: &ChronoEnv) -> Vec<(u32, Option<bool>)> {
 /// Runs the demo.
 pub fn run(args: DemoArgs) -> Result<()> {
     std::fs::create_dir_all(&args.out)?;
-    println!(
-        "Chronocooked Lab demo: oracle vs random policy on every task, every start cell\n"
-    );
+    println!("Chronocooked Lab demo: oracle vs random policy on every task, every start cell\n");
     println!(
         "{:<18} {:>9} {:>12} {:>12} {:>12} {:>12}",
         "task", "episodes", "oracle ret", "oracle len", "random ret", "random len"
     );
     let mut summary = Vec::new();
+    let mut fi_ascii = String::new();
     for spec in all_tasks() {
         let mut env = ChronoEnv::new(&spec.default_config())?;
         let starts: Vec<(usize, usize)> = env
@@ -105,16 +104,21 @@ pub fn run(args: DemoArgs) -> Result<()> {
             "gif": gif,
         }));
         if spec.family == TaskFamily::FixedInterval {
-            println!(
-                "\n  last frame of the FI oracle episode:\n{}",
-                render::ascii(env.layout(), env.family(), frames.last().expect("non-empty"))
-                    .lines()
-                    .map(|l| format!("    {l}"))
-                    .collect::<Vec<_>>()
-                    .join("\n")
+            fi_ascii = format!(
+                "\nLast frame of the FixedInterval-v0 oracle episode (@ agent, V oven, O onion, D delivery):\n{}",
+                render::ascii(
+                    env.layout(),
+                    env.family(),
+                    frames.last().expect("non-empty")
+                )
+                .lines()
+                .map(|l| format!("    {l}"))
+                .collect::<Vec<_>>()
+                .join("\n")
             );
         }
     }
+    println!("{fi_ascii}");
     let path = args.out.join("summary.json");
     render::write_atomic(&path, serde_json::to_string_pretty(&summary)?.as_bytes())?;
     println!("\nGIFs and summary.json written to {}", args.out.display());

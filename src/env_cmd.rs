@@ -56,7 +56,9 @@ impl TaskArgs {
                     _ => None,
                 };
                 Some(parsed.with_context(|| {
-                    format!("--start `{text}`: expected ROW,COL with non-negative integers, e.g. 1,1")
+                    format!(
+                        "--start `{text}`: expected ROW,COL with non-negative integers, e.g. 1,1"
+                    )
                 })?)
             }
         };
@@ -221,7 +223,10 @@ fn list(tag: Option<&str>, json: bool) -> Result<()> {
         println!("  {}", t.summary);
         println!("  source: {}", t.source);
         println!("  defaults: {}", serde_json::to_string(&cfg.params)?);
-        println!("  layout: {}  max_timesteps: {}", cfg.layout, cfg.max_timesteps);
+        println!(
+            "  layout: {}  max_timesteps: {}",
+            cfg.layout, cfg.max_timesteps
+        );
         for p in t.family.params() {
             let aliases = if p.aliases.is_empty() {
                 String::new()
@@ -240,7 +245,10 @@ fn list(tag: Option<&str>, json: bool) -> Result<()> {
 }
 
 fn all_tags() -> Vec<&'static str> {
-    let mut tags: Vec<&str> = all_tasks().iter().flat_map(|t| t.tags.iter().copied()).collect();
+    let mut tags: Vec<&str> = all_tasks()
+        .iter()
+        .flat_map(|t| t.tags.iter().copied())
+        .collect();
     tags.sort_unstable();
     tags.dedup();
     tags
@@ -291,7 +299,10 @@ fn render_episode(
     render::write_atomic(out, &render::gif_bytes(&images, delay)?)?;
     if let Some(dir) = png_dir {
         for (i, img) in images.iter().enumerate() {
-            render::write_atomic(&dir.join(format!("frame_{i:04}.png")), &render::png_bytes(img)?)?;
+            render::write_atomic(
+                &dir.join(format!("frame_{i:04}.png")),
+                &render::png_bytes(img)?,
+            )?;
         }
     }
     if ascii {

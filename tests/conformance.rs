@@ -58,8 +58,14 @@ fn every_obs_is_in_its_space_and_info_has_every_key() {
         let mut env = ChronoEnv::new(&spec.default_config()).unwrap();
         let codes = env.codes_space();
         let onehot = env.onehot_space();
-        assert_eq!(codes.shape, vec![env.layout().rows(), env.layout().cols(), 6]);
-        assert_eq!(onehot.shape[1..], [env.layout().rows(), env.layout().cols()]);
+        assert_eq!(
+            codes.shape,
+            vec![env.layout().rows(), env.layout().cols(), 6]
+        );
+        assert_eq!(
+            onehot.shape[1..],
+            [env.layout().rows(), env.layout().cols()]
+        );
         assert!(env.action_space().contains(5) && !env.action_space().contains(6));
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(3);
         env.reset(Some(3), &ResetOptions::default()).unwrap();
@@ -124,7 +130,9 @@ fn vec_env_matches_scalar_envs_with_derived_seeds() {
             let actions: Vec<u8> = (0..n).map(|_| rng.random_range(0..6)).collect();
             venv.step(&actions).unwrap();
             for (i, e) in envs.iter_mut().enumerate() {
-                let t = e.step(Action::from_code(actions[i] as i64).unwrap()).unwrap();
+                let t = e
+                    .step(Action::from_code(actions[i] as i64).unwrap())
+                    .unwrap();
                 assert_eq!(venv.rewards[i], t.reward);
                 assert_eq!(venv.terminated[i], t.terminated);
                 assert_eq!(venv.truncated[i], t.truncated);
@@ -135,7 +143,12 @@ fn vec_env_matches_scalar_envs_with_derived_seeds() {
                     let info = e.reset(None, &ResetOptions::default()).unwrap();
                     assert_eq!(venv.infos[i], info);
                 }
-                assert_eq!(&venv.obs[i * len..(i + 1) * len], e.obs_codes(), "{}", spec.id);
+                assert_eq!(
+                    &venv.obs[i * len..(i + 1) * len],
+                    e.obs_codes(),
+                    "{}",
+                    spec.id
+                );
             }
         }
         assert!(ended > 0, "{}: no episode ended", spec.id);
@@ -163,7 +176,10 @@ fn vec_env_next_step_and_disabled_modes() {
     v.step(&[0, 0]).unwrap(); // the reset step
     assert!(v.rewards.iter().all(|&r| r == 0.0));
     assert!(!v.truncated[0] && !v.terminated[0]);
-    assert_eq!(v.infos[0].timestep, 0, "the reset step reports the new episode's reset info");
+    assert_eq!(
+        v.infos[0].timestep, 0,
+        "the reset step reports the new episode's reset info"
+    );
     v.step(&[0, 0]).unwrap();
     assert_eq!(v.infos[0].timestep, 1);
 
@@ -173,7 +189,10 @@ fn vec_env_next_step_and_disabled_modes() {
         d.step(&[0]).unwrap();
     }
     assert!(d.step(&[0]).is_err());
-    assert!(v.step(&[0, 9]).is_err(), "action out of range is a typed error");
+    assert!(
+        v.step(&[0, 9]).is_err(),
+        "action out of range is a typed error"
+    );
     assert!(v.step(&[0]).is_err(), "wrong number of actions is an error");
 }
 
@@ -196,11 +215,27 @@ fn random_config(family_index: usize, knobs: &[u32]) -> TaskConfig {
         }
         TaskFamily::MultiTimer => {
             let n = 1 + k(1) % 5;
-            let tds: Vec<String> = (0..n).map(|i| (1 + i * (1 + k(2) % 7)).to_string()).collect();
+            let tds: Vec<String> = (0..n)
+                .map(|i| (1 + i * (1 + k(2) % 7)).to_string())
+                .collect();
             sets.push(format!("tds={}", tds.join(",")));
             sets.push(format!("num_timers={}", 1 + k(3) % n));
-            sets.push(format!("mode={}", if k(4) % 2 == 0 { "exact" } else { "lower_bounded" }));
-            sets.push(format!("cue={}", if k(5) % 2 == 0 { "value" } else { "categorical" }));
+            sets.push(format!(
+                "mode={}",
+                if k(4) % 2 == 0 {
+                    "exact"
+                } else {
+                    "lower_bounded"
+                }
+            ));
+            sets.push(format!(
+                "cue={}",
+                if k(5) % 2 == 0 {
+                    "value"
+                } else {
+                    "categorical"
+                }
+            ));
             sets.push(format!("under_buffer={}", k(6) % 5));
             sets.push(format!("over_buffer={}", k(7) % 5));
         }

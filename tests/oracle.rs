@@ -4,7 +4,11 @@
 use chronocooked_env::{ChronoEnv, Oracle, ResetOptions, optimal_return};
 
 /// Runs the oracle from every free start cell; returns the returns.
-fn oracle_returns(env: &mut ChronoEnv, td: u32, never_ready: Option<bool>) -> Vec<(usize, usize, f64)> {
+fn oracle_returns(
+    env: &mut ChronoEnv,
+    td: u32,
+    never_ready: Option<bool>,
+) -> Vec<(usize, usize, f64)> {
     let starts: Vec<_> = env
         .layout()
         .free_cells()
@@ -64,11 +68,9 @@ fn peak_interval_oracle_takes_the_released_soup_and_gets_nothing_on_pure_probes(
 #[test]
 fn bisection_oracle_is_right_on_both_anchors_of_every_paper_pair() {
     for (s, l) in [(6, 8), (4, 8), (6, 12), (4, 12), (6, 18), (4, 18), (1, 2)] {
-        let mut env = ChronoEnv::from_id(
-            "Bisection-v0",
-            &[format!("short={s}"), format!("long={l}")],
-        )
-        .unwrap();
+        let mut env =
+            ChronoEnv::from_id("Bisection-v0", &[format!("short={s}"), format!("long={l}")])
+                .unwrap();
         assert_all(&mut env, s, None, 1.0, "bisection short");
         assert_all(&mut env, l, None, 1.0, "bisection long");
         // Probes pay nothing whatever the counter (reference rule).
@@ -92,7 +94,13 @@ fn multi_timer_oracle_hits_the_window_in_both_modes() {
             ];
             let mut env = ChronoEnv::from_id("MultiTimer-v0", &sets).unwrap();
             for td in [2, 4, 9, 15, 24, 1, 30] {
-                assert_all(&mut env, td, None, 1.0, &format!("multi {mode} {under}/{over}"));
+                assert_all(
+                    &mut env,
+                    td,
+                    None,
+                    1.0,
+                    &format!("multi {mode} {under}/{over}"),
+                );
             }
         }
     }
@@ -110,19 +118,56 @@ fn uncertainty_oracle_gets_one_normally_and_the_manual_reward_when_never_ready()
 #[test]
 fn oracle_equals_the_brute_force_optimum_on_small_horizons() {
     // Exhaustive search over all action sequences (memoised on the hidden state).
-    let cases: &[(&str, &[&str], &[u32], Option<bool>)] = &[
+    /// (task id, overrides, TDs, never-ready flag)
+    type Case<'a> = (&'a str, &'a [&'a str], &'a [u32], Option<bool>);
+    let cases: &[Case] = &[
         ("FixedInterval-v0", &["max_timesteps=20"], &[1, 3, 6], None),
-        ("Bisection-v0", &["max_timesteps=24", "short=2", "long=5"], &[2, 5], None),
         (
-            "MultiTimer-v0",
-            &["max_timesteps=20", "tds=2,5", "num_timers=2", "under_buffer=1"],
+            "Bisection-v0",
+            &["max_timesteps=24", "short=2", "long=5"],
             &[2, 5],
             None,
         ),
-        ("DualTask-v0", &["max_timesteps=26", "td=12"], &[6, 12], None),
-        ("DualTask-v0", &["max_timesteps=26", "td=12", "under_buffer=2", "sink_reward=0.05"], &[12], None),
-        ("Uncertainty-v0", &["max_timesteps=24", "td=5"], &[5], Some(true)),
-        ("Uncertainty-v0", &["max_timesteps=24", "td=5"], &[5], Some(false)),
+        (
+            "MultiTimer-v0",
+            &[
+                "max_timesteps=20",
+                "tds=2,5",
+                "num_timers=2",
+                "under_buffer=1",
+            ],
+            &[2, 5],
+            None,
+        ),
+        (
+            "DualTask-v0",
+            &["max_timesteps=26", "td=12"],
+            &[6, 12],
+            None,
+        ),
+        (
+            "DualTask-v0",
+            &[
+                "max_timesteps=26",
+                "td=12",
+                "under_buffer=2",
+                "sink_reward=0.05",
+            ],
+            &[12],
+            None,
+        ),
+        (
+            "Uncertainty-v0",
+            &["max_timesteps=24", "td=5"],
+            &[5],
+            Some(true),
+        ),
+        (
+            "Uncertainty-v0",
+            &["max_timesteps=24", "td=5"],
+            &[5],
+            Some(false),
+        ),
     ];
     for (id, sets, tds, never) in cases {
         let mut env = ChronoEnv::from_id(id, sets).unwrap();

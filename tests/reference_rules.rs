@@ -1,9 +1,9 @@
 //! One test per reference rule of SPEC §1.1–1.2, and the typed errors of every invalid input.
 
+use Action::*;
 use chronocooked_env::{
     Action, ChronoEnv, Counter, EnvError, Events, Layout, ResetOptions, Transition, make_config,
 };
-use Action::*;
 
 fn env(id: &str, sets: &[&str], start: (usize, usize), td: u32) -> ChronoEnv {
     let mut e = ChronoEnv::from_id(id, sets).unwrap();
@@ -42,7 +42,10 @@ fn action_codes_move_as_documented_and_blocked_moves_stay() {
     assert_eq!(pos(&e), (1, 0));
     e.step(Wait).unwrap();
     assert_eq!(pos(&e), (1, 0));
-    assert_eq!(Action::from_code(6), Err(EnvError::InvalidAction { action: 6 }));
+    assert_eq!(
+        Action::from_code(6),
+        Err(EnvError::InvalidAction { action: 6 })
+    );
     assert!(e.step_code(-1).is_err());
 }
 
@@ -52,7 +55,10 @@ fn earliest_pickup_is_exactly_td_steps_after_the_put_step() {
         let mut e = env("FixedInterval-v0", &[&format!("td={td}")], (1, 0), td);
         let put = run(&mut e, &FI_PUT);
         assert!(put[3].info.events.has(Events::ONION_IN));
-        assert_eq!(put[3].info.oven_timer, 1, "timer is incremented on the put step");
+        assert_eq!(
+            put[3].info.oven_timer, 1,
+            "timer is incremented on the put step"
+        );
         let put_step = put[3].info.timestep;
         // Interact on every step: pickup first succeeds at step put_step + td.
         loop {
@@ -100,7 +106,10 @@ fn bisection_ready_flag_timing_including_td_one() {
         while !t.info.events.has(Events::OVEN_READY) {
             assert_eq!(oven(&e), 1);
             let check = e.step(Interact).unwrap();
-            assert!(!check.info.events.has(Events::PICKUP), "pickup before ready");
+            assert!(
+                !check.info.events.has(Events::PICKUP),
+                "pickup before ready"
+            );
             t = check;
         }
         assert_eq!(t.info.oven_timer, td as i32);
@@ -162,8 +171,17 @@ fn multi_timer_window_edges_in_both_modes() {
     assert_eq!(multi_reward(&exact, 9, 9), Some(1.0));
     assert_eq!(multi_reward(&exact, 9, 12), Some(1.0));
     assert_eq!(multi_reward(&exact, 9, 13), Some(0.1));
-    assert_eq!(multi_reward(&exact, 9, 1), Some(0.1), "undercooked soup can be taken");
-    let lower = ["tds=9", "mode=lower_bounded", "under_buffer=2", "over_buffer=3"];
+    assert_eq!(
+        multi_reward(&exact, 9, 1),
+        Some(0.1),
+        "undercooked soup can be taken"
+    );
+    let lower = [
+        "tds=9",
+        "mode=lower_bounded",
+        "under_buffer=2",
+        "over_buffer=3",
+    ];
     assert_eq!(multi_reward(&lower, 9, 8), None, "no pickup before TD");
     assert_eq!(multi_reward(&lower, 9, 9), Some(1.0));
     assert_eq!(multi_reward(&lower, 9, 12), Some(1.0));
@@ -176,8 +194,17 @@ fn multi_timer_window_edges_in_both_modes() {
 
 #[test]
 fn multi_timer_oven_channel_holds_the_cue() {
-    for (cue, td, expected) in [("value", 9u32, 9u8), ("value", 40, 40), ("categorical", 9, 3)] {
-        let mut e = env("MultiTimer-v0", &["tds=3,6,9", "num_timers=3", &format!("cue={cue}")], (1, 0), td);
+    for (cue, td, expected) in [
+        ("value", 9u32, 9u8),
+        ("value", 40, 40),
+        ("categorical", 9, 3),
+    ] {
+        let mut e = env(
+            "MultiTimer-v0",
+            &["tds=3,6,9", "num_timers=3", &format!("cue={cue}")],
+            (1, 0),
+            td,
+        );
         run(&mut e, &FI_PUT);
         assert_eq!(e.obs_codes()[(2 * 3) * 6 + 4], expected, "{cue} td={td}");
     }
@@ -208,18 +235,32 @@ fn reference_time_limit_stops_at_step_max_plus_one() {
         assert!(t[..5].iter().all(|t| !t.done()));
         assert_eq!(t[5].info.timestep, 6);
         assert_eq!((t[5].terminated, t[5].truncated), (reference, !reference));
-        assert!(e.step(Wait).is_err(), "stepping a finished episode is an error");
+        assert!(
+            e.step(Wait).is_err(),
+            "stepping a finished episode is an error"
+        );
     }
     // A delivery on step max+1 still pays and terminates.
     let mut e = env("FixedInterval-v0", &["td=1", "max_timesteps=6"], (1, 0), 1);
-    let t = run(&mut e, &[Up, Interact, Down, Interact, Interact, Right, Right]);
+    let t = run(
+        &mut e,
+        &[Up, Interact, Down, Interact, Interact, Right, Right],
+    );
     assert_eq!(t[6].info.timestep, 7);
     assert_eq!(t[6].reward, 0.0);
     let mut e = env("FixedInterval-v0", &["td=1", "max_timesteps=6"], (1, 0), 1);
-    let t = run(&mut e, &[Up, Interact, Down, Interact, Interact, Right, Right]);
+    let t = run(
+        &mut e,
+        &[Up, Interact, Down, Interact, Interact, Right, Right],
+    );
     assert!(t[6].truncated && !t[6].terminated);
     let mut e = env("FixedInterval-v0", &["td=1", "max_timesteps=7"], (1, 0), 1);
-    let t = run(&mut e, &[Up, Interact, Down, Interact, Interact, Right, Right, Interact]);
+    let t = run(
+        &mut e,
+        &[
+            Up, Interact, Down, Interact, Interact, Right, Right, Interact,
+        ],
+    );
     assert_eq!(t[7].reward, 1.0);
     assert!(t[7].terminated && !t[7].truncated);
 }
@@ -242,7 +283,12 @@ fn a_second_onion_while_the_soup_cooks_deadlocks_until_the_limit() {
 #[test]
 fn peak_interval_withholds_the_soup_until_k_times_td() {
     for (k, first_pickup) in [(2u32, Some(8i32)), (0, None)] {
-        let mut e = env("PeakInterval-v0", &["td=4", &format!("probe_factor={k}"), "max_timesteps=40"], (1, 0), 4);
+        let mut e = env(
+            "PeakInterval-v0",
+            &["td=4", &format!("probe_factor={k}"), "max_timesteps=40"],
+            (1, 0),
+            4,
+        );
         run(&mut e, &FI_PUT);
         let mut got = None;
         while !e.is_done() && got.is_none() {
@@ -267,7 +313,7 @@ fn uncertainty_button_readies_the_oven_at_a_reduced_reward() {
     e.reset(Some(0), &opts(true)).unwrap();
     run(&mut e, &FI_PUT);
     run(&mut e, &[Wait; 10]);
-    assert_eq!(e.state().ready, false);
+    assert!(!e.state().ready);
     let t = run(&mut e, &[Right, Down, Down, Interact]); // (3,1): button below
     assert!(t[3].info.events.has(Events::BUTTON));
     assert_eq!(t[3].info.manual_stop_time, 14);
@@ -287,7 +333,11 @@ fn uncertainty_button_readies_the_oven_at_a_reduced_reward() {
     // The never-ready draw follows never_ready_prob.
     let mut e = ChronoEnv::from_id("Uncertainty-v0", &["never_ready_prob=0.2"]).unwrap();
     let never = (0..2000)
-        .filter(|&s| e.reset(Some(s), &ResetOptions::default()).unwrap().never_ready)
+        .filter(|&s| {
+            e.reset(Some(s), &ResetOptions::default())
+                .unwrap()
+                .never_ready
+        })
         .count();
     assert!((330..470).contains(&never), "{never} of 2000");
 }
@@ -333,31 +383,78 @@ fn every_invalid_config_is_a_typed_error_naming_the_field() {
     assert_eq!(cfg("MultiTimer-v0", &["num_timers=6"]), "num_timers");
     assert_eq!(cfg("MultiTimer-v0", &["mode=sometimes"]), "mode");
     assert_eq!(cfg("MultiTimer-v0", &["cue=colour"]), "cue");
-    assert_eq!(cfg("MultiTimer-v0", &["reduced_reward=2"]), "reduced_reward");
-    assert_eq!(cfg("Uncertainty-v0", &["never_ready_prob=1.5"]), "never_ready_prob");
+    assert_eq!(
+        cfg("MultiTimer-v0", &["reduced_reward=2"]),
+        "reduced_reward"
+    );
+    assert_eq!(
+        cfg("Uncertainty-v0", &["never_ready_prob=1.5"]),
+        "never_ready_prob"
+    );
     assert_eq!(cfg("DualTask-v0", &["sink_reward=nan"]), "sink_reward");
-    assert_eq!(cfg("FixedInterval-v0", &["reference_compat=maybe"]), "reference_compat");
-    assert_eq!(cfg("FixedInterval-v0", &["max_timesteps=2000000"]), "max_timesteps");
+    assert_eq!(
+        cfg("FixedInterval-v0", &["reference_compat=maybe"]),
+        "reference_compat"
+    );
+    assert_eq!(
+        cfg("FixedInterval-v0", &["max_timesteps=2000000"]),
+        "max_timesteps"
+    );
     assert_eq!(cfg("FixedInterval-v0", &["colour=red"]), "unknown:colour");
     assert_eq!(cfg("FixedInterval-v0", &["td"]), "override:td");
     assert_eq!(cfg("Cooking-v9", &[]), "task:Cooking-v9");
     assert_eq!(cfg("FixedInterval-v0", &["layout=O.D/.../V.."]), "layout");
-    assert_eq!(cfg("FixedInterval-v0", &["layout=.OD/.../.../..."]), "layout", "missing oven");
-    assert_eq!(cfg("FixedInterval-v0", &["layout=.OD/.../V../.../..K"]), "layout", "stray sink");
-    assert!(matches!(Layout::parse("O.V"), Err(EnvError::InvalidLayout { .. })));
+    assert_eq!(
+        cfg("FixedInterval-v0", &["layout=.OD/.../.../..."]),
+        "layout",
+        "missing oven"
+    );
+    assert_eq!(
+        cfg("FixedInterval-v0", &["layout=.OD/.../V../.../..K"]),
+        "layout",
+        "stray sink"
+    );
+    assert!(matches!(
+        Layout::parse("O.V"),
+        Err(EnvError::InvalidLayout { .. })
+    ));
 
     let mut e = ChronoEnv::from_id("MultiTimer-v0", &["cue=categorical", "tds=3,6"]).unwrap();
     let reset = |e: &mut ChronoEnv, start, td, never| {
-        field(e.reset(None, &ResetOptions { start, td, never_ready: never }).map(|_| ()))
+        field(
+            e.reset(
+                None,
+                &ResetOptions {
+                    start,
+                    td,
+                    never_ready: never,
+                },
+            )
+            .map(|_| ()),
+        )
     };
-    assert_eq!(reset(&mut e, None, Some(4), None), "td", "categorical cue has no code for TD 4");
-    assert_eq!(reset(&mut e, Some((0, 1)), None, None), "start", "(0,1) holds the onion");
+    assert_eq!(
+        reset(&mut e, None, Some(4), None),
+        "td",
+        "categorical cue has no code for TD 4"
+    );
+    assert_eq!(
+        reset(&mut e, Some((0, 1)), None, None),
+        "start",
+        "(0,1) holds the onion"
+    );
     assert_eq!(reset(&mut e, Some((9, 9)), None, None), "start");
     assert_eq!(reset(&mut e, None, None, Some(true)), "never_ready");
     let mut v = ChronoEnv::from_id::<&str>("MultiTimer-v0", &[]).unwrap();
-    assert_eq!(reset(&mut v, None, Some(256), None), "td", "value cue is a u8");
+    assert_eq!(
+        reset(&mut v, None, Some(256), None),
+        "td",
+        "value cue is a u8"
+    );
     assert_eq!(reset(&mut v, None, Some(0), None), "td");
     // Messages name the allowed values.
-    let msg = make_config("Bisection-v0", &["short=8", "long=4"]).unwrap_err().to_string();
+    let msg = make_config("Bisection-v0", &["short=8", "long=4"])
+        .unwrap_err()
+        .to_string();
     assert!(msg.contains("long") && msg.contains("> short"), "{msg}");
 }

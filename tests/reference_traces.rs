@@ -43,7 +43,13 @@ fn replay_matches_reference_step_for_step() {
         assert_eq!(c.actions.len(), c.reward.len(), "{}: fixture shape", c.case);
         for (i, &a) in c.actions.iter().enumerate() {
             let t = env.step(Action::from_code(a).unwrap()).unwrap();
-            assert_eq!(hex(env.obs_codes()), c.obs[i + 1], "{}: obs at step {}", c.case, i + 1);
+            assert_eq!(
+                hex(env.obs_codes()),
+                c.obs[i + 1],
+                "{}: obs at step {}",
+                c.case,
+                i + 1
+            );
             assert!(
                 (t.reward - c.reward[i]).abs() < 1e-6,
                 "{}: reward at step {}: {} vs {}",
@@ -52,11 +58,21 @@ fn replay_matches_reference_step_for_step() {
                 t.reward,
                 c.reward[i]
             );
-            assert_eq!(t.terminated, c.terminated[i], "{}: terminated at step {}", c.case, i + 1);
+            assert_eq!(
+                t.terminated,
+                c.terminated[i],
+                "{}: terminated at step {}",
+                c.case,
+                i + 1
+            );
             assert!(!t.truncated, "{}: reference mode never truncates", c.case);
             steps += 1;
         }
-        assert!(env.is_done() == *c.terminated.last().unwrap_or(&false), "{}", c.case);
+        assert!(
+            env.is_done() == *c.terminated.last().unwrap_or(&false),
+            "{}",
+            c.case
+        );
         cases += 1;
     }
     assert!(cases >= 600, "only {cases} cases");

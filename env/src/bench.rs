@@ -93,7 +93,11 @@ pub fn run(
             }
             CHUNK
         });
-        row("scalar".into(), if onehot { "onehot" } else { "codes" }, result);
+        row(
+            "scalar".into(),
+            if onehot { "onehot" } else { "codes" },
+            result,
+        );
     }
 
     for onehot in [false, true] {

@@ -57,11 +57,31 @@ impl Transition {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum Rules {
     Fixed,
-    Probe { factor: u32 },
-    Bisection { short: u32, long: u32 },
-    Window { mode: RewardMode, under: u32, over: u32, reduced: f32 },
-    Dual { under: u32, over: u32, reduced: f32, sink: f32 },
-    Uncertainty { p_never: f32, over: u32, overcooked: f32, manual: f32 },
+    Probe {
+        factor: u32,
+    },
+    Bisection {
+        short: u32,
+        long: u32,
+    },
+    Window {
+        mode: RewardMode,
+        under: u32,
+        over: u32,
+        reduced: f32,
+    },
+    Dual {
+        under: u32,
+        over: u32,
+        reduced: f32,
+        sink: f32,
+    },
+    Uncertainty {
+        p_never: f32,
+        over: u32,
+        overcooked: f32,
+        manual: f32,
+    },
 }
 
 /// Immutable, shared description of a task instance.
@@ -395,7 +415,12 @@ impl Kitchen {
             match self.spec.cue {
                 Some(CueMode::Value) => self.td as u8,
                 Some(CueMode::Categorical) => {
-                    1 + self.spec.tds.iter().position(|&t| t == self.td).unwrap_or(0) as u8
+                    1 + self
+                        .spec
+                        .tds
+                        .iter()
+                        .position(|&t| t == self.td)
+                        .unwrap_or(0) as u8
                 }
                 None => 1,
             }

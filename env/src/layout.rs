@@ -210,7 +210,14 @@ impl Layout {
             if touching.len() > 1 {
                 let list: Vec<String> = touching
                     .iter()
-                    .map(|&n| format!("{} at ({},{})", cells[n].unwrap().symbol(), n / cols, n % cols))
+                    .map(|&n| {
+                        format!(
+                            "{} at ({},{})",
+                            cells[n].unwrap().symbol(),
+                            n / cols,
+                            n % cols
+                        )
+                    })
                     .collect();
                 return Err(bad(format!(
                     "free cell ({},{}) touches {} objects ({}): each free cell may touch at most one object",
@@ -387,8 +394,14 @@ mod tests {
         let l = Layout::parse(".OD/.../V../.../...").unwrap();
         assert_eq!((l.rows(), l.cols()), (5, 3));
         assert_eq!(l.free_cells().len(), 12);
-        assert_eq!(l.adjacent_object(l.index(1, 0)), Some((ObjectKind::Oven, 6)));
-        assert_eq!(l.adjacent_object(l.index(0, 0)), Some((ObjectKind::OnionDispenser, 1)));
+        assert_eq!(
+            l.adjacent_object(l.index(1, 0)),
+            Some((ObjectKind::Oven, 6))
+        );
+        assert_eq!(
+            l.adjacent_object(l.index(0, 0)),
+            Some((ObjectKind::OnionDispenser, 1))
+        );
         assert_eq!(l.adjacent_object(l.index(4, 2)), None);
         assert_eq!(l.to_text(), ".OD/.../V../.../...");
         // Moving up from (1,1) is blocked by the onion dispenser.

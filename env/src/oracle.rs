@@ -131,7 +131,13 @@ impl Oracle {
         let sinks = self.adjacent_to(ObjectKind::RewardSink);
         self.adjacent_to(ObjectKind::Oven)
             .into_iter()
-            .min_by_key(|&y| sinks.iter().map(|&k| self.d(y, k)).min().unwrap_or(u32::MAX))
+            .min_by_key(|&y| {
+                sinks
+                    .iter()
+                    .map(|&k| self.d(y, k))
+                    .min()
+                    .unwrap_or(u32::MAX)
+            })
     }
 
     /// The oracle's action in `state`.
@@ -143,7 +149,9 @@ impl Oracle {
             Carry::Soup => self.go_and_interact(a, self.nearest(a, &counter_adj)),
             Carry::Onion => {
                 if state.timer < 0 {
-                    let target = self.dual_post().unwrap_or_else(|| self.nearest(a, &oven_adj));
+                    let target = self
+                        .dual_post()
+                        .unwrap_or_else(|| self.nearest(a, &oven_adj));
                     self.go_and_interact(a, target)
                 } else {
                     Action::Wait // deadlock: cannot happen under the oracle
@@ -173,15 +181,17 @@ impl Oracle {
         counter_adj: &[usize],
     ) -> Action {
         // Wait at the oven neighbour closest to the delivery counter (dual: to the sink).
-        let post = self.dual_post().unwrap_or_else(|| *oven_adj
-            .iter()
-            .min_by_key(|&&y| {
-                (
-                    counter_adj.iter().map(|&c| self.d(y, c)).min().unwrap_or(0),
-                    self.d(a, y),
-                )
-            })
-            .expect("validated layouts have an oven"));
+        let post = self.dual_post().unwrap_or_else(|| {
+            *oven_adj
+                .iter()
+                .min_by_key(|&&y| {
+                    (
+                        counter_adj.iter().map(|&c| self.d(y, c)).min().unwrap_or(0),
+                        self.d(a, y),
+                    )
+                })
+                .expect("validated layouts have an oven")
+        });
         let t = s.timer;
         let pick = self.pickup_timer(s.td).unwrap_or(i32::MAX);
         match &self.params {
@@ -211,8 +221,7 @@ impl Oracle {
                 let at_sink = sinks.contains(&a);
                 if at_sink && t + (self.d(a, post) as i32) < pick {
                     Action::Interact
-                } else if !at_sink
-                    && t + (self.d(a, sink) + 1 + self.d(sink, post)) as i32 <= pick
+                } else if !at_sink && t + (self.d(a, sink) + 1 + self.d(sink, post)) as i32 <= pick
                 {
                     self.step_towards(a, sink)
                 } else if a == post {

@@ -200,8 +200,9 @@ pub fn gif_bytes(frames: &[Frame], delay_cs: u16) -> Result<Vec<u8>, EnvError> {
     let mut out = Vec::new();
     {
         let palette = flat_palette();
-        let mut enc = gif::Encoder::new(&mut out, first.width as u16, first.height as u16, &palette)
-            .map_err(|e| EnvError::Output(format!("gif: {e}")))?;
+        let mut enc =
+            gif::Encoder::new(&mut out, first.width as u16, first.height as u16, &palette)
+                .map_err(|e| EnvError::Output(format!("gif: {e}")))?;
         enc.set_repeat(gif::Repeat::Infinite)
             .map_err(|e| EnvError::Output(format!("gif: {e}")))?;
         for f in frames {

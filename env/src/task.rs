@@ -363,7 +363,11 @@ fn parse_list(field: &str, value: &str) -> Result<Vec<u32>, EnvError> {
         .map(|s| parse_u32(field, s, 1, 255))
         .collect();
     let items = items.map_err(|_| {
-        EnvError::param(field, value, "comma-separated distinct integers 1..=255, e.g. 3,6,9")
+        EnvError::param(
+            field,
+            value,
+            "comma-separated distinct integers 1..=255, e.g. 3,6,9",
+        )
     })?;
     Ok(items)
 }
@@ -426,7 +430,12 @@ impl TaskConfig {
             (TaskParams::Bisection { long, .. }, "long") => {
                 *long = parse_u32(key, value, 1, 10_000)?
             }
-            (TaskParams::MultiTimer { tds, num_timers, .. }, "tds") => {
+            (
+                TaskParams::MultiTimer {
+                    tds, num_timers, ..
+                },
+                "tds",
+            ) => {
                 *tds = parse_list(key, value)?;
                 *num_timers = (*num_timers).min(tds.len()).max(1);
             }
@@ -453,21 +462,56 @@ impl TaskConfig {
                     _ => return Err(EnvError::param("cue", value, "value|categorical")),
                 }
             }
-            (TaskParams::MultiTimer { under_buffer: b, .. }, "under_buffer")
-            | (TaskParams::Dual { under_buffer: b, .. }, "under_buffer")
+            (
+                TaskParams::MultiTimer {
+                    under_buffer: b, ..
+                },
+                "under_buffer",
+            )
+            | (
+                TaskParams::Dual {
+                    under_buffer: b, ..
+                },
+                "under_buffer",
+            )
             | (TaskParams::MultiTimer { over_buffer: b, .. }, "over_buffer")
             | (TaskParams::Dual { over_buffer: b, .. }, "over_buffer")
             | (TaskParams::Uncertainty { over_buffer: b, .. }, "over_buffer") => {
                 *b = parse_u32(key, value, 0, u32::MAX)?
             }
-            (TaskParams::MultiTimer { reduced_reward: r, .. }, "reduced_reward")
-            | (TaskParams::Dual { reduced_reward: r, .. }, "reduced_reward")
+            (
+                TaskParams::MultiTimer {
+                    reduced_reward: r, ..
+                },
+                "reduced_reward",
+            )
+            | (
+                TaskParams::Dual {
+                    reduced_reward: r, ..
+                },
+                "reduced_reward",
+            )
             | (TaskParams::Dual { sink_reward: r, .. }, "sink_reward")
-            | (TaskParams::Uncertainty { never_ready_prob: r, .. }, "never_ready_prob")
-            | (TaskParams::Uncertainty { overcooked_reward: r, .. }, "overcooked_reward")
-            | (TaskParams::Uncertainty { manual_reward: r, .. }, "manual_reward") => {
-                *r = parse_unit(key, value)?
-            }
+            | (
+                TaskParams::Uncertainty {
+                    never_ready_prob: r,
+                    ..
+                },
+                "never_ready_prob",
+            )
+            | (
+                TaskParams::Uncertainty {
+                    overcooked_reward: r,
+                    ..
+                },
+                "overcooked_reward",
+            )
+            | (
+                TaskParams::Uncertainty {
+                    manual_reward: r, ..
+                },
+                "manual_reward",
+            ) => *r = parse_unit(key, value)?,
             _ => unreachable_key(key)?,
         }
         Ok(())
@@ -528,7 +572,8 @@ impl TaskConfig {
             | TaskParams::Dual { td, .. }
             | TaskParams::Uncertainty { td, .. } => check_td(*td)?,
             TaskParams::Bisection { short, long } => {
-                check_td(*short).map_err(|_| EnvError::param("short", short, "integer 1..=10000"))?;
+                check_td(*short)
+                    .map_err(|_| EnvError::param("short", short, "integer 1..=10000"))?;
                 if long <= short {
                     return Err(EnvError::param(
                         "long",
@@ -544,7 +589,11 @@ impl TaskConfig {
                     return Err(EnvError::param("tds", "[]", "at least one TD in 1..=255"));
                 }
                 if let Some(&bad) = tds.iter().find(|&&t| t == 0 || t > 255) {
-                    return Err(EnvError::param("tds", bad, "integers 1..=255 (the cue is a u8)"));
+                    return Err(EnvError::param(
+                        "tds",
+                        bad,
+                        "integers 1..=255 (the cue is a u8)",
+                    ));
                 }
                 let mut sorted = tds.clone();
                 sorted.sort_unstable();
