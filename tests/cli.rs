@@ -278,3 +278,47 @@ fn bench_env_runs_briefly() {
             .success()
     );
 }
+
+#[test]
+fn env_replay_accepts_reference_parameter_names_for_multi_timer() {
+    let out = run_ok(&[
+        "env",
+        "replay",
+        "MultiTimer-v0",
+        "--reference",
+        "--set",
+        "oven_duration_list=3,6,9",
+        "--set",
+        "num_timers=3",
+        "--set",
+        "oven_duration=6",
+        "--set",
+        "undercooked_possible=True",
+        "--set",
+        "overcooked_buffer=0",
+        "--set",
+        "undercooked_buffer=0",
+        "--set",
+        "reduced_reward=0.1",
+        "--set",
+        "max_timesteps=100",
+        "--start",
+        "1,0",
+        "--actions",
+        "2,5,1,5,5,3,3,5",
+    ]);
+    let lines: Vec<Value> = out
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(
+        lines[4]["obs"][2][0][4], 6,
+        "oven channel holds the TD value"
+    );
+    assert_eq!(lines[5]["info"]["oven_off_time"], 1);
+    assert!(
+        (lines[8]["reward"].as_f64().unwrap() - 0.1).abs() < 1e-6,
+        "undercooked soup"
+    );
+    assert_eq!(lines[8]["terminated"], true);
+}

@@ -458,3 +458,30 @@ fn every_invalid_config_is_a_typed_error_naming_the_field() {
         .to_string();
     assert!(msg.contains("long") && msg.contains("> short"), "{msg}");
 }
+
+#[test]
+fn reference_reset_duration_can_be_fixed_by_config_for_bisection_and_multi_timer() {
+    let mut e = ChronoEnv::from_id(
+        "MultiTimer-v0",
+        &["oven_duration_list=3,6", "oven_duration=20"],
+    )
+    .unwrap();
+    for s in 0..20 {
+        assert_eq!(e.reset(Some(s), &ResetOptions::default()).unwrap().td, 20);
+    }
+    let mut e = ChronoEnv::from_id(
+        "Bisection-v0",
+        &["short_duration=4", "long_duration=12", "td=7"],
+    )
+    .unwrap();
+    assert_eq!(e.reset(Some(1), &ResetOptions::default()).unwrap().td, 7);
+    // A reset option still wins over the configured TD.
+    let opts = ResetOptions {
+        start: None,
+        td: Some(12),
+        never_ready: None,
+    };
+    assert_eq!(e.reset(Some(1), &opts).unwrap().td, 12);
+    assert!(make_config("MultiTimer-v0", &["cue=categorical", "tds=3,6", "td=4"]).is_err());
+    assert!(make_config("MultiTimer-v0", &["td=300"]).is_err());
+}

@@ -370,7 +370,7 @@ impl Kitchen {
             Some(cell) => cell,
             None => free[self.rng.random_range(0..free.len())] as usize,
         };
-        self.td = match td {
+        self.td = match td.or(self.spec.config.fixed_td) {
             Some(td) => td,
             None => match self.spec.rules {
                 Rules::Bisection { short, long } => {

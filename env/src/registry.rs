@@ -79,6 +79,7 @@ impl TaskSpec {
             max_timesteps: 200,
             reference_compat: false,
             debug_timer_channel: false,
+            fixed_td: None,
             params,
         }
     }

@@ -140,6 +140,10 @@ pub struct TaskConfig {
     pub reference_compat: bool,
     /// Debug only: write the hidden oven timer into channel 5 (leaks time; off by default).
     pub debug_timer_channel: bool,
+    /// Bisection / multi-timer: fix the TD of every episode (test probes, OOD TDs) instead of
+    /// drawing it; `None` draws per task. (FI-like tasks have `td` in their params.)
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fixed_td: Option<u32>,
     /// Family parameters.
     pub params: TaskParams,
 }
@@ -190,6 +194,12 @@ const TD_PARAM: ParamDoc = ParamDoc {
     allowed: "integer 1..=10000",
     doc: "target duration in steps",
 };
+const FIXED_TD_PARAM: ParamDoc = ParamDoc {
+    key: "td",
+    aliases: &["oven_duration"],
+    allowed: "integer 1..=10000 (multi-timer value cue: 1..=255; categorical: one of tds)",
+    doc: "fix the TD of every episode (probes, OOD tests); default: drawn per episode",
+};
 const UNDER_PARAM: ParamDoc = ParamDoc {
     key: "under_buffer",
     aliases: &["undercooked_buffer"],
@@ -236,6 +246,7 @@ impl TaskFamily {
                     allowed: "integer > short",
                     doc: "long anchor L (steps)",
                 },
+                FIXED_TD_PARAM,
             ],
             TaskFamily::MultiTimer => vec![
                 ParamDoc {
@@ -265,6 +276,7 @@ impl TaskFamily {
                 UNDER_PARAM,
                 OVER_PARAM,
                 REDUCED_PARAM,
+                FIXED_TD_PARAM,
             ],
             TaskFamily::Dual => vec![
                 TD_PARAM,
@@ -417,6 +429,9 @@ impl TaskConfig {
             | (TaskParams::PeakInterval { td: t, .. }, "td")
             | (TaskParams::Dual { td: t, .. }, "td")
             | (TaskParams::Uncertainty { td: t, .. }, "td") => *t = td(value)?,
+            (TaskParams::Bisection { .. } | TaskParams::MultiTimer { .. }, "td") => {
+                self.fixed_td = Some(td(value)?)
+            }
             (TaskParams::PeakInterval { probe_factor, .. }, "probe_factor") => {
                 *probe_factor = if value.trim() == "never" {
                     0
@@ -612,6 +627,23 @@ impl TaskConfig {
                         format!("integer 1..={} (the length of tds)", tds.len()),
                     ));
                 }
+            }
+        }
+        if let Some(td) = self.fixed_td {
+            let fits = match &self.params {
+                TaskParams::MultiTimer { cue, tds, .. } => match cue {
+                    CueMode::Value => (1..=255).contains(&td),
+                    CueMode::Categorical => tds.contains(&td),
+                },
+                TaskParams::Bisection { .. } => (1..=10_000).contains(&td),
+                _ => false,
+            };
+            if !fits {
+                return Err(EnvError::param(
+                    "td",
+                    td,
+                    "a fixed TD is for bisection (1..=10000) and multi-timer (value cue 1..=255, categorical: one of tds)",
+                ));
             }
         }
         Ok(layout)
