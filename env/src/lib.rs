@@ -23,6 +23,7 @@ pub mod obs;
 pub mod oracle;
 pub mod registry;
 pub mod render;
+mod spec;
 pub mod task;
 pub mod trace;
 pub mod vec_env;
