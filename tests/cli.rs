@@ -24,6 +24,13 @@ fn run_err(args: &[&str]) -> String {
     String::from_utf8(out.stderr).unwrap()
 }
 
+/// Parses JSON-lines output.
+fn json_lines(text: &str) -> Vec<Value> {
+    text.lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect()
+}
+
 fn temp_dir(name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("chronocooked-cli-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
@@ -45,10 +52,7 @@ fn env_list_shows_every_task_with_defaults_and_filters_by_tag() {
         assert!(text.contains(id), "{id} missing");
     }
     let json = run_ok(&["env", "list", "--json", "--tag", "bisection"]);
-    let lines: Vec<Value> = json
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect();
+    let lines = json_lines(&json);
     assert_eq!(lines.len(), 1);
     assert_eq!(lines[0]["id"], "Bisection-v0");
     assert_eq!(lines[0]["defaults"]["params"]["short"], 4);
@@ -73,10 +77,7 @@ fn env_replay_prints_reset_then_one_json_line_per_step() {
         "--actions",
         "2,5,1,5,5,3,3,5",
     ]);
-    let lines: Vec<Value> = out
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect();
+    let lines = json_lines(&out);
     assert_eq!(lines.len(), 9);
     assert_eq!(lines[0]["step"], 0);
     assert_eq!(lines[0]["obs"][1][0], serde_json::json!([0, 1, 0, 0, 0, 0]));
@@ -202,11 +203,7 @@ fn env_play_records_keyboard_steps_in_the_replay_shape() {
         .unwrap();
     let out = child.wait_with_output().unwrap();
     assert!(out.status.success());
-    let lines: Vec<Value> = std::fs::read_to_string(&record)
-        .unwrap()
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect();
+    let lines = json_lines(&std::fs::read_to_string(&record).unwrap());
     assert_eq!(lines.len(), 10, "reset + 9 steps");
     assert_eq!(lines[0]["task"], "FixedInterval-v0");
     assert_eq!(lines[9]["reward"], 1.0);
@@ -224,10 +221,7 @@ fn env_play_records_keyboard_steps_in_the_replay_shape() {
         "--actions",
         &actions.join(","),
     ]);
-    let replayed: Vec<Value> = replay
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect();
+    let replayed = json_lines(&replay);
     assert_eq!(replayed, lines);
 }
 
@@ -261,10 +255,7 @@ fn bench_env_runs_briefly() {
         "8",
         "--json",
     ]);
-    let rows: Vec<Value> = out
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect();
+    let rows = json_lines(&out);
     assert_eq!(rows.len(), 4);
     assert!(
         rows.iter()
@@ -307,10 +298,7 @@ fn env_replay_accepts_reference_parameter_names_for_multi_timer() {
         "--actions",
         "2,5,1,5,5,3,3,5",
     ]);
-    let lines: Vec<Value> = out
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect();
+    let lines = json_lines(&out);
     assert_eq!(
         lines[4]["obs"][2][0][4], 6,
         "oven channel holds the TD value"

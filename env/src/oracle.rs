@@ -31,6 +31,8 @@ pub struct Oracle {
     params: TaskParams,
     /// All-pairs shortest path lengths between cells (moves).
     dist: Vec<Vec<u32>>,
+    /// Free cells touching each object kind, indexed by [`ObjectKind::onehot_index`].
+    neighbours: Vec<Vec<usize>>,
 }
 
 impl Oracle {
@@ -40,20 +42,28 @@ impl Oracle {
         let dist = (0..layout.n_cells())
             .map(|c| layout.distances_to(c))
             .collect();
+        let neighbours = ObjectKind::ALL
+            .iter()
+            .map(|&kind| {
+                layout
+                    .free_cells()
+                    .iter()
+                    .map(|&c| c as usize)
+                    .filter(|&c| matches!(layout.adjacent_object(c), Some((k, _)) if k == kind))
+                    .collect()
+            })
+            .collect();
         Oracle {
             layout,
             params: env.config().params.clone(),
             dist,
+            neighbours,
         }
     }
 
-    fn adjacent_to(&self, kind: ObjectKind) -> Vec<usize> {
-        self.layout
-            .free_cells()
-            .iter()
-            .map(|&c| c as usize)
-            .filter(|&c| matches!(self.layout.adjacent_object(c), Some((k, _)) if k == kind))
-            .collect()
+    /// Free cells from which `kind` can be used.
+    fn adjacent_to(&self, kind: ObjectKind) -> &[usize] {
+        &self.neighbours[kind.onehot_index()]
     }
 
     fn d(&self, a: usize, b: usize) -> u32 {
@@ -130,7 +140,8 @@ impl Oracle {
         }
         let sinks = self.adjacent_to(ObjectKind::RewardSink);
         self.adjacent_to(ObjectKind::Oven)
-            .into_iter()
+            .iter()
+            .copied()
             .min_by_key(|&y| {
                 sinks
                     .iter()
@@ -146,12 +157,12 @@ impl Oracle {
         let oven_adj = self.adjacent_to(ObjectKind::Oven);
         let counter_adj = self.adjacent_to(self.delivery_kind(state.td));
         match state.carry {
-            Carry::Soup => self.go_and_interact(a, self.nearest(a, &counter_adj)),
+            Carry::Soup => self.go_and_interact(a, self.nearest(a, counter_adj)),
             Carry::Onion => {
                 if state.timer < 0 {
                     let target = self
                         .dual_post()
-                        .unwrap_or_else(|| self.nearest(a, &oven_adj));
+                        .unwrap_or_else(|| self.nearest(a, oven_adj));
                     self.go_and_interact(a, target)
                 } else {
                     Action::Wait // deadlock: cannot happen under the oracle
@@ -169,7 +180,7 @@ impl Oracle {
                     .expect("validated layouts have an onion dispenser");
                 self.go_and_interact(a, best)
             }
-            Carry::Nothing => self.wait_and_pickup(a, state, &oven_adj, &counter_adj),
+            Carry::Nothing => self.wait_and_pickup(a, state, oven_adj, counter_adj),
         }
     }
 
@@ -206,7 +217,7 @@ impl Oracle {
                 if s.ready {
                     self.go_and_interact(a, post)
                 } else if t >= pick {
-                    let button = self.nearest(a, &self.adjacent_to(ObjectKind::OvenButton));
+                    let button = self.nearest(a, self.adjacent_to(ObjectKind::OvenButton));
                     self.go_and_interact(a, button)
                 } else {
                     self.step_towards(a, post)
