@@ -3,6 +3,7 @@
 mod demo;
 mod env_cmd;
 mod play;
+mod train_cmd;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -24,6 +25,13 @@ enum Command {
     },
     /// Run the built-in demo on defaults (oracle episode of every task, GIFs, summary).
     Demo(demo::DemoArgs),
+    /// Train a PPO agent (run folder with config, curves, checkpoints, model).
+    Train(train_cmd::TrainArgs),
+    /// The model zoo: architectures, tasks and presets.
+    Zoo {
+        #[command(subcommand)]
+        command: train_cmd::ZooCommand,
+    },
     /// Benchmarks (`bench env`: env steps/s).
     Bench {
         #[command(subcommand)]
@@ -37,6 +45,8 @@ fn main() -> ExitCode {
         Command::Env { command } => env_cmd::run(command),
         Command::Demo(args) => demo::run(args),
         Command::Bench { command } => env_cmd::run_bench(command),
+        Command::Train(args) => train_cmd::run(args),
+        Command::Zoo { command } => train_cmd::run_zoo(command),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

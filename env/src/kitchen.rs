@@ -18,6 +18,7 @@ pub(crate) use crate::spec::{Rules, Spec};
 use crate::task::{CueMode, RewardMode, TaskFamily, TaskParams};
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
+use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 
 /// Number of channels of the "codes" observation.
@@ -53,6 +54,44 @@ impl Transition {
     pub fn done(&self) -> bool {
         self.terminated || self.truncated
     }
+}
+
+/// Serialisable dynamic state of a [`Kitchen`] (RNG included): what a training checkpoint
+/// stores so that a resumed run continues exactly.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct KitchenSnapshot {
+    /// Saved `rng`.
+    pub rng: Xoshiro256PlusPlus,
+    /// Saved `num_timers`.
+    pub num_timers: usize,
+    /// Saved `agent`.
+    pub agent: usize,
+    /// Saved `carry`.
+    pub carry: Carry,
+    /// Saved `timer`.
+    pub timer: i32,
+    /// Saved `ready`.
+    pub ready: bool,
+    /// Saved `manual`.
+    pub manual: bool,
+    /// Saved `never_ready`.
+    pub never_ready: bool,
+    /// Saved `td`.
+    pub td: u32,
+    /// Saved `timestep`.
+    pub timestep: u32,
+    /// Saved `oven_off_time`.
+    pub oven_off_time: i32,
+    /// Saved `manual_stop_time`.
+    pub manual_stop_time: i32,
+    /// Saved `sink_count`.
+    pub sink_count: u32,
+    /// Saved `last_sink_timer`.
+    pub last_sink_timer: i32,
+    /// Saved `counter`.
+    pub counter: Option<Counter>,
+    /// Saved `done`.
+    pub done: bool,
 }
 
 /// State and RNG of one environment.
@@ -104,6 +143,48 @@ impl Kitchen {
             counter: None,
             done: true,
         }
+    }
+
+    /// Captures the dynamic state (episode and RNG).
+    pub fn snapshot(&self) -> KitchenSnapshot {
+        KitchenSnapshot {
+            rng: self.rng.clone(),
+            num_timers: self.num_timers,
+            agent: self.agent,
+            carry: self.carry,
+            timer: self.timer,
+            ready: self.ready,
+            manual: self.manual,
+            never_ready: self.never_ready,
+            td: self.td,
+            timestep: self.timestep,
+            oven_off_time: self.oven_off_time,
+            manual_stop_time: self.manual_stop_time,
+            sink_count: self.sink_count,
+            last_sink_timer: self.last_sink_timer,
+            counter: self.counter,
+            done: self.done,
+        }
+    }
+
+    /// Restores a state captured by [`Kitchen::snapshot`] (same task spec assumed).
+    pub fn restore(&mut self, s: &KitchenSnapshot) {
+        self.rng = s.rng.clone();
+        self.num_timers = s.num_timers;
+        self.agent = s.agent;
+        self.carry = s.carry;
+        self.timer = s.timer;
+        self.ready = s.ready;
+        self.manual = s.manual;
+        self.never_ready = s.never_ready;
+        self.td = s.td;
+        self.timestep = s.timestep;
+        self.oven_off_time = s.oven_off_time;
+        self.manual_stop_time = s.manual_stop_time;
+        self.sink_count = s.sink_count;
+        self.last_sink_timer = s.last_sink_timer;
+        self.counter = s.counter;
+        self.done = s.done;
     }
 
     /// Sets how many TDs of the multi-timer list are active (curricula); other tasks: no-op.

@@ -32,10 +32,12 @@ pub use action::{Action, parse_action_list};
 pub use env::ChronoEnv;
 pub use error::EnvError;
 pub use info::{Carry, Counter, Events, INFO_KEYS, Info};
-pub use kitchen::{CODE_CHANNELS, Kitchen, KitchenState, ResetOptions, Transition, derive_seed};
+pub use kitchen::{
+    CODE_CHANNELS, Kitchen, KitchenSnapshot, KitchenState, ResetOptions, Transition, derive_seed,
+};
 pub use layout::{Layout, ObjectKind};
 pub use obs::{BoxSpace, Discrete, OneHotEncoder};
 pub use oracle::{Oracle, optimal_return};
 pub use registry::{TaskSpec, all_tasks, find_task, make_config, tasks_with_tag};
 pub use task::{CueMode, RewardMode, TaskConfig, TaskFamily, TaskParams};
-pub use vec_env::{Autoreset, VecEnv};
+pub use vec_env::{Autoreset, VecEnv, VecEnvSnapshot};

@@ -127,6 +127,19 @@ pub enum TaskParams {
     },
 }
 
+impl TaskParams {
+    /// The single target duration of families that have one (FI, PI, dual, uncertainty).
+    pub fn td(&self) -> Option<u32> {
+        match self {
+            TaskParams::FixedInterval { td }
+            | TaskParams::PeakInterval { td, .. }
+            | TaskParams::Dual { td, .. }
+            | TaskParams::Uncertainty { td, .. } => Some(*td),
+            TaskParams::Bisection { .. } | TaskParams::MultiTimer { .. } => None,
+        }
+    }
+}
+
 /// Everything needed to build an env: task family parameters plus shared settings.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct TaskConfig {

@@ -22,10 +22,23 @@ use crate::action::Action;
 use crate::env::ChronoEnv;
 use crate::error::EnvError;
 use crate::info::Info;
-use crate::kitchen::{Kitchen, ResetOptions, Spec, derive_seed};
+use crate::kitchen::{Kitchen, KitchenSnapshot, ResetOptions, Spec, derive_seed};
 use crate::obs::OneHotEncoder;
 use crate::task::TaskConfig;
 use std::sync::Arc;
+
+/// Serialisable state of a [`VecEnv`] (see [`VecEnv::snapshot`]).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct VecEnvSnapshot {
+    /// Per-env kitchen state.
+    pub kitchens: Vec<KitchenSnapshot>,
+    /// Current codes observations `[N, R, C, 6]`.
+    pub obs: Vec<u8>,
+    /// Envs waiting for a next-step reset.
+    pub pending_reset: Vec<bool>,
+    /// Current infos.
+    pub infos: Vec<Info>,
+}
 
 /// What happens to an env whose episode ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -198,6 +211,40 @@ impl VecEnv {
         Ok(())
     }
 
+    /// Steps only the envs with `skip[i] == false` (evaluation batches in which some
+    /// episodes already ended; `Disabled` mode). Skipped envs keep their outputs.
+    pub fn step_masked(&mut self, actions: &[u8], skip: &[bool]) -> Result<(), EnvError> {
+        if actions.len() != self.kitchens.len() || skip.len() != self.kitchens.len() {
+            return Err(EnvError::param(
+                "actions",
+                format!("{} actions", actions.len()),
+                format!("exactly {} (one per env)", self.kitchens.len()),
+            ));
+        }
+        if let Some(&bad) = actions.iter().find(|&&a| a as usize >= Action::COUNT) {
+            return Err(EnvError::InvalidAction { action: bad as i64 });
+        }
+        let len = self.obs_len;
+        for (i, k) in self.kitchens.iter_mut().enumerate() {
+            if skip[i] {
+                continue;
+            }
+            if k.is_done() {
+                return Err(EnvError::EpisodeOver);
+            }
+            let obs = &mut self.obs[i * len..(i + 1) * len];
+            let t = k.step_unchecked(Action::ALL[actions[i] as usize], obs);
+            self.rewards[i] = t.reward;
+            self.terminated[i] = t.terminated;
+            self.truncated[i] = t.truncated;
+            self.infos[i] = t.info;
+            if t.terminated || t.truncated {
+                self.final_infos[i] = t.info;
+            }
+        }
+        Ok(())
+    }
+
     /// Writes every env's one-hot observation into `out` (`[N, C_onehot, R, C]`).
     pub fn write_onehot(&self, out: &mut [f32]) {
         let per = self.encoder.len();
@@ -222,6 +269,57 @@ impl VecEnv {
         for k in &mut self.kitchens {
             k.set_num_timers(n)?;
         }
+        Ok(())
+    }
+
+    /// The task configuration the envs run.
+    pub fn config(&self) -> &TaskConfig {
+        &self.kitchens[0].spec.config
+    }
+
+    /// Changes one task parameter of every env between steps, keeping episodes in
+    /// flight (curricula: e.g. `never_ready_prob`). The layout may not change.
+    pub fn set_param(&mut self, key: &str, value: &str) -> Result<(), EnvError> {
+        let mut config = self.config().clone();
+        config.set(key, value)?;
+        let spec = Spec::new(&config)?;
+        if spec.layout.to_text() != self.kitchens[0].spec.layout.to_text() {
+            return Err(EnvError::param(key, value, "a value that keeps the layout"));
+        }
+        for k in &mut self.kitchens {
+            k.spec = spec.clone();
+        }
+        Ok(())
+    }
+
+    /// Captures every env's dynamic state, observations and pending resets (checkpoints).
+    pub fn snapshot(&self) -> VecEnvSnapshot {
+        VecEnvSnapshot {
+            kitchens: self.kitchens.iter().map(Kitchen::snapshot).collect(),
+            obs: self.obs.clone(),
+            pending_reset: self.pending_reset.clone(),
+            infos: self.infos.clone(),
+        }
+    }
+
+    /// Restores a snapshot taken from a vec-env of the same task and size.
+    pub fn restore(&mut self, s: &VecEnvSnapshot) -> Result<(), EnvError> {
+        if s.kitchens.len() != self.kitchens.len() || s.obs.len() != self.obs.len() {
+            return Err(EnvError::param(
+                "snapshot",
+                format!("{} envs", s.kitchens.len()),
+                format!(
+                    "a snapshot of exactly {} envs of this task",
+                    self.kitchens.len()
+                ),
+            ));
+        }
+        for (k, ks) in self.kitchens.iter_mut().zip(&s.kitchens) {
+            k.restore(ks);
+        }
+        self.obs.copy_from_slice(&s.obs);
+        self.pending_reset.clone_from(&s.pending_reset);
+        self.infos.clone_from(&s.infos);
         Ok(())
     }
 

@@ -1,0 +1,191 @@
+//! `train` and `zoo` subcommands.
+
+use anyhow::{Context, Result, bail};
+use chronocooked_models::Architecture;
+use chronocooked_training::{PRESETS, Progress, UpdateLog, preset_settings, resolve, run_training};
+use clap::{Args, Subcommand};
+use indicatif::{ProgressBar, ProgressStyle};
+use std::path::PathBuf;
+
+/// Arguments of `train`.
+#[derive(Args, Debug)]
+pub struct TrainArgs {
+    /// Task id (see `chronocooked env list`).
+    #[arg(long, default_value = "FixedInterval-v0")]
+    pub task: String,
+    /// Model: cnn-mlp, or lstm|gru|rnn|ctrnn + hidden size (lstm125, ctrnn8, …).
+    #[arg(long, default_value = "lstm125")]
+    pub model: String,
+    /// Hyperparameter preset: reference (the paper's) or fast (quickest wall-clock).
+    #[arg(long, default_value = "reference")]
+    pub preset: String,
+    /// Seed of everything random in the run.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Env-step budget (overrides the preset's).
+    #[arg(long)]
+    pub steps: Option<u64>,
+    /// Override a setting: `--set key=value` (repeatable; `env.<param>=v` for task parameters).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub sets: Vec<String>,
+    /// Run folder (default: runs/<task>/<model>/seed<N>).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Continue the run in this folder from its newest checkpoint.
+    #[arg(long, value_name = "RUN_DIR", conflicts_with_all = ["out"])]
+    pub resume: Option<PathBuf>,
+    /// No progress bar (one line per update on stderr instead is not printed either).
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+struct Bar {
+    bar: Option<ProgressBar>,
+}
+
+impl Progress for Bar {
+    fn update(&mut self, row: &UpdateLog, total: u64) {
+        if let Some(b) = &self.bar {
+            b.set_length(total);
+            b.set_position(row.env_steps.min(total));
+            let eval = row
+                .eval_success
+                .map(|s| format!(" eval {:.0}%", s * 100.0))
+                .unwrap_or_default();
+            b.set_message(format!(
+                "{:>6.0} steps/s  success {:>5.1}%  return {:.3}{eval}",
+                row.steps_per_s,
+                row.success_rate * 100.0,
+                row.ep_return_mean
+            ));
+        }
+    }
+}
+
+/// Runs `train`.
+pub fn run(args: TrainArgs) -> Result<()> {
+    let command = std::env::args().collect::<Vec<_>>().join(" ");
+    let bar = (!args.quiet).then(|| {
+        let b = ProgressBar::new(1);
+        b.set_style(
+            ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} {msg}")
+                .expect("valid template")
+                .progress_chars("=> "),
+        );
+        b
+    });
+    let mut progress = Bar { bar: bar.clone() };
+    let summary = if let Some(dir) = &args.resume {
+        if args.steps.is_some() || !args.sets.is_empty() {
+            bail!(
+                "--resume continues a run with its saved config; --steps/--set cannot be combined with it"
+            );
+        }
+        run_training(None, dir, &command, &mut progress)
+            .with_context(|| format!("resuming {}", dir.display()))?
+    } else {
+        let model: Architecture = args.model.parse().map_err(anyhow::Error::msg)?;
+        let mut sets = args.sets.clone();
+        if let Some(s) = args.steps {
+            sets.push(format!("total_steps={s}"));
+        }
+        let cfg = resolve(&args.task, model, &args.preset, args.seed, &sets)?;
+        let dir = args.out.clone().unwrap_or_else(|| {
+            PathBuf::from(format!(
+                "runs/{}/{}/seed{}",
+                cfg.task,
+                model.name(),
+                args.seed
+            ))
+        });
+        run_training(Some(cfg), &dir, &command, &mut progress)?
+    };
+    if let Some(b) = bar {
+        b.finish();
+    }
+    println!("{}", serde_json::to_string_pretty(&summary)?);
+    Ok(())
+}
+
+/// `zoo` subcommands.
+#[derive(Subcommand, Debug)]
+pub enum ZooCommand {
+    /// List models, hidden sizes, tasks and presets.
+    List {
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Show one model's preset settings for a task.
+    Show {
+        /// Model name (cnn-mlp, lstm125, …).
+        model: String,
+        /// Task id.
+        #[arg(long, default_value = "FixedInterval-v0")]
+        task: String,
+        /// Preset.
+        #[arg(long, default_value = "reference")]
+        preset: String,
+    },
+}
+
+/// Runs `zoo`.
+pub fn run_zoo(cmd: ZooCommand) -> Result<()> {
+    match cmd {
+        ZooCommand::List { json } => {
+            let models: Vec<String> = Architecture::all().iter().map(Architecture::name).collect();
+            let tasks: Vec<&str> = chronocooked_env::all_tasks().iter().map(|t| t.id).collect();
+            if json {
+                let v = serde_json::json!({"models": models, "tasks": tasks, "presets": PRESETS});
+                println!("{}", serde_json::to_string_pretty(&v)?);
+                return Ok(());
+            }
+            println!("Deep RL models (PPO, trained with `train`):");
+            println!(
+                "  cnn-mlp        CNN trunk (Conv1x1 6->8, ReLU, Conv1x1 8->6, Linear->64, ReLU) + heads pi=[64], vf=[64]"
+            );
+            for (kind, what) in [
+                ("lstm", "LSTM core shared by actor and critic"),
+                ("gru", "GRU core shared by actor and critic"),
+                ("rnn", "vanilla tanh RNN core"),
+                (
+                    "ctrnn",
+                    "continuous-time RNN, alpha = dt/softplus(tau), dt 0.1, learnable tau",
+                ),
+            ] {
+                println!("  {kind}{{8,125,256}}  CNN trunk + {what}");
+            }
+            println!("\nTasks: {}", tasks.join(", "));
+            println!("\nPresets (training/presets/*.toml, overridable with --set key=value):");
+            println!(
+                "  reference  the paper's: 1 env, n_steps 1000, n_epochs 20, batch 64 (CNN-MLP) / 128 (recurrent), lr 3e-4"
+            );
+            println!(
+                "  fast       quickest wall-clock on a 2-core CPU: 16 envs x 64 steps, 4 epochs, batch 256, lr 1e-3"
+            );
+            println!(
+                "\n`chronocooked zoo show MODEL --task ID --preset NAME` prints the resolved settings."
+            );
+        }
+        ZooCommand::Show {
+            model,
+            task,
+            preset,
+        } => {
+            let arch: Architecture = model.parse().map_err(anyhow::Error::msg)?;
+            let pairs = preset_settings(&task, arch, &preset)?;
+            let cfg = resolve::<&str>(&task, arch, &preset, 0, &[])?;
+            println!(
+                "# {} on {} ({preset} preset): settings applied in order",
+                arch.name(),
+                task
+            );
+            for (k, v) in pairs {
+                println!("{k} = {v}");
+            }
+            println!("\n# resolved configuration");
+            println!("{}", serde_json::to_string_pretty(&cfg)?);
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,125 @@
+//! Adam with a global gradient-norm clip, on flat parameter vectors.
+//!
+//! Semantics of `torch.nn.utils.clip_grad_norm_` followed by `torch.optim.Adam`
+//! (what Stable-Baselines3's PPO does): the L2 norm is taken over *all* gradients
+//! together, then the bias-corrected Adam step is applied. Kept here rather than in
+//! burn so that the state is plain data: checkpoints restore it bit for bit.
+
+use serde::{Deserialize, Serialize};
+
+/// Adam hyperparameters (PyTorch defaults, SB3's ε = 1e-5).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct AdamParams {
+    /// First-moment decay β₁.
+    pub beta1: f64,
+    /// Second-moment decay β₂.
+    pub beta2: f64,
+    /// ε added to √v̂.
+    pub eps: f64,
+}
+
+impl Default for AdamParams {
+    fn default() -> Self {
+        AdamParams {
+            beta1: 0.9,
+            beta2: 0.999,
+            eps: 1e-5,
+        }
+    }
+}
+
+/// Adam state: moments and step count.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Adam {
+    /// Hyperparameters.
+    pub params: AdamParams,
+    /// First moments, one per parameter.
+    pub m: Vec<f32>,
+    /// Second moments, one per parameter.
+    pub v: Vec<f32>,
+    /// Steps taken.
+    pub t: u64,
+}
+
+/// L2 norm of a gradient vector.
+pub fn global_norm(grads: &[f32]) -> f64 {
+    grads
+        .iter()
+        .map(|&g| (g as f64) * (g as f64))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// Scales `grads` in place so that their global L2 norm is at most `max_norm`
+/// (PyTorch: factor `max_norm / (norm + 1e-6)`, applied only when below 1).
+/// Returns the norm before clipping.
+pub fn clip_global_norm(grads: &mut [f32], max_norm: f64) -> f64 {
+    let norm = global_norm(grads);
+    let coef = max_norm / (norm + 1e-6);
+    if coef < 1.0 {
+        grads
+            .iter_mut()
+            .for_each(|g| *g = (*g as f64 * coef) as f32);
+    }
+    norm
+}
+
+impl Adam {
+    /// Fresh state for `n` parameters.
+    pub fn new(n: usize, params: AdamParams) -> Self {
+        Adam {
+            params,
+            m: vec![0.0; n],
+            v: vec![0.0; n],
+            t: 0,
+        }
+    }
+
+    /// One update of `theta` with gradient `grad` and learning rate `lr`.
+    pub fn step(&mut self, theta: &mut [f32], grad: &[f32], lr: f64) {
+        assert_eq!(theta.len(), self.m.len(), "parameter count changed");
+        self.t += 1;
+        let AdamParams { beta1, beta2, eps } = self.params;
+        let bc1 = 1.0 - beta1.powi(self.t as i32);
+        let bc2 = 1.0 - beta2.powi(self.t as i32);
+        let step_size = lr / bc1;
+        let bc2_sqrt = bc2.sqrt();
+        for i in 0..theta.len() {
+            let g = grad[i] as f64;
+            let m = beta1 * self.m[i] as f64 + (1.0 - beta1) * g;
+            let v = beta2 * self.v[i] as f64 + (1.0 - beta2) * g * g;
+            self.m[i] = m as f32;
+            self.v[i] = v as f32;
+            let denom = v.sqrt() / bc2_sqrt + eps;
+            theta[i] = (theta[i] as f64 - step_size * m / denom) as f32;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn first_step_moves_each_parameter_by_lr() {
+        // With bias correction, |Δθ| = lr · |g| / (|g| + ε) ≈ lr on the first step.
+        let mut a = Adam::new(3, AdamParams::default());
+        let mut th = vec![1.0f32, -2.0, 0.5];
+        a.step(&mut th, &[0.3, -4.0, 2.0], 0.01);
+        for (x, want) in th.iter().zip([0.99f32, -1.99, 0.49]) {
+            assert!((x - want).abs() < 1e-4, "{x} vs {want}");
+        }
+    }
+
+    #[test]
+    fn global_clip_scales_all_gradients_together() {
+        let mut g = vec![3.0f32, 4.0];
+        let n = clip_global_norm(&mut g, 0.5);
+        assert!((n - 5.0).abs() < 1e-9);
+        assert!((global_norm(&g) - 0.5).abs() < 1e-5);
+        assert!((g[0] / g[1] - 0.75).abs() < 1e-6, "direction kept");
+        let mut small = vec![0.1f32, 0.1];
+        clip_global_norm(&mut small, 0.5);
+        assert_eq!(small, vec![0.1, 0.1]);
+    }
+}

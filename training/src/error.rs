@@ -1,0 +1,92 @@
+//! Typed errors of the training crate.
+
+use thiserror::Error;
+
+/// Everything that can go wrong configuring, running or resuming training.
+#[derive(Debug, Error)]
+pub enum TrainError {
+    /// A setting has a value outside what it accepts.
+    #[error("invalid value `{value}` for `{field}` (allowed: {allowed})")]
+    InvalidParam {
+        /// Setting name.
+        field: String,
+        /// Value given.
+        value: String,
+        /// What is accepted.
+        allowed: String,
+    },
+    /// An override names no setting.
+    #[error(
+        "unknown setting `{0}` (see `chronocooked zoo list` for presets; settings: seed, total_steps, obs, n_envs, n_steps, batch_size, n_epochs, bptt_len, gamma, gae_lambda, clip_range, clip_range_vf, ent_coef, vf_coef, max_grad_norm, learning_rate, lr_schedule, adam_eps, target_kl, normalize_advantage, checkpoint_every, eval_every, stop_at_success, stats_window, curriculum, curriculum_thresholds, curriculum_window, never_ready_start/end/ramp, env.<task parameter>)"
+    )]
+    UnknownKey(String),
+    /// An override is not `key=value`.
+    #[error("override `{0}` is not of the form key=value")]
+    BadOverride(String),
+    /// No preset of that name.
+    #[error("unknown preset `{name}` (allowed: {allowed})")]
+    UnknownPreset {
+        /// Name given.
+        name: String,
+        /// Known presets.
+        allowed: String,
+    },
+    /// A preset file is malformed (a bug in the shipped presets or a user file).
+    #[error("preset file {file}: {message}")]
+    PresetFile {
+        /// File name.
+        file: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// The environment rejected the task or its overrides.
+    #[error(transparent)]
+    Env(#[from] chronocooked_env::EnvError),
+    /// A loss or parameter became NaN/inf, or the loss exploded.
+    #[error(
+        "training diverged at env step {step}: {what}. The last good checkpoint is kept in {checkpoint}; lower learning_rate or max_grad_norm and resume from it"
+    )]
+    Diverged {
+        /// Env step of the failed update.
+        step: u64,
+        /// What was non-finite.
+        what: String,
+        /// Checkpoint left in place.
+        checkpoint: String,
+    },
+    /// Reading or writing the run folder failed.
+    #[error("{path}: {source}")]
+    Io {
+        /// File involved.
+        path: String,
+        /// Underlying error.
+        source: std::io::Error,
+    },
+    /// A run folder or checkpoint is incomplete or does not match.
+    #[error("cannot resume from {path}: {reason}")]
+    Resume {
+        /// Folder.
+        path: String,
+        /// Why.
+        reason: String,
+    },
+}
+
+impl TrainError {
+    /// Shorthand for [`TrainError::InvalidParam`].
+    pub fn param(field: &str, value: impl ToString, allowed: &str) -> Self {
+        TrainError::InvalidParam {
+            field: field.to_string(),
+            value: value.to_string(),
+            allowed: allowed.to_string(),
+        }
+    }
+
+    /// Wraps an I/O error with the path involved.
+    pub fn io(path: &std::path::Path, source: std::io::Error) -> Self {
+        TrainError::Io {
+            path: path.display().to_string(),
+            source,
+        }
+    }
+}

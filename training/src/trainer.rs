@@ -1,0 +1,711 @@
+//! The PPO training loop: rollouts on a [`VecEnv`], GAE, minibatch epochs with BPTT
+//! over stored chunks, curricula, and exact checkpoint/restore of the whole state.
+
+use crate::act::{policy_step, sample};
+use crate::adam::{Adam, AdamParams, clip_global_norm};
+use crate::config::{Curriculum, LrSchedule, TrainConfig};
+use crate::error::TrainError;
+use crate::gae::{compute_gae, explained_variance};
+use crate::loss::{LossCoefs, LossStats, OutputBatch, normalize_advantages, ppo_output_grads};
+use crate::obs::ObsEncoder;
+use crate::params::{flat_grads, flat_params, param_offset, write_params};
+use crate::rollout::{Chunk, Rollout, chunks};
+use burn::module::Module;
+use burn::tensor::{Device, Int, Tensor, TensorData};
+use chronocooked_env::{
+    Action, Autoreset, Events, TaskParams, VecEnv, VecEnvSnapshot, make_config,
+};
+use chronocooked_models::cores::SeqAux;
+use chronocooked_models::{ActorCritic, CoreState, PolicyConfig};
+use rand::SeedableRng;
+use rand::seq::SliceRandom;
+use rand_xoshiro::Xoshiro256PlusPlus;
+use serde::{Deserialize, Serialize};
+use std::collections::VecDeque;
+use std::time::Instant;
+
+/// Outcome of one finished training episode.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct EpisodeStat {
+    /// Undiscounted return.
+    pub ret: f32,
+    /// Steps.
+    pub len: u32,
+    /// Ended with a delivery paying the full reward (≥ 1).
+    pub success: bool,
+}
+
+/// Reads an `f64` that JSON wrote as `null` (NaN/inf) back as NaN.
+fn nan_or_f64<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
+}
+
+/// One row of the learning curve (one PPO update).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct UpdateLog {
+    /// Updates done.
+    pub update: u64,
+    /// Env steps done (all envs).
+    pub env_steps: u64,
+    /// Wall-clock seconds since the run started (excluding time before a resume's checkpoint).
+    #[serde(deserialize_with = "nan_or_f64")]
+    pub wall_s: f64,
+    /// Env steps per second over this update (rollout + optimisation).
+    #[serde(deserialize_with = "nan_or_f64")]
+    pub steps_per_s: f64,
+    /// Seconds spent collecting the rollout.
+    #[serde(deserialize_with = "nan_or_f64")]
+    pub rollout_s: f64,
+    /// Seconds spent in the minibatch epochs.
+    #[serde(deserialize_with = "nan_or_f64")]
+    pub optimize_s: f64,
+    /// Mean return of the last `stats_window` episodes.
+    #[serde(deserialize_with = "nan_or_f64")]
+    pub ep_return_mean: f64,
+    /// Mean length of the last `stats_window` episodes.
+    #[serde(deserialize_with = "nan_or_f64")]
+    pub ep_len_mean: f64,
+    /// Fraction of the last `stats_window` episodes ending in a full-reward delivery.
+    #[serde(deserialize_with = "nan_or_f64")]
+    pub success_rate: f64,
+    /// Episodes finished so far.
+    pub episodes: u64,
+    /// Mean clipped-surrogate loss over the update's minibatches.
+    #[serde(deserialize_with = "nan_or_f64")]
+    pub policy_loss: f64,
+    /// Mean value loss.
+    #[serde(deserialize_with = "nan_or_f64")]
+    pub value_loss: f64,
+    /// Mean policy entropy (nats).
+    #[serde(deserialize_with = "nan_or_f64")]
+    pub entropy: f64,
+    /// Mean approx-KL.
+    #[serde(deserialize_with = "nan_or_f64")]
+    pub approx_kl: f64,
+    /// Mean clip fraction.
+    #[serde(deserialize_with = "nan_or_f64")]
+    pub clip_fraction: f64,
+    /// Explained variance of the rollout values.
+    #[serde(deserialize_with = "nan_or_f64")]
+    pub explained_variance: f64,
+    /// Mean global gradient norm before clipping.
+    #[serde(deserialize_with = "nan_or_f64")]
+    pub grad_norm: f64,
+    /// Learning rate used.
+    #[serde(deserialize_with = "nan_or_f64")]
+    pub learning_rate: f64,
+    /// Multi-timer curriculum: active TDs.
+    pub num_timers: usize,
+    /// Uncertainty curriculum: never-ready probability.
+    #[serde(deserialize_with = "nan_or_f64")]
+    pub never_ready_prob: f64,
+    /// Deterministic evaluation success (when run this update).
+    pub eval_success: Option<f64>,
+}
+
+/// Everything needed to continue a run exactly (a checkpoint's content).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct TrainerState {
+    /// Env steps done.
+    pub steps: u64,
+    /// Updates done.
+    pub updates: u64,
+    /// Flat parameters.
+    pub theta: Vec<f32>,
+    /// Optimiser state.
+    pub adam: Adam,
+    /// Envs.
+    pub envs: VecEnvSnapshot,
+    /// `1 − episode_start` of the current observations.
+    pub keep: Vec<f32>,
+    /// Recurrent state carried into the next rollout.
+    pub core_state: Option<(Vec<f32>, Option<Vec<f32>>)>,
+    /// Run RNG (actions, shuffling).
+    pub rng: Xoshiro256PlusPlus,
+    /// Running return per env.
+    pub ep_return: Vec<f32>,
+    /// Running length per env.
+    pub ep_len: Vec<u32>,
+    /// Recent episodes (stats window).
+    pub recent: VecDeque<EpisodeStat>,
+    /// Episodes since the curriculum last changed.
+    pub since_change: usize,
+    /// Episodes finished.
+    pub episodes: u64,
+    /// Active TDs (multi-timer).
+    pub num_timers: usize,
+    /// Never-ready probability (uncertainty).
+    pub never_ready_prob: f64,
+    /// Wall seconds accumulated.
+    pub wall_s: f64,
+    /// Learning curve so far.
+    pub curve: Vec<UpdateLog>,
+}
+
+/// A PPO trainer for one configuration and seed.
+pub struct Trainer {
+    cfg: TrainConfig,
+    policy_cfg: PolicyConfig,
+    device: Device,
+    model: ActorCritic,
+    envs: VecEnv,
+    encoder: ObsEncoder,
+    rollout: Rollout,
+    state: TrainerState,
+    scratch_obs: Vec<f32>,
+}
+
+impl Trainer {
+    /// Builds a fresh trainer (weights, envs and RNG from `cfg.seed`).
+    pub fn new(cfg: TrainConfig) -> Result<Self, TrainError> {
+        cfg.validate()?;
+        let task = make_config(&cfg.task, &cfg.env)?;
+        let p = &cfg.ppo;
+        let mut envs = VecEnv::new(&task, p.n_envs, Autoreset::SameStep)?;
+        let encoder = ObsEncoder::new(cfg.obs, &envs);
+        let policy_cfg = PolicyConfig::new(
+            cfg.model,
+            encoder.cells(),
+            encoder.channels(),
+            Action::COUNT,
+        );
+        let device = chronocooked_models::cpu_autodiff();
+        let model = policy_cfg.init(cfg.seed, &device);
+        let theta = flat_params(&model);
+        let adam = Adam::new(
+            theta.len(),
+            AdamParams {
+                eps: p.adam_eps,
+                ..AdamParams::default()
+            },
+        );
+        envs.reset(chronocooked_env::derive_seed(cfg.seed, 0x5EED));
+        let num_timers = match &task.params {
+            TaskParams::MultiTimer { num_timers, .. } => *num_timers,
+            _ => 1,
+        };
+        let mut state = TrainerState {
+            steps: 0,
+            updates: 0,
+            theta,
+            adam,
+            envs: envs.snapshot(),
+            keep: vec![0.0; p.n_envs],
+            core_state: None,
+            rng: Xoshiro256PlusPlus::seed_from_u64(chronocooked_env::derive_seed(cfg.seed, 0xAC7)),
+            ep_return: vec![0.0; p.n_envs],
+            ep_len: vec![0; p.n_envs],
+            recent: VecDeque::new(),
+            since_change: 0,
+            episodes: 0,
+            num_timers,
+            never_ready_prob: 0.0,
+            wall_s: 0.0,
+            curve: Vec::new(),
+        };
+        if let Curriculum::MultiTimer { .. } = cfg.curriculum {
+            state.num_timers = 1;
+            envs.set_num_timers(1)?;
+            envs.reset(chronocooked_env::derive_seed(cfg.seed, 0x5EED));
+            state.envs = envs.snapshot();
+        }
+        if let TaskParams::Uncertainty {
+            never_ready_prob, ..
+        } = &task.params
+        {
+            state.never_ready_prob = *never_ready_prob as f64;
+        }
+        let rollout = Rollout::new(p.n_envs, p.n_steps, encoder.len());
+        let mut t = Trainer {
+            scratch_obs: vec![0.0; p.n_envs * encoder.len()],
+            cfg,
+            policy_cfg,
+            device,
+            model,
+            envs,
+            encoder,
+            rollout,
+            state,
+        };
+        t.apply_curriculum()?;
+        Ok(t)
+    }
+
+    /// Rebuilds a trainer from a configuration and a checkpointed state.
+    pub fn restore(cfg: TrainConfig, state: TrainerState) -> Result<Self, TrainError> {
+        let mut t = Trainer::new(cfg)?;
+        if state.theta.len() != t.state.theta.len() {
+            return Err(TrainError::Resume {
+                path: String::new(),
+                reason: format!(
+                    "checkpoint has {} parameters, the configured model {}",
+                    state.theta.len(),
+                    t.state.theta.len()
+                ),
+            });
+        }
+        t.envs.restore(&state.envs)?;
+        if matches!(t.cfg.curriculum, Curriculum::MultiTimer { .. }) {
+            t.envs.set_num_timers(state.num_timers)?;
+        }
+        t.model = write_params(t.model, &state.theta);
+        t.state = state;
+        t.apply_curriculum()?;
+        Ok(t)
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &TrainConfig {
+        &self.cfg
+    }
+
+    /// The policy's architecture description.
+    pub fn policy_config(&self) -> &PolicyConfig {
+        &self.policy_cfg
+    }
+
+    /// The full state (a checkpoint: pair it with the config).
+    pub fn state(&self) -> &TrainerState {
+        &self.state
+    }
+
+    /// A copy of the current policy without autodiff (for acting and saving).
+    pub fn policy(&self) -> ActorCritic {
+        self.model.valid()
+    }
+
+    /// Whether the step budget is spent.
+    pub fn finished(&self) -> bool {
+        self.state.steps >= self.cfg.total_steps
+    }
+
+    fn chunk_len(&self) -> usize {
+        match (self.cfg.model.is_recurrent(), self.cfg.ppo.bptt_len) {
+            (false, _) => 1,
+            (true, 0) => self.cfg.ppo.n_steps,
+            (true, l) => l.min(self.cfg.ppo.n_steps),
+        }
+    }
+
+    fn apply_curriculum(&mut self) -> Result<(), TrainError> {
+        if let Curriculum::Uncertainty {
+            start,
+            end,
+            ramp_fraction,
+        } = self.cfg.curriculum
+        {
+            let frac = if ramp_fraction <= 0.0 {
+                1.0
+            } else {
+                (self.state.steps as f64 / (ramp_fraction * self.cfg.total_steps as f64)).min(1.0)
+            };
+            // Quantised to 0.005 so the spec is rebuilt rarely.
+            let p = ((start + (end - start) * frac) * 200.0).round() / 200.0;
+            if (p - self.state.never_ready_prob).abs() > 1e-9 || self.state.updates == 0 {
+                self.envs.set_param("never_ready_prob", &format!("{p}"))?;
+                self.state.never_ready_prob = p;
+            }
+        }
+        Ok(())
+    }
+
+    fn advance_multi_timer(&mut self) -> Result<(), TrainError> {
+        let Curriculum::MultiTimer { thresholds, window } = &self.cfg.curriculum else {
+            return Ok(());
+        };
+        let n_tds = match &self.envs.config().params {
+            TaskParams::MultiTimer { tds, .. } => tds.len(),
+            _ => return Ok(()),
+        };
+        let k = self.state.num_timers;
+        if k >= n_tds || self.state.since_change < *window {
+            return Ok(());
+        }
+        let threshold = thresholds
+            .get(k - 1)
+            .or(thresholds.last())
+            .copied()
+            .unwrap_or(0.9);
+        let recent: Vec<f32> = self
+            .state
+            .recent
+            .iter()
+            .rev()
+            .take(*window)
+            .map(|e| e.ret)
+            .collect();
+        let mean = recent.iter().sum::<f32>() / recent.len() as f32;
+        if mean >= threshold {
+            self.state.num_timers = k + 1;
+            self.envs.set_num_timers(k + 1)?;
+            self.state.since_change = 0;
+        }
+        Ok(())
+    }
+
+    /// Collects one rollout with the current policy.
+    fn collect(&mut self, policy: &ActorCritic) -> Result<(), TrainError> {
+        let (n, t_len) = (self.cfg.ppo.n_envs, self.cfg.ppo.n_steps);
+        let gamma = self.cfg.ppo.gamma;
+        let inf = chronocooked_models::cpu();
+        let (cells, ch, olen) = (
+            self.encoder.cells(),
+            self.encoder.channels(),
+            self.encoder.len(),
+        );
+        let l = self.chunk_len();
+        let recurrent = self.cfg.model.is_recurrent();
+        let hidden = self.cfg.model.hidden;
+        let mut core: Option<CoreState> = if recurrent {
+            Some(match self.state.core_state.take() {
+                Some((h, c)) => CoreState::from_vecs(h, c, n, &inf),
+                None => policy
+                    .zero_state(n, &inf)
+                    .expect("recurrent policy has a state"),
+            })
+        } else {
+            None
+        };
+        self.rollout.chunk_states.clear();
+        let obs_tensor_len = n * olen;
+        let mut final_buf = vec![0f32; olen];
+        for t in 0..t_len {
+            if recurrent && t % l == 0 {
+                let st = core.as_ref().expect("state");
+                self.rollout.chunk_states.push(st.to_vecs());
+            }
+            self.encoder
+                .encode_batch(&self.envs.obs, &mut self.scratch_obs);
+            let keep = self.state.keep.clone();
+            let (logits, values, new_core) = policy_step(
+                policy,
+                &self.scratch_obs,
+                cells,
+                ch,
+                &keep,
+                core.take(),
+                &inf,
+            );
+            core = new_core;
+            let base = t * n;
+            self.rollout.obs[base * olen..base * olen + obs_tensor_len]
+                .copy_from_slice(&self.scratch_obs);
+            let mut actions = vec![0u8; n];
+            for e in 0..n {
+                let na = Action::COUNT;
+                let (a, lp) = sample(&logits[e * na..(e + 1) * na], &mut self.state.rng);
+                actions[e] = a as u8;
+                self.rollout.actions[base + e] = a as i64;
+                self.rollout.log_probs[base + e] = lp;
+                self.rollout.values[base + e] = values[e];
+                self.rollout.keep[base + e] = keep[e];
+            }
+            self.envs.step(&actions)?;
+            for e in 0..n {
+                let mut r = self.envs.rewards[e];
+                let term = self.envs.terminated[e];
+                let trunc = self.envs.truncated[e];
+                self.state.ep_return[e] += r;
+                self.state.ep_len[e] += 1;
+                if trunc && !term {
+                    // Time-limit bootstrap: r += γ V(final obs), with the state after this step.
+                    self.encoder.encode(
+                        &self.envs.final_obs
+                            [e * self.envs.obs_len()..(e + 1) * self.envs.obs_len()],
+                        &mut final_buf,
+                    );
+                    let st = core.as_ref().map(|s| {
+                        s.select(Tensor::<1, Int>::from_data(
+                            TensorData::new(vec![e as i64], [1]),
+                            &inf,
+                        ))
+                    });
+                    let (_, v, _) = policy_step(policy, &final_buf, cells, ch, &[1.0], st, &inf);
+                    r += gamma * v[0];
+                }
+                self.rollout.rewards[base + e] = r;
+                self.rollout.dones[base + e] = term || trunc;
+                self.state.keep[e] = if term || trunc { 0.0 } else { 1.0 };
+                if term || trunc {
+                    let info = &self.envs.final_infos[e];
+                    let success =
+                        info.events.has(Events::DELIVERY) && self.envs.rewards[e] >= 0.999;
+                    self.state.recent.push_back(EpisodeStat {
+                        ret: self.state.ep_return[e],
+                        len: self.state.ep_len[e],
+                        success,
+                    });
+                    while self.state.recent.len() > self.cfg.stats_window.max(1) {
+                        self.state.recent.pop_front();
+                    }
+                    self.state.episodes += 1;
+                    self.state.since_change += 1;
+                    self.state.ep_return[e] = 0.0;
+                    self.state.ep_len[e] = 0;
+                }
+            }
+        }
+        // Values of the observations after the last step (GAE bootstrap).
+        self.encoder
+            .encode_batch(&self.envs.obs, &mut self.scratch_obs);
+        let keep = self.state.keep.clone();
+        let (_, last_values, _) = policy_step(
+            policy,
+            &self.scratch_obs,
+            cells,
+            ch,
+            &keep,
+            core.clone(),
+            &inf,
+        );
+        self.state.core_state = core.map(|s| s.to_vecs());
+        let _ = hidden;
+        let (adv, ret) = compute_gae(
+            &self.rollout.rewards,
+            &self.rollout.values,
+            &self.rollout.dones,
+            &last_values,
+            gamma,
+            self.cfg.ppo.gae_lambda,
+        );
+        self.rollout.advantages = adv;
+        self.rollout.returns = ret;
+        self.state.steps += (n * t_len) as u64;
+        Ok(())
+    }
+
+    /// Builds the loss inputs of one minibatch of chunks and returns the forward output.
+    fn minibatch_loss(&self, mb: &[Chunk], l: usize) -> (LossStats, Tensor<1>, Option<SeqAux>) {
+        let r = &self.rollout;
+        let n = r.n_envs;
+        let b = mb.len();
+        let (cells, ch, olen) = (
+            self.encoder.cells(),
+            self.encoder.channels(),
+            self.encoder.len(),
+        );
+        let m = l * b;
+        let mut obs = vec![0f32; m * olen];
+        let mut keep = vec![1f32; m];
+        let mut mask = vec![0f32; m];
+        let mut actions = vec![0i64; m];
+        let mut old_lp = vec![0f32; m];
+        let mut adv = vec![0f32; m];
+        let mut ret = vec![0f32; m];
+        let mut old_v = vec![0f32; m];
+        for (j, c) in mb.iter().enumerate() {
+            for t in 0..c.len {
+                let src = (c.start + t) * n + c.env;
+                let dst = t * b + j;
+                obs[dst * olen..(dst + 1) * olen]
+                    .copy_from_slice(&r.obs[src * olen..(src + 1) * olen]);
+                keep[dst] = r.keep[src];
+                mask[dst] = 1.0;
+                actions[dst] = r.actions[src];
+                old_lp[dst] = r.log_probs[src];
+                adv[dst] = r.advantages[src];
+                ret[dst] = r.returns[src];
+                old_v[dst] = r.values[src];
+            }
+        }
+        if self.cfg.ppo.normalize_advantage {
+            normalize_advantages(&mut adv, &mask);
+        }
+        let d = &self.device;
+        let state = self.cfg.model.is_recurrent().then(|| {
+            let h_dim = self.cfg.model.hidden;
+            let mut h = Vec::with_capacity(b * h_dim);
+            let mut cst: Option<Vec<f32>> = None;
+            for c in mb {
+                let (hs, cs) = &r.chunk_states[c.index];
+                h.extend_from_slice(&hs[c.env * h_dim..(c.env + 1) * h_dim]);
+                if let Some(cs) = cs {
+                    cst.get_or_insert_with(Vec::new)
+                        .extend_from_slice(&cs[c.env * h_dim..(c.env + 1) * h_dim]);
+                }
+            }
+            CoreState::from_vecs(h, cst, b, d)
+        });
+        let obs_t = Tensor::<4>::from_data(TensorData::new(obs, [l, b, cells, ch]), d);
+        let keep_t: Vec<Option<Tensor<2>>> = keep
+            .chunks_exact(b)
+            .map(|k| {
+                k.iter()
+                    .any(|&v| v != 1.0)
+                    .then(|| Tensor::<2>::from_data(TensorData::new(k.to_vec(), [b, 1]), d))
+            })
+            .collect();
+        let out = self.model.forward_seq_train(obs_t, state, &keep_t);
+        let a_n = Action::COUNT;
+        let both = chronocooked_models::to_vec(&Tensor::cat(
+            vec![out.logits.clone(), out.values.clone()],
+            1,
+        ));
+        let mut logits = Vec::with_capacity(m * a_n);
+        let mut values = Vec::with_capacity(m);
+        for row in both.chunks_exact(a_n + 1) {
+            logits.extend_from_slice(&row[..a_n]);
+            values.push(row[a_n]);
+        }
+        let p = &self.cfg.ppo;
+        let (stats, d_logits, d_values) = ppo_output_grads(
+            OutputBatch {
+                logits: &logits,
+                values: &values,
+                actions: &actions,
+                old_log_prob: &old_lp,
+                advantages: &adv,
+                returns: &ret,
+                old_values: &old_v,
+                mask: &mask,
+            },
+            LossCoefs {
+                clip_range: p.clip_range,
+                clip_range_vf: p.clip_range_vf,
+                ent_coef: p.ent_coef,
+                vf_coef: p.vf_coef,
+            },
+        );
+        let g_l = Tensor::<2>::from_data(TensorData::new(d_logits, [m, a_n]), d);
+        let g_v = Tensor::<2>::from_data(TensorData::new(d_values, [m, 1]), d);
+        // Same parameter gradients as the full loss: backward of Σ out·(∂L/∂out).
+        let surrogate = (out.logits * g_l).sum() + (out.values * g_v).sum();
+        (stats, surrogate, out.aux)
+    }
+
+    /// One PPO update: a rollout, then `n_epochs` passes of minibatch steps.
+    /// Returns the learning-curve row (already appended to the state's curve).
+    pub fn update(&mut self) -> Result<UpdateLog, TrainError> {
+        let started = Instant::now();
+        self.apply_curriculum()?;
+        let policy = self.model.valid();
+        self.collect(&policy)?;
+        let rollout_s = started.elapsed().as_secs_f64();
+        let p = self.cfg.ppo.clone();
+        let lr = match p.lr_schedule {
+            LrSchedule::Constant => p.learning_rate,
+            LrSchedule::Linear => {
+                let done = (self.state.steps - (p.n_envs * p.n_steps) as u64) as f64;
+                p.learning_rate * (1.0 - done / self.cfg.total_steps as f64).max(0.0)
+            }
+        };
+        let l = self.chunk_len();
+        let mut all = chunks(p.n_envs, p.n_steps, l);
+        let per_mb = (p.batch_size / l).max(1);
+        let (mut pl, mut vl, mut el, mut kl, mut cf, mut gn, mut count) =
+            (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0usize);
+        'epochs: for _ in 0..p.n_epochs {
+            all.shuffle(&mut self.state.rng);
+            for mb in all.chunks(per_mb) {
+                let (out, surrogate, aux) = self.minibatch_loss(mb, l);
+                if let Some(target) = p.target_kl
+                    && out.approx_kl > 1.5 * target as f64
+                {
+                    break 'epochs;
+                }
+                if !out.loss.is_finite() {
+                    return Err(self.diverged(format!(
+                        "non-finite loss (policy {}, value {}, entropy {})",
+                        out.policy_loss, out.value_loss, out.entropy_loss
+                    )));
+                }
+                let grads = surrogate.backward();
+                let mut g = flat_grads(&self.model, &grads);
+                if let Some(aux) = aux {
+                    let id = aux.weight_id;
+                    let (dw, sur) = aux.finish(&grads);
+                    if let Some(dw) = dw
+                        && let Some(off) = param_offset(&self.model, id)
+                    {
+                        let dw = chronocooked_models::to_vec(&dw);
+                        g[off..off + dw.len()]
+                            .iter_mut()
+                            .zip(&dw)
+                            .for_each(|(a, b)| *a += b);
+                    }
+                    if let Some(sur) = sur {
+                        let g2 = flat_grads(&self.model, &sur.backward());
+                        g.iter_mut().zip(&g2).for_each(|(a, b)| *a += b);
+                    }
+                }
+                let norm = clip_global_norm(&mut g, p.max_grad_norm as f64);
+                if !norm.is_finite() {
+                    return Err(self.diverged("non-finite gradient norm".into()));
+                }
+                self.state.adam.step(&mut self.state.theta, &g, lr);
+                let model = std::mem::replace(&mut self.model, policy.clone());
+                self.model = write_params(model, &self.state.theta);
+                pl += out.policy_loss;
+                vl += out.value_loss;
+                el += out.entropy_loss;
+                kl += out.approx_kl;
+                cf += out.clip_fraction;
+                gn += norm;
+                count += 1;
+            }
+        }
+        if self.state.theta.iter().any(|x| !x.is_finite()) {
+            return Err(self.diverged("non-finite parameters after the update".into()));
+        }
+        self.state.updates += 1;
+        self.advance_multi_timer()?;
+        let secs = started.elapsed().as_secs_f64();
+        self.state.wall_s += secs;
+        let c = count.max(1) as f64;
+        let recent = &self.state.recent;
+        let k = recent.len().max(1) as f64;
+        let row = UpdateLog {
+            update: self.state.updates,
+            env_steps: self.state.steps,
+            wall_s: self.state.wall_s,
+            steps_per_s: (p.n_envs * p.n_steps) as f64 / secs.max(1e-9),
+            rollout_s,
+            optimize_s: secs - rollout_s,
+            ep_return_mean: if recent.is_empty() {
+                f64::NAN
+            } else {
+                recent.iter().map(|e| e.ret as f64).sum::<f64>() / k
+            },
+            ep_len_mean: if recent.is_empty() {
+                f64::NAN
+            } else {
+                recent.iter().map(|e| e.len as f64).sum::<f64>() / k
+            },
+            success_rate: if recent.is_empty() {
+                f64::NAN
+            } else {
+                recent.iter().filter(|e| e.success).count() as f64 / k
+            },
+            episodes: self.state.episodes,
+            policy_loss: pl / c,
+            value_loss: vl / c,
+            entropy: -el / c,
+            approx_kl: kl / c,
+            clip_fraction: cf / c,
+            explained_variance: explained_variance(&self.rollout.values, &self.rollout.returns),
+            grad_norm: gn / c,
+            learning_rate: lr,
+            num_timers: self.state.num_timers,
+            never_ready_prob: self.state.never_ready_prob,
+            eval_success: None,
+        };
+        self.state.envs = self.envs.snapshot();
+        self.state.curve.push(row.clone());
+        Ok(row)
+    }
+
+    /// Records a deterministic-evaluation result on the last curve row.
+    pub fn set_last_eval(&mut self, success: f64) {
+        if let Some(r) = self.state.curve.last_mut() {
+            r.eval_success = Some(success);
+        }
+    }
+
+    fn diverged(&self, what: String) -> TrainError {
+        TrainError::Diverged {
+            step: self.state.steps,
+            what,
+            checkpoint: "the run folder's checkpoints/".into(),
+        }
+    }
+}
