@@ -157,6 +157,24 @@ pub enum BenchCommand {
         #[arg(long)]
         json: bool,
     },
+    /// PPO training env-steps/s (rollout + optimisation) per model on one task.
+    Train {
+        /// Task id.
+        #[arg(long, default_value = "FixedInterval-v0")]
+        task: String,
+        /// Models to measure (comma-separated).
+        #[arg(long, default_value = "cnn-mlp,lstm125,ctrnn125")]
+        models: String,
+        /// Preset.
+        #[arg(long, default_value = "reference")]
+        preset: String,
+        /// Updates measured per model (after one warm-up update).
+        #[arg(long, default_value_t = 5)]
+        updates: u64,
+        /// Extra settings `key=value`.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+    },
 }
 
 /// Runs an `env` subcommand.
@@ -324,6 +342,13 @@ fn render_episode(
 /// Runs a `bench` subcommand.
 pub fn run_bench(cmd: BenchCommand) -> Result<()> {
     match cmd {
+        BenchCommand::Train {
+            task,
+            models,
+            preset,
+            updates,
+            set,
+        } => crate::train_cmd::bench_train(&task, &models, &preset, updates, &set),
         BenchCommand::Env {
             task,
             set,

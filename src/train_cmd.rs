@@ -189,3 +189,39 @@ pub fn run_zoo(cmd: ZooCommand) -> Result<()> {
     }
     Ok(())
 }
+
+/// `bench train`: mean env-steps/s over `updates` PPO updates (after one warm-up) per model.
+pub fn bench_train(
+    task: &str,
+    models: &str,
+    preset: &str,
+    updates: u64,
+    sets: &[String],
+) -> Result<()> {
+    for name in models.split(',').map(str::trim).filter(|m| !m.is_empty()) {
+        let arch: Architecture = name.parse().map_err(anyhow::Error::msg)?;
+        let mut cfg = resolve(task, arch, preset, 0, sets)?;
+        cfg.total_steps = u64::MAX;
+        let batch = (cfg.ppo.n_envs * cfg.ppo.n_steps) as f64;
+        let mut trainer = chronocooked_training::Trainer::new(cfg)?;
+        trainer.update()?;
+        let (mut secs, mut roll, mut opt) = (0.0, 0.0, 0.0);
+        for _ in 0..updates.max(1) {
+            let r = trainer.update()?;
+            secs += batch / r.steps_per_s;
+            roll += r.rollout_s;
+            opt += r.optimize_s;
+        }
+        let n = updates.max(1) as f64;
+        println!(
+            "{task:<18} {:<10} {preset:<9} {:>8.0} env-steps/s  ({:.3} s/update: rollout {:.3} s, optimise {:.3} s; {} updates)",
+            arch.name(),
+            batch * n / secs,
+            secs / n,
+            roll / n,
+            opt / n,
+            updates.max(1)
+        );
+    }
+    Ok(())
+}

@@ -310,3 +310,78 @@ fn env_replay_accepts_reference_parameter_names_for_multi_timer() {
     );
     assert_eq!(lines[8]["terminated"], true);
 }
+
+#[test]
+fn train_and_zoo_commands_work_and_reject_bad_input() {
+    let list = run_ok(&["zoo", "list"]);
+    for m in [
+        "cnn-mlp",
+        "lstm",
+        "ctrnn",
+        "gru",
+        "rnn",
+        "FixedInterval-v0",
+        "reference",
+        "fast",
+    ] {
+        assert!(list.contains(m), "zoo list lacks {m}");
+    }
+    let show = run_ok(&["zoo", "show", "lstm125", "--task", "Bisection-v0"]);
+    assert!(
+        show.contains("\"total_steps\": 960000") && show.contains("bptt_len"),
+        "{show}"
+    );
+    for (args, needle) in [
+        (vec!["train", "--model", "transformer"], "unknown model"),
+        (vec!["train", "--task", "Nope-v0"], "Nope-v0"),
+        (vec!["train", "--preset", "turbo"], "unknown preset"),
+        (vec!["train", "--set", "n_epochs=0"], "n_epochs"),
+        (vec!["train", "--set", "bogus=1"], "unknown setting"),
+        (vec!["train", "--set", "env.td=0"], "td"),
+        (
+            vec!["train", "--resume", "/nonexistent/run"],
+            "not a run folder",
+        ),
+    ] {
+        let err = run_err(&args);
+        assert!(err.contains(needle), "{args:?}: {err}");
+    }
+    let dir = temp_dir("train-cli");
+    let out = run_ok(&[
+        "train",
+        "--model",
+        "cnn-mlp",
+        "--steps",
+        "2000",
+        "--set",
+        "env.td=4",
+        "--quiet",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    let summary: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(summary["env_steps"], 2000);
+    for f in [
+        "config.json",
+        "policy.json",
+        "command.txt",
+        "curves.csv",
+        "model.bpk",
+        "summary.json",
+    ] {
+        assert!(dir.join(f).is_file(), "{f} missing");
+    }
+    let csv = std::fs::read_to_string(dir.join("curves.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 3, "header + one row per update");
+    // A finished folder is not silently overwritten.
+    let err = run_err(&[
+        "train",
+        "--model",
+        "cnn-mlp",
+        "--steps",
+        "2000",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(err.contains("already holds a run"), "{err}");
+}
