@@ -13,6 +13,7 @@ pub mod params;
 pub mod presets;
 pub mod rollout;
 pub mod run_dir;
+pub mod state;
 pub mod trainer;
 
 pub use config::{Curriculum, LrSchedule, ObsEncoding, PpoConfig, TrainConfig};
