@@ -87,7 +87,7 @@ pub fn evaluate_policy(
         encoder.encode_batch(&envs.obs, &mut obs);
         let (logits, _, st) = policy_step(policy, &obs, cells, ch, &keep, state, &device);
         state = st;
-        // Finished envs keep being stepped in a private copy: use Wait and ignore the result.
+        // Finished episodes are skipped (their action is ignored).
         let actions: Vec<u8> = (0..n)
             .map(|i| {
                 if done[i] {
@@ -97,7 +97,7 @@ pub fn evaluate_policy(
                 }
             })
             .collect();
-        step_unfinished(&mut envs, &actions, &done)?;
+        envs.step_masked(&actions, &done)?;
         for i in 0..n {
             if done[i] {
                 continue;
@@ -112,11 +112,6 @@ pub fn evaluate_policy(
         }
     }
     Ok(out)
-}
-
-/// Steps only the envs that are still running (Disabled autoreset refuses finished ones).
-fn step_unfinished(envs: &mut VecEnv, actions: &[u8], done: &[bool]) -> Result<(), EnvError> {
-    envs.step_masked(actions, done)
 }
 
 /// Fraction of successful episodes.

@@ -235,7 +235,6 @@ impl Trainer {
         );
         let l = self.chunk_len();
         let recurrent = self.cfg.model.is_recurrent();
-        let hidden = self.cfg.model.hidden;
         let mut core: Option<CoreState> = if recurrent {
             Some(match self.state.core_state.take() {
                 Some((h, c)) => CoreState::from_vecs(h, c, n, &inf),
@@ -339,7 +338,6 @@ impl Trainer {
             &inf,
         );
         self.state.core_state = core.map(|s| s.to_vecs());
-        let _ = hidden;
         let (adv, ret) = compute_gae(
             &self.rollout.rewards,
             &self.rollout.values,
