@@ -248,6 +248,12 @@ impl ActorCritic {
         }
     }
 
+    /// Trunk features of a sequence, flattened time-major: `([T·B, F], T, B)`.
+    fn seq_features(&self, obs: Tensor<4>) -> (Tensor<2>, usize, usize) {
+        let [t, b, cells, ch] = obs.dims();
+        (self.trunk.forward(obs.reshape([t * b, cells, ch])), t, b)
+    }
+
     /// Sequence forward for BPTT: `obs [T, B, cells, C]`, initial state, per-step
     /// `keep [B, 1]` (`None` where no sequence starts an episode).
     /// Outputs are time-major `[T·B, ·]` (row `t·B + b`).
@@ -257,8 +263,7 @@ impl ActorCritic {
         state: Option<CoreState>,
         keep: &[Option<Tensor<2>>],
     ) -> PolicyOutput {
-        let [t, b, cells, ch] = obs.dims();
-        let feat = self.trunk.forward(obs.reshape([t * b, cells, ch]));
+        let (feat, t, b) = self.seq_features(obs);
         match &self.core {
             Some(core) => {
                 let st = state.unwrap_or_else(|| core.zero_state(b, &feat.device()));
@@ -279,8 +284,7 @@ impl ActorCritic {
         state: Option<CoreState>,
         keep: &[Option<Tensor<2>>],
     ) -> PolicyOutput {
-        let [t, b, cells, ch] = obs.dims();
-        let feat = self.trunk.forward(obs.reshape([t * b, cells, ch]));
+        let (feat, t, b) = self.seq_features(obs);
         match &self.core {
             Some(core) => {
                 let st = state.unwrap_or_else(|| core.zero_state(b, &feat.device()));
