@@ -1,13 +1,27 @@
 //! Chronocooked Lab models: the paper's CNN trunk, recurrent cores (LSTM, GRU, RNN,
-//! CTRNN) and actor–critic policies as burn modules.
+//! CTRNN) and actor–critic policies as burn modules; the biologically plausible timing
+//! models ([`timing`]) and the agents that play the tasks with them ([`timing_agent`]);
+//! the one agent interface ([`agent`]) and activity recording ([`activity`]).
 
+pub mod activity;
+pub mod agent;
 pub mod cores;
 pub mod init;
 pub mod policy;
+pub mod sarsa;
+pub mod timers;
+pub mod timing;
+pub mod timing_agent;
+pub mod timing_train;
 pub mod trunk;
+pub mod zoo;
 
+pub use activity::{ActivityDataset, ActivityMeta, Marker, StepRecorder, TrialRecorder};
+pub use agent::{Agent, EpisodeRecord, Percept, PerceptParser, evaluate_agent, run_episode};
 pub use cores::{CoreConfig, CoreKind, CoreState, RecurrentCore};
 pub use policy::{ActorCritic, Architecture, PAPER_SIZES, PolicyConfig, PolicyOutput};
+pub use timing_agent::{TimingAgent, TimingAgentConfig};
+pub use timing_train::{TimingCurvePoint, TimingTrainConfig, train_timing_agent};
 pub use trunk::{Trunk, TrunkConfig};
 
 /// The compute device used by the lab: burn's `flex` CPU backend.

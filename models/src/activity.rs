@@ -1,0 +1,304 @@
+//! Neural-activity recording: one API for every model.
+//!
+//! Per step an agent writes named populations of unit activities into a [`StepRecorder`];
+//! the episode runner adds the step's event markers (onion in, oven ready, checks, pickup,
+//! delivery, reward). Recorded trials form an [`ActivityDataset`]
+//! (units × time × trials with metadata) which the analysis crate consumes.
+//!
+//! Recording is opt-in: an agent's `record` method is only called when a recorder is
+//! attached, so switching it off costs nothing but a branch per step.
+
+use serde::{Deserialize, Serialize};
+
+/// Name and unit names of one population (e.g. `"accumulator"`, `"oscillators"`).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Population {
+    /// Population name.
+    pub name: String,
+    /// Number of units.
+    pub size: usize,
+}
+
+/// Kind of a per-step event marker (aligned to the step on which it happened).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Marker {
+    /// The onion went in: the oven turned on (oven time 0 is the step after).
+    OvenOn,
+    /// The oven showed ready (tasks with a ready cue).
+    OvenReady,
+    /// An interact next to a running oven with empty hands.
+    OvenCheck,
+    /// The soup was taken out.
+    Pickup,
+    /// The soup was delivered.
+    Delivery,
+    /// A non-zero reward.
+    Reward,
+    /// A paid interaction with the reward sink (dual task).
+    Sink,
+    /// The manual oven button (uncertainty task).
+    Button,
+}
+
+impl Marker {
+    /// Markers of one step from the environment's event flags and reward.
+    pub fn from_events(events: chronocooked_env::Events, reward: f32) -> Vec<Marker> {
+        use chronocooked_env::Events as E;
+        let mut out = Vec::new();
+        for (flag, m) in [
+            (E::ONION_IN, Marker::OvenOn),
+            (E::OVEN_READY, Marker::OvenReady),
+            (E::OVEN_CHECK, Marker::OvenCheck),
+            (E::PICKUP, Marker::Pickup),
+            (E::DELIVERY, Marker::Delivery),
+            (E::SINK, Marker::Sink),
+            (E::BUTTON, Marker::Button),
+        ] {
+            if events.has(flag) {
+                out.push(m);
+            }
+        }
+        if reward != 0.0 {
+            out.push(Marker::Reward);
+        }
+        out
+    }
+}
+
+/// One marker of one trial.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Event {
+    /// Step index within the trial (0 = the first action).
+    pub step: u32,
+    /// What happened.
+    pub marker: Marker,
+}
+
+/// Collects the populations an agent writes during one step.
+#[derive(Debug, Clone, Default)]
+pub struct StepRecorder {
+    populations: Vec<Population>,
+    values: Vec<f32>,
+    cursor: usize,
+    locked: bool,
+}
+
+impl StepRecorder {
+    /// Writes population `name`. Agents must write the same populations, in the same
+    /// order and sizes, at every step of a dataset.
+    pub fn record(&mut self, name: &str, values: &[f32]) {
+        if self.locked {
+            let p = &self.populations[self.cursor];
+            debug_assert_eq!(p.name, name, "populations written in a different order");
+            debug_assert_eq!(p.size, values.len(), "population size changed");
+        } else {
+            self.populations.push(Population {
+                name: name.to_string(),
+                size: values.len(),
+            });
+        }
+        self.cursor += 1;
+        self.values.extend_from_slice(values);
+    }
+
+    /// Writes one scalar unit.
+    pub fn scalar(&mut self, name: &str, value: f32) {
+        self.record(name, &[value]);
+    }
+
+    fn begin(&mut self) {
+        self.values.clear();
+        self.cursor = 0;
+    }
+}
+
+/// One recorded trial (episode): activity `[T, N]` row-major, T steps × N units.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Trial {
+    /// Target duration of the episode (steps).
+    pub td: u32,
+    /// Start cell `(row, col)`.
+    pub start: (usize, usize),
+    /// Number of recorded steps `T`.
+    pub steps: usize,
+    /// Activity, `[T, N]` row-major (`N` = [`ActivityMeta::n_units`]).
+    pub activity: Vec<f32>,
+    /// Event markers in step order.
+    pub events: Vec<Event>,
+    /// Total reward of the episode.
+    pub reward: f32,
+    /// Whether the episode ended with a full-reward delivery.
+    pub success: bool,
+}
+
+impl Trial {
+    /// Step of the first `marker`, if any.
+    pub fn first(&self, marker: Marker) -> Option<u32> {
+        self.events
+            .iter()
+            .find(|e| e.marker == marker)
+            .map(|e| e.step)
+    }
+}
+
+/// What a dataset is: model, task, seed, time step and the unit layout.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ActivityMeta {
+    /// Model name (zoo name, e.g. `ddm`, `lstm125`).
+    pub model: String,
+    /// Task id.
+    pub task: String,
+    /// Task parameter overrides (`key=value`).
+    pub env: Vec<String>,
+    /// Seed of the recording.
+    pub seed: u64,
+    /// Duration of one step in the model's own time unit (1.0 = one env step).
+    pub dt: f64,
+    /// Populations in unit order; unit `j` of population `p` is column
+    /// `offset(p) + j` of every trial's activity.
+    pub populations: Vec<Population>,
+}
+
+impl ActivityMeta {
+    /// Total number of units `N`.
+    pub fn n_units(&self) -> usize {
+        self.populations.iter().map(|p| p.size).sum()
+    }
+
+    /// Column range of population `name`.
+    pub fn range(&self, name: &str) -> Option<std::ops::Range<usize>> {
+        let mut start = 0;
+        for p in &self.populations {
+            if p.name == name {
+                return Some(start..start + p.size);
+            }
+            start += p.size;
+        }
+        None
+    }
+
+    /// Unit names `population[j]`, in column order.
+    pub fn unit_names(&self) -> Vec<String> {
+        self.populations
+            .iter()
+            .flat_map(|p| (0..p.size).map(move |j| format!("{}[{j}]", p.name)))
+            .collect()
+    }
+}
+
+/// Recorded trials of one model: units × time × trials, trials of varying length.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ActivityDataset {
+    /// Metadata.
+    pub meta: ActivityMeta,
+    /// Trials in recording order.
+    pub trials: Vec<Trial>,
+}
+
+impl ActivityDataset {
+    /// Activity aligned to the first `marker` of every trial that has it:
+    /// `[trials, window, N]` row-major with `window = after + 1` steps starting at the
+    /// step after the marker (oven time 0 … `after` when aligned to [`Marker::OvenOn`]);
+    /// steps past a trial's end are NaN. Also returns the indices of the trials used.
+    pub fn aligned(&self, marker: Marker, after: usize) -> (Vec<f32>, Vec<usize>) {
+        let n = self.meta.n_units();
+        let window = after + 1;
+        let mut out = Vec::new();
+        let mut used = Vec::new();
+        for (i, trial) in self.trials.iter().enumerate() {
+            let Some(at) = trial.first(marker) else {
+                continue;
+            };
+            used.push(i);
+            for k in 0..window {
+                let step = at as usize + 1 + k;
+                if step < trial.steps {
+                    out.extend_from_slice(&trial.activity[step * n..(step + 1) * n]);
+                } else {
+                    out.extend(std::iter::repeat_n(f32::NAN, n));
+                }
+            }
+        }
+        (out, used)
+    }
+}
+
+/// Builds an [`ActivityDataset`] trial by trial while an episode runs.
+#[derive(Debug, Clone)]
+pub struct TrialRecorder {
+    meta: ActivityMeta,
+    step: StepRecorder,
+    trials: Vec<Trial>,
+    current: Option<Trial>,
+}
+
+impl TrialRecorder {
+    /// A recorder for `meta` (its populations are filled from the first recorded step).
+    pub fn new(mut meta: ActivityMeta) -> Self {
+        meta.populations.clear();
+        TrialRecorder {
+            meta,
+            step: StepRecorder::default(),
+            trials: Vec::new(),
+            current: None,
+        }
+    }
+
+    /// Starts a trial.
+    pub fn begin_trial(&mut self, td: u32, start: (usize, usize)) {
+        self.current = Some(Trial {
+            td,
+            start,
+            steps: 0,
+            activity: Vec::new(),
+            events: Vec::new(),
+            reward: 0.0,
+            success: false,
+        });
+    }
+
+    /// The per-step recorder to hand to the agent (cleared for the new step).
+    pub fn step_recorder(&mut self) -> &mut StepRecorder {
+        self.step.begin();
+        &mut self.step
+    }
+
+    /// Closes the step: stores the activity the agent wrote and the step's markers.
+    pub fn end_step(&mut self, markers: &[Marker], reward: f32) {
+        if !self.step.locked {
+            self.step.locked = true;
+            self.meta.populations = self.step.populations.clone();
+        }
+        if let Some(t) = self.current.as_mut() {
+            let n = self.meta.n_units();
+            let mut row = self.step.values.clone();
+            row.resize(n, f32::NAN);
+            t.activity.extend_from_slice(&row);
+            for &m in markers {
+                t.events.push(Event {
+                    step: t.steps as u32,
+                    marker: m,
+                });
+            }
+            t.reward += reward;
+            t.steps += 1;
+        }
+    }
+
+    /// Ends the trial.
+    pub fn end_trial(&mut self, success: bool) {
+        if let Some(mut t) = self.current.take() {
+            t.success = success;
+            self.trials.push(t);
+        }
+    }
+
+    /// The finished dataset.
+    pub fn finish(self) -> ActivityDataset {
+        ActivityDataset {
+            meta: self.meta,
+            trials: self.trials,
+        }
+    }
+}

@@ -1,0 +1,218 @@
+//! The one agent interface every model plays the tasks through, and the episode runner.
+//!
+//! An agent sees what a player sees: the "codes" observation `[R, C, 6]` and the reward.
+//! It never sees the hidden oven timer or `info`. The runner owns the env, attaches the
+//! event markers to recorded activity and keeps the per-step `info` for the metrics.
+
+use crate::activity::{Marker, StepRecorder, TrialRecorder};
+use chronocooked_env::{
+    Action, CODE_CHANNELS, ChronoEnv, EnvError, Events, Info, Layout, ObjectKind, ResetOptions,
+    TaskConfig, derive_seed,
+};
+use serde::{Deserialize, Serialize};
+
+/// A model that plays Chronocooked tasks.
+pub trait Agent {
+    /// Zoo name of the model (`ddm`, `lstm125`, …).
+    fn name(&self) -> String;
+
+    /// A new episode starts with observation `obs`; `seed` seeds the agent's own noise
+    /// for this episode (the same seed gives the same behaviour).
+    fn begin_episode(&mut self, obs: &[u8], seed: u64);
+
+    /// Chooses the action for observation `obs`.
+    fn act(&mut self, obs: &[u8]) -> Action;
+
+    /// Outcome of the last action (learning agents learn here).
+    fn observe(&mut self, _reward: f32, _next_obs: &[u8], _terminated: bool, _truncated: bool) {}
+
+    /// Writes the populations behind the last action (called only while recording).
+    fn record(&self, _rec: &mut StepRecorder) {}
+
+    /// Switches learning and exploration on (training) or off (evaluation: greedy).
+    fn set_training(&mut self, _on: bool) {}
+}
+
+/// What the agent can read off a codes observation: position, hands, visible oven.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+pub struct Percept {
+    /// Agent cell index (`row · cols + col`).
+    pub cell: usize,
+    /// 0 empty hands, 1 onion, 2 soup.
+    pub carry: u8,
+    /// Visible oven channel value (0 off, 1 on, 2 ready; multi-timer: the cue).
+    pub oven: u8,
+}
+
+/// Parses codes observations of one layout into [`Percept`]s.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PerceptParser {
+    /// Grid cells `R · C`.
+    pub cells: usize,
+    /// Oven cell index.
+    pub oven_cell: usize,
+    /// Cells next to the oven.
+    pub oven_neighbours: Vec<usize>,
+}
+
+impl PerceptParser {
+    /// Parser for `layout`.
+    pub fn new(layout: &Layout) -> Self {
+        let oven_cell = layout
+            .cells_of(ObjectKind::Oven)
+            .first()
+            .copied()
+            .unwrap_or(0);
+        let oven_neighbours = layout
+            .free_cells()
+            .iter()
+            .map(|&c| c as usize)
+            .filter(|&c| matches!(layout.adjacent_object(c), Some((ObjectKind::Oven, _))))
+            .collect();
+        PerceptParser {
+            cells: layout.n_cells(),
+            oven_cell,
+            oven_neighbours,
+        }
+    }
+
+    /// Reads `obs` (codes, `[R, C, 6]` row-major).
+    pub fn parse(&self, obs: &[u8]) -> Percept {
+        let mut p = Percept::default();
+        for cell in 0..self.cells {
+            let o = &obs[cell * CODE_CHANNELS..(cell + 1) * CODE_CHANNELS];
+            if o[1] == 1 {
+                p.cell = cell;
+                p.carry = if o[3] != 0 {
+                    2
+                } else if o[2] != 0 {
+                    1
+                } else {
+                    0
+                };
+            }
+        }
+        p.oven = obs[self.oven_cell * CODE_CHANNELS + 4];
+        p
+    }
+
+    /// Whether `cell` touches the oven.
+    pub fn next_to_oven(&self, cell: usize) -> bool {
+        self.oven_neighbours.contains(&cell)
+    }
+}
+
+/// What happened in one episode (plain data for the metrics).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EpisodeRecord {
+    /// Target duration (steps).
+    pub td: u32,
+    /// Start cell `(row, col)`.
+    pub start: (usize, usize),
+    /// Seed of the episode.
+    pub seed: u64,
+    /// Total reward.
+    pub reward: f32,
+    /// Ended with a delivery paying ≥ 0.999.
+    pub success: bool,
+    /// Actions taken (codes 0–5).
+    pub actions: Vec<u8>,
+    /// `info` after every step.
+    pub infos: Vec<Info>,
+}
+
+/// Success criterion shared by training and evaluation: a delivery paying the full reward.
+pub fn is_success(events: Events, reward: f32) -> bool {
+    events.has(Events::DELIVERY) && reward >= 0.999
+}
+
+/// Plays one episode of `env` with `agent` from a reset with `seed` and `options`;
+/// records activity into `recorder` when given.
+pub fn run_episode(
+    env: &mut ChronoEnv,
+    agent: &mut dyn Agent,
+    seed: u64,
+    options: &ResetOptions,
+    mut recorder: Option<&mut TrialRecorder>,
+) -> Result<EpisodeRecord, EnvError> {
+    let info = env.reset(Some(seed), options)?;
+    let start = (info.agent.0 as usize, info.agent.1 as usize);
+    agent.begin_episode(env.obs_codes(), derive_seed(seed, 0xA6E7));
+    if let Some(r) = recorder.as_deref_mut() {
+        r.begin_trial(info.td, start);
+    }
+    let mut rec = EpisodeRecord {
+        td: info.td,
+        start,
+        seed,
+        reward: 0.0,
+        success: false,
+        actions: Vec::new(),
+        infos: Vec::new(),
+    };
+    loop {
+        let action = agent.act(env.obs_codes());
+        if let Some(r) = recorder.as_deref_mut() {
+            agent.record(r.step_recorder());
+        }
+        let t = env.step(action)?;
+        rec.actions.push(action.code());
+        rec.infos.push(t.info);
+        rec.reward += t.reward;
+        if is_success(t.info.events, t.reward) {
+            rec.success = true;
+        }
+        if let Some(r) = recorder.as_deref_mut() {
+            r.end_step(&Marker::from_events(t.info.events, t.reward), t.reward);
+        }
+        agent.observe(t.reward, env.obs_codes(), t.terminated, t.truncated);
+        if t.done() {
+            break;
+        }
+    }
+    if let Some(r) = recorder {
+        r.end_trial(rec.success);
+    }
+    Ok(rec)
+}
+
+/// Deterministic evaluation: one greedy episode per free start cell per TD in `tds`.
+/// Returns the records (start cells in row-major order, TDs in the given order).
+pub fn evaluate_agent(
+    agent: &mut dyn Agent,
+    config: &TaskConfig,
+    tds: &[u32],
+    seed: u64,
+    mut recorder: Option<&mut TrialRecorder>,
+) -> Result<Vec<EpisodeRecord>, EnvError> {
+    let mut env = ChronoEnv::new(config)?;
+    agent.set_training(false);
+    let layout = env.layout().clone();
+    let mut out = Vec::new();
+    for (k, &td) in tds.iter().enumerate() {
+        for (i, &cell) in layout.free_cells().iter().enumerate() {
+            let options = ResetOptions {
+                start: Some(layout.coords(cell as usize)),
+                td: Some(td),
+                never_ready: None,
+            };
+            let s = derive_seed(seed, (k * 1000 + i) as u64);
+            out.push(run_episode(
+                &mut env,
+                agent,
+                s,
+                &options,
+                recorder.as_deref_mut(),
+            )?);
+        }
+    }
+    Ok(out)
+}
+
+/// Fraction of successful episodes (0 for none).
+pub fn success_rate(records: &[EpisodeRecord]) -> f64 {
+    if records.is_empty() {
+        return 0.0;
+    }
+    records.iter().filter(|r| r.success).count() as f64 / records.len() as f64
+}

@@ -1,0 +1,355 @@
+//! The timing models as the temporal part of an agent: started at oven-on, advanced one
+//! step at a time, read out as features for TD learning and (drift-diffusion, SBF) as a
+//! native "respond now" gate, and trained by their own rule at reinforcement.
+//!
+//! Time unit: one env step. Memories are kept per visible context (the oven cue value),
+//! so a multi-timer agent stores one interval per coloured light.
+
+use crate::activity::StepRecorder;
+use crate::timing::{BeatFrequency, DriftDiffusion, FrequencyLayout, Representation, TimeCells};
+use rand::Rng;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// Drift-diffusion timer of an agent: one learned drift per context.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DdmTimer {
+    /// The accumulator (threshold `z`, noise `m`; its drift is set per context at onset).
+    pub acc: DriftDiffusion,
+    /// Drift before any learning: `z / initial_interval`.
+    pub initial_interval: f64,
+    /// Learned drifts per context.
+    pub drifts: BTreeMap<u8, f64>,
+    /// Drift learning rate `α` (1 = one-shot).
+    pub rate: f64,
+    /// Respond from `x ≥ start · z` …
+    pub start: f64,
+    /// … until `x ≥ stop · z` (`None`: never stop; peak-interval behaviour when set).
+    pub stop: Option<f64>,
+}
+
+/// Striatal beat-frequency timer of an agent. Reference memory: the last
+/// [`SBF_MEMORY`] stored times per context (the stored pattern of a time `T` is `x(T)`, so
+/// keeping times keeps the weight vectors); each trial's coincidence detector is one of
+/// them drawn at random (trial-to-trial memory noise → scalar property).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SbfTimer {
+    /// Oscillators, memory noise, manipulations.
+    pub model: BeatFrequency,
+    /// Model seconds per env step.
+    pub seconds_per_step: f64,
+    /// Response threshold on the detector envelope (0–1).
+    pub threshold: f64,
+    /// Stored times (s) per context.
+    pub memories: BTreeMap<u8, Vec<f64>>,
+    /// Stored times (s) per rewarded choice slot (bisection: short / long counter).
+    pub choice_memories: BTreeMap<u8, Vec<f64>>,
+    /// Stop responding `stop × (start time)` after starting (`None`: never).
+    pub stop: Option<f64>,
+    #[serde(skip)]
+    oscillators: Vec<f64>,
+    #[serde(skip)]
+    template: Option<f64>,
+    #[serde(skip)]
+    now: f64,
+}
+
+/// Stored times kept per SBF memory.
+pub const SBF_MEMORY: usize = 20;
+
+impl SbfTimer {
+    fn store(memory: &mut Vec<f64>, t: f64) {
+        if memory.len() == SBF_MEMORY {
+            memory.remove(0);
+        }
+        memory.push(t);
+    }
+
+    fn mean_envelope(&self, memory: Option<&Vec<f64>>) -> f64 {
+        match memory {
+            Some(m) if !m.is_empty() => {
+                m.iter()
+                    .map(|&st| self.model.envelope(self.now, st))
+                    .sum::<f64>()
+                    / m.len() as f64
+            }
+            _ => 0.0,
+        }
+    }
+}
+
+/// Which timing model an agent uses.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Timer {
+    /// Drift-diffusion accumulator.
+    Ddm(DdmTimer),
+    /// Striatal beat frequency.
+    Sbf(SbfTimer),
+    /// Time cells / microstimuli / CSC / presence (timing learned by TD alone).
+    TimeCells(TimeCells),
+}
+
+/// Number of choice slots read out by the SBF (short and long counter).
+pub const CHOICE_SLOTS: usize = 2;
+
+impl Timer {
+    /// Drift-diffusion timer: `z` 1, noise `m`, initial interval 8 steps, rate 0.2.
+    pub fn ddm(noise: f64) -> Self {
+        Timer::Ddm(DdmTimer {
+            acc: DriftDiffusion::new(1.0 / 8.0, 1.0, noise),
+            initial_interval: 8.0,
+            drifts: BTreeMap::new(),
+            rate: 0.2,
+            start: 1.0,
+            stop: None,
+        })
+    }
+
+    /// SBF timer: `n` oscillators 5–15 Hz, 25 ms per step, memory noise `kappa`.
+    pub fn sbf<R: Rng + ?Sized>(
+        n: usize,
+        layout: FrequencyLayout,
+        kappa: f64,
+        rng: &mut R,
+    ) -> Self {
+        let mut model = BeatFrequency::new(n, 5.0, 15.0, layout, rng);
+        model.memory_noise = kappa;
+        model.learning_rate = 0.5;
+        Timer::Sbf(SbfTimer {
+            model,
+            seconds_per_step: 0.025,
+            threshold: 0.7,
+            memories: BTreeMap::new(),
+            choice_memories: BTreeMap::new(),
+            stop: None,
+            oscillators: Vec::new(),
+            template: None,
+            now: 0.0,
+        })
+    }
+
+    /// Time-cell representation.
+    pub fn time_cells(repr: Representation) -> Self {
+        Timer::TimeCells(TimeCells::new(repr))
+    }
+
+    /// Number of temporal features handed to the TD learner (bias excluded).
+    pub fn n_features(&self) -> usize {
+        match self {
+            Timer::Ddm(_) => 2,
+            Timer::Sbf(_) => 2 + CHOICE_SLOTS,
+            Timer::TimeCells(tc) => tc.repr.size(),
+        }
+    }
+
+    /// Whether the model gates oven checks natively.
+    pub fn has_gate(&self) -> bool {
+        !matches!(self, Timer::TimeCells(_))
+    }
+
+    /// Clears the clock (episode start).
+    pub fn clear(&mut self) {
+        match self {
+            Timer::Ddm(d) => d.acc.reset(),
+            Timer::Sbf(s) => {
+                s.oscillators.clear();
+                s.template = None;
+                s.now = 0.0;
+            }
+            Timer::TimeCells(tc) => tc.clear(),
+        }
+    }
+
+    /// The timed event (oven on) in context `ctx`: reset to time 0 (`rng` draws the
+    /// SBF's memory sample of this trial).
+    pub fn onset<R: Rng + ?Sized>(&mut self, ctx: u8, rng: &mut R) {
+        match self {
+            Timer::Ddm(d) => {
+                d.acc.reset();
+                d.acc.drift = *d
+                    .drifts
+                    .get(&ctx)
+                    .unwrap_or(&(d.acc.threshold / d.initial_interval));
+            }
+            Timer::Sbf(s) => {
+                s.oscillators.clear();
+                s.now = 0.0;
+                s.template = s
+                    .memories
+                    .get(&ctx)
+                    .filter(|m| !m.is_empty())
+                    .map(|m| m[rng.random_range(0..m.len())]);
+            }
+            Timer::TimeCells(tc) => tc.onset(),
+        }
+    }
+
+    /// Advances one step; `t` is the elapsed steps after the advance.
+    pub fn tick<R: Rng + ?Sized>(&mut self, t: u32, rng: &mut R) {
+        match self {
+            Timer::Ddm(d) => {
+                d.acc.step(1.0, rng);
+            }
+            Timer::Sbf(s) => {
+                s.now = t as f64 * s.seconds_per_step;
+                s.model.oscillators_into(s.now, &mut s.oscillators);
+            }
+            Timer::TimeCells(tc) => tc.tick(),
+        }
+    }
+
+    /// Native readout: respond (check the oven) now? `t` = elapsed steps, `started` = the
+    /// step responding started in this trial, if it did (responding then continues until
+    /// the model's stop rule, if any).
+    pub fn respond(&self, t: u32, started: Option<u32>) -> bool {
+        match self {
+            Timer::Ddm(d) => {
+                let z = d.acc.threshold;
+                let on = started.is_some() || d.acc.x >= d.start * z || d.acc.crossed_at.is_some();
+                on && d.stop.is_none_or(|k| d.acc.x < k * z)
+            }
+            Timer::Sbf(s) => {
+                if let (Some(t0), Some(k)) = (started, s.stop) {
+                    return (t as f64) < t0 as f64 * k;
+                }
+                if started.is_some() {
+                    return true;
+                }
+                let Some(stored) = s.template else {
+                    return true; // nothing stored yet: explore by checking
+                };
+                let fallback = s.now > 2.0 * stored / s.model.clock_speed + 0.05;
+                fallback || s.model.envelope(s.now, stored) >= s.threshold
+            }
+            Timer::TimeCells(_) => true,
+        }
+    }
+
+    /// Temporal features for TD learning into `out` (bias excluded), each within ~[0, 1].
+    pub fn features_into(&self, responding: bool, out: &mut Vec<f64>) {
+        out.clear();
+        match self {
+            Timer::Ddm(d) => {
+                out.push((d.acc.x / d.acc.threshold).clamp(-1.0, 4.0));
+                out.push(f64::from(responding));
+            }
+            Timer::Sbf(s) => {
+                out.push(s.template.map_or(0.0, |st| s.model.envelope(s.now, st)));
+                out.push(f64::from(responding));
+                for slot in 0..CHOICE_SLOTS as u8 {
+                    out.push(s.mean_envelope(s.choice_memories.get(&slot)));
+                }
+            }
+            Timer::TimeCells(tc) => {
+                tc.units_into(out);
+                let scale = feature_scale(&tc.repr);
+                out.iter_mut().zip(scale).for_each(|(v, s)| *v /= s);
+            }
+        }
+    }
+
+    /// Native learning at reinforcement: the interval of context `ctx` was `interval`
+    /// steps (`x_at` = accumulator value then, for the drift rule).
+    pub fn reinforce<R: Rng + ?Sized>(&mut self, ctx: u8, interval: f64, exact: bool, rng: &mut R) {
+        match self {
+            Timer::Ddm(d) => {
+                if exact {
+                    d.acc.learn(d.acc.x.max(1e-6), d.rate);
+                } else {
+                    d.acc.learn_interval(interval, d.rate);
+                }
+                d.drifts.insert(ctx, d.acc.drift);
+            }
+            Timer::Sbf(s) => {
+                let stored = s.model.stored_time(interval * s.seconds_per_step, rng);
+                SbfTimer::store(s.memories.entry(ctx).or_default(), stored);
+            }
+            Timer::TimeCells(_) => {}
+        }
+    }
+
+    /// A choice in slot `slot` (0 short, 1 long counter) was rewarded after an interval of
+    /// `interval` steps (SBF stores the pattern; other models learn it by TD alone).
+    pub fn reinforce_choice<R: Rng + ?Sized>(&mut self, slot: u8, interval: f64, rng: &mut R) {
+        if let Timer::Sbf(s) = self {
+            let stored = s.model.stored_time(interval * s.seconds_per_step, rng);
+            SbfTimer::store(s.choice_memories.entry(slot).or_default(), stored);
+        }
+    }
+
+    /// Writes the model's populations.
+    pub fn record(&self, rec: &mut StepRecorder) {
+        match self {
+            Timer::Ddm(d) => {
+                rec.scalar("accumulator", d.acc.x as f32);
+                rec.scalar("drift", d.acc.drift as f32);
+            }
+            Timer::Sbf(s) => {
+                let mut osc: Vec<f32> = s.oscillators.iter().map(|&v| v as f32).collect();
+                osc.resize(s.model.len(), 1.0);
+                rec.record("oscillators", &osc);
+                let (out, env) = match s.template {
+                    Some(st) => {
+                        let mut w = Vec::new();
+                        s.model.stored_pattern_into(st, &mut w);
+                        (
+                            s.model.output(&w, &s.oscillators),
+                            s.model.envelope(s.now, st),
+                        )
+                    }
+                    None => (0.0, 0.0),
+                };
+                rec.scalar("striatum", out as f32);
+                rec.scalar("envelope", env as f32);
+            }
+            Timer::TimeCells(tc) => {
+                let mut units = Vec::new();
+                tc.units_into(&mut units);
+                let v: Vec<f32> = units.iter().map(|&x| x as f32).collect();
+                rec.record("time_cells", &v);
+                if matches!(tc.repr, Representation::Laplace { .. }) {
+                    let f: Vec<f32> = tc.laplace_integrators().iter().map(|&x| x as f32).collect();
+                    rec.record("laplace", &f);
+                }
+            }
+        }
+    }
+}
+
+/// Per-unit scale that brings each time-cell unit's peak to ~1.
+fn feature_scale(repr: &Representation) -> Vec<f64> {
+    match repr {
+        Representation::Microstimulus {
+            decay,
+            sigma,
+            count,
+        } => (1..=*count)
+            .map(|i| {
+                crate::timing::microstimulus_peak(i, *count, *sigma, *decay)
+                    .1
+                    .max(1e-9)
+            })
+            .collect(),
+        Representation::Laplace {
+            cells,
+            tau_min,
+            tau_max,
+            order,
+        } => crate::timing::timecells::laplace_peak_times(*cells, *tau_min, *tau_max)
+            .iter()
+            .map(|&tau| {
+                let k = *order as f64;
+                let s = k / tau;
+                // f̃(τ*, τ*) = s^{k+1} τ*^k e^{−k} / k!
+                let log = (k + 1.0) * s.ln() + k * tau.ln() - k - ln_factorial(*order);
+                log.exp().max(1e-12)
+            })
+            .collect(),
+        _ => vec![1.0; repr.size()],
+    }
+}
+
+fn ln_factorial(n: usize) -> f64 {
+    (1..=n).map(|j| (j as f64).ln()).sum()
+}

@@ -1,0 +1,253 @@
+//! Temporal representations of a stimulus for TD learning (Ludvig, Sutton & Kehoe 2008)
+//! and scale-invariant time cells (Shankar & Howard 2012).
+//!
+//! After stimulus onset (time 0, unit = one step):
+//! * **presence** — one unit, 1 while the stimulus is on;
+//! * **complete serial compound (CSC)** — one unit per step since onset (a tapped delay
+//!   line), the last unit standing for "that long or longer";
+//! * **microstimuli** — a memory trace `y = dᵗ` read by `m` Gaussian basis functions:
+//!   `xᵢ = y · N(y; i/m, σ)`, `i = 1 … m` (defaults `d` 0.985, `σ` 0.08, `m` 10). Unit `i`
+//!   peaks where `y² − μy − σ² = 0` (`μ = i/m`): `y* = (μ + √(μ² + 4σ²))/2`,
+//!   `t* = ln y* / ln d` (at `t = 0` if `y* ≥ 1`);
+//! * **Laplace time cells** — leaky integrators `dF/dt = −s F + f(t)` at log-spaced rates
+//!   `s = k/τ*`, inverted with Post's formula `f̃ = (−1)ᵏ/k! · s^{k+1} ∂ᵏF/∂sᵏ`. For an
+//!   impulse at 0, `f̃(τ*, t) = s^{k+1} tᵏ e^{−st}/k!`: a bump peaking at `t = τ*` whose
+//!   shape is a Gamma(k+1, s) density, CV `1/√(k+1)` (scale invariance). The derivatives
+//!   `Gₙ = ∂ⁿF/∂sⁿ` obey `dGₙ/dt = −s Gₙ − n Gₙ₋₁` and are propagated exactly over each
+//!   step: `Gₙ(t+h) = e^{−sh} Σⱼ C(n,j) (−h)^{n−j} Gⱼ(t)`.
+
+use serde::{Deserialize, Serialize};
+
+/// Which temporal representation.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Representation {
+    /// One unit on while the stimulus is present.
+    Presence,
+    /// Tapped delay line with `units` units (the last absorbs longer times).
+    Csc {
+        /// Number of units.
+        units: usize,
+    },
+    /// Microstimuli of a decaying trace.
+    Microstimulus {
+        /// Trace decay per step `d`.
+        decay: f64,
+        /// Basis width `σ` (trace units).
+        sigma: f64,
+        /// Number of microstimuli `m`.
+        count: usize,
+    },
+    /// Scale-invariant Laplace/inverse-Laplace time cells.
+    Laplace {
+        /// Number of cells (log-spaced peak times).
+        cells: usize,
+        /// Smallest peak time τ* (steps).
+        tau_min: f64,
+        /// Largest peak time τ* (steps).
+        tau_max: f64,
+        /// Order `k` of Post's inversion (CV `1/√(k+1)`).
+        order: usize,
+    },
+}
+
+impl Representation {
+    /// Ludvig et al.'s microstimuli: `d` 0.985, `σ` 0.08, `m` 10.
+    pub fn microstimulus() -> Self {
+        Representation::Microstimulus {
+            decay: 0.985,
+            sigma: 0.08,
+            count: 10,
+        }
+    }
+
+    /// CSC with 64 units.
+    pub fn csc() -> Self {
+        Representation::Csc { units: 64 }
+    }
+
+    /// Laplace time cells: 24 cells, τ* from 1 to 64 steps, `k` = 8.
+    pub fn laplace() -> Self {
+        Representation::Laplace {
+            cells: 24,
+            tau_min: 1.0,
+            tau_max: 64.0,
+            order: 8,
+        }
+    }
+
+    /// Number of units.
+    pub fn size(&self) -> usize {
+        match self {
+            Representation::Presence => 1,
+            Representation::Csc { units } => *units,
+            Representation::Microstimulus { count, .. } => *count,
+            Representation::Laplace { cells, .. } => *cells,
+        }
+    }
+
+    /// Short name (`presence`, `csc`, `microstimulus`, `laplace`).
+    pub fn name(&self) -> &'static str {
+        match self {
+            Representation::Presence => "presence",
+            Representation::Csc { .. } => "csc",
+            Representation::Microstimulus { .. } => "microstimulus",
+            Representation::Laplace { .. } => "laplace",
+        }
+    }
+}
+
+/// Microstimulus `i` (1-based) of `m` at trace height `y`: `y · N(y; i/m, σ)`.
+pub fn microstimulus(y: f64, i: usize, m: usize, sigma: f64) -> f64 {
+    let mu = i as f64 / m as f64;
+    let z = (y - mu) / sigma;
+    y * (-0.5 * z * z).exp() / (sigma * (2.0 * std::f64::consts::PI).sqrt())
+}
+
+/// Closed-form peak `(time in steps, height)` of microstimulus `i` of `m`.
+pub fn microstimulus_peak(i: usize, m: usize, sigma: f64, decay: f64) -> (f64, f64) {
+    let mu = i as f64 / m as f64;
+    let y = 0.5 * (mu + (mu * mu + 4.0 * sigma * sigma).sqrt());
+    if y >= 1.0 {
+        return (0.0, microstimulus(1.0, i, m, sigma));
+    }
+    (y.ln() / decay.ln(), microstimulus(y, i, m, sigma))
+}
+
+/// Peak times τ* of Laplace time cells, log-spaced from `tau_min` to `tau_max`.
+pub fn laplace_peak_times(cells: usize, tau_min: f64, tau_max: f64) -> Vec<f64> {
+    if cells == 1 {
+        return vec![tau_min];
+    }
+    let ratio = (tau_max / tau_min).ln() / (cells - 1) as f64;
+    (0..cells)
+        .map(|j| tau_min * (ratio * j as f64).exp())
+        .collect()
+}
+
+fn binomial(n: usize, k: usize) -> f64 {
+    (0..k).fold(1.0, |acc, j| acc * (n - j) as f64 / (j + 1) as f64)
+}
+
+fn factorial(n: usize) -> f64 {
+    (1..=n).map(|j| j as f64).product()
+}
+
+/// A temporal representation running in time: `onset`, `tick` once per step, read `units`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TimeCells {
+    /// The representation.
+    pub repr: Representation,
+    /// Steps since onset (`None` before the stimulus).
+    pub elapsed: Option<u32>,
+    /// Laplace: `G[j][n] = ∂ⁿF/∂sⁿ` of cell `j`.
+    derivatives: Vec<Vec<f64>>,
+}
+
+impl TimeCells {
+    /// A representation at rest (no stimulus yet).
+    pub fn new(repr: Representation) -> Self {
+        let derivatives = match &repr {
+            Representation::Laplace { cells, order, .. } => vec![vec![0.0; order + 1]; *cells],
+            _ => Vec::new(),
+        };
+        TimeCells {
+            repr,
+            elapsed: None,
+            derivatives,
+        }
+    }
+
+    /// Clears the stimulus.
+    pub fn clear(&mut self) {
+        self.elapsed = None;
+        for g in &mut self.derivatives {
+            g.iter_mut().for_each(|v| *v = 0.0);
+        }
+    }
+
+    /// Stimulus onset (time 0): an impulse into the Laplace integrators.
+    pub fn onset(&mut self) {
+        self.clear();
+        self.elapsed = Some(0);
+        for g in &mut self.derivatives {
+            g[0] = 1.0;
+        }
+    }
+
+    /// Advances one step.
+    pub fn tick(&mut self) {
+        let Some(t) = self.elapsed else {
+            return;
+        };
+        self.elapsed = Some(t + 1);
+        if let Representation::Laplace {
+            cells,
+            tau_min,
+            tau_max,
+            order,
+        } = &self.repr
+        {
+            let taus = laplace_peak_times(*cells, *tau_min, *tau_max);
+            for (g, tau) in self.derivatives.iter_mut().zip(taus) {
+                let s = *order as f64 / tau;
+                let decay = (-s).exp();
+                let old = g.clone();
+                for n in 0..=*order {
+                    let mut acc = 0.0;
+                    for (j, gj) in old.iter().enumerate().take(n + 1) {
+                        acc += binomial(n, j) * (-1.0f64).powi((n - j) as i32) * gj;
+                    }
+                    g[n] = decay * acc;
+                }
+            }
+        }
+    }
+
+    /// Unit activities now (zeros before onset).
+    pub fn units_into(&self, out: &mut Vec<f64>) {
+        out.clear();
+        let n = self.repr.size();
+        let Some(t) = self.elapsed else {
+            out.resize(n, 0.0);
+            return;
+        };
+        match &self.repr {
+            Representation::Presence => out.push(1.0),
+            Representation::Csc { units } => {
+                out.resize(*units, 0.0);
+                out[(t as usize).min(units - 1)] = 1.0;
+            }
+            Representation::Microstimulus {
+                decay,
+                sigma,
+                count,
+            } => {
+                let y = decay.powi(t as i32);
+                out.extend((1..=*count).map(|i| microstimulus(y, i, *count, *sigma)));
+            }
+            Representation::Laplace {
+                cells,
+                tau_min,
+                tau_max,
+                order,
+            } => {
+                let k = *order;
+                let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
+                for (g, tau) in self
+                    .derivatives
+                    .iter()
+                    .zip(laplace_peak_times(*cells, *tau_min, *tau_max))
+                {
+                    let s = k as f64 / tau;
+                    out.push(sign / factorial(k) * s.powi(k as i32 + 1) * g[k]);
+                }
+            }
+        }
+    }
+
+    /// The Laplace integrators `F(s)` (empty for other representations).
+    pub fn laplace_integrators(&self) -> Vec<f64> {
+        self.derivatives.iter().map(|g| g[0]).collect()
+    }
+}
