@@ -8,7 +8,7 @@ fn main() {
     let episodes: usize = std::env::var("EPISODES")
         .ok()
         .and_then(|v| v.parse().ok())
-        .unwrap_or(3000);
+        .unwrap_or(6000);
     let only = std::env::var("MODEL").ok();
     for m in TIMING_MODELS {
         if only.as_deref().is_some_and(|o| o != m.name) {

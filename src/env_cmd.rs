@@ -175,6 +175,12 @@ pub enum BenchCommand {
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
     },
+    /// Timing-model trials/s on a 12-step FI trial (after brief training), recording off/on.
+    Timing {
+        /// Trials measured per model and setting.
+        #[arg(long, default_value_t = 20000)]
+        trials: usize,
+    },
 }
 
 /// Runs an `env` subcommand.
@@ -349,6 +355,7 @@ pub fn run_bench(cmd: BenchCommand) -> Result<()> {
             updates,
             set,
         } => crate::train_cmd::bench_train(&task, &models, &preset, updates, &set),
+        BenchCommand::Timing { trials } => crate::timing_cmd::bench(trials),
         BenchCommand::Env {
             task,
             set,

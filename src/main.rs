@@ -3,6 +3,7 @@
 mod demo;
 mod env_cmd;
 mod play;
+mod timing_cmd;
 mod train_cmd;
 
 use clap::{Parser, Subcommand};
@@ -25,8 +26,10 @@ enum Command {
     },
     /// Run the built-in demo on defaults (oracle episode of every task, GIFs, summary).
     Demo(demo::DemoArgs),
-    /// Train a PPO agent (run folder with config, curves, checkpoints, model).
+    /// Train a PPO agent or a timing model (run folder with config, curves, model).
     Train(train_cmd::TrainArgs),
+    /// Record the neural activity of a trained agent (JSON activity dataset).
+    Record(timing_cmd::RecordArgs),
     /// The model zoo: architectures, tasks and presets.
     Zoo {
         #[command(subcommand)]
@@ -46,6 +49,7 @@ fn main() -> ExitCode {
         Command::Demo(args) => demo::run(args),
         Command::Bench { command } => env_cmd::run_bench(command),
         Command::Train(args) => train_cmd::run(args),
+        Command::Record(args) => timing_cmd::record(args),
         Command::Zoo { command } => train_cmd::run_zoo(command),
     };
     match result {

@@ -64,6 +64,24 @@ impl Progress for Bar {
 
 /// Runs `train`.
 pub fn run(args: TrainArgs) -> Result<()> {
+    let timing_resume = args
+        .resume
+        .as_deref()
+        .is_some_and(chronocooked_training::is_timing_run_config);
+    if timing_resume || chronocooked_models::zoo::is_timing_model(&args.model) {
+        if args.steps.is_some() {
+            bail!("timing models train by episodes: use --set episodes=N instead of --steps");
+        }
+        return crate::timing_cmd::train(
+            &args.task,
+            &args.model,
+            args.seed,
+            &args.sets,
+            args.out,
+            args.resume.as_deref(),
+            args.quiet,
+        );
+    }
     let command = std::env::args().collect::<Vec<_>>().join(" ");
     let bar = (!args.quiet).then(|| {
         let b = ProgressBar::new(1);
@@ -133,7 +151,13 @@ pub enum ZooCommand {
 pub fn run_zoo(cmd: ZooCommand) -> Result<()> {
     match cmd {
         ZooCommand::List { json } => {
-            let models: Vec<String> = Architecture::all().iter().map(Architecture::name).collect();
+            let mut models: Vec<String> =
+                Architecture::all().iter().map(Architecture::name).collect();
+            models.extend(
+                chronocooked_models::zoo::TIMING_MODELS
+                    .iter()
+                    .map(|m| m.name.to_string()),
+            );
             let tasks: Vec<&str> = chronocooked_env::all_tasks().iter().map(|t| t.id).collect();
             if json {
                 let v = serde_json::json!({"models": models, "tasks": tasks, "presets": PRESETS});
@@ -154,6 +178,10 @@ pub fn run_zoo(cmd: ZooCommand) -> Result<()> {
                 ),
             ] {
                 println!("  {kind}{{8,125,256}}  CNN trunk + {what}");
+            }
+            println!("\nTiming models (trained with `train`, episodes via --set episodes=N):");
+            for m in chronocooked_models::zoo::TIMING_MODELS {
+                println!("  {:<19} {}", m.name, m.description);
             }
             println!("\nTasks: {}", tasks.join(", "));
             println!("\nPresets (training/presets/*.toml, overridable with --set key=value):");

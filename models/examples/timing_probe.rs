@@ -16,7 +16,7 @@ fn main() {
     let episodes: usize = std::env::var("EPISODES")
         .ok()
         .and_then(|v| v.parse().ok())
-        .unwrap_or(3000);
+        .unwrap_or(6000);
     let only = std::env::var("MODEL").ok();
     let config = make_config(&task, &overrides).unwrap();
     let env = ChronoEnv::new(&config).unwrap();

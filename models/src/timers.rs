@@ -47,11 +47,24 @@ pub struct SbfTimer {
     /// Stop responding `stop × (start time)` after starting (`None`: never).
     pub stop: Option<f64>,
     #[serde(skip)]
-    oscillators: Vec<f64>,
+    rt: SbfRuntime,
+    /// Choice-slot detectors, rebuilt when a choice memory changes.
     #[serde(skip)]
-    template: Option<f64>,
-    #[serde(skip)]
+    choice_detectors: Option<Vec<(Vec<f64>, Vec<f64>)>>,
+}
+
+/// Per-trial state of an SBF timer: oscillator phases and the complex detector weights
+/// `[this trial's memory sample, choice slot 0, choice slot 1]` (empty = nothing stored).
+#[derive(Debug, Clone, PartialEq, Default)]
+struct SbfRuntime {
     now: f64,
+    step: Option<u32>,
+    cos: Vec<f64>,
+    sin: Vec<f64>,
+    rot: Vec<(f64, f64)>,
+    detectors: Vec<(Vec<f64>, Vec<f64>)>,
+    readouts: [f64; 1 + CHOICE_SLOTS],
+    template: Option<f64>,
 }
 
 /// Stored times kept per SBF memory.
@@ -65,22 +78,93 @@ impl SbfTimer {
         memory.push(t);
     }
 
-    fn mean_envelope(&self, memory: Option<&Vec<f64>>) -> f64 {
-        match memory {
-            Some(m) if !m.is_empty() => {
-                m.iter()
-                    .map(|&st| self.model.envelope(self.now, st))
-                    .sum::<f64>()
-                    / m.len() as f64
+    /// Complex detector weights `mean_j exp(i 2π fᵢ T_j)` of stored times `times`.
+    fn detector(&self, times: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        if times.is_empty() {
+            return (Vec::new(), Vec::new());
+        }
+        let n = times.len() as f64;
+        let two_pi = 2.0 * std::f64::consts::PI;
+        self.model
+            .freqs
+            .iter()
+            .map(|f| {
+                times.iter().fold((0.0, 0.0), |(c, s), t| {
+                    let (sn, cs) = (two_pi * f * t).sin_cos();
+                    (c + cs / n, s + sn / n)
+                })
+            })
+            .unzip()
+    }
+
+    fn onset<R: Rng + ?Sized>(&mut self, ctx: u8, rng: &mut R) {
+        let template = self
+            .memories
+            .get(&ctx)
+            .filter(|m| !m.is_empty())
+            .map(|m| m[rng.random_range(0..m.len())]);
+        if self.choice_detectors.is_none() {
+            let slots = (0..CHOICE_SLOTS as u8)
+                .map(|slot| {
+                    let times = self.choice_memories.get(&slot).cloned().unwrap_or_default();
+                    self.detector(&times)
+                })
+                .collect();
+            self.choice_detectors = Some(slots);
+        }
+        let mut detectors = vec![self.detector(template.as_slice())];
+        detectors.extend(self.choice_detectors.iter().flatten().cloned());
+        let w = 2.0 * std::f64::consts::PI * self.model.clock_speed * self.seconds_per_step;
+        let rot = self.model.freqs.iter().map(|f| (w * f).sin_cos()).collect();
+        self.rt = SbfRuntime {
+            template,
+            detectors,
+            rot,
+            ..SbfRuntime::default()
+        };
+    }
+
+    /// Oscillators at `t` steps and every detector's envelope `|Σ e^{iφᵢ} conj(Wᵢ)| / N`.
+    fn advance(&mut self, t: u32) {
+        let rt = &mut self.rt;
+        rt.now = t as f64 * self.seconds_per_step;
+        if rt.step.is_some_and(|k| k + 1 == t) && rt.rot.len() == rt.cos.len() {
+            // One step later: rotate every phasor by e^{i 2π k fᵢ Δt}.
+            for ((c, s), (rs, rc)) in rt.cos.iter_mut().zip(rt.sin.iter_mut()).zip(&rt.rot) {
+                let (c0, s0) = (*c, *s);
+                *c = c0 * rc - s0 * rs;
+                *s = s0 * rc + c0 * rs;
             }
-            _ => 0.0,
+        } else {
+            let w = 2.0 * std::f64::consts::PI * self.model.clock_speed * rt.now;
+            rt.cos.clear();
+            rt.sin.clear();
+            for f in &self.model.freqs {
+                let (sn, cs) = (w * f).sin_cos();
+                rt.cos.push(cs);
+                rt.sin.push(sn);
+            }
+        }
+        rt.step = Some(t);
+        let n = self.model.freqs.len().max(1) as f64;
+        for (k, (c, s)) in rt.detectors.iter().enumerate() {
+            rt.readouts[k] = if c.is_empty() {
+                0.0
+            } else {
+                let (mut re, mut im) = (0.0, 0.0);
+                for i in 0..c.len() {
+                    re += rt.cos[i] * c[i] + rt.sin[i] * s[i];
+                    im += rt.sin[i] * c[i] - rt.cos[i] * s[i];
+                }
+                (re * re + im * im).sqrt() / n
+            };
         }
     }
 }
 
 /// Which timing model an agent uses.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "kind", rename_all = "snake_case")]
+#[serde(rename_all = "snake_case")]
 pub enum Timer {
     /// Drift-diffusion accumulator.
     Ddm(DdmTimer),
@@ -123,9 +207,8 @@ impl Timer {
             memories: BTreeMap::new(),
             choice_memories: BTreeMap::new(),
             stop: None,
-            oscillators: Vec::new(),
-            template: None,
-            now: 0.0,
+            rt: SbfRuntime::default(),
+            choice_detectors: None,
         })
     }
 
@@ -152,11 +235,7 @@ impl Timer {
     pub fn clear(&mut self) {
         match self {
             Timer::Ddm(d) => d.acc.reset(),
-            Timer::Sbf(s) => {
-                s.oscillators.clear();
-                s.template = None;
-                s.now = 0.0;
-            }
+            Timer::Sbf(s) => s.rt = SbfRuntime::default(),
             Timer::TimeCells(tc) => tc.clear(),
         }
     }
@@ -172,15 +251,7 @@ impl Timer {
                     .get(&ctx)
                     .unwrap_or(&(d.acc.threshold / d.initial_interval));
             }
-            Timer::Sbf(s) => {
-                s.oscillators.clear();
-                s.now = 0.0;
-                s.template = s
-                    .memories
-                    .get(&ctx)
-                    .filter(|m| !m.is_empty())
-                    .map(|m| m[rng.random_range(0..m.len())]);
-            }
+            Timer::Sbf(s) => s.onset(ctx, rng),
             Timer::TimeCells(tc) => tc.onset(),
         }
     }
@@ -191,10 +262,7 @@ impl Timer {
             Timer::Ddm(d) => {
                 d.acc.step(1.0, rng);
             }
-            Timer::Sbf(s) => {
-                s.now = t as f64 * s.seconds_per_step;
-                s.model.oscillators_into(s.now, &mut s.oscillators);
-            }
+            Timer::Sbf(s) => s.advance(t),
             Timer::TimeCells(tc) => tc.tick(),
         }
     }
@@ -216,11 +284,11 @@ impl Timer {
                 if started.is_some() {
                     return true;
                 }
-                let Some(stored) = s.template else {
+                let Some(stored) = s.rt.template else {
                     return true; // nothing stored yet: explore by checking
                 };
-                let fallback = s.now > 2.0 * stored / s.model.clock_speed + 0.05;
-                fallback || s.model.envelope(s.now, stored) >= s.threshold
+                let fallback = s.rt.now > 2.0 * stored / s.model.clock_speed + 0.05;
+                fallback || s.rt.readouts[0] >= s.threshold
             }
             Timer::TimeCells(_) => true,
         }
@@ -235,11 +303,9 @@ impl Timer {
                 out.push(f64::from(responding));
             }
             Timer::Sbf(s) => {
-                out.push(s.template.map_or(0.0, |st| s.model.envelope(s.now, st)));
+                out.push(s.rt.readouts[0]);
                 out.push(f64::from(responding));
-                for slot in 0..CHOICE_SLOTS as u8 {
-                    out.push(s.mean_envelope(s.choice_memories.get(&slot)));
-                }
+                out.extend_from_slice(&s.rt.readouts[1..]);
             }
             Timer::TimeCells(tc) => {
                 tc.units_into(out);
@@ -275,6 +341,7 @@ impl Timer {
         if let Timer::Sbf(s) = self {
             let stored = s.model.stored_time(interval * s.seconds_per_step, rng);
             SbfTimer::store(s.choice_memories.entry(slot).or_default(), stored);
+            s.choice_detectors = None;
         }
     }
 
@@ -286,22 +353,14 @@ impl Timer {
                 rec.scalar("drift", d.acc.drift as f32);
             }
             Timer::Sbf(s) => {
-                let mut osc: Vec<f32> = s.oscillators.iter().map(|&v| v as f32).collect();
+                let mut osc: Vec<f32> = s.rt.cos.iter().map(|&v| v as f32).collect();
                 osc.resize(s.model.len(), 1.0);
                 rec.record("oscillators", &osc);
-                let (out, env) = match s.template {
-                    Some(st) => {
-                        let mut w = Vec::new();
-                        s.model.stored_pattern_into(st, &mut w);
-                        (
-                            s.model.output(&w, &s.oscillators),
-                            s.model.envelope(s.now, st),
-                        )
-                    }
-                    None => (0.0, 0.0),
-                };
+                let out = s.rt.detectors.first().map_or(0.0, |(c, _)| {
+                    c.iter().zip(&s.rt.cos).map(|(w, x)| w * x).sum::<f64>()
+                });
                 rec.scalar("striatum", out as f32);
-                rec.scalar("envelope", env as f32);
+                rec.scalar("envelope", s.rt.readouts[0] as f32);
             }
             Timer::TimeCells(tc) => {
                 let mut units = Vec::new();

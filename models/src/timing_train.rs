@@ -26,7 +26,7 @@ pub struct TimingTrainConfig {
 impl Default for TimingTrainConfig {
     fn default() -> Self {
         TimingTrainConfig {
-            episodes: 4000,
+            episodes: 6000,
             epsilon_start: 0.3,
             epsilon_end: 0.0,
             anneal_fraction: 0.8,

@@ -1,0 +1,233 @@
+//! Timing-model agents on the Chronocooked tasks: they learn FI and bisection through the
+//! project's own training path, their first oven checks show timing, and every model's
+//! recorded activity (timing models and PPO networks) comes out in one dataset type.
+
+use chronocooked_analysis::episode_foc;
+use chronocooked_env::make_config;
+use chronocooked_models::activity::{ActivityMeta, Marker, TrialRecorder};
+use chronocooked_models::{Agent, PolicyConfig, evaluate_agent};
+use chronocooked_training::timing_run::load_agent;
+use chronocooked_training::{ObsEncoding, PpoAgent, TimingRunConfig, run_timing_training};
+
+const MODELS: [&str; 5] = [
+    "ddm",
+    "sbf",
+    "timecells-csc",
+    "timecells-ms",
+    "timecells-laplace",
+];
+
+fn temp_dir(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("cc-timing-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+#[test]
+fn timing_agents_solve_fi12_and_bisection_4_12() {
+    for task in ["FixedInterval-v0", "Bisection-v0"] {
+        for model in MODELS {
+            let cfg = TimingRunConfig::new(task, model, 0);
+            let dir = temp_dir(&format!("{task}-{model}"));
+            let summary = run_timing_training(&cfg, &dir, "test", |_| {}).unwrap();
+            assert!(
+                summary.eval_success >= 0.95,
+                "{model} on {task}: {summary:?}"
+            );
+            // The saved agent plays the same.
+            let mut agent = load_agent(&dir, None).unwrap();
+            let config = make_config(task, &cfg.env).unwrap();
+            let tds = chronocooked_training::eval_tds(&config);
+            let records = evaluate_agent(agent.as_mut(), &config, &tds, 1, None).unwrap();
+            let rate = chronocooked_models::agent::success_rate(&records);
+            assert!(rate >= 0.95, "{model} on {task} reloaded: {rate}");
+            let _ = std::fs::remove_dir_all(&dir);
+        }
+    }
+}
+
+#[test]
+fn presence_representation_cannot_do_bisection() {
+    // A control: without elapsed-time information the anchors cannot be told apart.
+    let cfg = TimingRunConfig::new("Bisection-v0", "timecells-presence", 0);
+    let dir = temp_dir("presence");
+    let summary = run_timing_training(&cfg, &dir, "test", |_| {}).unwrap();
+    assert!(summary.eval_success <= 0.6, "{summary:?}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn first_oven_check_increases_with_td() {
+    let tds = [4u32, 6, 9, 12, 18, 24];
+    for model in MODELS {
+        let mut means = Vec::new();
+        for td in tds {
+            let mut cfg = TimingRunConfig::new("FixedInterval-v0", model, 0);
+            cfg.set(&format!("env.td={td}")).unwrap();
+            cfg.set("eval_every=0").unwrap();
+            let mut agent = cfg.build_agent().unwrap();
+            let config = make_config("FixedInterval-v0", &cfg.env).unwrap();
+            chronocooked_models::train_timing_agent(
+                &mut agent,
+                &config,
+                &cfg.train,
+                &[td],
+                0,
+                |_| {},
+            )
+            .unwrap();
+            let mut focs = Vec::new();
+            for rep in 0..5 {
+                let recs = evaluate_agent(&mut agent, &config, &[td], 100 + rep, None).unwrap();
+                focs.extend(recs.iter().filter_map(episode_foc));
+            }
+            assert!(
+                focs.len() >= 55,
+                "{model} TD {td}: {} pickups of 60",
+                focs.len()
+            );
+            means.push(focs.iter().map(|&f| f as f64).sum::<f64>() / focs.len() as f64);
+        }
+        assert!(
+            means.windows(2).all(|w| w[1] > w[0]),
+            "{model}: mean FOC per TD {tds:?} = {means:?}"
+        );
+        // Roughly on the diagonal: the model times the interval, it does not just wait.
+        for (m, td) in means.iter().zip(tds) {
+            assert!(
+                (m - td as f64).abs() <= 0.35 * td as f64 + 1.5,
+                "{model}: {means:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn every_model_records_into_the_same_dataset_type() {
+    let config = make_config("FixedInterval-v0", &["td=6"]).unwrap();
+    let meta = |model: &str| ActivityMeta {
+        model: model.into(),
+        task: "FixedInterval-v0".into(),
+        env: vec!["td=6".into()],
+        seed: 0,
+        dt: 1.0,
+        populations: Vec::new(),
+    };
+    let env = chronocooked_env::ChronoEnv::new(&config).unwrap();
+    let mut agents: Vec<(Box<dyn Agent>, Vec<&str>)> = Vec::new();
+    for (name, pops) in [
+        ("ddm", vec!["accumulator", "drift", "value", "rpe"]),
+        (
+            "sbf",
+            vec!["oscillators", "striatum", "envelope", "value", "rpe"],
+        ),
+        (
+            "timecells-laplace",
+            vec!["time_cells", "laplace", "value", "rpe"],
+        ),
+    ] {
+        let mut a = chronocooked_models::zoo::make_timing_agent(name, &env, 0).unwrap();
+        let train = chronocooked_models::TimingTrainConfig {
+            episodes: 2000,
+            eval_every: 0,
+            ..Default::default()
+        };
+        chronocooked_models::train_timing_agent(&mut a, &config, &train, &[6], 0, |_| {}).unwrap();
+        agents.push((Box::new(a), pops));
+    }
+    for arch in ["lstm8", "ctrnn8", "cnn-mlp"] {
+        let pcfg = PolicyConfig::new(arch.parse().unwrap(), 15, 6, 6);
+        let policy = pcfg.init(0, &chronocooked_models::cpu());
+        let agent = PpoAgent::new(arch, policy, &config, ObsEncoding::Codes).unwrap();
+        let pops = if arch == "lstm8" {
+            vec!["latent", "cell", "value"]
+        } else {
+            vec!["latent", "value"]
+        };
+        agents.push((Box::new(agent), pops));
+    }
+    for (mut agent, pops) in agents {
+        let name = agent.name();
+        let mut rec = TrialRecorder::new(meta(&name));
+        let records = evaluate_agent(agent.as_mut(), &config, &[6], 0, Some(&mut rec)).unwrap();
+        let ds = rec.finish();
+        let names: Vec<&str> = ds
+            .meta
+            .populations
+            .iter()
+            .map(|p| p.name.as_str())
+            .collect();
+        assert_eq!(names, pops, "{name}");
+        assert_eq!(ds.trials.len(), records.len(), "{name}");
+        let n = ds.meta.n_units();
+        assert_eq!(ds.meta.unit_names().len(), n);
+        for (trial, r) in ds.trials.iter().zip(&records) {
+            assert_eq!(trial.steps, r.actions.len(), "{name}");
+            assert_eq!(trial.activity.len(), trial.steps * n, "{name}");
+            assert_eq!(trial.success, r.success);
+            // Markers match the env's events step by step.
+            for e in &trial.events {
+                let ev = r.infos[e.step as usize].events;
+                let expected = Marker::from_events(ev, 0.0);
+                assert!(
+                    expected.contains(&e.marker) || e.marker == Marker::Reward,
+                    "{name}: {e:?}"
+                );
+            }
+        }
+        // Aligned to oven-on: [trials, window, N], NaN past a trial's end.
+        let (aligned, used) = ds.aligned(Marker::OvenOn, 8);
+        assert_eq!(aligned.len(), used.len() * 9 * n, "{name}");
+        if name.starts_with("timecells") || name == "ddm" || name == "sbf" {
+            assert_eq!(
+                used.len(),
+                ds.trials.len(),
+                "{name}: every trained trial turns the oven on"
+            );
+        }
+        // The dataset round-trips through JSON.
+        let back: chronocooked_models::ActivityDataset =
+            serde_json::from_str(&serde_json::to_string(&ds).unwrap()).unwrap();
+        assert_eq!(back.meta, ds.meta);
+        assert_eq!(back.trials.len(), ds.trials.len());
+    }
+}
+
+#[test]
+fn ddm_activity_ramps_to_threshold_at_the_first_check() {
+    // The accumulator is a ramping unit aligned to oven-on, and the first check (FOC)
+    // comes when it reaches the threshold z = 1.
+    let mut cfg = TimingRunConfig::new("FixedInterval-v0", "ddm", 3);
+    cfg.set("env.td=12").unwrap();
+    let dir = temp_dir("ddm-ramp");
+    run_timing_training(&cfg, &dir, "test", |_| {}).unwrap();
+    let mut agent = load_agent(&dir, None).unwrap();
+    let config = make_config("FixedInterval-v0", &cfg.env).unwrap();
+    let mut rec = TrialRecorder::new(ActivityMeta {
+        model: "ddm".into(),
+        task: "FixedInterval-v0".into(),
+        env: cfg.env.clone(),
+        seed: 0,
+        dt: 1.0,
+        populations: Vec::new(),
+    });
+    evaluate_agent(agent.as_mut(), &config, &[12], 9, Some(&mut rec)).unwrap();
+    let ds = rec.finish();
+    let acc = ds.meta.range("accumulator").unwrap().start;
+    let n = ds.meta.n_units();
+    for trial in &ds.trials {
+        let on = trial.first(Marker::OvenOn).unwrap() as usize;
+        let check = trial.first(Marker::OvenCheck).unwrap() as usize;
+        let x = |step: usize| trial.activity[step * n + acc];
+        // At or just below z: a crossing inside the last step counts (Brownian bridge).
+        assert!(
+            x(check) >= 0.85,
+            "responded far below threshold: {}",
+            x(check)
+        );
+        assert!(x(check - 1) < 1.0 || check == on + 1);
+        // Mean slope positive over the interval.
+        assert!(x(check) > x(on + 1));
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

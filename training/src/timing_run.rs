@@ -1,0 +1,288 @@
+//! Run folders of the timing-model agents (`train --model ddm|sbf|timecells-*`).
+//!
+//! Files: `config.json` (resolved [`TimingRunConfig`]), `command.txt`, `curves.csv`
+//! (episode, steps, train success/reward, eval success), `agent.json` (the trained agent:
+//! learned drifts / stored times / TD weights), `summary.json`. Training is a few seconds,
+//! deterministic from (config, seed), so an interrupted run is simply rerun: `--resume`
+//! restarts it and reaches the identical result.
+
+use crate::error::TrainError;
+use crate::evaluate::eval_tds;
+use crate::run_dir::write_atomic;
+use chronocooked_env::{ChronoEnv, make_config};
+use chronocooked_models::timing_agent::TimingAgent;
+use chronocooked_models::zoo::make_timing_agent;
+use chronocooked_models::{TimingCurvePoint, TimingTrainConfig, train_timing_agent};
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// Everything that defines a timing-agent run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TimingRunConfig {
+    /// Always `"timing"` (tells run folders apart from PPO ones).
+    pub kind: String,
+    /// Task id.
+    pub task: String,
+    /// Task overrides (`key=value`).
+    pub env: Vec<String>,
+    /// Zoo name of the timing model.
+    pub model: String,
+    /// Seed.
+    pub seed: u64,
+    /// Training schedule.
+    pub train: TimingTrainConfig,
+    /// Agent overrides applied after construction (`alpha`, `gamma`, `lambda`,
+    /// `response_cost`, `probe`, `noise`).
+    pub agent: Vec<String>,
+}
+
+/// Settings accepted by `--set` for timing models.
+pub const TIMING_KEYS: &str = "episodes, epsilon_start, epsilon_end, anneal_fraction, eval_every, stop_at_success, alpha, gamma, lambda, response_cost, probe, noise (ddm), memory_noise (sbf), env.<task parameter>";
+
+fn parse<T: std::str::FromStr>(key: &str, value: &str, allowed: &str) -> Result<T, TrainError> {
+    value.parse().map_err(|_| TrainError::InvalidParam {
+        field: key.into(),
+        value: value.into(),
+        allowed: allowed.into(),
+    })
+}
+
+impl TimingRunConfig {
+    /// Defaults for `model` on `task`.
+    pub fn new(task: &str, model: &str, seed: u64) -> Self {
+        TimingRunConfig {
+            kind: "timing".into(),
+            task: task.into(),
+            env: Vec::new(),
+            model: model.into(),
+            seed,
+            train: TimingTrainConfig::default(),
+            agent: Vec::new(),
+        }
+    }
+
+    /// Applies one `key=value` override (typed errors name the field and allowed values).
+    pub fn set(&mut self, kv: &str) -> Result<(), TrainError> {
+        let (key, value) = kv
+            .split_once('=')
+            .ok_or_else(|| TrainError::BadOverride(kv.into()))?;
+        let (key, value) = (key.trim(), value.trim());
+        let t = &mut self.train;
+        match key {
+            "episodes" => t.episodes = parse(key, value, "a positive integer")?,
+            "epsilon_start" => t.epsilon_start = parse(key, value, "a number in [0, 1]")?,
+            "epsilon_end" => t.epsilon_end = parse(key, value, "a number in [0, 1]")?,
+            "anneal_fraction" => t.anneal_fraction = parse(key, value, "a number in (0, 1]")?,
+            "eval_every" => t.eval_every = parse(key, value, "episodes, 0 = only at the end")?,
+            "stop_at_success" => {
+                t.stop_at_success = match value {
+                    "none" | "null" => None,
+                    v => Some(parse(key, v, "a success rate in (0, 1], or none")?),
+                }
+            }
+            "alpha" | "gamma" | "lambda" | "response_cost" | "probe" | "noise" | "memory_noise" => {
+                let _: f64 = parse(key, value, "a number")?;
+                self.agent.push(format!("{key}={value}"));
+            }
+            k if k.starts_with("env.") => {
+                self.env.push(format!("{}={value}", &k[4..]));
+                make_config(&self.task, &self.env)?;
+            }
+            _ => {
+                return Err(TrainError::InvalidParam {
+                    field: "--set".into(),
+                    value: key.into(),
+                    allowed: TIMING_KEYS.into(),
+                });
+            }
+        }
+        self.validate()
+    }
+
+    /// Checks ranges.
+    pub fn validate(&self) -> Result<(), TrainError> {
+        let t = &self.train;
+        let bad = |field: &str, value: String, allowed: &str| {
+            Err(TrainError::InvalidParam {
+                field: field.into(),
+                value,
+                allowed: allowed.into(),
+            })
+        };
+        if t.episodes == 0 {
+            return bad("episodes", "0".into(), "a positive integer");
+        }
+        for (f, v) in [
+            ("epsilon_start", t.epsilon_start),
+            ("epsilon_end", t.epsilon_end),
+        ] {
+            if !(0.0..=1.0).contains(&v) {
+                return bad(f, v.to_string(), "a number in [0, 1]");
+            }
+        }
+        if !(t.anneal_fraction > 0.0 && t.anneal_fraction <= 1.0) {
+            return bad(
+                "anneal_fraction",
+                t.anneal_fraction.to_string(),
+                "a number in (0, 1]",
+            );
+        }
+        Ok(())
+    }
+
+    /// Builds the untrained agent with the overrides applied.
+    pub fn build_agent(&self) -> Result<TimingAgent, TrainError> {
+        let env = ChronoEnv::new(&make_config(&self.task, &self.env)?)?;
+        let mut agent = make_timing_agent(&self.model, &env, self.seed).map_err(|e| {
+            TrainError::InvalidParam {
+                field: "model".into(),
+                value: self.model.clone(),
+                allowed: e,
+            }
+        })?;
+        for kv in &self.agent {
+            let (k, v) = kv.split_once('=').unwrap_or((kv, "0"));
+            let v: f64 = parse(k, v, "a number")?;
+            match k {
+                "alpha" => agent.learner.config.alpha = v,
+                "gamma" => agent.learner.config.gamma = v,
+                "lambda" => agent.learner.config.lambda = v,
+                "response_cost" => agent.config.response_cost = v,
+                "probe" => agent.config.probe = v,
+                "noise" => match &mut agent.timer {
+                    chronocooked_models::timers::Timer::Ddm(d) => d.acc.noise = v,
+                    _ => return Err(TrainError::UnknownKey("noise (ddm only)".into())),
+                },
+                "memory_noise" => match &mut agent.timer {
+                    chronocooked_models::timers::Timer::Sbf(s) => s.model.memory_noise = v,
+                    _ => return Err(TrainError::UnknownKey("memory_noise (sbf only)".into())),
+                },
+                _ => return Err(TrainError::UnknownKey(k.into())),
+            }
+        }
+        Ok(agent)
+    }
+}
+
+/// What a finished timing run reports.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TimingRunSummary {
+    /// Run folder.
+    pub dir: PathBuf,
+    /// Episodes trained.
+    pub episodes: usize,
+    /// Env steps trained.
+    pub env_steps: u64,
+    /// Wall seconds.
+    pub wall_s: f64,
+    /// Final deterministic evaluation success (every start cell; bisection anchors).
+    pub eval_success: f64,
+    /// First episode at which the evaluation reached 95%, if it did.
+    pub solved_at_episode: Option<usize>,
+}
+
+fn json<T: Serialize>(v: &T) -> Vec<u8> {
+    let mut s = serde_json::to_string_pretty(v).expect("serialisable");
+    s.push('\n');
+    s.into_bytes()
+}
+
+/// Trains a timing agent into `dir`; `progress` sees every curve point.
+pub fn run_timing_training(
+    cfg: &TimingRunConfig,
+    dir: &Path,
+    command: &str,
+    progress: impl FnMut(&TimingCurvePoint),
+) -> Result<TimingRunSummary, TrainError> {
+    cfg.validate()?;
+    let start = std::time::Instant::now();
+    std::fs::create_dir_all(dir).map_err(|e| TrainError::io(dir, e))?;
+    write_atomic(&dir.join("config.json"), &json(cfg))?;
+    write_atomic(&dir.join("command.txt"), format!("{command}\n").as_bytes())?;
+    let task = make_config(&cfg.task, &cfg.env)?;
+    let mut agent = cfg.build_agent()?;
+    let tds = eval_tds(&task);
+    let curve = train_timing_agent(&mut agent, &task, &cfg.train, &tds, cfg.seed, progress)?;
+    let mut csv = String::from("episode,env_steps,train_success,train_reward,eval_success\n");
+    for p in &curve {
+        csv += &format!(
+            "{},{},{},{},{}\n",
+            p.episode,
+            p.steps,
+            p.train_success,
+            p.train_reward,
+            p.eval_success.map_or(String::new(), |v| v.to_string())
+        );
+    }
+    write_atomic(&dir.join("curves.csv"), csv.as_bytes())?;
+    write_atomic(&dir.join("agent.json"), &json(&agent))?;
+    let last = curve.last();
+    let summary = TimingRunSummary {
+        dir: dir.to_path_buf(),
+        episodes: last.map_or(0, |p| p.episode),
+        env_steps: last.map_or(0, |p| p.steps),
+        wall_s: start.elapsed().as_secs_f64(),
+        eval_success: last.and_then(|p| p.eval_success).unwrap_or(0.0),
+        solved_at_episode: curve
+            .iter()
+            .find(|p| p.eval_success.is_some_and(|s| s >= 0.95))
+            .map(|p| p.episode),
+    };
+    write_atomic(&dir.join("summary.json"), &json(&summary))?;
+    Ok(summary)
+}
+
+/// Whether `dir`'s `config.json` describes a timing-agent run (finished or not).
+pub fn is_timing_run_config(dir: &Path) -> bool {
+    std::fs::read_to_string(dir.join("config.json"))
+        .ok()
+        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+        .is_some_and(|v| v["kind"] == "timing")
+}
+
+/// Whether `dir` holds a timing-agent run.
+pub fn is_timing_run(dir: &Path) -> bool {
+    dir.join("agent.json").is_file()
+}
+
+/// Loads the config and trained agent of a timing run folder.
+pub fn load_timing_agent(dir: &Path) -> Result<(TimingRunConfig, TimingAgent), TrainError> {
+    let read = |name: &str| {
+        let p = dir.join(name);
+        std::fs::read_to_string(&p).map_err(|e| TrainError::io(&p, e))
+    };
+    let bad = |name: &str, e: serde_json::Error| TrainError::Resume {
+        path: dir.join(name).display().to_string(),
+        reason: e.to_string(),
+    };
+    let cfg = serde_json::from_str(&read("config.json")?).map_err(|e| bad("config.json", e))?;
+    let agent = serde_json::from_str(&read("agent.json")?).map_err(|e| bad("agent.json", e))?;
+    Ok((cfg, agent))
+}
+
+/// Loads the agent of any run folder — PPO (`policy.json`) or timing model (`agent.json`) —
+/// to play `task` (the run's own task when `None`). Returns the agent and its model name.
+pub fn load_agent(
+    dir: &Path,
+    task: Option<&chronocooked_env::TaskConfig>,
+) -> Result<Box<dyn chronocooked_models::Agent>, TrainError> {
+    if is_timing_run(dir) {
+        let (cfg, agent) = load_timing_agent(dir)?;
+        if let Some(t) = task {
+            let own = make_config(&cfg.task, &cfg.env)?;
+            let (a, b) = (ChronoEnv::new(&own)?, ChronoEnv::new(t)?);
+            if a.layout() != b.layout() {
+                return Err(TrainError::InvalidParam {
+                    field: "task".into(),
+                    value: format!("{:?}", t.family()),
+                    allowed: format!(
+                        "a task with the layout the agent was trained on ({})",
+                        cfg.task
+                    ),
+                });
+            }
+        }
+        return Ok(Box::new(agent));
+    }
+    Ok(Box::new(crate::ppo_agent::PpoAgent::load(dir, task)?))
+}
