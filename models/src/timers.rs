@@ -308,9 +308,7 @@ impl Timer {
                 out.extend_from_slice(&s.rt.readouts[1..]);
             }
             Timer::TimeCells(tc) => {
-                tc.units_into(out);
-                let scale = feature_scale(&tc.repr);
-                out.iter_mut().zip(scale).for_each(|(v, s)| *v /= s);
+                tc.normalised_units_into(out);
             }
         }
     }
@@ -374,41 +372,4 @@ impl Timer {
             }
         }
     }
-}
-
-/// Per-unit scale that brings each time-cell unit's peak to ~1.
-fn feature_scale(repr: &Representation) -> Vec<f64> {
-    match repr {
-        Representation::Microstimulus {
-            decay,
-            sigma,
-            count,
-        } => (1..=*count)
-            .map(|i| {
-                crate::timing::microstimulus_peak(i, *count, *sigma, *decay)
-                    .1
-                    .max(1e-9)
-            })
-            .collect(),
-        Representation::Laplace {
-            cells,
-            tau_min,
-            tau_max,
-            order,
-        } => crate::timing::timecells::laplace_peak_times(*cells, *tau_min, *tau_max)
-            .iter()
-            .map(|&tau| {
-                let k = *order as f64;
-                let s = k / tau;
-                // f̃(τ*, τ*) = s^{k+1} τ*^k e^{−k} / k!
-                let log = (k + 1.0) * s.ln() + k * tau.ln() - k - ln_factorial(*order);
-                log.exp().max(1e-12)
-            })
-            .collect(),
-        _ => vec![1.0; repr.size()],
-    }
-}
-
-fn ln_factorial(n: usize) -> f64 {
-    (1..=n).map(|j| (j as f64).ln()).sum()
 }

@@ -142,6 +142,12 @@ pub struct TimeCells {
     pub elapsed: Option<u32>,
     /// Laplace: `G[j][n] = ∂ⁿF/∂sⁿ` of cell `j`.
     derivatives: Vec<Vec<f64>>,
+    /// Laplace: one-step propagators `P[j][n][m] = e^{−s_j} C(n,m) (−1)^{n−m}` (cached).
+    #[serde(skip)]
+    propagators: Vec<Vec<f64>>,
+    /// Peak height of every unit (cached; normalises the units to a maximum of ~1).
+    #[serde(skip)]
+    peaks: Vec<f64>,
 }
 
 impl TimeCells {
@@ -155,6 +161,49 @@ impl TimeCells {
             repr,
             elapsed: None,
             derivatives,
+            propagators: Vec::new(),
+            peaks: Vec::new(),
+        }
+    }
+
+    /// Peak height of every unit over time (1 for presence and CSC).
+    pub fn peak_heights(&self) -> Vec<f64> {
+        match &self.repr {
+            Representation::Microstimulus {
+                decay,
+                sigma,
+                count,
+            } => (1..=*count)
+                .map(|i| microstimulus_peak(i, *count, *sigma, *decay).1.max(1e-9))
+                .collect(),
+            Representation::Laplace {
+                cells,
+                tau_min,
+                tau_max,
+                order,
+            } => laplace_peak_times(*cells, *tau_min, *tau_max)
+                .iter()
+                .map(|&tau| {
+                    // f̃(τ*, τ*) = s^{k+1} τ*^k e^{−k} / k!, s = k/τ*.
+                    let k = *order as f64;
+                    let log =
+                        (k + 1.0) * (k / tau).ln() + k * tau.ln() - k - factorial(*order).ln();
+                    log.exp().max(1e-12)
+                })
+                .collect(),
+            _ => vec![1.0; self.repr.size()],
+        }
+    }
+
+    /// Unit activities divided by their peak heights (each peaks at ~1).
+    pub fn normalised_units_into(&self, out: &mut Vec<f64>) {
+        self.units_into(out);
+        if self.peaks.len() == out.len() {
+            out.iter_mut().zip(&self.peaks).for_each(|(v, p)| *v /= p);
+        } else {
+            out.iter_mut()
+                .zip(self.peak_heights())
+                .for_each(|(v, p)| *v /= p);
         }
     }
 
@@ -169,6 +218,9 @@ impl TimeCells {
     /// Stimulus onset (time 0): an impulse into the Laplace integrators.
     pub fn onset(&mut self) {
         self.clear();
+        if self.peaks.len() != self.repr.size() {
+            self.peaks = self.peak_heights();
+        }
         self.elapsed = Some(0);
         for g in &mut self.derivatives {
             g[0] = 1.0;
@@ -188,17 +240,28 @@ impl TimeCells {
             order,
         } = &self.repr
         {
-            let taus = laplace_peak_times(*cells, *tau_min, *tau_max);
-            for (g, tau) in self.derivatives.iter_mut().zip(taus) {
-                let s = *order as f64 / tau;
-                let decay = (-s).exp();
-                let old = g.clone();
-                for n in 0..=*order {
-                    let mut acc = 0.0;
-                    for (j, gj) in old.iter().enumerate().take(n + 1) {
-                        acc += binomial(n, j) * (-1.0f64).powi((n - j) as i32) * gj;
-                    }
-                    g[n] = decay * acc;
+            let k1 = order + 1;
+            if self.propagators.len() != *cells {
+                self.propagators = laplace_peak_times(*cells, *tau_min, *tau_max)
+                    .into_iter()
+                    .map(|tau| {
+                        let decay = (-(*order as f64) / tau).exp();
+                        let mut p = vec![0.0; k1 * k1];
+                        for n in 0..k1 {
+                            for m in 0..=n {
+                                let sign = if (n - m) % 2 == 0 { 1.0 } else { -1.0 };
+                                p[n * k1 + m] = decay * binomial(n, m) * sign;
+                            }
+                        }
+                        p
+                    })
+                    .collect();
+            }
+            let mut old = vec![0.0; k1];
+            for (g, p) in self.derivatives.iter_mut().zip(&self.propagators) {
+                old.copy_from_slice(g);
+                for (n, gn) in g.iter_mut().enumerate() {
+                    *gn = (0..=n).map(|m| p[n * k1 + m] * old[m]).sum();
                 }
             }
         }
@@ -234,13 +297,13 @@ impl TimeCells {
             } => {
                 let k = *order;
                 let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
-                for (g, tau) in self
-                    .derivatives
-                    .iter()
-                    .zip(laplace_peak_times(*cells, *tau_min, *tau_max))
-                {
+                let norm = sign / factorial(k);
+                let ratio = (tau_max / tau_min).powf(1.0 / (*cells as f64 - 1.0).max(1.0));
+                let mut tau = *tau_min;
+                for g in &self.derivatives {
                     let s = k as f64 / tau;
-                    out.push(sign / factorial(k) * s.powi(k as i32 + 1) * g[k]);
+                    out.push(norm * s.powi(k as i32 + 1) * g[k]);
+                    tau *= ratio;
                 }
             }
         }
