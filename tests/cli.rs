@@ -385,3 +385,97 @@ fn train_and_zoo_commands_work_and_reject_bad_input() {
     ]);
     assert!(err.contains("already holds a run"), "{err}");
 }
+
+#[test]
+fn timing_models_train_and_record_from_the_cli() {
+    let list = run_ok(&["zoo", "list"]);
+    for m in [
+        "ddm",
+        "sbf",
+        "timecells-csc",
+        "timecells-ms",
+        "timecells-laplace",
+    ] {
+        assert!(list.contains(m), "zoo list lacks {m}");
+    }
+    let dir = temp_dir("timing-cli");
+    let run = dir.join("ddm");
+    let out = run_ok(&[
+        "train",
+        "--model",
+        "ddm",
+        "--task",
+        "Bisection-v0",
+        "--set",
+        "episodes=3000",
+        "--quiet",
+        "--out",
+        run.to_str().unwrap(),
+    ]);
+    let summary: Value = serde_json::from_str(&out).unwrap();
+    assert!(summary["eval_success"].as_f64().unwrap() >= 0.95, "{out}");
+    for f in [
+        "config.json",
+        "command.txt",
+        "curves.csv",
+        "agent.json",
+        "summary.json",
+    ] {
+        assert!(run.join(f).is_file(), "{f} missing");
+    }
+    // Same config and seed → identical trained agent.
+    let again = dir.join("ddm-again");
+    run_ok(&[
+        "train",
+        "--model",
+        "ddm",
+        "--task",
+        "Bisection-v0",
+        "--set",
+        "episodes=3000",
+        "--quiet",
+        "--out",
+        again.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        std::fs::read(run.join("agent.json")).unwrap(),
+        std::fs::read(again.join("agent.json")).unwrap()
+    );
+    let act = dir.join("act.json");
+    let msg = run_ok(&[
+        "record",
+        "--run",
+        run.to_str().unwrap(),
+        "--tds",
+        "4,6,8,12",
+        "--out",
+        act.to_str().unwrap(),
+    ]);
+    assert!(msg.contains("32 trials"), "{msg}");
+    let ds: Value = serde_json::from_str(&std::fs::read_to_string(&act).unwrap()).unwrap();
+    assert_eq!(ds["meta"]["model"], "ddm");
+    assert_eq!(ds["trials"].as_array().unwrap().len(), 32);
+    for (args, needle) in [
+        (
+            vec!["train", "--model", "ddm", "--set", "episodes=0"],
+            "episodes",
+        ),
+        (
+            vec!["train", "--model", "ddm", "--set", "bogus=1"],
+            "allowed",
+        ),
+        (
+            vec!["train", "--model", "ddm", "--steps", "100"],
+            "episodes",
+        ),
+        (
+            vec!["record", "--run", "/nonexistent/run"],
+            "not a run folder",
+        ),
+    ] {
+        let err = run_err(&args);
+        assert!(err.contains(needle), "{args:?}: {err}");
+    }
+    let err = run_err(&["train", "--model", "ddm", "--out", run.to_str().unwrap()]);
+    assert!(err.contains("already holds"), "{err}");
+}

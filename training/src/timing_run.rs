@@ -187,7 +187,8 @@ fn json<T: Serialize>(v: &T) -> Vec<u8> {
     s.into_bytes()
 }
 
-/// Trains a timing agent into `dir`; `progress` sees every curve point.
+/// Trains a timing agent into `dir`; `progress` sees every curve point. Refuses a folder
+/// that already holds a finished run (`summary.json`).
 pub fn run_timing_training(
     cfg: &TimingRunConfig,
     dir: &Path,
@@ -195,6 +196,12 @@ pub fn run_timing_training(
     progress: impl FnMut(&TimingCurvePoint),
 ) -> Result<TimingRunSummary, TrainError> {
     cfg.validate()?;
+    if dir.join("summary.json").is_file() {
+        return Err(TrainError::Resume {
+            path: dir.display().to_string(),
+            reason: "the folder already holds a finished run; use a new --out".into(),
+        });
+    }
     let start = std::time::Instant::now();
     std::fs::create_dir_all(dir).map_err(|e| TrainError::io(dir, e))?;
     write_atomic(&dir.join("config.json"), &json(cfg))?;
