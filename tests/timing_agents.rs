@@ -231,3 +231,36 @@ fn ddm_activity_ramps_to_threshold_at_the_first_check() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn every_timing_model_plays_every_task() {
+    for spec in chronocooked_env::all_tasks() {
+        let config = spec.default_config();
+        let env = chronocooked_env::ChronoEnv::new(&config).unwrap();
+        let tds = chronocooked_training::eval_tds(&config);
+        for m in chronocooked_models::zoo::TIMING_MODELS {
+            let mut agent = chronocooked_models::zoo::make_timing_agent(m.name, &env, 1).unwrap();
+            let train = chronocooked_models::TimingTrainConfig {
+                episodes: 150,
+                eval_every: 0,
+                ..Default::default()
+            };
+            let curve = chronocooked_models::train_timing_agent(
+                &mut agent,
+                &config,
+                &train,
+                &tds,
+                1,
+                |_| {},
+            )
+            .unwrap_or_else(|e| panic!("{} on {}: {e}", m.name, spec.id));
+            assert_eq!(curve.last().unwrap().episode, 150);
+            let records = evaluate_agent(&mut agent, &config, &tds, 2, None).unwrap();
+            assert!(
+                records
+                    .iter()
+                    .all(|r| !r.actions.is_empty() && r.actions.len() <= 201)
+            );
+        }
+    }
+}
