@@ -27,3 +27,104 @@ pub fn first_oven_check(actions: &[u8], infos: &[Info]) -> Option<i32> {
 pub fn episode_foc(record: &EpisodeRecord) -> Option<i32> {
     first_oven_check(&record.actions, &record.infos)
 }
+
+/// FOC summary at one TD.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct FocStats {
+    /// Target duration (steps).
+    pub td: u32,
+    /// Episodes with a FOC.
+    pub n: usize,
+    /// Mean FOC (NaN without data).
+    pub mean: f64,
+    /// Sample SD (n − 1; NaN below 2 episodes).
+    pub sd: f64,
+    /// `sd / mean`.
+    pub cv: f64,
+}
+
+/// Ordinary least squares `y = slope·x + intercept`; returns `(slope, intercept, R²)`
+/// (NaN when fewer than two points or no spread in `x`).
+pub fn linear_fit(x: &[f64], y: &[f64]) -> (f64, f64, f64) {
+    let n = x.len().min(y.len());
+    if n < 2 {
+        return (f64::NAN, f64::NAN, f64::NAN);
+    }
+    let mx = x[..n].iter().sum::<f64>() / n as f64;
+    let my = y[..n].iter().sum::<f64>() / n as f64;
+    let sxx: f64 = x[..n].iter().map(|v| (v - mx).powi(2)).sum();
+    let syy: f64 = y[..n].iter().map(|v| (v - my).powi(2)).sum();
+    let sxy: f64 = x[..n]
+        .iter()
+        .zip(&y[..n])
+        .map(|(a, b)| (a - mx) * (b - my))
+        .sum();
+    if sxx <= 0.0 {
+        return (f64::NAN, f64::NAN, f64::NAN);
+    }
+    let slope = sxy / sxx;
+    let r2 = if syy > 0.0 {
+        sxy * sxy / (sxx * syy)
+    } else {
+        1.0
+    };
+    (slope, my - slope * mx, r2)
+}
+
+/// Per-TD FOC statistics from `(td, focs)` groups.
+pub fn foc_stats(groups: &[(u32, Vec<f64>)]) -> Vec<FocStats> {
+    groups
+        .iter()
+        .map(|(td, v)| {
+            let n = v.len();
+            let mean = if n > 0 {
+                v.iter().sum::<f64>() / n as f64
+            } else {
+                f64::NAN
+            };
+            let sd = if n > 1 {
+                (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1) as f64).sqrt()
+            } else {
+                f64::NAN
+            };
+            FocStats {
+                td: *td,
+                n,
+                mean,
+                sd,
+                cv: sd / mean,
+            }
+        })
+        .collect()
+}
+
+/// Scalar-property summary across TDs.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct ScalarProperty {
+    /// Slope of mean FOC vs TD.
+    pub mean_slope: f64,
+    /// R² of mean FOC vs TD (timing: close to 1 with slope ≈ 1).
+    pub r2_mean_vs_td: f64,
+    /// Slope of SD vs mean FOC (≈ the constant CV under the scalar property).
+    pub sd_slope: f64,
+    /// R² of SD vs mean FOC (scalar property: close to 1).
+    pub r2_sd_vs_mean: f64,
+}
+
+/// Regressions of mean FOC on TD and of SD on mean over the TDs with data.
+pub fn scalar_property(stats: &[FocStats]) -> ScalarProperty {
+    let ok: Vec<&FocStats> = stats.iter().filter(|s| s.mean.is_finite()).collect();
+    let td: Vec<f64> = ok.iter().map(|s| f64::from(s.td)).collect();
+    let mean: Vec<f64> = ok.iter().map(|s| s.mean).collect();
+    let (mean_slope, _, r2_mean_vs_td) = linear_fit(&td, &mean);
+    let with_sd: Vec<&&FocStats> = ok.iter().filter(|s| s.sd.is_finite()).collect();
+    let m: Vec<f64> = with_sd.iter().map(|s| s.mean).collect();
+    let sd: Vec<f64> = with_sd.iter().map(|s| s.sd).collect();
+    let (sd_slope, _, r2_sd_vs_mean) = linear_fit(&m, &sd);
+    ScalarProperty {
+        mean_slope,
+        r2_mean_vs_td,
+        sd_slope,
+        r2_sd_vs_mean,
+    }
+}

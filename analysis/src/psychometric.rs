@@ -1,0 +1,259 @@
+//! Bisection psychometrics: P(long) per probe with the paper's exclusion rules and a logistic
+//! fit by binomial maximum likelihood.
+//!
+//! `P(long | t) = 1 / (1 + e^{−(t − BP)/s})`. From the fit: the bisection point BP,
+//! `T25 = BP − s ln 3`, `T75 = BP + s ln 3`, the difference limen `DL = (T75 − T25)/2 = s ln 3`
+//! and the Weber fraction `WF = DL / BP`; BP is compared with the arithmetic (`(S+L)/2`) and
+//! geometric (`√(S·L)`) means of the anchors. Confidence intervals: parametric bootstrap
+//! (binomial resampling at the fitted probabilities, refit, percentile interval), seeded.
+
+use rand::{Rng, SeedableRng};
+use rand_xoshiro::Xoshiro256PlusPlus;
+use serde::{Deserialize, Serialize};
+
+/// Choices at one probe duration.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ProbeCounts {
+    /// Probe duration (steps).
+    pub t: f64,
+    /// Valid episodes (a delivery to either counter).
+    pub valid: u32,
+    /// Deliveries to the long counter.
+    pub long: u32,
+    /// Episodes excluded (no delivery: failed).
+    pub failed: u32,
+}
+
+impl ProbeCounts {
+    /// P(long) among valid episodes; NaN when more than half of the episodes failed
+    /// (the paper's rule) or none is valid.
+    pub fn p_long(&self) -> f64 {
+        let total = self.valid + self.failed;
+        if self.valid == 0 || 2 * self.failed > total {
+            return f64::NAN;
+        }
+        f64::from(self.long) / f64::from(self.valid)
+    }
+}
+
+/// Result of a logistic fit.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LogisticFit {
+    /// Bisection point (P = 0.5), steps.
+    pub bp: f64,
+    /// Scale `s` (steps); 0 when the data are perfectly separated.
+    pub scale: f64,
+    /// `T25 = BP − s ln 3`.
+    pub t25: f64,
+    /// `T75 = BP + s ln 3`.
+    pub t75: f64,
+    /// Difference limen `(T75 − T25)/2`.
+    pub dl: f64,
+    /// Weber fraction `DL / BP`.
+    pub wf: f64,
+    /// Log-likelihood at the optimum.
+    pub log_lik: f64,
+    /// The choices switch from all-short to all-long with no overlap (the MLE is a step;
+    /// BP is then the midpoint of the gap and the scale 0).
+    pub separated: bool,
+    /// Bootstrap percentile interval of BP (`None` when not computed).
+    pub bp_ci: Option<(f64, f64)>,
+    /// Bootstrap percentile interval of the scale.
+    pub scale_ci: Option<(f64, f64)>,
+}
+
+/// Why a fit could not be made.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, thiserror::Error)]
+pub enum FitError {
+    /// Fewer than two probes with valid data.
+    #[error("not enough valid probes to fit ({0}; need 2)")]
+    TooFewProbes(usize),
+    /// All valid choices were to one counter: no transition to locate.
+    #[error("all choices went to one counter: no bisection point")]
+    NoTransition,
+    /// The optimiser failed (non-finite values).
+    #[error("the logistic fit did not converge")]
+    NoConvergence,
+}
+
+fn sigmoid(x: f64) -> f64 {
+    if x >= 0.0 {
+        1.0 / (1.0 + (-x).exp())
+    } else {
+        let e = x.exp();
+        e / (1.0 + e)
+    }
+}
+
+fn log_lik(data: &[ProbeCounts], a: f64, b: f64) -> f64 {
+    data.iter()
+        .map(|d| {
+            let z = a + b * d.t;
+            // log σ(z) = −softplus(−z), log(1 − σ(z)) = −softplus(z)
+            let sp = |x: f64| if x > 30.0 { x } else { x.exp().ln_1p() };
+            -(f64::from(d.long) * sp(-z) + f64::from(d.valid - d.long) * sp(z))
+        })
+        .sum()
+}
+
+/// Usable probes: at least one valid episode and P(long) not NaN by the exclusion rule.
+fn usable(data: &[ProbeCounts]) -> Vec<ProbeCounts> {
+    data.iter()
+        .copied()
+        .filter(|d| d.p_long().is_finite())
+        .collect()
+}
+
+/// Fits the logistic by binomial maximum likelihood (Newton's method with step halving on
+/// `p = σ(a + b t)`, BP = −a/b, s = 1/b). No confidence intervals (see [`fit_with_ci`]).
+pub fn fit_logistic(data: &[ProbeCounts]) -> Result<LogisticFit, FitError> {
+    let data = usable(data);
+    if data.len() < 2 {
+        return Err(FitError::TooFewProbes(data.len()));
+    }
+    let total_long: u32 = data.iter().map(|d| d.long).sum();
+    let total: u32 = data.iter().map(|d| d.valid).sum();
+    if total_long == 0 || total_long == total {
+        return Err(FitError::NoTransition);
+    }
+    // Perfect separation: every probe is all-short below some gap and all-long above it.
+    let mut sorted = data.clone();
+    sorted.sort_by(|x, y| x.t.total_cmp(&y.t));
+    let last_short = sorted
+        .iter()
+        .filter(|d| d.long == 0)
+        .map(|d| d.t)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let first_long = sorted
+        .iter()
+        .filter(|d| d.long == d.valid)
+        .map(|d| d.t)
+        .fold(f64::INFINITY, f64::min);
+    let mixed = sorted.iter().any(|d| d.long > 0 && d.long < d.valid);
+    if !mixed && last_short < first_long && sorted.iter().all(|d| d.long == 0 || d.long == d.valid)
+    {
+        let bp = 0.5 * (last_short + first_long);
+        return Ok(LogisticFit {
+            bp,
+            scale: 0.0,
+            t25: bp,
+            t75: bp,
+            dl: 0.0,
+            wf: 0.0,
+            log_lik: 0.0,
+            separated: true,
+            bp_ci: None,
+            scale_ci: None,
+        });
+    }
+    // Start: BP at the mean probe, scale a quarter of the range.
+    let tmin = sorted[0].t;
+    let tmax = sorted[sorted.len() - 1].t;
+    let mut b = 4.0 / (tmax - tmin).max(1e-6);
+    let mut a = -b * 0.5 * (tmin + tmax);
+    let mut ll = log_lik(&data, a, b);
+    for _ in 0..200 {
+        // Gradient and Hessian of the log-likelihood in (a, b).
+        let (mut ga, mut gb, mut haa, mut hab, mut hbb) = (0.0, 0.0, 0.0, 0.0, 0.0);
+        for d in &data {
+            let p = sigmoid(a + b * d.t);
+            let n = f64::from(d.valid);
+            let r = f64::from(d.long) - n * p;
+            let w = n * p * (1.0 - p);
+            ga += r;
+            gb += r * d.t;
+            haa += w;
+            hab += w * d.t;
+            hbb += w * d.t * d.t;
+        }
+        let det = haa * hbb - hab * hab;
+        if det.abs() < 1e-300 {
+            break;
+        }
+        let da = (hbb * ga - hab * gb) / det;
+        let db = (haa * gb - hab * ga) / det;
+        let mut step = 1.0;
+        let mut improved = false;
+        for _ in 0..40 {
+            let (na, nb) = (a + step * da, b + step * db);
+            let nll = log_lik(&data, na, nb);
+            if nll.is_finite() && nll >= ll - 1e-12 {
+                let done = (nll - ll).abs() < 1e-12;
+                a = na;
+                b = nb;
+                ll = nll;
+                improved = !done;
+                break;
+            }
+            step *= 0.5;
+        }
+        if !improved {
+            break;
+        }
+    }
+    if !(a.is_finite() && b.is_finite()) || b.abs() < 1e-12 {
+        return Err(FitError::NoConvergence);
+    }
+    let bp = -a / b;
+    let scale = 1.0 / b;
+    let dl = scale * 3f64.ln();
+    Ok(LogisticFit {
+        bp,
+        scale,
+        t25: bp - dl,
+        t75: bp + dl,
+        dl,
+        wf: dl / bp,
+        log_lik: ll,
+        separated: false,
+        bp_ci: None,
+        scale_ci: None,
+    })
+}
+
+/// [`fit_logistic`] plus parametric-bootstrap percentile intervals at level `level`
+/// (e.g. 0.95) from `resamples` refits (seeded by `seed`).
+pub fn fit_with_ci(
+    data: &[ProbeCounts],
+    level: f64,
+    resamples: usize,
+    seed: u64,
+) -> Result<LogisticFit, FitError> {
+    let mut fit = fit_logistic(data)?;
+    if fit.separated || resamples == 0 {
+        return Ok(fit);
+    }
+    let used = usable(data);
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+    let (mut bps, mut scales) = (Vec::new(), Vec::new());
+    for _ in 0..resamples {
+        let sample: Vec<ProbeCounts> = used
+            .iter()
+            .map(|d| {
+                let p = sigmoid((d.t - fit.bp) / fit.scale);
+                let long = (0..d.valid).filter(|_| rng.random::<f64>() < p).count() as u32;
+                ProbeCounts { long, ..*d }
+            })
+            .collect();
+        if let Ok(f) = fit_logistic(&sample) {
+            bps.push(f.bp);
+            scales.push(f.scale);
+        }
+    }
+    let interval = |v: &mut Vec<f64>| {
+        if v.len() < 10 {
+            return None;
+        }
+        v.sort_by(f64::total_cmp);
+        let q = |p: f64| v[((p * (v.len() - 1) as f64).round() as usize).min(v.len() - 1)];
+        Some((q((1.0 - level) / 2.0), q((1.0 + level) / 2.0)))
+    };
+    fit.bp_ci = interval(&mut bps);
+    fit.scale_ci = interval(&mut scales);
+    Ok(fit)
+}
+
+/// BP relative to the anchors' arithmetic and geometric means: `(BP/AM, BP/GM)`.
+pub fn bp_relative(bp: f64, short: f64, long: f64) -> (f64, f64) {
+    (bp / (0.5 * (short + long)), bp / (short * long).sqrt())
+}

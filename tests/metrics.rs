@@ -1,0 +1,158 @@
+//! Behavioural metrics with known answers: logistic-fit recovery and interval coverage,
+//! separated and degenerate data, first oven check on hand-built episodes, FOC statistics.
+
+use chronocooked_analysis::foc::linear_fit;
+use chronocooked_analysis::psychometric::bp_relative;
+use chronocooked_analysis::{
+    FitError, ProbeCounts, first_oven_check, fit_logistic, fit_with_ci, foc_stats, scalar_property,
+};
+use chronocooked_env::{Events, Info};
+use rand::{Rng, SeedableRng};
+use rand_xoshiro::Xoshiro256PlusPlus;
+
+fn simulate(bp: f64, s: f64, n: u32, rng: &mut Xoshiro256PlusPlus) -> Vec<ProbeCounts> {
+    (1..=16)
+        .map(|t| {
+            let p = 1.0 / (1.0 + (-(t as f64 - bp) / s).exp());
+            let long = (0..n).filter(|_| rng.random::<f64>() < p).count() as u32;
+            ProbeCounts {
+                t: t as f64,
+                valid: n,
+                long,
+                failed: 0,
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn logistic_fit_recovers_known_parameters_and_its_interval_covers() {
+    let (bp, s) = (7.3, 1.6);
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
+    let fit = fit_logistic(&simulate(bp, s, 2000, &mut rng)).unwrap();
+    assert!((fit.bp - bp).abs() < 0.1, "BP {}", fit.bp);
+    assert!((fit.scale - s).abs() < 0.1, "s {}", fit.scale);
+    assert!((fit.dl - s * 3f64.ln()).abs() < 0.15);
+    assert!((fit.t75 - fit.t25 - 2.0 * fit.dl).abs() < 1e-9);
+    assert!((fit.wf - fit.dl / fit.bp).abs() < 1e-12);
+    // Coverage of the 90% bootstrap interval of BP over repetitions (small samples).
+    let reps = 120;
+    let mut covered = 0;
+    for r in 0..reps {
+        let data = simulate(bp, s, 20, &mut rng);
+        let f = fit_with_ci(&data, 0.9, 200, r).unwrap();
+        let (lo, hi) = f.bp_ci.unwrap();
+        assert!(lo <= f.bp && f.bp <= hi);
+        if lo <= bp && bp <= hi {
+            covered += 1;
+        }
+    }
+    let rate = covered as f64 / reps as f64;
+    assert!((0.82..=0.97).contains(&rate), "coverage {rate}");
+    let (am, gm) = bp_relative(8.0, 4.0, 16.0);
+    assert!((am - 0.8).abs() < 1e-12 && (gm - 1.0).abs() < 1e-12);
+}
+
+#[test]
+fn separated_failed_and_one_sided_data_are_reported_not_crashed() {
+    // Oracle-like: all short up to 6, all long from 7.
+    let data: Vec<ProbeCounts> = (1..=16)
+        .map(|t| ProbeCounts {
+            t: t as f64,
+            valid: 8,
+            long: if t >= 7 { 8 } else { 0 },
+            failed: 0,
+        })
+        .collect();
+    let f = fit_logistic(&data).unwrap();
+    assert!(f.separated);
+    assert_eq!(f.bp, 6.5);
+    assert_eq!(f.wf, 0.0);
+    // A random agent that always goes long: no bisection point.
+    let all_long: Vec<ProbeCounts> = (1..=16)
+        .map(|t| ProbeCounts {
+            t: t as f64,
+            valid: 8,
+            long: 8,
+            failed: 0,
+        })
+        .collect();
+    assert_eq!(fit_logistic(&all_long), Err(FitError::NoTransition));
+    // More than half failed → NaN probe, excluded; too few probes left.
+    let failing: Vec<ProbeCounts> = (1..=16)
+        .map(|t| ProbeCounts {
+            t: t as f64,
+            valid: 3,
+            long: 1,
+            failed: if t == 3 { 1 } else { 5 },
+        })
+        .collect();
+    assert!(failing[0].p_long().is_nan());
+    assert!((failing[2].p_long() - 1.0 / 3.0).abs() < 1e-12);
+    assert_eq!(fit_logistic(&failing), Err(FitError::TooFewProbes(1)));
+}
+
+fn step(timer: i32, events: u16) -> Info {
+    Info {
+        timer_at_action: timer,
+        events: Events(events),
+        ..Info::default()
+    }
+}
+
+#[test]
+fn first_oven_check_follows_the_paper_definition() {
+    let check = Events::OVEN_CHECK;
+    let pickup = Events::OVEN_CHECK | Events::PICKUP;
+    // check at 3, wait (breaks the run), checks at 5, 6 and pickup at 7.
+    let actions = [1u8, 5, 0, 5, 5, 5, 4];
+    let infos = [
+        step(1, 0),
+        step(3, check),
+        step(4, 0),
+        step(5, check),
+        step(6, check),
+        step(7, pickup),
+        step(-1, 0),
+    ];
+    assert_eq!(first_oven_check(&actions, &infos), Some(5));
+    // A pickup on the first check: FOC = its timer.
+    assert_eq!(first_oven_check(&[5], &[step(12, pickup)]), Some(12));
+    // An interact elsewhere (no oven check) also breaks the run.
+    let actions = [5u8, 5, 5];
+    let infos = [step(4, check), step(5, Events::NO_EFFECT), step(6, pickup)];
+    assert_eq!(first_oven_check(&actions, &infos), Some(6));
+    // No pickup: no FOC.
+    assert_eq!(
+        first_oven_check(&[5, 5], &[step(1, check), step(2, check)]),
+        None
+    );
+}
+
+#[test]
+fn foc_statistics_show_the_scalar_property_on_scalar_data() {
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(3);
+    let groups: Vec<(u32, Vec<f64>)> = [4u32, 6, 9, 12, 18, 24]
+        .iter()
+        .map(|&td| {
+            let v = (0..4000)
+                .map(|_| {
+                    let z: f64 = (0..12).map(|_| rng.random::<f64>()).sum::<f64>() - 6.0;
+                    td as f64 * (1.0 + 0.2 * z)
+                })
+                .collect();
+            (td, v)
+        })
+        .collect();
+    let stats = foc_stats(&groups);
+    for s in &stats {
+        assert!((s.mean - s.td as f64).abs() < 0.05 * s.td as f64);
+        assert!((s.cv - 0.2).abs() < 0.01, "CV {}", s.cv);
+    }
+    let sp = scalar_property(&stats);
+    assert!(sp.r2_mean_vs_td > 0.999 && (sp.mean_slope - 1.0).abs() < 0.02);
+    assert!(sp.r2_sd_vs_mean > 0.99 && (sp.sd_slope - 0.2).abs() < 0.01);
+    let (m, b, r2) = linear_fit(&[1.0, 2.0, 3.0], &[3.0, 5.0, 7.0]);
+    assert!((m - 2.0).abs() < 1e-12 && (b - 1.0).abs() < 1e-12 && (r2 - 1.0).abs() < 1e-12);
+    assert!(foc_stats(&[(4, vec![])])[0].mean.is_nan());
+}
