@@ -3,12 +3,18 @@
 //!
 //! * [`foc`] — first oven check (the paper's FI measure), per-TD statistics, scalar property;
 //! * [`psychometric`] — bisection P(long), logistic fit by binomial maximum likelihood,
-//!   BP / T25 / T75 / DL / WF with bootstrap intervals.
+//!   BP / T25 / T75 / DL / WF with bootstrap intervals;
+//! * [`neural`] — ramping units, time cells, temporal information, sequentiality index;
+//! * [`decode`] — cross-validated ridge and Bayesian decoders of elapsed time.
 
+pub mod decode;
 pub mod foc;
+pub mod neural;
 pub mod psychometric;
 
+pub use decode::{DecodeResult, Decoder, decode_time};
 pub use foc::{
     FocStats, ScalarProperty, episode_foc, first_oven_check, foc_stats, scalar_property,
 };
+pub use neural::{Cube, classify_ramps, sequentiality_index, temporal_information, time_cells};
 pub use psychometric::{FitError, LogisticFit, ProbeCounts, fit_logistic, fit_with_ci};

@@ -1,0 +1,204 @@
+//! Elapsed-time decoding from population activity, cross-validated over trials.
+//!
+//! * ridge regression of time on the population vector (with intercept, features
+//!   standardised on the training folds, penalty `λ`);
+//! * Bayesian decoder: per time bin a Gaussian per unit (mean per bin, variance pooled over
+//!   bins, floored), flat prior over bins; the decoded time is the posterior mode.
+//!
+//! Folds are interleaved trials (`trial % folds`); samples with any NaN are skipped.
+
+use crate::neural::Cube;
+use serde::{Deserialize, Serialize};
+
+/// Which decoder.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Decoder {
+    /// Ridge regression.
+    Ridge,
+    /// Gaussian naive-Bayes posterior mode.
+    Bayes,
+}
+
+/// Decoding error vs time.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DecodeResult {
+    /// Decoder used.
+    pub decoder: Decoder,
+    /// Mean absolute error per time bin (NaN where no test sample).
+    pub error_by_time: Vec<f64>,
+    /// Mean absolute error over all test samples (steps).
+    pub mean_abs_error: f64,
+}
+
+fn samples(cube: &Cube, trials: &[usize]) -> (Vec<Vec<f64>>, Vec<usize>) {
+    let mut x = Vec::new();
+    let mut y = Vec::new();
+    for &k in trials {
+        for t in 0..cube.time {
+            let v: Vec<f64> = (0..cube.units).map(|i| cube.at(k, t, i)).collect();
+            if v.iter().all(|a| a.is_finite()) {
+                x.push(v);
+                y.push(t);
+            }
+        }
+    }
+    (x, y)
+}
+
+/// Solves the symmetric positive-definite system `a x = b` (Cholesky, in place).
+fn solve_spd(mut a: Vec<f64>, mut b: Vec<f64>, n: usize) -> Option<Vec<f64>> {
+    for j in 0..n {
+        let mut d = a[j * n + j];
+        for k in 0..j {
+            d -= a[j * n + k] * a[j * n + k];
+        }
+        if d <= 0.0 {
+            return None;
+        }
+        let d = d.sqrt();
+        a[j * n + j] = d;
+        for i in j + 1..n {
+            let mut s = a[i * n + j];
+            for k in 0..j {
+                s -= a[i * n + k] * a[j * n + k];
+            }
+            a[i * n + j] = s / d;
+        }
+    }
+    for i in 0..n {
+        let mut s = b[i];
+        for k in 0..i {
+            s -= a[i * n + k] * b[k];
+        }
+        b[i] = s / a[i * n + i];
+    }
+    for i in (0..n).rev() {
+        let mut s = b[i];
+        for k in i + 1..n {
+            s -= a[k * n + i] * b[k];
+        }
+        b[i] = s / a[i * n + i];
+    }
+    Some(b)
+}
+
+fn fit_ridge(x: &[Vec<f64>], y: &[usize], lambda: f64) -> Option<impl Fn(&[f64]) -> f64> {
+    let n = x.first()?.len();
+    let m = x.len() as f64;
+    let mean: Vec<f64> = (0..n)
+        .map(|i| x.iter().map(|r| r[i]).sum::<f64>() / m)
+        .collect();
+    let sd: Vec<f64> = (0..n)
+        .map(|i| {
+            let v = x.iter().map(|r| (r[i] - mean[i]).powi(2)).sum::<f64>() / m;
+            v.sqrt().max(1e-9)
+        })
+        .collect();
+    let ym = y.iter().map(|&v| v as f64).sum::<f64>() / m;
+    let mut a = vec![0.0; n * n];
+    let mut b = vec![0.0; n];
+    for (r, &t) in x.iter().zip(y) {
+        let z: Vec<f64> = (0..n).map(|i| (r[i] - mean[i]) / sd[i]).collect();
+        for i in 0..n {
+            b[i] += z[i] * (t as f64 - ym);
+            for j in 0..=i {
+                a[i * n + j] += z[i] * z[j];
+            }
+        }
+    }
+    for i in 0..n {
+        for j in 0..i {
+            a[j * n + i] = a[i * n + j];
+        }
+        a[i * n + i] += lambda;
+    }
+    let w = solve_spd(a, b, n)?;
+    Some(move |v: &[f64]| ym + (0..n).map(|i| w[i] * (v[i] - mean[i]) / sd[i]).sum::<f64>())
+}
+
+fn fit_bayes(x: &[Vec<f64>], y: &[usize], bins: usize) -> Option<impl Fn(&[f64]) -> f64> {
+    let n = x.first()?.len();
+    let mut mu = vec![0.0; bins * n];
+    let mut count = vec![0.0f64; bins];
+    for (r, &t) in x.iter().zip(y) {
+        count[t] += 1.0;
+        for i in 0..n {
+            mu[t * n + i] += r[i];
+        }
+    }
+    for t in 0..bins {
+        for i in 0..n {
+            mu[t * n + i] /= count[t].max(1.0);
+        }
+    }
+    let mut var = vec![0.0; n];
+    for (r, &t) in x.iter().zip(y) {
+        for i in 0..n {
+            var[i] += (r[i] - mu[t * n + i]).powi(2);
+        }
+    }
+    let spread: f64 = var.iter().sum::<f64>() / (x.len() * n) as f64;
+    let floor = (1e-3 * spread).max(1e-9);
+    let var: Vec<f64> = var
+        .iter()
+        .map(|v| (v / x.len() as f64).max(floor))
+        .collect();
+    Some(move |v: &[f64]| {
+        let mut best = (0usize, f64::NEG_INFINITY);
+        for t in 0..bins {
+            if count[t] == 0.0 {
+                continue;
+            }
+            let ll: f64 = (0..n)
+                .map(|i| -(v[i] - mu[t * n + i]).powi(2) / (2.0 * var[i]))
+                .sum();
+            if ll > best.1 {
+                best = (t, ll);
+            }
+        }
+        best.0 as f64
+    })
+}
+
+/// Cross-validated decoding of elapsed time (bins of `cube`) with `folds` folds.
+/// `lambda` is the ridge penalty (ignored by the Bayesian decoder).
+pub fn decode_time(cube: &Cube, decoder: Decoder, folds: usize, lambda: f64) -> DecodeResult {
+    let folds = folds.clamp(2, cube.trials.max(2));
+    let mut err = vec![0.0; cube.time];
+    let mut cnt = vec![0.0; cube.time];
+    for f in 0..folds {
+        let train: Vec<usize> = (0..cube.trials).filter(|k| k % folds != f).collect();
+        let test: Vec<usize> = (0..cube.trials).filter(|k| k % folds == f).collect();
+        let (xtr, ytr) = samples(cube, &train);
+        let (xte, yte) = samples(cube, &test);
+        if xtr.is_empty() || xte.is_empty() {
+            continue;
+        }
+        let predict: Box<dyn Fn(&[f64]) -> f64> = match decoder {
+            Decoder::Ridge => match fit_ridge(&xtr, &ytr, lambda) {
+                Some(p) => Box::new(p),
+                None => continue,
+            },
+            Decoder::Bayes => match fit_bayes(&xtr, &ytr, cube.time) {
+                Some(p) => Box::new(p),
+                None => continue,
+            },
+        };
+        for (v, &t) in xte.iter().zip(&yte) {
+            err[t] += (predict(v) - t as f64).abs();
+            cnt[t] += 1.0;
+        }
+    }
+    let total: f64 = err.iter().sum();
+    let n: f64 = cnt.iter().sum();
+    DecodeResult {
+        decoder,
+        error_by_time: err
+            .iter()
+            .zip(&cnt)
+            .map(|(e, c)| if *c > 0.0 { e / c } else { f64::NAN })
+            .collect(),
+        mean_abs_error: if n > 0.0 { total / n } else { f64::NAN },
+    }
+}

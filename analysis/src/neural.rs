@@ -1,0 +1,399 @@
+//! Neural metrics on recorded activity aligned to an event (usually oven-on):
+//! ramping units, time cells, temporal information, sequentiality index and elapsed-time
+//! decoding (cross-validated ridge and Bayesian decoders).
+//!
+//! Input is a [`Cube`]: `[trials, time, units]`, NaN where a trial had ended (as produced by
+//! `ActivityDataset::aligned`).
+
+use crate::foc::linear_fit;
+use rand::{Rng, SeedableRng};
+use rand_xoshiro::Xoshiro256PlusPlus;
+use serde::{Deserialize, Serialize};
+
+/// Activity `[trials, time, units]` row-major; NaN = missing.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Cube {
+    /// Trials.
+    pub trials: usize,
+    /// Time bins (steps).
+    pub time: usize,
+    /// Units.
+    pub units: usize,
+    /// Values.
+    pub data: Vec<f64>,
+}
+
+impl Cube {
+    /// From an aligned `f32` buffer.
+    pub fn from_f32(data: &[f32], trials: usize, time: usize, units: usize) -> Self {
+        Cube {
+            trials,
+            time,
+            units,
+            data: data.iter().map(|&v| f64::from(v)).collect(),
+        }
+    }
+
+    /// Value at (trial, t, unit).
+    pub fn at(&self, k: usize, t: usize, i: usize) -> f64 {
+        self.data[(k * self.time + t) * self.units + i]
+    }
+
+    /// Trial average `[time, units]` over `trials` (NaN ignored; NaN where no trial has data).
+    pub fn average_over(&self, trials: impl Iterator<Item = usize> + Clone) -> Vec<f64> {
+        let mut out = vec![f64::NAN; self.time * self.units];
+        for t in 0..self.time {
+            for i in 0..self.units {
+                let (mut s, mut n) = (0.0, 0);
+                for k in trials.clone() {
+                    let v = self.at(k, t, i);
+                    if v.is_finite() {
+                        s += v;
+                        n += 1;
+                    }
+                }
+                if n > 0 {
+                    out[t * self.units + i] = s / n as f64;
+                }
+            }
+        }
+        out
+    }
+
+    /// Trial average over all trials `[time, units]`.
+    pub fn average(&self) -> Vec<f64> {
+        self.average_over(0..self.trials)
+    }
+}
+
+/// Column `i` of a `[time, units]` matrix, keeping only finite values with their times.
+fn unit_series(avg: &[f64], units: usize, i: usize) -> (Vec<f64>, Vec<f64>) {
+    avg.chunks_exact(units)
+        .enumerate()
+        .filter(|(_, row)| row[i].is_finite())
+        .map(|(t, row)| (t as f64, row[i]))
+        .unzip()
+}
+
+/// Regularised incomplete beta `I_x(a, b)` (continued fraction, Numerical-Recipes style
+/// derivation from the Lentz algorithm).
+fn incomplete_beta(x: f64, a: f64, b: f64) -> f64 {
+    if x <= 0.0 {
+        return 0.0;
+    }
+    if x >= 1.0 {
+        return 1.0;
+    }
+    let ln_beta = ln_gamma(a) + ln_gamma(b) - ln_gamma(a + b);
+    let front = (a * x.ln() + b * (1.0 - x).ln() - ln_beta).exp();
+    let cf = |a: f64, b: f64, x: f64| {
+        let tiny = 1e-300;
+        let (mut c, mut d) = (1.0, 1.0 - (a + b) * x / (a + 1.0));
+        if d.abs() < tiny {
+            d = tiny;
+        }
+        d = 1.0 / d;
+        let mut h = d;
+        for m in 1..300 {
+            let m = m as f64;
+            let num = m * (b - m) * x / ((a + 2.0 * m - 1.0) * (a + 2.0 * m));
+            d = 1.0 + num * d;
+            d = if d.abs() < tiny { 1.0 / tiny } else { 1.0 / d };
+            c = 1.0 + num / c;
+            if c.abs() < tiny {
+                c = tiny;
+            }
+            h *= d * c;
+            let num = -(a + m) * (a + b + m) * x / ((a + 2.0 * m) * (a + 2.0 * m + 1.0));
+            d = 1.0 + num * d;
+            d = if d.abs() < tiny { 1.0 / tiny } else { 1.0 / d };
+            c = 1.0 + num / c;
+            if c.abs() < tiny {
+                c = tiny;
+            }
+            let del = d * c;
+            h *= del;
+            if (del - 1.0).abs() < 1e-14 {
+                break;
+            }
+        }
+        h
+    };
+    if x < (a + 1.0) / (a + b + 2.0) {
+        front * cf(a, b, x) / a
+    } else {
+        1.0 - front * cf(b, a, 1.0 - x) / b
+    }
+}
+
+/// `ln Γ(x)` (Lanczos, g = 7).
+fn ln_gamma(x: f64) -> f64 {
+    const C: [f64; 9] = [
+        0.999_999_999_999_809_9,
+        676.520_368_121_885_1,
+        -1_259.139_216_722_402_8,
+        771.323_428_777_653_1,
+        -176.615_029_162_140_6,
+        12.507_343_278_686_905,
+        -0.138_571_095_265_720_12,
+        9.984_369_578_019_572e-6,
+        1.505_632_735_149_311_6e-7,
+    ];
+    if x < 0.5 {
+        let pi = std::f64::consts::PI;
+        return (pi / (pi * x).sin()).ln() - ln_gamma(1.0 - x);
+    }
+    let x = x - 1.0;
+    let mut a = C[0];
+    let t = x + 7.5;
+    for (i, c) in C.iter().enumerate().skip(1) {
+        a += c / (x + i as f64);
+    }
+    0.5 * (2.0 * std::f64::consts::PI).ln() + (x + 0.5) * t.ln() - t + a.ln()
+}
+
+/// Two-sided p-value of a Pearson correlation `r` over `n` points (Student t, n − 2 df).
+pub fn correlation_p(r: f64, n: usize) -> f64 {
+    if n < 3 || !r.is_finite() {
+        return f64::NAN;
+    }
+    if r.abs() >= 1.0 {
+        return 0.0;
+    }
+    let df = (n - 2) as f64;
+    let t2 = r * r * df / (1.0 - r * r);
+    incomplete_beta(df / (df + t2), 0.5 * df, 0.5)
+}
+
+/// Ramp classification of one unit.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RampUnit {
+    /// Unit index.
+    pub unit: usize,
+    /// Pearson r of trial-averaged activity vs time.
+    pub r: f64,
+    /// OLS slope (activity per step).
+    pub slope: f64,
+    /// Two-sided p of r.
+    pub p: f64,
+    /// `|r| ≥ r_min` and `p ≤ p_max`.
+    pub ramping: bool,
+}
+
+/// Ramping units (SPEC §4: OLS of trial-averaged activity vs time, `|r| ≥ 0.9`, `p ≤ 0.05`)
+/// of a `[time, units]` average.
+pub fn classify_ramps(avg: &[f64], units: usize, r_min: f64, p_max: f64) -> Vec<RampUnit> {
+    (0..units)
+        .map(|i| {
+            let (t, y) = unit_series(avg, units, i);
+            let (slope, _, r2) = linear_fit(&t, &y);
+            let r = r2.sqrt() * slope.signum();
+            let p = correlation_p(r, t.len());
+            RampUnit {
+                unit: i,
+                r,
+                slope,
+                p,
+                ramping: r.abs() >= r_min && p <= p_max,
+            }
+        })
+        .collect()
+}
+
+/// Min–max normalised copy of every unit's series (constant units → all 0).
+fn normalise_units(avg: &[f64], units: usize) -> Vec<f64> {
+    let mut out = avg.to_vec();
+    for i in 0..units {
+        let col = avg.iter().skip(i).step_by(units).filter(|v| v.is_finite());
+        let (lo, hi) = col.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
+        for v in out.iter_mut().skip(i).step_by(units) {
+            *v = if v.is_finite() && hi > lo {
+                (*v - lo) / (hi - lo)
+            } else {
+                0.0
+            };
+        }
+    }
+    out
+}
+
+fn entropy(p: impl Iterator<Item = f64>) -> f64 {
+    -p.filter(|&x| x > 0.0).map(|x| x * x.ln()).sum::<f64>()
+}
+
+/// Sequentiality index (Zhou, Masmanidis & Buonomano 2020): `√(PE × TS)` on the
+/// `[time, units]` average with each unit min–max normalised. PE = entropy of the
+/// distribution of peak times over the `M` time bins / ln M; TS = mean over time of
+/// `1 − H(activity across units at t)/ln N`. 1 for a one-hot sequence tiling the window
+/// (N = M), ≈ 0 when all units peak together (identical ramps).
+pub fn sequentiality_index(avg: &[f64], units: usize) -> f64 {
+    let time = avg.len() / units.max(1);
+    if time < 2 || units < 2 {
+        return f64::NAN;
+    }
+    let a = normalise_units(avg, units);
+    let mut counts = vec![0.0; time];
+    let mut active = 0.0;
+    for i in 0..units {
+        let col: Vec<f64> = a.iter().skip(i).step_by(units).copied().collect();
+        if col.iter().all(|&v| v <= 0.0) {
+            continue;
+        }
+        let peak = col
+            .iter()
+            .enumerate()
+            .fold(
+                (0, f64::NEG_INFINITY),
+                |b, (t, &v)| if v > b.1 { (t, v) } else { b },
+            )
+            .0;
+        counts[peak] += 1.0;
+        active += 1.0;
+    }
+    if active == 0.0 {
+        return 0.0;
+    }
+    let pe = entropy(counts.iter().map(|c| c / active)) / (time as f64).ln();
+    let ts = a
+        .chunks_exact(units)
+        .map(|row| {
+            let s: f64 = row.iter().sum();
+            if s <= 0.0 {
+                return 1.0;
+            }
+            1.0 - entropy(row.iter().map(|v| v / s)) / (units as f64).ln()
+        })
+        .sum::<f64>()
+        / time as f64;
+    (pe * ts).max(0.0).sqrt()
+}
+
+/// Temporal (Skaggs) information per unit, bits per step-bin: `Σ_t (1/T)(λ_t/λ̄) log₂(λ_t/λ̄)`
+/// on the min–max normalised average.
+pub fn temporal_information(avg: &[f64], units: usize) -> Vec<f64> {
+    let a = normalise_units(avg, units);
+    let time = a.len() / units.max(1);
+    (0..units)
+        .map(|i| {
+            let col: Vec<f64> = a.iter().skip(i).step_by(units).copied().collect();
+            let mean = col.iter().sum::<f64>() / time as f64;
+            if mean <= 0.0 {
+                return 0.0;
+            }
+            col.iter()
+                .filter(|&&v| v > 0.0)
+                .map(|&v| (v / mean) * (v / mean).log2() / time as f64)
+                .sum()
+        })
+        .collect()
+}
+
+/// Time-cell classification of one unit.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TimeCellUnit {
+    /// Unit index.
+    pub unit: usize,
+    /// Peak time of the trial average (steps after the event).
+    pub peak_time: usize,
+    /// Ridge-to-background ratio: mean activity within ±`half_width` of the peak over the
+    /// mean elsewhere (normalised activity).
+    pub ratio: f64,
+    /// Fraction of circular-shift shuffles with a ratio at least as large.
+    pub p: f64,
+    /// Correlation of the odd-trial and even-trial averages.
+    pub reliability: f64,
+    /// `p < 0.05` and reliability > 0.5.
+    pub time_cell: bool,
+}
+
+fn ridge_ratio(col: &[f64], half_width: usize) -> (usize, f64) {
+    let peak = col
+        .iter()
+        .enumerate()
+        .fold(
+            (0, f64::NEG_INFINITY),
+            |b, (t, &v)| if v > b.1 { (t, v) } else { b },
+        )
+        .0;
+    let (mut ridge, mut nr, mut back, mut nb) = (0.0, 0, 0.0, 0);
+    for (t, &v) in col.iter().enumerate() {
+        if t.abs_diff(peak) <= half_width {
+            ridge += v;
+            nr += 1;
+        } else {
+            back += v;
+            nb += 1;
+        }
+    }
+    let back = if nb > 0 { back / nb as f64 } else { 0.0 };
+    (peak, (ridge / nr.max(1) as f64) / back.max(1e-9))
+}
+
+/// Time cells: ridge-to-background ratio against `shuffles` circular shifts of every trial
+/// (seeded), plus odd/even reliability. Missing (NaN) values count as 0 after normalisation.
+pub fn time_cells(cube: &Cube, half_width: usize, shuffles: usize, seed: u64) -> Vec<TimeCellUnit> {
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+    let nt = cube.time;
+    (0..cube.units)
+        .map(|i| {
+            let series = |k: usize| -> Vec<f64> {
+                (0..nt)
+                    .map(|t| cube.at(k, t, i))
+                    .map(|v| if v.is_finite() { v } else { 0.0 })
+                    .collect()
+            };
+            let trials: Vec<Vec<f64>> = (0..cube.trials).map(series).collect();
+            let (lo, hi) = trials
+                .iter()
+                .flatten()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+                    (a.min(v), b.max(v))
+                });
+            let span = (hi - lo).max(1e-12);
+            let norm: Vec<Vec<f64>> = trials
+                .iter()
+                .map(|s| s.iter().map(|v| (v - lo) / span).collect())
+                .collect();
+            let avg = |sel: &mut dyn Iterator<Item = &Vec<f64>>| {
+                let mut acc = vec![0.0; nt];
+                let mut n = 0.0f64;
+                for s in sel {
+                    acc.iter_mut().zip(s).for_each(|(a, v)| *a += v);
+                    n += 1.0;
+                }
+                acc.iter_mut().for_each(|a| *a /= n.max(1.0));
+                acc
+            };
+            let mean = avg(&mut norm.iter());
+            let (peak_time, ratio) = ridge_ratio(&mean, half_width);
+            let mut exceed = 0;
+            for _ in 0..shuffles {
+                let shifted: Vec<Vec<f64>> = norm
+                    .iter()
+                    .map(|s| {
+                        let k = rng.random_range(0..nt);
+                        (0..nt).map(|t| s[(t + k) % nt]).collect()
+                    })
+                    .collect();
+                if ridge_ratio(&avg(&mut shifted.iter()), half_width).1 >= ratio {
+                    exceed += 1;
+                }
+            }
+            let p = (exceed as f64 + 1.0) / (shuffles as f64 + 1.0);
+            let odd = avg(&mut norm.iter().skip(1).step_by(2));
+            let even = avg(&mut norm.iter().step_by(2));
+            let (slope, _, r2) = linear_fit(&odd, &even);
+            let reliability = r2.sqrt() * slope.signum();
+            TimeCellUnit {
+                unit: i,
+                peak_time,
+                ratio,
+                p,
+                reliability,
+                time_cell: p < 0.05 && reliability > 0.5,
+            }
+        })
+        .collect()
+}
