@@ -161,6 +161,9 @@ fn fit_bayes(x: &[Vec<f64>], y: &[usize], bins: usize) -> Option<impl Fn(&[f64])
     })
 }
 
+/// A fitted decoder: population vector → decoded time (steps).
+type Predictor = Box<dyn Fn(&[f64]) -> f64>;
+
 /// Cross-validated decoding of elapsed time (bins of `cube`) with `folds` folds.
 /// `lambda` is the ridge penalty (ignored by the Bayesian decoder).
 pub fn decode_time(cube: &Cube, decoder: Decoder, folds: usize, lambda: f64) -> DecodeResult {
@@ -175,7 +178,7 @@ pub fn decode_time(cube: &Cube, decoder: Decoder, folds: usize, lambda: f64) -> 
         if xtr.is_empty() || xte.is_empty() {
             continue;
         }
-        let predict: Box<dyn Fn(&[f64]) -> f64> = match decoder {
+        let predict: Predictor = match decoder {
             Decoder::Ridge => match fit_ridge(&xtr, &ytr, lambda) {
                 Some(p) => Box::new(p),
                 None => continue,
