@@ -162,7 +162,7 @@ fn fit_bayes(x: &[Vec<f64>], y: &[usize], bins: usize) -> Option<impl Fn(&[f64])
 }
 
 /// A fitted decoder: population vector → decoded time (steps).
-type Predictor = Box<dyn Fn(&[f64]) -> f64>;
+type Predictor<'a> = Box<dyn Fn(&[f64]) -> f64 + 'a>;
 
 /// Cross-validated decoding of elapsed time (bins of `cube`) with `folds` folds.
 /// `lambda` is the ridge penalty (ignored by the Bayesian decoder).
