@@ -49,6 +49,14 @@ fn logistic_fit_recovers_known_parameters_and_its_interval_covers() {
     }
     let rate = covered as f64 / reps as f64;
     assert!((0.82..=0.97).contains(&rate), "coverage {rate}");
+    // A real transition is significant; flat random choices are not.
+    let strong = simulate(bp, s, 20, &mut rng);
+    let f = fit_logistic(&strong).unwrap();
+    assert!(chronocooked_analysis::psychometric::transition_p_value(&strong, &f) < 1e-6);
+    let flat = simulate(bp, 1e6, 20, &mut rng);
+    if let Ok(f) = fit_logistic(&flat) {
+        assert!(chronocooked_analysis::psychometric::transition_p_value(&flat, &f) > 0.001);
+    }
     let (am, gm) = bp_relative(8.0, 4.0, 16.0);
     assert!((am - 0.8).abs() < 1e-12 && (gm - 1.0).abs() < 1e-12);
 }

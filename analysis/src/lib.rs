@@ -5,16 +5,22 @@
 //! * [`psychometric`] — bisection P(long), logistic fit by binomial maximum likelihood,
 //!   BP / T25 / T75 / DL / WF with bootstrap intervals;
 //! * [`neural`] — ramping units, time cells, temporal information, sequentiality index;
-//! * [`decode`] — cross-validated ridge and Bayesian decoders of elapsed time.
+//! * [`decode`] — cross-validated ridge and Bayesian decoders of elapsed time;
+//! * [`protocol`] — evaluation conditions per task and the runner (any agent);
+//! * [`metrics`] — behavioural metrics of an evaluation from its per-episode records.
 
 pub mod decode;
 pub mod foc;
+pub mod metrics;
 pub mod neural;
+pub mod protocol;
 pub mod psychometric;
 
 pub use decode::{DecodeResult, Decoder, decode_time};
 pub use foc::{
     FocStats, ScalarProperty, episode_foc, first_oven_check, foc_stats, scalar_property,
 };
+pub use metrics::{Metrics, compute_metrics};
 pub use neural::{Cube, classify_ramps, sequentiality_index, temporal_information, time_cells};
+pub use protocol::{Condition, EvalRecord, Mode, reference_conditions, run_protocol};
 pub use psychometric::{FitError, LogisticFit, ProbeCounts, fit_logistic, fit_with_ci};

@@ -31,6 +31,74 @@ pub trait Agent {
 
     /// Switches learning and exploration on (training) or off (evaluation: greedy).
     fn set_training(&mut self, _on: bool) {}
+
+    /// Stochastic evaluation: sample actions from the policy instead of taking the most
+    /// probable one, without learning (models whose behaviour is noisy anyway ignore it).
+    fn set_sampling(&mut self, _on: bool) {}
+
+    /// Hidden state before each action — only for reference policies (the oracle);
+    /// agents that model timing must not override this.
+    fn observe_state(&mut self, _state: &chronocooked_env::KitchenState) {}
+}
+
+/// The optimal scripted policy of the env crate as an agent (reads the hidden state; a
+/// reference for the metrics, not a model).
+#[derive(Debug, Clone)]
+pub struct OracleAgent {
+    oracle: chronocooked_env::Oracle,
+    state: Option<chronocooked_env::KitchenState>,
+}
+
+impl OracleAgent {
+    /// The oracle of `env`'s task.
+    pub fn new(env: &ChronoEnv) -> Self {
+        OracleAgent {
+            oracle: chronocooked_env::Oracle::new(env),
+            state: None,
+        }
+    }
+}
+
+impl Agent for OracleAgent {
+    fn name(&self) -> String {
+        "oracle".into()
+    }
+    fn begin_episode(&mut self, _obs: &[u8], _seed: u64) {}
+    fn act(&mut self, _obs: &[u8]) -> Action {
+        self.state
+            .as_ref()
+            .map_or(Action::Wait, |s| self.oracle.act(s))
+    }
+    fn observe_state(&mut self, state: &chronocooked_env::KitchenState) {
+        self.state = Some(*state);
+    }
+}
+
+/// Uniformly random actions (seeded per episode): the chance baseline.
+#[derive(Debug, Clone)]
+pub struct RandomAgent {
+    rng: rand_xoshiro::Xoshiro256PlusPlus,
+}
+
+impl Default for RandomAgent {
+    fn default() -> Self {
+        RandomAgent {
+            rng: rand::SeedableRng::seed_from_u64(0),
+        }
+    }
+}
+
+impl Agent for RandomAgent {
+    fn name(&self) -> String {
+        "random".into()
+    }
+    fn begin_episode(&mut self, _obs: &[u8], seed: u64) {
+        self.rng = rand::SeedableRng::seed_from_u64(seed);
+    }
+    fn act(&mut self, _obs: &[u8]) -> Action {
+        use rand::Rng;
+        Action::ALL[self.rng.random_range(0..Action::COUNT)]
+    }
 }
 
 /// What the agent can read off a codes observation: position, hands, visible oven.
@@ -151,6 +219,7 @@ pub fn run_episode(
         infos: Vec::new(),
     };
     loop {
+        agent.observe_state(&env.state());
         let action = agent.act(env.obs_codes());
         if let Some(r) = recorder.as_deref_mut() {
             agent.record(r.step_recorder());

@@ -106,4 +106,8 @@ impl Agent for PpoAgent {
     fn set_training(&mut self, on: bool) {
         self.sample = on;
     }
+
+    fn set_sampling(&mut self, on: bool) {
+        self.sample = on;
+    }
 }

@@ -1,0 +1,305 @@
+//! Behavioural metrics of an evaluation, computed from per-episode records alone (so they can
+//! be recomputed without rerunning agents: same records → same JSON).
+
+use crate::foc::{FocStats, ScalarProperty, episode_foc, foc_stats, scalar_property};
+use crate::protocol::EvalRecord;
+use crate::psychometric::{LogisticFit, ProbeCounts, bp_relative, fit_with_ci, transition_p_value};
+use chronocooked_env::{Counter, Events, TaskParams, make_config};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// Summary of one condition.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ConditionSummary {
+    /// Condition kind.
+    pub kind: String,
+    /// Task id played.
+    pub task: String,
+    /// TD (steps).
+    pub td: u32,
+    /// PI factor / buffer fraction.
+    pub factor: Option<f64>,
+    /// Uncertainty: never-ready episodes.
+    pub never_ready: Option<bool>,
+    /// Episodes.
+    pub episodes: usize,
+    /// Full-reward deliveries / episodes.
+    pub success_rate: f64,
+    /// Mean episode reward.
+    pub mean_reward: f64,
+    /// Mean oven-off (pickup) timer over episodes with a pickup (NaN if none).
+    pub mean_oven_off: f64,
+}
+
+/// Bisection metrics.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct BisectionMetrics {
+    /// Short anchor S.
+    pub short: u32,
+    /// Long anchor L.
+    pub long: u32,
+    /// Counts per probe, in probe order.
+    pub probes: Vec<ProbeCounts>,
+    /// P(long) per probe (NaN: excluded by the >50%-failed rule).
+    pub p_long: Vec<f64>,
+    /// Correct choices on the two anchors among valid episodes.
+    pub anchor_accuracy: f64,
+    /// The logistic fit (with 95% bootstrap intervals), when it could be made.
+    pub fit: Option<LogisticFit>,
+    /// Why the fit failed, when it did.
+    pub fit_error: Option<String>,
+    /// BP / arithmetic mean of the anchors.
+    pub bp_over_am: Option<f64>,
+    /// BP / geometric mean of the anchors.
+    pub bp_over_gm: Option<f64>,
+}
+
+/// Fixed-interval metrics.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FiMetrics {
+    /// FOC statistics per TD.
+    pub foc: Vec<FocStats>,
+    /// Regressions across TDs (meaningful with ≥ 2 TDs).
+    pub scalar: ScalarProperty,
+}
+
+/// Peak-interval response curve of one probe factor.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PiCurve {
+    /// Release factor (soup at factor × TD; 0 = never).
+    pub factor: f64,
+    /// Trained TD.
+    pub td: u32,
+    /// Oven checks per episode at each oven time 0, 1, … (among episodes whose oven was
+    /// running then).
+    pub rate: Vec<f64>,
+}
+
+/// Everything computed from one evaluation.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Metrics {
+    /// Model name.
+    pub model: String,
+    /// Episodes.
+    pub episodes: usize,
+    /// Full-reward deliveries over all episodes.
+    pub success_rate: f64,
+    /// Per-condition summaries.
+    pub conditions: Vec<ConditionSummary>,
+    /// FI (when FI conditions were played).
+    pub fi: Option<FiMetrics>,
+    /// Bisection (when bisection conditions were played).
+    pub bisection: Option<BisectionMetrics>,
+    /// PI curves.
+    pub pi: Vec<PiCurve>,
+}
+
+fn mean(v: impl Iterator<Item = f64>) -> f64 {
+    let (s, n) = v.fold((0.0, 0usize), |(s, n), x| (s + x, n + 1));
+    if n == 0 { f64::NAN } else { s / n as f64 }
+}
+
+fn oven_off(r: &EvalRecord) -> Option<f64> {
+    r.episode
+        .infos
+        .iter()
+        .find(|i| i.events.has(Events::PICKUP))
+        .map(|i| f64::from(i.timer_at_action))
+}
+
+/// Computes the metrics of `records` (bootstrap intervals seeded by `seed`).
+pub fn compute_metrics(model: &str, records: &[EvalRecord], seed: u64) -> Metrics {
+    // Conditions in first-seen order.
+    let mut groups: Vec<(String, Vec<&EvalRecord>)> = Vec::new();
+    for r in records {
+        let key = serde_json::to_string(&r.condition).unwrap_or_default();
+        match groups.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, v)) => v.push(r),
+            None => groups.push((key, vec![r])),
+        }
+    }
+    let conditions = groups
+        .iter()
+        .map(|(_, v)| {
+            let c = &v[0].condition;
+            ConditionSummary {
+                kind: c.kind.clone(),
+                task: c.task.clone(),
+                td: c.td,
+                factor: c.factor,
+                never_ready: c.never_ready,
+                episodes: v.len(),
+                success_rate: mean(v.iter().map(|r| f64::from(u8::from(r.episode.success)))),
+                mean_reward: mean(v.iter().map(|r| f64::from(r.episode.reward))),
+                mean_oven_off: mean(v.iter().filter_map(|r| oven_off(r))),
+            }
+        })
+        .collect();
+    Metrics {
+        model: model.to_string(),
+        episodes: records.len(),
+        success_rate: mean(
+            records
+                .iter()
+                .map(|r| f64::from(u8::from(r.episode.success))),
+        ),
+        conditions,
+        fi: fi_metrics(records),
+        bisection: bisection_metrics(records, seed),
+        pi: pi_curves(records),
+    }
+}
+
+fn fi_metrics(records: &[EvalRecord]) -> Option<FiMetrics> {
+    let mut by_td: BTreeMap<u32, Vec<f64>> = BTreeMap::new();
+    for r in records.iter().filter(|r| r.condition.kind == "fi") {
+        let v = by_td.entry(r.condition.td).or_default();
+        if let Some(f) = episode_foc(&r.episode) {
+            v.push(f64::from(f));
+        }
+    }
+    if by_td.is_empty() {
+        return None;
+    }
+    let groups: Vec<(u32, Vec<f64>)> = by_td.into_iter().collect();
+    let foc = foc_stats(&groups);
+    let scalar = scalar_property(&foc);
+    Some(FiMetrics { foc, scalar })
+}
+
+fn bisection_metrics(records: &[EvalRecord], seed: u64) -> Option<BisectionMetrics> {
+    let bis: Vec<&EvalRecord> = records
+        .iter()
+        .filter(|r| r.condition.kind == "bisection")
+        .collect();
+    let first = bis.first()?;
+    let (short, long) = match make_config(&first.condition.task, &first.condition.env)
+        .ok()?
+        .params
+    {
+        TaskParams::Bisection { short, long } => (short, long),
+        _ => return None,
+    };
+    let mut counts: BTreeMap<u32, ProbeCounts> = BTreeMap::new();
+    for r in &bis {
+        let c = counts.entry(r.condition.td).or_insert(ProbeCounts {
+            t: f64::from(r.condition.td),
+            valid: 0,
+            long: 0,
+            failed: 0,
+        });
+        let delivered = r
+            .episode
+            .infos
+            .iter()
+            .find(|i| i.events.has(Events::DELIVERY))
+            .and_then(|i| i.counter);
+        match delivered {
+            Some(Counter::Long) => {
+                c.valid += 1;
+                c.long += 1;
+            }
+            Some(_) => c.valid += 1,
+            None => c.failed += 1,
+        }
+    }
+    let probes: Vec<ProbeCounts> = counts.into_values().collect();
+    let p_long = probes.iter().map(ProbeCounts::p_long).collect();
+    let anchor = |t: u32, want_long: bool| {
+        probes
+            .iter()
+            .find(|p| p.t == f64::from(t))
+            .map(|p| (if want_long { p.long } else { p.valid - p.long }, p.valid))
+    };
+    let (mut right, mut total) = (0, 0);
+    for (t, l) in [(short, false), (long, true)] {
+        if let Some((a, b)) = anchor(t, l) {
+            right += a;
+            total += b;
+        }
+    }
+    let tmin = probes.first().map_or(0.0, |p| p.t);
+    let tmax = probes.last().map_or(0.0, |p| p.t);
+    let (fit, fit_error) = match fit_with_ci(&probes, 0.95, 500, seed) {
+        Ok(f) => {
+            // A fit only counts when the transition is real: rising, significant against a
+            // flat P(long) (likelihood ratio, p ≤ 0.05), with BP inside the probed range.
+            let p = transition_p_value(&probes, &f);
+            if f.scale < 0.0 || p > 0.05 || f.bp < tmin || f.bp > tmax {
+                (
+                    None,
+                    Some(format!(
+                        "no reliable psychometric transition (BP {:.2}, scale {:.2}, likelihood-ratio p = {:.3})",
+                        f.bp, f.scale, p
+                    )),
+                )
+            } else {
+                (Some(f), None)
+            }
+        }
+        Err(e) => (None, Some(e.to_string())),
+    };
+    let rel = fit
+        .as_ref()
+        .map(|f| bp_relative(f.bp, f64::from(short), f64::from(long)));
+    Some(BisectionMetrics {
+        short,
+        long,
+        probes,
+        p_long,
+        anchor_accuracy: if total > 0 {
+            f64::from(right) / f64::from(total)
+        } else {
+            f64::NAN
+        },
+        fit,
+        fit_error,
+        bp_over_am: rel.map(|r| r.0),
+        bp_over_gm: rel.map(|r| r.1),
+    })
+}
+
+fn pi_curves(records: &[EvalRecord]) -> Vec<PiCurve> {
+    let mut out: Vec<PiCurve> = Vec::new();
+    let mut denom: Vec<Vec<f64>> = Vec::new();
+    for r in records.iter().filter(|r| r.condition.kind == "pi") {
+        let factor = r.condition.factor.unwrap_or(0.0);
+        let idx = match out
+            .iter()
+            .position(|c| c.factor == factor && c.td == r.condition.td)
+        {
+            Some(i) => i,
+            None => {
+                out.push(PiCurve {
+                    factor,
+                    td: r.condition.td,
+                    rate: Vec::new(),
+                });
+                denom.push(Vec::new());
+                out.len() - 1
+            }
+        };
+        for (a, info) in r.episode.actions.iter().zip(&r.episode.infos) {
+            if info.timer_at_action < 0 {
+                continue;
+            }
+            let t = info.timer_at_action as usize;
+            let curve = &mut out[idx].rate;
+            if curve.len() <= t {
+                curve.resize(t + 1, 0.0);
+                denom[idx].resize(t + 1, 0.0);
+            }
+            denom[idx][t] += 1.0;
+            if *a == 5 && info.events.has(Events::OVEN_CHECK) {
+                curve[t] += 1.0;
+            }
+        }
+    }
+    for (c, d) in out.iter_mut().zip(&denom) {
+        c.rate
+            .iter_mut()
+            .zip(d)
+            .for_each(|(v, n)| *v = if *n > 0.0 { *v / n } else { f64::NAN });
+    }
+    out
+}

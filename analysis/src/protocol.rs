@@ -1,0 +1,185 @@
+//! Evaluation protocols (SPEC §4): the conditions each task is tested under and the runner
+//! that plays them with any [`Agent`].
+//!
+//! Reference protocol: greedy policy, one episode per free start cell per condition.
+//! Stochastic variant: `N` episodes per condition from uniformly drawn start cells, actions
+//! sampled from the policy, seeded. Conditions per trained task:
+//! * FI: the trained TD, plus peak-interval probes with the soup released at 2× and 5× TD;
+//! * bisection: probe durations 1 … L+4;
+//! * multi-timer: every TD 1 … max(trained)+3 (OOD included), and for every trained TD the
+//!   exact-timer buffers 0, 25, 50, 75% of TD;
+//! * dual: the trained TD; uncertainty: normal and never-ready episodes.
+
+use chronocooked_env::{
+    ChronoEnv, EnvError, ResetOptions, TaskConfig, TaskParams, derive_seed, make_config,
+};
+use chronocooked_models::{Agent, EpisodeRecord, run_episode};
+use rand::{Rng, SeedableRng};
+use rand_xoshiro::Xoshiro256PlusPlus;
+use serde::{Deserialize, Serialize};
+
+/// One evaluation condition.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Condition {
+    /// What this condition measures: `fi`, `pi`, `bisection`, `multi_timer`, `buffer`,
+    /// `dual`, `uncertainty`.
+    pub kind: String,
+    /// Task id played.
+    pub task: String,
+    /// Task overrides.
+    pub env: Vec<String>,
+    /// Target duration of the episodes (steps).
+    pub td: u32,
+    /// Uncertainty: force never-ready episodes (true) or normal ones (false).
+    pub never_ready: Option<bool>,
+    /// PI: release factor; multi-timer buffers: buffer as a fraction of TD.
+    pub factor: Option<f64>,
+}
+
+/// One evaluated episode with its condition.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EvalRecord {
+    /// Condition.
+    pub condition: Condition,
+    /// Episode.
+    pub episode: EpisodeRecord,
+}
+
+fn cond(kind: &str, task: &str, env: Vec<String>, td: u32) -> Condition {
+    Condition {
+        kind: kind.into(),
+        task: task.into(),
+        env,
+        td,
+        never_ready: None,
+        factor: None,
+    }
+}
+
+/// The reference conditions for an agent trained on `task` with overrides `env`.
+pub fn reference_conditions(task: &str, env: &[String]) -> Result<Vec<Condition>, EnvError> {
+    let config = make_config(task, env)?;
+    let env = env.to_vec();
+    let mut out = Vec::new();
+    match &config.params {
+        TaskParams::FixedInterval { td } => {
+            out.push(cond("fi", task, env.clone(), *td));
+            for k in [2u32, 5] {
+                let mut c = cond(
+                    "pi",
+                    "PeakInterval-v0",
+                    vec![format!("td={td}"), format!("probe_factor={k}")],
+                    *td,
+                );
+                c.factor = Some(f64::from(k));
+                out.push(c);
+            }
+        }
+        TaskParams::PeakInterval { td, probe_factor } => {
+            let mut c = cond("pi", task, env.clone(), *td);
+            c.factor = Some(f64::from(*probe_factor));
+            out.push(c);
+        }
+        TaskParams::Bisection { long, .. } => {
+            for t in 1..=long + 4 {
+                out.push(cond("bisection", task, env.clone(), t));
+            }
+        }
+        TaskParams::MultiTimer {
+            tds,
+            num_timers,
+            cue,
+            ..
+        } => {
+            let active = &tds[..(*num_timers).min(tds.len())];
+            let max = active.iter().copied().max().unwrap_or(1);
+            // OOD TDs need the value cue (categorical cues have no code for them).
+            let probe: Vec<u32> = match cue {
+                chronocooked_env::CueMode::Value => (1..=max + 3).collect(),
+                chronocooked_env::CueMode::Categorical => active.to_vec(),
+            };
+            for t in probe {
+                out.push(cond("multi_timer", task, env.clone(), t));
+            }
+            for &t in active {
+                for f in [0.0, 0.25, 0.5, 0.75] {
+                    let b = (f * f64::from(t)).round() as u32;
+                    let mut e = env.clone();
+                    e.push("mode=exact".into());
+                    e.push(format!("under_buffer={b}"));
+                    e.push(format!("over_buffer={b}"));
+                    let mut c = cond("buffer", task, e, t);
+                    c.factor = Some(f);
+                    out.push(c);
+                }
+            }
+        }
+        TaskParams::Dual { td, .. } => out.push(cond("dual", task, env.clone(), *td)),
+        TaskParams::Uncertainty { td, .. } => {
+            for nr in [false, true] {
+                let mut c = cond("uncertainty", task, env.clone(), *td);
+                c.never_ready = Some(nr);
+                out.push(c);
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// How episodes are played.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub enum Mode {
+    /// Greedy, one episode per free start cell.
+    Reference,
+    /// `episodes` per condition, random start cells, sampled actions.
+    Stochastic {
+        /// Episodes per condition.
+        episodes: usize,
+    },
+}
+
+/// Plays every condition with `agent`; `seed` makes the run reproducible.
+pub fn run_protocol(
+    agent: &mut dyn Agent,
+    conditions: &[Condition],
+    mode: Mode,
+    seed: u64,
+) -> Result<Vec<EvalRecord>, EnvError> {
+    agent.set_training(false);
+    agent.set_sampling(matches!(mode, Mode::Stochastic { .. }));
+    let mut out = Vec::new();
+    for (ci, c) in conditions.iter().enumerate() {
+        let config: TaskConfig = make_config(&c.task, &c.env)?;
+        let mut env = ChronoEnv::new(&config)?;
+        let layout = env.layout().clone();
+        let cells: Vec<(usize, usize)> = layout
+            .free_cells()
+            .iter()
+            .map(|&x| layout.coords(x as usize))
+            .collect();
+        let starts: Vec<(usize, usize)> = match mode {
+            Mode::Reference => cells.clone(),
+            Mode::Stochastic { episodes } => {
+                let mut rng = Xoshiro256PlusPlus::seed_from_u64(derive_seed(seed, ci as u64));
+                (0..episodes)
+                    .map(|_| cells[rng.random_range(0..cells.len())])
+                    .collect()
+            }
+        };
+        for (k, &start) in starts.iter().enumerate() {
+            let options = ResetOptions {
+                start: Some(start),
+                td: Some(c.td),
+                never_ready: c.never_ready,
+            };
+            let s = derive_seed(seed, (ci as u64) << 20 | k as u64);
+            let episode = run_episode(&mut env, agent, s, &options, None)?;
+            out.push(EvalRecord {
+                condition: c.clone(),
+                episode,
+            });
+        }
+    }
+    agent.set_sampling(false);
+    Ok(out)
+}
