@@ -2,6 +2,7 @@
 
 mod demo;
 mod env_cmd;
+mod eval_cmd;
 mod play;
 mod timing_cmd;
 mod train_cmd;
@@ -28,6 +29,8 @@ enum Command {
     Demo(demo::DemoArgs),
     /// Train a PPO agent or a timing model (run folder with config, curves, model).
     Train(train_cmd::TrainArgs),
+    /// Evaluate an agent with its task's protocol: per-episode records + metrics JSON.
+    Eval(eval_cmd::EvalArgs),
     /// Record the neural activity of a trained agent (JSON activity dataset).
     Record(timing_cmd::RecordArgs),
     /// The model zoo: architectures, tasks and presets.
@@ -50,6 +53,7 @@ fn main() -> ExitCode {
         Command::Bench { command } => env_cmd::run_bench(command),
         Command::Train(args) => train_cmd::run(args),
         Command::Record(args) => timing_cmd::record(args),
+        Command::Eval(args) => eval_cmd::run(args),
         Command::Zoo { command } => train_cmd::run_zoo(command),
     };
     match result {

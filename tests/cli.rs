@@ -479,3 +479,78 @@ fn timing_models_train_and_record_from_the_cli() {
     let err = run_err(&["train", "--model", "ddm", "--out", run.to_str().unwrap()]);
     assert!(err.contains("already holds"), "{err}");
 }
+
+#[test]
+fn eval_writes_records_and_metrics_that_recompute_identically() {
+    let dir = temp_dir("eval-cli");
+    let out = dir.join("oracle");
+    let msg = run_ok(&[
+        "eval",
+        "--agent",
+        "oracle",
+        "--task",
+        "FixedInterval-v0",
+        "--env",
+        "td=6",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(msg.contains("oracle"), "{msg}");
+    let m: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("metrics.json")).unwrap()).unwrap();
+    assert_eq!(m["fi"]["foc"][0]["mean"], 6.0);
+    assert_eq!(m["fi"]["foc"][0]["td"], 6);
+    let lines = std::fs::read_to_string(out.join("records.jsonl")).unwrap();
+    assert_eq!(
+        lines.lines().count(),
+        36,
+        "FI + PI 2x + PI 5x, 12 start cells each"
+    );
+    let re = dir.join("re");
+    run_ok(&[
+        "eval",
+        "--from",
+        out.to_str().unwrap(),
+        "--out",
+        re.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        std::fs::read(out.join("metrics.json")).unwrap(),
+        std::fs::read(re.join("metrics.json")).unwrap()
+    );
+    // A random agent: metrics with failed fits, not a crash.
+    let rnd = dir.join("random");
+    run_ok(&[
+        "eval",
+        "--agent",
+        "random",
+        "--task",
+        "Bisection-v0",
+        "--stochastic",
+        "3",
+        "--out",
+        rnd.to_str().unwrap(),
+    ]);
+    let m: Value =
+        serde_json::from_str(&std::fs::read_to_string(rnd.join("metrics.json")).unwrap()).unwrap();
+    assert!(
+        m["bisection"]["fit"].is_null() && m["bisection"]["fit_error"].is_string(),
+        "{m}"
+    );
+    for (args, needle) in [
+        (vec!["eval", "--agent", "sage"], "unknown --agent"),
+        (vec!["eval"], "say what to evaluate"),
+        (
+            vec!["eval", "--agent", "random", "--stochastic", "0"],
+            "positive",
+        ),
+        (vec!["eval", "--from", "/nonexistent"], "not an eval folder"),
+    ] {
+        let err = run_err(&args);
+        assert!(err.contains(needle), "{args:?}: {err}");
+    }
+    assert!(
+        !std::path::Path::new("eval").exists(),
+        "a failed eval must not leave an output folder behind"
+    );
+}

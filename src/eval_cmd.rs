@@ -1,0 +1,158 @@
+//! `eval`: play the evaluation protocol of a task with any agent and write per-episode
+//! records and the metrics; `eval --from DIR` recomputes the metrics from saved records.
+
+use anyhow::{Context, Result, bail};
+use chronocooked_analysis::{
+    EvalRecord, Mode, compute_metrics, reference_conditions, run_protocol,
+};
+use chronocooked_env::ChronoEnv;
+use chronocooked_models::Agent;
+use chronocooked_models::agent::{OracleAgent, RandomAgent};
+use chronocooked_training::timing_run::load_agent;
+use clap::Args;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// Arguments of `eval`.
+#[derive(Args, Debug)]
+pub struct EvalArgs {
+    /// Run folder of a trained agent (PPO or timing model).
+    #[arg(long, conflicts_with_all = ["agent", "from"])]
+    pub run: Option<PathBuf>,
+    /// A reference agent instead of a run: oracle or random.
+    #[arg(long, conflicts_with = "from")]
+    pub agent: Option<String>,
+    /// Task the agent was trained on (default: the run's; FixedInterval-v0 for --agent).
+    #[arg(long)]
+    pub task: Option<String>,
+    /// Task overrides `key=value` (with --task).
+    #[arg(long = "env", value_name = "KEY=VALUE")]
+    pub env: Vec<String>,
+    /// Stochastic protocol: N episodes per condition (sampled actions) instead of greedy
+    /// episodes from every start cell.
+    #[arg(long)]
+    pub stochastic: Option<usize>,
+    /// Seed of the evaluation.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Recompute metrics.json from the records of an earlier `eval` output folder.
+    #[arg(long, value_name = "DIR")]
+    pub from: Option<PathBuf>,
+    /// Output folder (records.jsonl, eval.json, metrics.json).
+    #[arg(long, default_value = "eval")]
+    pub out: PathBuf,
+}
+
+/// What an evaluation was (`eval.json`).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+struct EvalInfo {
+    model: String,
+    task: String,
+    env: Vec<String>,
+    mode: Mode,
+    seed: u64,
+}
+
+fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    if let Some(parent) = path.parent() {
+        std::fs::create_dir_all(parent)
+            .with_context(|| format!("creating {}", parent.display()))?;
+    }
+    let tmp = path.with_extension("tmp");
+    std::fs::write(&tmp, bytes).with_context(|| format!("writing {}", tmp.display()))?;
+    std::fs::rename(&tmp, path).with_context(|| format!("writing {}", path.display()))?;
+    Ok(())
+}
+
+fn run_task(run: &Path) -> Result<(String, Vec<String>)> {
+    let text = std::fs::read_to_string(run.join("config.json"))
+        .with_context(|| format!("{} is not a run folder (no config.json)", run.display()))?;
+    let v: serde_json::Value = serde_json::from_str(&text)?;
+    let task = v["task"].as_str().unwrap_or("FixedInterval-v0").to_string();
+    let env = v["env"]
+        .as_array()
+        .map(|a| {
+            a.iter()
+                .filter_map(|s| s.as_str().map(String::from))
+                .collect()
+        })
+        .unwrap_or_default();
+    Ok((task, env))
+}
+
+fn write_metrics(out: &Path, info: &EvalInfo, records: &[EvalRecord]) -> Result<()> {
+    let metrics = compute_metrics(&info.model, records, info.seed);
+    let mut json = serde_json::to_string_pretty(&metrics)?;
+    json.push('\n');
+    write_atomic(&out.join("metrics.json"), json.as_bytes())?;
+    println!(
+        "{}: {} episodes, success {:.1}% → {}",
+        info.model,
+        metrics.episodes,
+        metrics.success_rate * 100.0,
+        out.join("metrics.json").display()
+    );
+    Ok(())
+}
+
+/// Runs `eval`.
+pub fn run(args: EvalArgs) -> Result<()> {
+    if let Some(dir) = &args.from {
+        let info: EvalInfo = serde_json::from_str(
+            &std::fs::read_to_string(dir.join("eval.json")).with_context(|| {
+                format!("{} holds no eval.json (not an eval folder)", dir.display())
+            })?,
+        )?;
+        let text = std::fs::read_to_string(dir.join("records.jsonl"))?;
+        let records: Vec<EvalRecord> = text
+            .lines()
+            .enumerate()
+            .map(|(i, l)| {
+                serde_json::from_str(l).with_context(|| format!("records.jsonl line {}", i + 1))
+            })
+            .collect::<Result<_>>()?;
+        return write_metrics(&args.out, &info, &records);
+    }
+    let (task, env) = match (&args.task, &args.run) {
+        (Some(t), _) => (t.clone(), args.env.clone()),
+        (None, Some(run)) => run_task(run)?,
+        (None, None) => ("FixedInterval-v0".to_string(), args.env.clone()),
+    };
+    let config = chronocooked_env::make_config(&task, &env)?;
+    let mut agent: Box<dyn Agent> = match (&args.run, args.agent.as_deref()) {
+        (Some(run), _) => load_agent(run, Some(&config))?,
+        (None, Some("oracle")) => Box::new(OracleAgent::new(&ChronoEnv::new(&config)?)),
+        (None, Some("random")) => Box::new(RandomAgent::default()),
+        (None, Some(other)) => bail!(
+            "unknown --agent `{other}` (allowed: oracle, random; trained models via --run DIR)"
+        ),
+        (None, None) => {
+            bail!("say what to evaluate: --run DIR, --agent oracle|random, or --from DIR")
+        }
+    };
+    let mode = match args.stochastic {
+        Some(0) => bail!("--stochastic needs a positive number of episodes per condition"),
+        Some(n) => Mode::Stochastic { episodes: n },
+        None => Mode::Reference,
+    };
+    let conditions = reference_conditions(&task, &env)?;
+    let records = run_protocol(agent.as_mut(), &conditions, mode, args.seed)?;
+    let info = EvalInfo {
+        model: agent.name(),
+        task,
+        env,
+        mode,
+        seed: args.seed,
+    };
+    let mut lines = String::new();
+    for r in &records {
+        lines += &serde_json::to_string(r)?;
+        lines.push('\n');
+    }
+    write_atomic(&args.out.join("records.jsonl"), lines.as_bytes())?;
+    write_atomic(
+        &args.out.join("eval.json"),
+        serde_json::to_string_pretty(&info)?.as_bytes(),
+    )?;
+    write_metrics(&args.out, &info, &records)
+}
