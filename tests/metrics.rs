@@ -164,3 +164,75 @@ fn foc_statistics_show_the_scalar_property_on_scalar_data() {
     assert!((m - 2.0).abs() < 1e-12 && (b - 1.0).abs() < 1e-12 && (r2 - 1.0).abs() < 1e-12);
     assert!(foc_stats(&[(4, vec![])])[0].mean.is_nan());
 }
+
+#[test]
+fn gaussian_peak_fit_recovers_known_curve() {
+    use chronocooked_analysis::peak::fit_gaussian;
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(9);
+    let (a, mu, sigma, b) = (0.8, 18.0, 4.5, 0.05);
+    let rate: Vec<f64> = (0..60)
+        .map(|t| {
+            let z = (t as f64 - mu) / sigma;
+            a * (-0.5 * z * z).exp() + b + 0.01 * (rng.random::<f64>() - 0.5)
+        })
+        .collect();
+    let f = fit_gaussian(&rate).unwrap();
+    assert!((f.peak - mu).abs() < 0.1, "{f:?}");
+    assert!((f.spread - sigma).abs() < 0.1, "{f:?}");
+    assert!(
+        (f.amplitude - a).abs() < 0.02 && (f.baseline - b).abs() < 0.01,
+        "{f:?}"
+    );
+    assert!((f.cv - sigma / mu).abs() < 0.01);
+    assert!(fit_gaussian(&[0.0; 20]).is_none());
+}
+
+#[test]
+fn start_stop_on_a_hand_computed_trial() {
+    use chronocooked_analysis::peak::start_stop;
+    // Responses at steps 5..10 (and a stray one at 2): low–high–low with start 5, stop 10.
+    let mut r = vec![0.0; 20];
+    for v in &mut r[5..10] {
+        *v = 1.0;
+    }
+    r[2] = 1.0;
+    let s = start_stop(&r).unwrap();
+    assert_eq!((s.start, s.stop, s.spread), (5, 10, 5));
+    assert_eq!(s.middle, 7.5);
+    assert!(start_stop(&[0.0; 10]).is_none());
+}
+
+#[test]
+fn itpc_of_frequency_jittered_oscillators_decays_as_predicted() {
+    use chronocooked_analysis::oscillation::{itpc, welch};
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(11);
+    let (f0, sf, dt, n) = (10.0, 0.5, 1.0 / 400.0, 400);
+    let trials: Vec<Vec<f64>> = (0..400)
+        .map(|_| {
+            let z: f64 = (0..12).map(|_| rng.random::<f64>()).sum::<f64>() - 6.0;
+            let f = f0 + sf * z;
+            (0..n)
+                .map(|k| (2.0 * std::f64::consts::PI * f * k as f64 * dt).cos())
+                .collect()
+        })
+        .collect();
+    let c = itpc(&trials);
+    for k in (80..320).step_by(40) {
+        let t = k as f64 * dt;
+        let expected = (-2.0 * std::f64::consts::PI.powi(2) * sf * sf * t * t).exp();
+        assert!(
+            (c[k] - expected).abs() < 0.08,
+            "t={t}: {} vs {expected}",
+            c[k]
+        );
+    }
+    // Welch: the spectrum peaks at the oscillation frequency.
+    let x: Vec<f64> = (0..2000)
+        .map(|k| {
+            (2.0 * std::f64::consts::PI * 7.0 * k as f64 * 0.01).sin()
+                + 0.5 * (rng.random::<f64>() - 0.5)
+        })
+        .collect();
+    let s = welch(&x, 200, 0.01);
+    assert!((s.peak - 7.0).abs() <= 0.5, "peak {}", s.peak);
+}

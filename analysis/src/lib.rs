@@ -6,6 +6,8 @@
 //!   BP / T25 / T75 / DL / WF with bootstrap intervals;
 //! * [`neural`] — ramping units, time cells, temporal information, sequentiality index;
 //! * [`decode`] — cross-validated ridge and Bayesian decoders of elapsed time;
+//! * [`peak`] — PI Gaussian(+baseline) fit and single-trial start/stop analysis;
+//! * [`oscillation`] — Welch spectra and inter-trial phase coherence;
 //! * [`protocol`] — evaluation conditions per task and the runner (any agent);
 //! * [`metrics`] — behavioural metrics of an evaluation from its per-episode records.
 
@@ -13,6 +15,8 @@ pub mod decode;
 pub mod foc;
 pub mod metrics;
 pub mod neural;
+pub mod oscillation;
+pub mod peak;
 pub mod protocol;
 pub mod psychometric;
 

@@ -73,6 +73,11 @@ pub struct PiCurve {
     /// Oven checks per episode at each oven time 0, 1, … (among episodes whose oven was
     /// running then).
     pub rate: Vec<f64>,
+    /// Gaussian(+baseline) fit of `rate` (peak time, spread, CV), when there is a peak.
+    pub fit: Option<crate::peak::GaussianFit>,
+    /// Single-trial start/stop analysis averaged over the trials that responded:
+    /// `[start, stop, middle, spread]` (steps of oven time), and the trials used.
+    pub start_stop: Option<([f64; 4], usize)>,
 }
 
 /// Everything computed from one evaluation.
@@ -262,6 +267,7 @@ fn bisection_metrics(records: &[EvalRecord], seed: u64) -> Option<BisectionMetri
 fn pi_curves(records: &[EvalRecord]) -> Vec<PiCurve> {
     let mut out: Vec<PiCurve> = Vec::new();
     let mut denom: Vec<Vec<f64>> = Vec::new();
+    let mut trials: Vec<Vec<Vec<f64>>> = Vec::new();
     for r in records.iter().filter(|r| r.condition.kind == "pi") {
         let factor = r.condition.factor.unwrap_or(0.0);
         let idx = match out
@@ -274,14 +280,25 @@ fn pi_curves(records: &[EvalRecord]) -> Vec<PiCurve> {
                     factor,
                     td: r.condition.td,
                     rate: Vec::new(),
+                    fit: None,
+                    start_stop: None,
                 });
+                trials.push(Vec::new());
                 denom.push(Vec::new());
                 out.len() - 1
             }
         };
+        let mut responses: Vec<f64> = Vec::new();
         for (a, info) in r.episode.actions.iter().zip(&r.episode.infos) {
             if info.timer_at_action < 0 {
                 continue;
+            }
+            let tt = info.timer_at_action as usize;
+            if responses.len() <= tt {
+                responses.resize(tt + 1, 0.0);
+            }
+            if *a == 5 && info.events.has(Events::OVEN_CHECK) {
+                responses[tt] += 1.0;
             }
             let t = info.timer_at_action as usize;
             let curve = &mut out[idx].rate;
@@ -294,12 +311,31 @@ fn pi_curves(records: &[EvalRecord]) -> Vec<PiCurve> {
                 curve[t] += 1.0;
             }
         }
+        trials[idx].push(responses);
     }
-    for (c, d) in out.iter_mut().zip(&denom) {
+    for ((c, d), tr) in out.iter_mut().zip(&denom).zip(&trials) {
         c.rate
             .iter_mut()
             .zip(d)
             .for_each(|(v, n)| *v = if *n > 0.0 { *v / n } else { f64::NAN });
+        c.fit = crate::peak::fit_gaussian(&c.rate);
+        let ss: Vec<crate::peak::StartStop> = tr
+            .iter()
+            .filter_map(|x| crate::peak::start_stop(x))
+            .collect();
+        if !ss.is_empty() {
+            let n = ss.len() as f64;
+            let m = |f: &dyn Fn(&crate::peak::StartStop) -> f64| ss.iter().map(f).sum::<f64>() / n;
+            c.start_stop = Some((
+                [
+                    m(&|s| s.start as f64),
+                    m(&|s| s.stop as f64),
+                    m(&|s| s.middle),
+                    m(&|s| s.spread as f64),
+                ],
+                ss.len(),
+            ));
+        }
     }
     out
 }

@@ -1,0 +1,119 @@
+//! Oscillation metrics: Welch power spectrum and inter-trial phase coherence (ITPC).
+//!
+//! Spectra use direct DFTs (recordings are short: tens to hundreds of steps), so no FFT
+//! dependency is needed. Phases come from the analytic signal (DFT-based Hilbert transform:
+//! negative frequencies zeroed, positive ones doubled).
+
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+
+/// `(re, im)` DFT of `x` at all `n` frequencies.
+fn dft(x: &[(f64, f64)], inverse: bool) -> Vec<(f64, f64)> {
+    let n = x.len();
+    let sign = if inverse { 1.0 } else { -1.0 };
+    (0..n)
+        .map(|k| {
+            let (mut re, mut im) = (0.0, 0.0);
+            for (j, &(a, b)) in x.iter().enumerate() {
+                let ang = sign * 2.0 * PI * ((k * j) % n) as f64 / n as f64;
+                let (s, c) = ang.sin_cos();
+                re += a * c - b * s;
+                im += a * s + b * c;
+            }
+            if inverse {
+                (re / n as f64, im / n as f64)
+            } else {
+                (re, im)
+            }
+        })
+        .collect()
+}
+
+/// Instantaneous phase of `x` (radians) from its analytic signal.
+pub fn analytic_phase(x: &[f64]) -> Vec<f64> {
+    let n = x.len();
+    let spec = dft(&x.iter().map(|&v| (v, 0.0)).collect::<Vec<_>>(), false);
+    let h: Vec<(f64, f64)> = spec
+        .iter()
+        .enumerate()
+        .map(|(k, &(re, im))| {
+            let w = if k == 0 || (n.is_multiple_of(2) && k == n / 2) {
+                1.0
+            } else if k < n.div_ceil(2) {
+                2.0
+            } else {
+                0.0
+            };
+            (re * w, im * w)
+        })
+        .collect();
+    dft(&h, true).iter().map(|&(re, im)| im.atan2(re)).collect()
+}
+
+/// ITPC over trials at every time step: `|mean_k exp(i φ_k(t))|` (1 = phase-locked,
+/// ~1/√K for random phases). `trials` = one series per trial, equal lengths.
+pub fn itpc(trials: &[Vec<f64>]) -> Vec<f64> {
+    let Some(len) = trials.first().map(Vec::len) else {
+        return Vec::new();
+    };
+    let mut re = vec![0.0; len];
+    let mut im = vec![0.0; len];
+    for x in trials {
+        for (t, ph) in analytic_phase(x).into_iter().enumerate().take(len) {
+            re[t] += ph.cos();
+            im[t] += ph.sin();
+        }
+    }
+    let k = trials.len() as f64;
+    re.iter()
+        .zip(&im)
+        .map(|(a, b)| (a * a + b * b).sqrt() / k)
+        .collect()
+}
+
+/// A power spectrum.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Spectrum {
+    /// Frequencies (cycles per time unit of `dt`).
+    pub freqs: Vec<f64>,
+    /// Power per frequency (averaged over segments).
+    pub power: Vec<f64>,
+    /// Frequency of the largest power above 0.
+    pub peak: f64,
+}
+
+/// Welch spectrum: Hann-windowed segments of `segment` samples with 50% overlap, mean
+/// periodogram; `dt` = sampling interval.
+pub fn welch(x: &[f64], segment: usize, dt: f64) -> Spectrum {
+    let seg = segment.clamp(4, x.len().max(4));
+    let step = (seg / 2).max(1);
+    let window: Vec<f64> = (0..seg)
+        .map(|i| 0.5 - 0.5 * (2.0 * PI * i as f64 / (seg - 1) as f64).cos())
+        .collect();
+    let half = seg / 2 + 1;
+    let mut power = vec![0.0; half];
+    let mut count = 0.0;
+    let mut start = 0;
+    while start + seg <= x.len() {
+        let part = &x[start..start + seg];
+        let mean = part.iter().sum::<f64>() / seg as f64;
+        let w: Vec<(f64, f64)> = part
+            .iter()
+            .zip(&window)
+            .map(|(v, h)| ((v - mean) * h, 0.0))
+            .collect();
+        for (k, (re, im)) in dft(&w, false).into_iter().take(half).enumerate() {
+            power[k] += re * re + im * im;
+        }
+        count += 1.0;
+        start += step;
+    }
+    if count > 0.0 {
+        power.iter_mut().for_each(|p| *p /= count);
+    }
+    let freqs: Vec<f64> = (0..half).map(|k| k as f64 / (seg as f64 * dt)).collect();
+    let peak = (1..half)
+        .max_by(|&a, &b| power[a].total_cmp(&power[b]))
+        .map_or(f64::NAN, |k| freqs[k]);
+    Spectrum { freqs, power, peak }
+}

@@ -1,0 +1,193 @@
+//! Peak-interval analyses: Gaussian(+baseline) fit of the response-rate curve and
+//! single-trial start/stop analysis (Church, Meck & Gibbon 1994).
+
+use serde::{Deserialize, Serialize};
+
+/// `r(t) = a·exp(−(t − μ)²/(2σ²)) + b` fitted to a response-rate curve.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GaussianFit {
+    /// Amplitude `a`.
+    pub amplitude: f64,
+    /// Peak time `μ` (steps).
+    pub peak: f64,
+    /// Spread `σ` (steps).
+    pub spread: f64,
+    /// Baseline `b`.
+    pub baseline: f64,
+    /// `σ / μ`.
+    pub cv: f64,
+    /// Residual sum of squares.
+    pub rss: f64,
+}
+
+fn model(p: &[f64; 4], t: f64) -> f64 {
+    let z = (t - p[1]) / p[2];
+    p[0] * (-0.5 * z * z).exp() + p[3]
+}
+
+fn rss(p: &[f64; 4], pts: &[(f64, f64)]) -> f64 {
+    pts.iter().map(|&(t, y)| (y - model(p, t)).powi(2)).sum()
+}
+
+/// Solves a 4×4 linear system (Gaussian elimination with partial pivoting).
+fn solve4(mut a: [[f64; 4]; 4], mut b: [f64; 4]) -> Option<[f64; 4]> {
+    for c in 0..4 {
+        let piv = (c..4).max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))?;
+        if a[piv][c].abs() < 1e-300 {
+            return None;
+        }
+        a.swap(c, piv);
+        b.swap(c, piv);
+        let pivot_row = a[c];
+        for r in c + 1..4 {
+            let f = a[r][c] / pivot_row[c];
+            for (x, p) in a[r].iter_mut().zip(pivot_row.iter()).skip(c) {
+                *x -= f * p;
+            }
+            b[r] -= f * b[c];
+        }
+    }
+    let mut x = [0.0; 4];
+    for r in (0..4).rev() {
+        let s: f64 = (r + 1..4).map(|k| a[r][k] * x[k]).sum();
+        x[r] = (b[r] - s) / a[r][r];
+    }
+    Some(x)
+}
+
+/// Levenberg–Marquardt least-squares fit of a Gaussian plus baseline to `rate[t]`
+/// (NaN points skipped). `None` without a usable peak.
+pub fn fit_gaussian(rate: &[f64]) -> Option<GaussianFit> {
+    let pts: Vec<(f64, f64)> = rate
+        .iter()
+        .enumerate()
+        .filter(|(_, v)| v.is_finite())
+        .map(|(t, &v)| (t as f64, v))
+        .collect();
+    if pts.len() < 5 {
+        return None;
+    }
+    let (tmax, ymax) =
+        pts.iter().copied().fold(
+            (0.0, f64::NEG_INFINITY),
+            |b, p| if p.1 > b.1 { p } else { b },
+        );
+    let ymin = pts.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+    if ymax <= ymin {
+        return None;
+    }
+    let span = pts.last()?.0 - pts[0].0;
+    let mut p = [ymax - ymin, tmax, (span / 6.0).max(1.0), ymin];
+    let mut lambda = 1e-3;
+    let mut cur = rss(&p, &pts);
+    for _ in 0..500 {
+        let mut jtj = [[0.0; 4]; 4];
+        let mut jtr = [0.0; 4];
+        for &(t, y) in &pts {
+            let z = (t - p[1]) / p[2];
+            let e = (-0.5 * z * z).exp();
+            let j = [e, p[0] * e * z / p[2], p[0] * e * z * z / p[2], 1.0];
+            let r = y - model(&p, t);
+            for a in 0..4 {
+                jtr[a] += j[a] * r;
+                for b in 0..4 {
+                    jtj[a][b] += j[a] * j[b];
+                }
+            }
+        }
+        let mut improved = false;
+        for _ in 0..20 {
+            let mut m = jtj;
+            for (d, row) in m.iter_mut().enumerate() {
+                row[d] += lambda * jtj[d][d].max(1e-12);
+            }
+            let Some(step) = solve4(m, jtr) else { break };
+            let next = [
+                p[0] + step[0],
+                p[1] + step[1],
+                p[2] + step[2],
+                p[3] + step[3],
+            ];
+            let r = rss(&next, &pts);
+            if next[2] > 0.0 && r.is_finite() && r < cur {
+                let done = cur - r < 1e-14 * (1.0 + cur);
+                p = next;
+                cur = r;
+                lambda = (lambda * 0.3).max(1e-12);
+                improved = !done;
+                break;
+            }
+            lambda *= 10.0;
+        }
+        if !improved {
+            break;
+        }
+    }
+    (p[0] > 0.0 && p[2] > 0.0 && p.iter().all(|v| v.is_finite())).then(|| GaussianFit {
+        amplitude: p[0],
+        peak: p[1],
+        spread: p[2].abs(),
+        baseline: p[3],
+        cv: p[2].abs() / p[1],
+        rss: cur,
+    })
+}
+
+/// Start and stop of the high-rate state of one probe trial.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct StartStop {
+    /// First step of the high state.
+    pub start: usize,
+    /// First step after the high state.
+    pub stop: usize,
+    /// `(start + stop)/2`.
+    pub middle: f64,
+    /// `stop − start`.
+    pub spread: usize,
+}
+
+/// Single-trial start/stop: the low–high–low step function (rates = segment means) that
+/// best fits the trial's responses (least squares over all `start < stop`; the middle
+/// segment must have the highest rate). `responses[t]` = responses at step `t`.
+/// `None` for a trial without responses.
+pub fn start_stop(responses: &[f64]) -> Option<StartStop> {
+    let n = responses.len();
+    if n < 3 || responses.iter().all(|&r| r <= 0.0) {
+        return None;
+    }
+    let mut cum = vec![0.0; n + 1];
+    let mut cum2 = vec![0.0; n + 1];
+    for (i, &r) in responses.iter().enumerate() {
+        cum[i + 1] = cum[i] + r;
+        cum2[i + 1] = cum2[i] + r * r;
+    }
+    let sse = |a: usize, b: usize| {
+        if b <= a {
+            return (0.0, 0.0);
+        }
+        let s = cum[b] - cum[a];
+        let m = s / (b - a) as f64;
+        (cum2[b] - cum2[a] - s * m, m)
+    };
+    let mut best: Option<(f64, usize, usize)> = None;
+    for start in 0..n {
+        for stop in start + 1..=n {
+            let (e1, m1) = sse(0, start);
+            let (e2, m2) = sse(start, stop);
+            let (e3, m3) = sse(stop, n);
+            if (start > 0 && m2 < m1) || (stop < n && m2 < m3) {
+                continue;
+            }
+            let e = e1 + e2 + e3;
+            if best.is_none_or(|b| e < b.0 - 1e-12) {
+                best = Some((e, start, stop));
+            }
+        }
+    }
+    best.map(|(_, start, stop)| StartStop {
+        start,
+        stop,
+        middle: 0.5 * (start + stop) as f64,
+        spread: stop - start,
+    })
+}
