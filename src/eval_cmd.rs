@@ -85,12 +85,15 @@ fn write_metrics(out: &Path, info: &EvalInfo, records: &[EvalRecord]) -> Result<
     let mut json = serde_json::to_string_pretty(&metrics)?;
     json.push('\n');
     write_atomic(&out.join("metrics.json"), json.as_bytes())?;
+    let figures =
+        chronocooked_analysis::figures::eval_figures(&out.join("figures"), &metrics, records)?;
     println!(
-        "{}: {} episodes, success {:.1}% → {}",
+        "{}: {} episodes, success {:.1}% → {} ({} figure files)",
         info.model,
         metrics.episodes,
         metrics.success_rate * 100.0,
-        out.join("metrics.json").display()
+        out.join("metrics.json").display(),
+        figures.len()
     );
     Ok(())
 }

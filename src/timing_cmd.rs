@@ -92,6 +92,10 @@ pub struct RecordArgs {
     /// Output file (JSON activity dataset).
     #[arg(long, default_value = "activity.json")]
     pub out: PathBuf,
+    /// Also write heat maps (activity aligned to oven-on, units sorted by peak time) of every
+    /// population with ≥ 2 units into this folder.
+    #[arg(long)]
+    pub figures: Option<PathBuf>,
 }
 
 fn run_task(run: &Path) -> Result<(String, Vec<String>)> {
@@ -136,6 +140,9 @@ pub fn record(args: RecordArgs) -> Result<()> {
     let tmp = args.out.with_extension("json.tmp");
     std::fs::write(&tmp, json).with_context(|| format!("writing {}", tmp.display()))?;
     std::fs::rename(&tmp, &args.out)?;
+    if let Some(dir) = &args.figures {
+        write_heatmaps(&dataset, dir)?;
+    }
     println!(
         "{} trials × {} units of {} on {task} → {}",
         dataset.trials.len(),
@@ -143,6 +150,45 @@ pub fn record(args: RecordArgs) -> Result<()> {
         dataset.meta.model,
         args.out.display()
     );
+    Ok(())
+}
+
+/// Heat maps of every population (≥ 2 units) of `dataset`, aligned to oven-on.
+fn write_heatmaps(dataset: &chronocooked_models::ActivityDataset, dir: &Path) -> Result<()> {
+    use chronocooked_analysis::neural::Cube;
+    use chronocooked_models::Marker;
+    let window = dataset
+        .trials
+        .iter()
+        .filter_map(|t| {
+            t.first(Marker::OvenOn)
+                .map(|on| t.steps.saturating_sub(on as usize + 1))
+        })
+        .max()
+        .unwrap_or(0)
+        .clamp(1, 60);
+    let (aligned, used) = dataset.aligned(Marker::OvenOn, window - 1);
+    let n = dataset.meta.n_units();
+    if used.is_empty() {
+        return Ok(());
+    }
+    let cube = Cube::from_f32(&aligned, used.len(), window, n);
+    let avg = cube.average();
+    for p in &dataset.meta.populations {
+        if p.size < 2 {
+            continue;
+        }
+        let r = dataset.meta.range(&p.name).expect("population exists");
+        let sub: Vec<f64> = avg
+            .chunks_exact(n)
+            .flat_map(|row| row[r.clone()].to_vec())
+            .collect();
+        let title = format!(
+            "{}: {} (trial average, aligned to oven on)",
+            dataset.meta.model, p.name
+        );
+        chronocooked_analysis::figures::write_heatmap(&dir.join(&p.name), &title, &sub, p.size)?;
+    }
     Ok(())
 }
 

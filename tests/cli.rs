@@ -506,6 +506,17 @@ fn eval_writes_records_and_metrics_that_recompute_identically() {
         36,
         "FI + PI 2x + PI 5x, 12 start cells each"
     );
+    // Figures: FOC strip and PI curves, SVG and PNG, non-empty.
+    for f in ["foc.svg", "foc.png", "pi.svg", "pi.png"] {
+        let p = out.join("figures").join(f);
+        let len = std::fs::metadata(&p).map(|m| m.len()).unwrap_or(0);
+        assert!(len > 2000, "{f}: {len} bytes");
+    }
+    let svg = std::fs::read_to_string(out.join("figures/foc.svg")).unwrap();
+    assert!(
+        svg.contains("<svg") && svg.contains("first oven check"),
+        "title missing"
+    );
     let re = dir.join("re");
     run_ok(&[
         "eval",
@@ -537,6 +548,7 @@ fn eval_writes_records_and_metrics_that_recompute_identically() {
         m["bisection"]["fit"].is_null() && m["bisection"]["fit_error"].is_string(),
         "{m}"
     );
+    assert!(rnd.join("figures/psychometric.png").is_file());
     for (args, needle) in [
         (vec!["eval", "--agent", "sage"], "unknown --agent"),
         (vec!["eval"], "say what to evaluate"),

@@ -8,10 +8,12 @@
 //! * [`decode`] — cross-validated ridge and Bayesian decoders of elapsed time;
 //! * [`peak`] — PI Gaussian(+baseline) fit and single-trial start/stop analysis;
 //! * [`oscillation`] — Welch spectra and inter-trial phase coherence;
+//! * [`figures`] — SVG/PNG figures (plotters, bundled font);
 //! * [`protocol`] — evaluation conditions per task and the runner (any agent);
 //! * [`metrics`] — behavioural metrics of an evaluation from its per-episode records.
 
 pub mod decode;
+pub mod figures;
 pub mod foc;
 pub mod metrics;
 pub mod neural;
