@@ -92,6 +92,10 @@ pub struct RecordArgs {
     /// Output file (JSON activity dataset).
     #[arg(long, default_value = "activity.json")]
     pub out: PathBuf,
+    /// Also write the neural summary of every population (fractions of ramping / time /
+    /// oscillating units, sequentiality, decoding error) to `<out>.summary.json`.
+    #[arg(long)]
+    pub summary: bool,
     /// Also write heat maps (activity aligned to oven-on, units sorted by peak time) of every
     /// population with ≥ 2 units into this folder.
     #[arg(long)]
@@ -142,6 +146,25 @@ pub fn record(args: RecordArgs) -> Result<()> {
     std::fs::rename(&tmp, &args.out)?;
     if let Some(dir) = &args.figures {
         write_heatmaps(&dataset, dir)?;
+    }
+    if args.summary {
+        let summaries: Vec<_> = dataset
+            .meta
+            .populations
+            .iter()
+            .filter_map(|p| {
+                chronocooked_analysis::summary::neural_summary(
+                    &dataset,
+                    Some(&p.name),
+                    None,
+                    args.seed,
+                )
+            })
+            .collect();
+        let path = args.out.with_extension("summary.json");
+        let tmp = path.with_extension("tmp");
+        std::fs::write(&tmp, serde_json::to_string_pretty(&summaries)?)?;
+        std::fs::rename(&tmp, &path)?;
     }
     println!(
         "{} trials × {} units of {} on {task} → {}",

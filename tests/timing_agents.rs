@@ -264,3 +264,42 @@ fn every_timing_model_plays_every_task() {
         }
     }
 }
+
+#[test]
+fn neural_summaries_tell_ramps_sequences_and_oscillations_apart() {
+    use chronocooked_analysis::summary::neural_summary;
+    let summarise = |model: &str, population: &str| {
+        let mut cfg = TimingRunConfig::new("FixedInterval-v0", model, 0);
+        cfg.set("env.td=18").unwrap();
+        cfg.set("episodes=2000").unwrap();
+        let dir = temp_dir(&format!("summary-{model}"));
+        run_timing_training(&cfg, &dir, "test", |_| {}).unwrap();
+        let mut agent = load_agent(&dir, None).unwrap();
+        let config = make_config("FixedInterval-v0", &cfg.env).unwrap();
+        let mut rec = TrialRecorder::new(ActivityMeta {
+            model: model.into(),
+            task: "FixedInterval-v0".into(),
+            env: cfg.env.clone(),
+            seed: 0,
+            dt: 1.0,
+            populations: Vec::new(),
+        });
+        for seed in 0..3 {
+            evaluate_agent(agent.as_mut(), &config, &[18], seed, Some(&mut rec)).unwrap();
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+        neural_summary(&rec.finish(), Some(population), Some(16), 0).unwrap()
+    };
+    let ddm = summarise("ddm", "accumulator");
+    assert_eq!(ddm.frac_ramping, 1.0, "{ddm:?}");
+    assert_eq!(ddm.frac_time_cells, 0.0, "{ddm:?}");
+    let tc = summarise("timecells-laplace", "time_cells");
+    assert!(tc.frac_time_cells >= 0.5, "{tc:?}");
+    // Cells with τ* beyond the 16-step window peak at its end, so the sequence only
+    // partly tiles it.
+    assert!(tc.sequentiality > 0.3, "{tc:?}");
+    assert!(tc.decode_bayes < 1.0, "{tc:?}");
+    let sbf = summarise("sbf", "oscillators");
+    assert!(sbf.frac_oscillating > 0.8, "{sbf:?}");
+    assert!(sbf.frac_ramping < 0.05, "{sbf:?}");
+}

@@ -8,6 +8,8 @@
 //! * [`decode`] — cross-validated ridge and Bayesian decoders of elapsed time;
 //! * [`peak`] — PI Gaussian(+baseline) fit and single-trial start/stop analysis;
 //! * [`oscillation`] — Welch spectra and inter-trial phase coherence;
+//! * [`summary`] — per-model neural summary (fractions of ramping / time / oscillating
+//!   units, sequentiality, decoding error);
 //! * [`figures`] — SVG/PNG figures (plotters, bundled font);
 //! * [`protocol`] — evaluation conditions per task and the runner (any agent);
 //! * [`metrics`] — behavioural metrics of an evaluation from its per-episode records.
@@ -21,6 +23,7 @@ pub mod oscillation;
 pub mod peak;
 pub mod protocol;
 pub mod psychometric;
+pub mod summary;
 
 pub use decode::{DecodeResult, Decoder, decode_time};
 pub use foc::{

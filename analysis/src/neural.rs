@@ -304,7 +304,8 @@ pub struct TimeCellUnit {
     pub p: f64,
     /// Correlation of the odd-trial and even-trial averages.
     pub reliability: f64,
-    /// `p < 0.05` and reliability > 0.5.
+    /// `p < 0.05`, reliability > 0.5 and the peak inside the window (at least `half_width`
+    /// steps from either edge: a ramp that peaks at the window's end is not a time field).
     pub time_cell: bool,
 }
 
@@ -392,7 +393,10 @@ pub fn time_cells(cube: &Cube, half_width: usize, shuffles: usize, seed: u64) ->
                 ratio,
                 p,
                 reliability,
-                time_cell: p < 0.05 && reliability > 0.5,
+                time_cell: p < 0.05
+                    && reliability > 0.5
+                    && peak_time >= half_width.max(1)
+                    && peak_time + half_width.max(1) < nt,
             }
         })
         .collect()
