@@ -107,3 +107,74 @@ fn every_task_has_reference_conditions_the_oracle_plays() {
         assert!(serde_json::to_string(&m).is_ok());
     }
 }
+
+#[test]
+fn multi_timer_dual_and_uncertainty_metrics_on_the_oracle() {
+    use chronocooked_analysis::metrics::count_plateaus;
+    let pts = [
+        (1, 2.1),
+        (2, 2.0),
+        (3, 2.2),
+        (4, 4.0),
+        (5, 4.1),
+        (6, 4.0),
+        (7, 4.2),
+    ];
+    assert_eq!(count_plateaus(&pts, &[2, 4]), 2);
+    assert_eq!(count_plateaus(&[(1, 1.0), (2, 2.0), (3, 3.0)], &[]), 0);
+
+    let env = [
+        "tds=2,4".to_string(),
+        "num_timers=2".into(),
+        "mode=lower_bounded".into(),
+    ];
+    let conds = reference_conditions("MultiTimer-v0", &env).unwrap();
+    let mut oracle = OracleAgent::new(&ChronoEnv::from_id("MultiTimer-v0", &env).unwrap());
+    let m = compute_metrics(
+        "oracle",
+        &run_protocol(&mut oracle, &conds, Mode::Reference, 0).unwrap(),
+        0,
+    );
+    let mt = m.multi_timer.unwrap();
+    assert_eq!(mt.by_td.len(), 7, "TDs 1..=4+3");
+    for (td, reward, off) in &mt.by_td {
+        assert_eq!(*reward, 1.0, "TD {td}");
+        assert_eq!(*off, f64::from(*td), "the oracle takes the soup at TD");
+    }
+    assert_eq!(mt.by_buffer.len(), 8, "2 TDs x 4 buffers");
+    assert!(mt.by_buffer.iter().all(|b| b.2 == 1.0));
+
+    let conds = reference_conditions("Uncertainty-v0", &[]).unwrap();
+    let mut oracle =
+        OracleAgent::new(&ChronoEnv::from_id("Uncertainty-v0", &[] as &[&str]).unwrap());
+    let m = compute_metrics(
+        "oracle",
+        &run_protocol(&mut oracle, &conds, Mode::Reference, 0).unwrap(),
+        0,
+    );
+    let u = m.uncertainty.unwrap();
+    assert_eq!(u.success_normal, 1.0);
+    assert_eq!(u.button_use, 1.0);
+    let td = f64::from(conds[0].td);
+    // The oracle waits at the oven until TD, then walks to the button.
+    assert!(
+        u.press_time >= td && u.press_time <= td + 4.0,
+        "{}",
+        u.press_time
+    );
+
+    let conds = reference_conditions("DualTask-v0", &[]).unwrap();
+    let mut oracle = OracleAgent::new(&ChronoEnv::from_id("DualTask-v0", &[] as &[&str]).unwrap());
+    let m = compute_metrics(
+        "oracle",
+        &run_protocol(&mut oracle, &conds, Mode::Reference, 0).unwrap(),
+        0,
+    );
+    let d = m.dual.unwrap();
+    assert_eq!(d.by_td.len(), 1);
+    assert!(
+        (d.by_td[0].1 - (1.0 + 0.01 * d.by_td[0].2)).abs() < 1e-5,
+        "soup + sink rewards"
+    );
+    assert!(d.by_td[0].2 > 0.0 && d.by_td[0].3 > 0.0);
+}

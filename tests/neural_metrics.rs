@@ -150,3 +150,17 @@ fn heat_map_and_chart_figures_are_written_and_non_empty() {
     assert_eq!(&png[..4], b"\x89PNG");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn scaling_factor_recovers_a_known_stretch() {
+    use chronocooked_analysis::neural::scaling_factor;
+    // A time field at 5 of a 12-step interval, and the same field stretched for 24 steps.
+    let bump = |t: f64, c: f64, w: f64| (-(t - c).powi(2) / (2.0 * w * w)).exp();
+    let a: Vec<f64> = (0..14).map(|t| bump(t as f64, 5.0, 1.5)).collect();
+    let b: Vec<f64> = (0..28).map(|t| bump(t as f64, 10.0, 3.0)).collect();
+    let (s, r2) = scaling_factor(&a, &b);
+    assert!((s - 2.0).abs() < 0.05 && r2 > 0.99, "s {s}, R² {r2}");
+    // A non-scaling (fixed-latency) response: best factor near 1.
+    let c: Vec<f64> = (0..28).map(|t| bump(t as f64, 5.0, 1.5)).collect();
+    assert!((scaling_factor(&a, &c).0 - 1.0).abs() < 0.05);
+}

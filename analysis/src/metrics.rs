@@ -97,6 +97,45 @@ pub struct Metrics {
     pub bisection: Option<BisectionMetrics>,
     /// PI curves.
     pub pi: Vec<PiCurve>,
+    /// Multi-timer (when multi-timer conditions were played).
+    pub multi_timer: Option<MultiTimerMetrics>,
+    /// Dual task.
+    pub dual: Option<DualMetrics>,
+    /// Uncertainty task.
+    pub uncertainty: Option<UncertaintyMetrics>,
+}
+
+/// Multi-timer metrics.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MultiTimerMetrics {
+    /// `(TD, mean reward, mean oven-off time)` for every TD played (OOD included).
+    pub by_td: Vec<(u32, f64, f64)>,
+    /// `(TD, buffer fraction, mean reward)` of the exact-timer buffer conditions.
+    pub by_buffer: Vec<(u32, f64, f64)>,
+    /// Timers stored: distinct oven-off levels (mean oven-off rounded to a step) shared by at
+    /// least two TDs, plus singleton levels at trained TDs — the plateaus of oven-off vs TD.
+    pub plateaus: usize,
+}
+
+/// Dual-task metrics.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DualMetrics {
+    /// `(TD, mean reward, mean sink interactions, mean oven time when the agent last used
+    /// the sink)`.
+    pub by_td: Vec<(u32, f64, f64, f64)>,
+}
+
+/// Uncertainty-task metrics.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct UncertaintyMetrics {
+    /// Success in normal episodes.
+    pub success_normal: f64,
+    /// Mean reward in never-ready episodes (the button pays a reduced reward).
+    pub reward_never_ready: f64,
+    /// Fraction of never-ready episodes in which the agent pressed the button.
+    pub button_use: f64,
+    /// Mean oven time of the button press (never-ready episodes that pressed it).
+    pub press_time: f64,
 }
 
 fn mean(v: impl Iterator<Item = f64>) -> f64 {
@@ -152,7 +191,140 @@ pub fn compute_metrics(model: &str, records: &[EvalRecord], seed: u64) -> Metric
         fi: fi_metrics(records),
         bisection: bisection_metrics(records, seed),
         pi: pi_curves(records),
+        multi_timer: multi_timer_metrics(records),
+        dual: dual_metrics(records),
+        uncertainty: uncertainty_metrics(records),
     }
+}
+
+fn of_kind<'a>(records: &'a [EvalRecord], kind: &str) -> Vec<&'a EvalRecord> {
+    records
+        .iter()
+        .filter(|r| r.condition.kind == kind)
+        .collect()
+}
+
+fn by_td<'a>(recs: &[&'a EvalRecord]) -> BTreeMap<u32, Vec<&'a EvalRecord>> {
+    let mut m: BTreeMap<u32, Vec<&EvalRecord>> = BTreeMap::new();
+    for r in recs {
+        m.entry(r.condition.td).or_default().push(r);
+    }
+    m
+}
+
+/// Number of oven-off plateaus in `(TD, mean oven-off)` pairs: distinct levels (rounded
+/// to a step) reached by ≥ 2 TDs, plus levels reached by one trained TD (`trained`).
+pub fn count_plateaus(points: &[(u32, f64)], trained: &[u32]) -> usize {
+    let mut levels: BTreeMap<i64, (usize, bool)> = BTreeMap::new();
+    for &(td, off) in points {
+        if off.is_finite() {
+            let e = levels.entry(off.round() as i64).or_insert((0, false));
+            e.0 += 1;
+            e.1 |= trained.contains(&td);
+        }
+    }
+    levels.values().filter(|(n, t)| *n >= 2 || *t).count()
+}
+
+fn multi_timer_metrics(records: &[EvalRecord]) -> Option<MultiTimerMetrics> {
+    let mt = of_kind(records, "multi_timer");
+    let buf = of_kind(records, "buffer");
+    if mt.is_empty() && buf.is_empty() {
+        return None;
+    }
+    let reward = |v: &[&EvalRecord]| mean(v.iter().map(|r| f64::from(r.episode.reward)));
+    let off = |v: &[&EvalRecord]| mean(v.iter().filter_map(|r| oven_off(r)));
+    let by: Vec<(u32, f64, f64)> = by_td(&mt)
+        .iter()
+        .map(|(td, v)| (*td, reward(v), off(v)))
+        .collect();
+    let trained: Vec<u32> = buf.iter().map(|r| r.condition.td).collect();
+    let mut by_buffer: Vec<(u32, f64, f64)> = Vec::new();
+    for r in &buf {
+        let key = (r.condition.td, r.condition.factor.unwrap_or(0.0));
+        if !by_buffer.iter().any(|b| (b.0, b.1) == key) {
+            let v: Vec<&EvalRecord> = buf
+                .iter()
+                .filter(|x| (x.condition.td, x.condition.factor.unwrap_or(0.0)) == key)
+                .copied()
+                .collect();
+            by_buffer.push((key.0, key.1, reward(&v)));
+        }
+    }
+    let plateaus = count_plateaus(&by.iter().map(|b| (b.0, b.2)).collect::<Vec<_>>(), &trained);
+    Some(MultiTimerMetrics {
+        by_td: by,
+        by_buffer,
+        plateaus,
+    })
+}
+
+fn last_info(r: &EvalRecord) -> Option<&chronocooked_env::Info> {
+    r.episode.infos.last()
+}
+
+fn dual_metrics(records: &[EvalRecord]) -> Option<DualMetrics> {
+    let d = of_kind(records, "dual");
+    if d.is_empty() {
+        return None;
+    }
+    let by = by_td(&d)
+        .iter()
+        .map(|(td, v)| {
+            (
+                *td,
+                mean(v.iter().map(|r| f64::from(r.episode.reward))),
+                mean(
+                    v.iter()
+                        .filter_map(|r| last_info(r))
+                        .map(|i| f64::from(i.sink_count)),
+                ),
+                mean(
+                    v.iter()
+                        .filter_map(|r| last_info(r))
+                        .filter(|i| i.last_sink_timer >= 0)
+                        .map(|i| f64::from(i.last_sink_timer)),
+                ),
+            )
+        })
+        .collect();
+    Some(DualMetrics { by_td: by })
+}
+
+fn uncertainty_metrics(records: &[EvalRecord]) -> Option<UncertaintyMetrics> {
+    let u = of_kind(records, "uncertainty");
+    if u.is_empty() {
+        return None;
+    }
+    let normal: Vec<&&EvalRecord> = u
+        .iter()
+        .filter(|r| r.condition.never_ready != Some(true))
+        .collect();
+    let never: Vec<&&EvalRecord> = u
+        .iter()
+        .filter(|r| r.condition.never_ready == Some(true))
+        .collect();
+    let press = |r: &EvalRecord| {
+        r.episode
+            .infos
+            .iter()
+            .find(|i| i.events.has(Events::BUTTON))
+            .map(|i| f64::from(i.timer_at_action))
+    };
+    Some(UncertaintyMetrics {
+        success_normal: mean(
+            normal
+                .iter()
+                .map(|r| f64::from(u8::from(r.episode.success))),
+        ),
+        reward_never_ready: mean(never.iter().map(|r| f64::from(r.episode.reward))),
+        button_use: mean(
+            never
+                .iter()
+                .map(|r| f64::from(u8::from(press(r).is_some()))),
+        ),
+        press_time: mean(never.iter().filter_map(|r| press(r))),
+    })
 }
 
 fn fi_metrics(records: &[EvalRecord]) -> Option<FiMetrics> {

@@ -401,3 +401,44 @@ pub fn time_cells(cube: &Cube, half_width: usize, shuffles: usize, seed: u64) ->
         })
         .collect()
 }
+
+/// Temporal scaling between two responses of a unit (e.g. trial averages at two TDs):
+/// the factor `s` (grid search over `[0.25, 4]`, 1% log steps) for which `b(t) ≈ a(t/s)`
+/// (linear interpolation of `a`; compared over `t < len(b)` where `t/s` is inside `a`),
+/// and the R² of that match. `s ≈ TD_b / TD_a` for a unit that scales with the interval.
+pub fn scaling_factor(a: &[f64], b: &[f64]) -> (f64, f64) {
+    let interp = |t: f64| -> Option<f64> {
+        if t < 0.0 || t > (a.len() - 1) as f64 {
+            return None;
+        }
+        let i = t.floor() as usize;
+        let f = t - i as f64;
+        let hi = a.get(i + 1).copied().unwrap_or(a[i]);
+        Some(a[i] * (1.0 - f) + hi * f)
+    };
+    let mut best = (f64::NAN, f64::NEG_INFINITY);
+    if a.len() < 2 || b.len() < 2 {
+        return best;
+    }
+    let steps = (16f64.ln() / 0.01f64.ln_1p()).ceil() as i32;
+    for k in 0..=steps {
+        let s = 0.25 * 1.01f64.powi(k);
+        let pairs: Vec<(f64, f64)> = b
+            .iter()
+            .enumerate()
+            .filter_map(|(t, &y)| interp(t as f64 / s).map(|x| (x, y)))
+            .filter(|(x, y)| x.is_finite() && y.is_finite())
+            .collect();
+        if pairs.len() < b.len().div_ceil(2).max(3) {
+            continue;
+        }
+        let my = pairs.iter().map(|p| p.1).sum::<f64>() / pairs.len() as f64;
+        let ss: f64 = pairs.iter().map(|p| (p.1 - my).powi(2)).sum();
+        let sse: f64 = pairs.iter().map(|p| (p.1 - p.0).powi(2)).sum();
+        let r2 = if ss > 0.0 { 1.0 - sse / ss } else { f64::NAN };
+        if r2 > best.1 {
+            best = (s, r2);
+        }
+    }
+    best
+}
