@@ -35,6 +35,9 @@ pub struct EvalArgs {
     /// Seed of the evaluation.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
+    /// Metrics of recorded human play (`env play --record FILE`, JSON lines).
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["run", "agent", "from"])]
+    pub human: Option<PathBuf>,
     /// Recompute metrics.json from the records of an earlier `eval` output folder.
     #[arg(long, value_name = "DIR")]
     pub from: Option<PathBuf>,
@@ -116,6 +119,29 @@ pub fn run(args: EvalArgs) -> Result<()> {
             .collect::<Result<_>>()?;
         return write_metrics(&args.out, &info, &records);
     }
+    if let Some(file) = &args.human {
+        let text =
+            std::fs::read_to_string(file).with_context(|| format!("reading {}", file.display()))?;
+        let records = chronocooked_analysis::human::records_from_trace(&text)
+            .map_err(|e| anyhow::anyhow!("{}: {e}", file.display()))?;
+        if records.is_empty() {
+            bail!(
+                "{} holds no episodes (record some with `env play --record`)",
+                file.display()
+            );
+        }
+        let first = &records[0].condition;
+        let info = EvalInfo {
+            model: "human".into(),
+            task: first.task.clone(),
+            env: first.env.clone(),
+            mode: Mode::Stochastic {
+                episodes: records.len(),
+            },
+            seed: args.seed,
+        };
+        return write_outputs(&args.out, &info, &records);
+    }
     let (task, env) = match (&args.task, &args.run) {
         (Some(t), _) => (t.clone(), args.env.clone()),
         (None, Some(run)) => run_task(run)?,
@@ -147,15 +173,19 @@ pub fn run(args: EvalArgs) -> Result<()> {
         mode,
         seed: args.seed,
     };
+    write_outputs(&args.out, &info, &records)
+}
+
+fn write_outputs(out: &Path, info: &EvalInfo, records: &[EvalRecord]) -> Result<()> {
     let mut lines = String::new();
-    for r in &records {
+    for r in records {
         lines += &serde_json::to_string(r)?;
         lines.push('\n');
     }
-    write_atomic(&args.out.join("records.jsonl"), lines.as_bytes())?;
+    write_atomic(&out.join("records.jsonl"), lines.as_bytes())?;
     write_atomic(
-        &args.out.join("eval.json"),
-        serde_json::to_string_pretty(&info)?.as_bytes(),
+        &out.join("eval.json"),
+        serde_json::to_string_pretty(info)?.as_bytes(),
     )?;
-    write_metrics(&args.out, &info, &records)
+    write_metrics(out, info, records)
 }

@@ -178,3 +178,47 @@ fn multi_timer_dual_and_uncertainty_metrics_on_the_oracle() {
     );
     assert!(d.by_td[0].2 > 0.0 && d.by_td[0].3 > 0.0);
 }
+
+#[test]
+fn recorded_play_goes_through_the_same_metrics() {
+    use chronocooked_env::trace::TraceLine;
+    use chronocooked_env::{Oracle, ResetOptions};
+    // Two FI episodes "played" by the oracle, written exactly like `env play --record`.
+    let mut env = ChronoEnv::from_id("FixedInterval-v0", &["td=6"]).unwrap();
+    let oracle = Oracle::new(&env);
+    let mut text = String::new();
+    for (seed, start) in [(1, (1, 1)), (2, (4, 2))] {
+        let opts = ResetOptions {
+            start: Some(start),
+            ..Default::default()
+        };
+        let info = env.reset(Some(seed), &opts).unwrap();
+        text += &TraceLine::reset(&env, info).to_json();
+        text.push('\n');
+        loop {
+            let a = oracle.act(&env.state());
+            let t = env.step(a).unwrap();
+            text += &TraceLine::step(&env, a, &t).to_json();
+            text.push('\n');
+            if t.done() {
+                break;
+            }
+        }
+    }
+    let recs = chronocooked_analysis::human::records_from_trace(&text).unwrap();
+    assert_eq!(recs.len(), 2);
+    assert!(
+        recs.iter()
+            .all(|r| r.episode.success && r.condition.kind == "fi")
+    );
+    assert_eq!(recs[1].episode.start, (4, 2));
+    let m = compute_metrics("human", &recs, 0);
+    assert_eq!(m.fi.unwrap().foc[0].mean, 6.0);
+    assert!(chronocooked_analysis::human::records_from_trace("{not json").is_err());
+    assert!(
+        chronocooked_analysis::human::records_from_trace(
+            &text.lines().skip(1).collect::<Vec<_>>().join("\n")
+        )
+        .is_err()
+    );
+}

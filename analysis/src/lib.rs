@@ -10,6 +10,7 @@
 //! * [`oscillation`] — Welch spectra and inter-trial phase coherence;
 //! * [`summary`] — per-model neural summary (fractions of ramping / time / oscillating
 //!   units, sequentiality, decoding error);
+//! * [`human`] — recorded human play (`env play`) as evaluation records;
 //! * [`figures`] — SVG/PNG figures (plotters, bundled font);
 //! * [`protocol`] — evaluation conditions per task and the runner (any agent);
 //! * [`metrics`] — behavioural metrics of an evaluation from its per-episode records.
@@ -17,6 +18,7 @@
 pub mod decode;
 pub mod figures;
 pub mod foc;
+pub mod human;
 pub mod metrics;
 pub mod neural;
 pub mod oscillation;
