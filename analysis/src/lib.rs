@@ -10,11 +10,13 @@
 //! * [`oscillation`] — Welch spectra and inter-trial phase coherence;
 //! * [`summary`] — per-model neural summary (fractions of ramping / time / oscillating
 //!   units, sequentiality, decoding error);
+//! * [`aggregate`] — headline numbers, mean ± SD across seeds, episodes to adapt;
 //! * [`human`] — recorded human play (`env play`) as evaluation records;
 //! * [`figures`] — SVG/PNG figures (plotters, bundled font);
 //! * [`protocol`] — evaluation conditions per task and the runner (any agent);
 //! * [`metrics`] — behavioural metrics of an evaluation from its per-episode records.
 
+pub mod aggregate;
 pub mod decode;
 pub mod figures;
 pub mod foc;
