@@ -64,6 +64,9 @@ pub fn train(
     if let Some(b) = bar {
         b.finish();
     }
+    if let Err(e) = chronocooked_analysis::figures::learning_curve(&dir) {
+        eprintln!("warning: learning-curve figure not written: {e}");
+    }
     println!("{}", serde_json::to_string_pretty(&summary)?);
     Ok(())
 }
@@ -211,6 +214,20 @@ fn write_heatmaps(dataset: &chronocooked_models::ActivityDataset, dir: &Path) ->
             dataset.meta.model, p.name
         );
         chronocooked_analysis::figures::write_heatmap(&dir.join(&p.name), &title, &sub, p.size)?;
+        let mut data = Vec::with_capacity(cube.trials * window * p.size);
+        for k in 0..cube.trials {
+            for t in 0..window {
+                data.extend(r.clone().map(|i| cube.at(k, t, i)));
+            }
+        }
+        let pop = Cube {
+            trials: cube.trials,
+            time: window,
+            units: p.size,
+            data,
+        };
+        let title = format!("{} {}", dataset.meta.model, p.name);
+        chronocooked_analysis::figures::population_figures(&dir.join(&p.name), &title, &pop)?;
     }
     Ok(())
 }

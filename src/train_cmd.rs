@@ -121,6 +121,9 @@ pub fn run(args: TrainArgs) -> Result<()> {
     if let Some(b) = bar {
         b.finish();
     }
+    if let Err(e) = chronocooked_analysis::figures::learning_curve(&summary.dir) {
+        eprintln!("warning: learning-curve figure not written: {e}");
+    }
     println!("{}", serde_json::to_string_pretty(&summary)?);
     Ok(())
 }

@@ -462,6 +462,40 @@ pub fn eval_figures(
         };
         out.extend(write_chart(&dir.join("pi"), &chart)?);
     }
+    if let Some(mt) = metrics
+        .multi_timer
+        .as_ref()
+        .filter(|m| !m.by_buffer.is_empty())
+    {
+        let mut tds: Vec<u32> = mt.by_buffer.iter().map(|b| b.0).collect();
+        tds.dedup();
+        let series = tds
+            .iter()
+            .enumerate()
+            .map(|(k, &td)| Series {
+                label: format!("TD {td}"),
+                points: mt
+                    .by_buffer
+                    .iter()
+                    .filter(|b| b.0 == td)
+                    .map(|b| (100.0 * b.1, b.2))
+                    .collect(),
+                line: true,
+                color: k,
+            })
+            .collect();
+        out.extend(write_chart(
+            &dir.join("reward_vs_buffer"),
+            &Chart {
+                title: format!("{model}: exact timer, reward vs buffer"),
+                x_label: "buffer (% of TD)".into(),
+                y_label: "mean reward".into(),
+                series,
+                y_range: Some((-0.02, 1.02)),
+                ..Chart::default()
+            },
+        )?);
+    }
     let mt: Vec<&crate::metrics::ConditionSummary> = metrics
         .conditions
         .iter()
@@ -497,4 +531,168 @@ pub fn eval_figures(
         out.extend(write_chart(&dir.join("multi_timer"), &chart)?);
     }
     Ok(out)
+}
+
+/// Population figures of one activity dataset population (`avg` = `[time, units]` trial
+/// average, `cube` = the per-trial data): example ramps (the three units with the largest
+/// |r| against time), the mean Welch spectrum, and decoder error vs time (ridge and Bayes).
+pub fn population_figures(
+    dir: &Path,
+    title: &str,
+    cube: &crate::neural::Cube,
+) -> Result<Vec<PathBuf>, FigureError> {
+    use crate::decode::{Decoder, decode_time};
+    let u = cube.units;
+    let avg = cube.average();
+    let mut out = Vec::new();
+    let mut ramps = crate::neural::classify_ramps(&avg, u, 0.9, 0.05);
+    ramps.sort_by(|a, b| b.r.abs().total_cmp(&a.r.abs()));
+    let series = ramps
+        .iter()
+        .take(3)
+        .enumerate()
+        .map(|(k, r)| Series {
+            label: format!("unit {} (r = {:.2})", r.unit, r.r),
+            points: (0..cube.time)
+                .map(|t| (t as f64, avg[t * u + r.unit]))
+                .collect(),
+            line: true,
+            color: k,
+        })
+        .collect();
+    out.extend(write_chart(
+        &dir.join("ramps"),
+        &Chart {
+            title: format!("{title}: most ramp-like units"),
+            x_label: "time since oven on (steps)".into(),
+            y_label: "trial-averaged activity".into(),
+            series,
+            ..Chart::default()
+        },
+    )?);
+    if cube.time >= 8 {
+        let mut mean_power: Vec<f64> = Vec::new();
+        let mut freqs = Vec::new();
+        for i in 0..u {
+            let x: Vec<f64> = (0..cube.time)
+                .map(|t| avg[t * u + i])
+                .filter(|v| v.is_finite())
+                .collect();
+            if x.len() < 8 {
+                continue;
+            }
+            let s = crate::oscillation::welch(&x, x.len().min(cube.time), 1.0);
+            if mean_power.is_empty() {
+                mean_power = vec![0.0; s.power.len()];
+                freqs = s.freqs.clone();
+            }
+            for (m, p) in mean_power.iter_mut().zip(&s.power) {
+                *m += p / u as f64;
+            }
+        }
+        out.extend(write_chart(
+            &dir.join("spectrum"),
+            &Chart {
+                title: format!("{title}: mean power spectrum"),
+                x_label: "frequency (cycles per step)".into(),
+                y_label: "power".into(),
+                series: vec![Series {
+                    label: String::new(),
+                    points: freqs.into_iter().zip(mean_power).collect(),
+                    line: true,
+                    color: 0,
+                }],
+                ..Chart::default()
+            },
+        )?);
+    }
+    let series = [Decoder::Ridge, Decoder::Bayes]
+        .iter()
+        .enumerate()
+        .map(|(k, &d)| {
+            let r = decode_time(cube, d, 5, 1.0);
+            Series {
+                label: format!("{d:?} (mean {:.2} steps)", r.mean_abs_error),
+                points: r
+                    .error_by_time
+                    .iter()
+                    .enumerate()
+                    .map(|(t, &e)| (t as f64, e))
+                    .collect(),
+                line: true,
+                color: k,
+            }
+        })
+        .collect();
+    out.extend(write_chart(
+        &dir.join("decoding"),
+        &Chart {
+            title: format!("{title}: elapsed-time decoding error"),
+            x_label: "time since oven on (steps)".into(),
+            y_label: "|decoded − true| (steps)".into(),
+            series,
+            ..Chart::default()
+        },
+    )?);
+    Ok(out)
+}
+
+/// Learning curve of a run folder's `curves.csv` (PPO: training success and evaluation
+/// success vs env steps; timing agents: the same vs env steps).
+pub fn learning_curve(run_dir: &Path) -> Result<Vec<PathBuf>, FigureError> {
+    let path = run_dir.join("curves.csv");
+    let text = std::fs::read_to_string(&path).map_err(err(&path))?;
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name);
+    let x = col("env_steps");
+    let train = col("success_rate").or_else(|| col("train_success"));
+    let eval = col("eval_success");
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| {
+            l.split(',')
+                .map(|v| v.parse().unwrap_or(f64::NAN))
+                .collect()
+        })
+        .collect();
+    let pick = |c: Option<usize>| -> Vec<(f64, f64)> {
+        match (x, c) {
+            (Some(x), Some(c)) => rows
+                .iter()
+                .map(|r| {
+                    (
+                        r.get(x).copied().unwrap_or(f64::NAN),
+                        r.get(c).copied().unwrap_or(f64::NAN),
+                    )
+                })
+                .collect(),
+            _ => Vec::new(),
+        }
+    };
+    let mut series = vec![Series {
+        label: "training success".into(),
+        points: pick(train),
+        line: true,
+        color: 0,
+    }];
+    let ev: Vec<(f64, f64)> = pick(eval).into_iter().filter(|p| p.1.is_finite()).collect();
+    if !ev.is_empty() {
+        series.push(Series {
+            label: "greedy evaluation".into(),
+            points: ev,
+            line: false,
+            color: 3,
+        });
+    }
+    write_chart(
+        &run_dir.join("figures").join("learning_curve"),
+        &Chart {
+            title: format!("learning curve: {}", run_dir.display()),
+            x_label: "env steps".into(),
+            y_label: "success rate".into(),
+            series,
+            y_range: Some((-0.02, 1.02)),
+            ..Chart::default()
+        },
+    )
 }
