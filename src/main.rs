@@ -3,6 +3,7 @@
 mod demo;
 mod env_cmd;
 mod eval_cmd;
+mod export_cmd;
 mod play;
 mod timing_cmd;
 mod train_cmd;
@@ -31,6 +32,8 @@ enum Command {
     Train(train_cmd::TrainArgs),
     /// Evaluate an agent with its task's protocol: per-episode records + metrics JSON.
     Eval(eval_cmd::EvalArgs),
+    /// Export activity / evaluation records to NPZ (numpy), CSV and JSON metadata.
+    Export(export_cmd::ExportArgs),
     /// Record the neural activity of a trained agent (JSON activity dataset).
     Record(timing_cmd::RecordArgs),
     /// The model zoo: architectures, tasks and presets.
@@ -54,6 +57,7 @@ fn main() -> ExitCode {
         Command::Train(args) => train_cmd::run(args),
         Command::Record(args) => timing_cmd::record(args),
         Command::Eval(args) => eval_cmd::run(args),
+        Command::Export(args) => export_cmd::run(args),
         Command::Zoo { command } => train_cmd::run_zoo(command),
     };
     match result {

@@ -561,6 +561,38 @@ fn eval_writes_records_and_metrics_that_recompute_identically() {
         let err = run_err(&args);
         assert!(err.contains(needle), "{args:?}: {err}");
     }
+    // Export of the evaluation records: NPZ + metadata + CSV.
+    let exp = dir.join("export");
+    let listed = run_ok(&[
+        "export",
+        "--eval",
+        out.to_str().unwrap(),
+        "--out",
+        exp.to_str().unwrap(),
+    ]);
+    assert!(listed.contains("episodes.npz"), "{listed}");
+    let meta: Value =
+        serde_json::from_str(&std::fs::read_to_string(exp.join("episodes.meta.json")).unwrap())
+            .unwrap();
+    assert!(meta["arrays"]["foc"]["shape"][0] == 36, "{meta}");
+    assert_eq!(
+        std::fs::read_to_string(exp.join("episodes.csv"))
+            .unwrap()
+            .lines()
+            .count(),
+        37
+    );
+    for (args, needle) in [
+        (vec!["export"], "say what to export"),
+        (
+            vec!["export", "--eval", "/nonexistent"],
+            "not an eval folder",
+        ),
+        (vec!["export", "--activity", "/nonexistent.json"], "reading"),
+    ] {
+        let err = run_err(&args);
+        assert!(err.contains(needle), "{args:?}: {err}");
+    }
     assert!(
         !std::path::Path::new("eval").exists(),
         "a failed eval must not leave an output folder behind"

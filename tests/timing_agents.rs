@@ -303,3 +303,97 @@ fn neural_summaries_tell_ramps_sequences_and_oscillations_apart() {
     assert!(sbf.frac_oscillating > 0.8, "{sbf:?}");
     assert!(sbf.frac_ramping < 0.05, "{sbf:?}");
 }
+
+#[test]
+fn exported_npz_matches_the_dataset_array_by_array() {
+    use chronocooked_analysis::export::export_activity;
+    use chronocooked_analysis::npz::read_npz;
+    let config = make_config("FixedInterval-v0", &["td=6"]).unwrap();
+    let env = chronocooked_env::ChronoEnv::new(&config).unwrap();
+    let mut agent = chronocooked_models::zoo::make_timing_agent("timecells-ms", &env, 0).unwrap();
+    let train = chronocooked_models::TimingTrainConfig {
+        episodes: 1500,
+        eval_every: 0,
+        ..Default::default()
+    };
+    chronocooked_models::train_timing_agent(&mut agent, &config, &train, &[6], 0, |_| {}).unwrap();
+    let mut rec = TrialRecorder::new(ActivityMeta {
+        model: "timecells-ms".into(),
+        task: "FixedInterval-v0".into(),
+        env: vec!["td=6".into()],
+        seed: 0,
+        dt: 1.0,
+        populations: Vec::new(),
+    });
+    evaluate_agent(&mut agent, &config, &[6], 0, Some(&mut rec)).unwrap();
+    let ds = rec.finish();
+    let dir = temp_dir("export");
+    export_activity(&ds, &dir, 200).unwrap();
+    let arrays = read_npz(&std::fs::read(dir.join("activity.npz")).unwrap()).unwrap();
+    let meta: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("activity.meta.json")).unwrap())
+            .unwrap();
+    let get = |name: &str| {
+        arrays
+            .iter()
+            .find(|a| a.0 == name)
+            .unwrap_or_else(|| panic!("{name}"))
+    };
+    let n = ds.meta.n_units();
+    // Every array is described, with the right shape.
+    for (name, _, shape, _) in &arrays {
+        let described: Vec<usize> =
+            serde_json::from_value(meta["arrays"][name]["shape"].clone()).unwrap();
+        assert_eq!(&described, shape, "{name}");
+    }
+    assert_eq!(meta["units"].as_array().unwrap().len(), n);
+    // activity: trials concatenated, f32 little-endian.
+    let (_, descr, shape, raw) = get("activity");
+    assert_eq!(descr, "<f4");
+    let total: usize = ds.trials.iter().map(|t| t.steps).sum();
+    assert_eq!(shape, &vec![total, n]);
+    let values: Vec<f32> = raw
+        .chunks_exact(4)
+        .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+        .collect();
+    let expected: Vec<f32> = ds
+        .trials
+        .iter()
+        .flat_map(|t| t.activity.iter().copied())
+        .collect();
+    assert_eq!(values, expected);
+    let i64s = |raw: &Vec<u8>| -> Vec<i64> {
+        raw.chunks_exact(8)
+            .map(|b| i64::from_le_bytes(b.try_into().unwrap()))
+            .collect()
+    };
+    let offsets = i64s(&get("trial_offsets").3);
+    assert_eq!(offsets.len(), ds.trials.len() + 1);
+    assert_eq!(*offsets.last().unwrap() as usize, total);
+    assert_eq!(
+        i64s(&get("td").3),
+        ds.trials
+            .iter()
+            .map(|t| i64::from(t.td))
+            .collect::<Vec<_>>()
+    );
+    let events: usize = ds.trials.iter().map(|t| t.events.len()).sum();
+    assert_eq!(i64s(&get("event_step").3).len(), events);
+    let (aligned, used) = ds.aligned(Marker::OvenOn, get("aligned").2[1] - 1);
+    let a: Vec<f32> = get("aligned")
+        .3
+        .chunks_exact(4)
+        .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+        .collect();
+    assert_eq!(a.len(), aligned.len());
+    assert!(
+        a.iter()
+            .zip(&aligned)
+            .all(|(x, y)| x == y || (x.is_nan() && y.is_nan()))
+    );
+    assert_eq!(
+        i64s(&get("aligned_trials").3),
+        used.iter().map(|&u| u as i64).collect::<Vec<_>>()
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -12,17 +12,21 @@
 //!   units, sequentiality, decoding error);
 //! * [`aggregate`] — headline numbers, mean ± SD across seeds, episodes to adapt;
 //! * [`human`] — recorded human play (`env play`) as evaluation records;
+//! * [`export`] / [`npz`] — NPZ (numpy) + CSV + JSON-metadata export of activity and
+//!   evaluation records;
 //! * [`figures`] — SVG/PNG figures (plotters, bundled font);
 //! * [`protocol`] — evaluation conditions per task and the runner (any agent);
 //! * [`metrics`] — behavioural metrics of an evaluation from its per-episode records.
 
 pub mod aggregate;
 pub mod decode;
+pub mod export;
 pub mod figures;
 pub mod foc;
 pub mod human;
 pub mod metrics;
 pub mod neural;
+pub mod npz;
 pub mod oscillation;
 pub mod peak;
 pub mod protocol;
