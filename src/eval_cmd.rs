@@ -67,22 +67,6 @@ fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     Ok(())
 }
 
-fn run_task(run: &Path) -> Result<(String, Vec<String>)> {
-    let text = std::fs::read_to_string(run.join("config.json"))
-        .with_context(|| format!("{} is not a run folder (no config.json)", run.display()))?;
-    let v: serde_json::Value = serde_json::from_str(&text)?;
-    let task = v["task"].as_str().unwrap_or("FixedInterval-v0").to_string();
-    let env = v["env"]
-        .as_array()
-        .map(|a| {
-            a.iter()
-                .filter_map(|s| s.as_str().map(String::from))
-                .collect()
-        })
-        .unwrap_or_default();
-    Ok((task, env))
-}
-
 fn write_metrics(out: &Path, info: &EvalInfo, records: &[EvalRecord]) -> Result<()> {
     let metrics = compute_metrics(&info.model, records, info.seed);
     let mut json = serde_json::to_string_pretty(&metrics)?;
@@ -144,7 +128,7 @@ pub fn run(args: EvalArgs) -> Result<()> {
     }
     let (task, env) = match (&args.task, &args.run) {
         (Some(t), _) => (t.clone(), args.env.clone()),
-        (None, Some(run)) => run_task(run)?,
+        (None, Some(run)) => chronocooked_training::timing_run::run_task(run)?,
         (None, None) => ("FixedInterval-v0".to_string(), args.env.clone()),
     };
     let config = chronocooked_env::make_config(&task, &env)?;

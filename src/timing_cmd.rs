@@ -105,27 +105,11 @@ pub struct RecordArgs {
     pub figures: Option<PathBuf>,
 }
 
-fn run_task(run: &Path) -> Result<(String, Vec<String>)> {
-    let text = std::fs::read_to_string(run.join("config.json"))
-        .with_context(|| format!("{} is not a run folder (no config.json)", run.display()))?;
-    let v: serde_json::Value = serde_json::from_str(&text)?;
-    let task = v["task"].as_str().unwrap_or("FixedInterval-v0").to_string();
-    let env = v["env"]
-        .as_array()
-        .map(|a| {
-            a.iter()
-                .filter_map(|s| s.as_str().map(String::from))
-                .collect()
-        })
-        .unwrap_or_default();
-    Ok((task, env))
-}
-
 /// Runs `record`.
 pub fn record(args: RecordArgs) -> Result<()> {
     let (task, env) = match &args.task {
         Some(t) => (t.clone(), args.env.clone()),
-        None => run_task(&args.run)?,
+        None => chronocooked_training::timing_run::run_task(&args.run)?,
     };
     let config: TaskConfig = make_config(&task, &env)?;
     let mut agent = load_agent(&args.run, Some(&config))?;

@@ -239,6 +239,30 @@ pub fn run_timing_training(
     Ok(summary)
 }
 
+/// Task id and task overrides of any run folder (PPO or timing agent), from its
+/// `config.json`.
+pub fn run_task(dir: &Path) -> Result<(String, Vec<String>), TrainError> {
+    let p = dir.join("config.json");
+    let text = std::fs::read_to_string(&p).map_err(|_| TrainError::Resume {
+        path: dir.display().to_string(),
+        reason: "not a run folder (no config.json)".into(),
+    })?;
+    let v: serde_json::Value = serde_json::from_str(&text).map_err(|e| TrainError::Resume {
+        path: p.display().to_string(),
+        reason: e.to_string(),
+    })?;
+    let task = v["task"].as_str().unwrap_or("FixedInterval-v0").to_string();
+    let env = v["env"]
+        .as_array()
+        .map(|a| {
+            a.iter()
+                .filter_map(|s| s.as_str().map(String::from))
+                .collect()
+        })
+        .unwrap_or_default();
+    Ok((task, env))
+}
+
 /// Whether `dir`'s `config.json` describes a timing-agent run (finished or not).
 pub fn is_timing_run_config(dir: &Path) -> bool {
     std::fs::read_to_string(dir.join("config.json"))
