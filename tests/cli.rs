@@ -593,8 +593,18 @@ fn eval_writes_records_and_metrics_that_recompute_identically() {
         let err = run_err(&args);
         assert!(err.contains(needle), "{args:?}: {err}");
     }
-    assert!(
-        !std::path::Path::new("eval").exists(),
-        "a failed eval must not leave an output folder behind"
+    // A failed eval leaves no output folder behind (run in an empty working directory).
+    let cwd = temp_dir("eval-cwd");
+    let status = bin()
+        .current_dir(&cwd)
+        .args(["eval", "--agent", "sage"])
+        .output()
+        .unwrap()
+        .status;
+    assert!(!status.success());
+    assert_eq!(
+        std::fs::read_dir(&cwd).unwrap().count(),
+        0,
+        "output folder left behind"
     );
 }
