@@ -5,6 +5,7 @@ mod env_cmd;
 mod eval_cmd;
 mod export_cmd;
 mod play;
+mod report_cmd;
 mod timing_cmd;
 mod train_cmd;
 
@@ -34,6 +35,8 @@ enum Command {
     Eval(eval_cmd::EvalArgs),
     /// Export activity / evaluation records to NPZ (numpy), CSV and JSON metadata.
     Export(export_cmd::ExportArgs),
+    /// Leaderboard (HTML with inline figures, Markdown, CSV) from `eval` folders.
+    Report(report_cmd::ReportArgs),
     /// Record the neural activity of a trained agent (JSON activity dataset).
     Record(timing_cmd::RecordArgs),
     /// The model zoo: architectures, tasks and presets.
@@ -58,6 +61,7 @@ fn main() -> ExitCode {
         Command::Record(args) => timing_cmd::record(args),
         Command::Eval(args) => eval_cmd::run(args),
         Command::Export(args) => export_cmd::run(args),
+        Command::Report(args) => report_cmd::run(args),
         Command::Zoo { command } => train_cmd::run_zoo(command),
     };
     match result {

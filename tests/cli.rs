@@ -608,3 +608,52 @@ fn eval_writes_records_and_metrics_that_recompute_identically() {
         "output folder left behind"
     );
 }
+
+#[test]
+fn report_is_self_contained_and_has_every_model() {
+    let dir = temp_dir("report-cli");
+    let mut evals = Vec::new();
+    for agent in ["oracle", "random"] {
+        for task in ["FixedInterval-v0", "Bisection-v0"] {
+            let out = dir.join(format!("{agent}-{task}"));
+            run_ok(&[
+                "eval",
+                "--agent",
+                agent,
+                "--task",
+                task,
+                "--out",
+                out.to_str().unwrap(),
+            ]);
+            evals.push(out.to_str().unwrap().to_string());
+        }
+    }
+    let rep = dir.join("report");
+    let mut args = vec!["report", "--out", rep.to_str().unwrap(), "--eval"];
+    args.extend(evals.iter().map(String::as_str));
+    run_ok(&args);
+    let html = std::fs::read_to_string(rep.join("report.html")).unwrap();
+    assert!(html.starts_with("<!DOCTYPE html>") && html.trim_end().ends_with("</html>"));
+    assert!(
+        !html.contains("http") && !html.contains("src=") && !html.contains("href="),
+        "external reference"
+    );
+    for model in ["<td>oracle</td>", "<td>random</td>"] {
+        assert!(html.contains(model), "{model} row missing");
+    }
+    assert!(html.matches("<svg").count() >= 6, "figures inline");
+    for col in ["fi_success", "bisection_accuracy", "foc_over_td", "wf"] {
+        assert!(html.contains(col), "{col} column missing");
+    }
+    let csv = std::fs::read_to_string(rep.join("report.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 3, "header + 2 models");
+    assert!(
+        std::fs::read_to_string(rep.join("report.md"))
+            .unwrap()
+            .contains("| oracle | 2 |")
+    );
+    let err = run_err(&["report", "--eval", "/nonexistent"]);
+    assert!(err.contains("not an `eval` output folder"), "{err}");
+    let err = run_err(&["report"]);
+    assert!(err.contains("--eval"), "{err}");
+}

@@ -38,7 +38,18 @@ impl Spread {
 /// Headline numbers of one evaluation, by name (the leaderboard's columns).
 pub fn headline(m: &Metrics) -> BTreeMap<String, f64> {
     let mut h = BTreeMap::new();
-    h.insert("success".into(), m.success_rate);
+    // Success of the trained condition only (probes and OOD conditions are not meant to pay).
+    for (kind, key) in [("fi", "fi_success"), ("dual", "dual_success")] {
+        let c: Vec<f64> = m
+            .conditions
+            .iter()
+            .filter(|c| c.kind == kind)
+            .map(|c| c.success_rate)
+            .collect();
+        if !c.is_empty() {
+            h.insert(key.into(), Spread::of(c).mean);
+        }
+    }
     if let Some(b) = &m.bisection {
         h.insert("bisection_accuracy".into(), b.anchor_accuracy);
         if let Some(f) = &b.fit {

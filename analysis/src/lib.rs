@@ -14,6 +14,7 @@
 //! * [`human`] — recorded human play (`env play`) as evaluation records;
 //! * [`export`] / [`npz`] — NPZ (numpy) + CSV + JSON-metadata export of activity and
 //!   evaluation records;
+//! * [`report`] — leaderboard (self-contained HTML with inline SVG, Markdown, CSV);
 //! * [`figures`] — SVG/PNG figures (plotters, bundled font);
 //! * [`protocol`] — evaluation conditions per task and the runner (any agent);
 //! * [`metrics`] — behavioural metrics of an evaluation from its per-episode records.
@@ -31,6 +32,7 @@ pub mod oscillation;
 pub mod peak;
 pub mod protocol;
 pub mod psychometric;
+pub mod report;
 pub mod summary;
 
 pub use decode::{DecodeResult, Decoder, decode_time};

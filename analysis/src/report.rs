@@ -1,0 +1,244 @@
+//! Leaderboard report from evaluation folders (`eval` outputs): one self-contained HTML page
+//! (inline SVG figures, no external resources), Markdown and CSV. Rows = models (folders of
+//! the same model are aggregated: mean ± SD over runs); columns = headline metrics.
+
+use crate::aggregate::{Spread, aggregate};
+use crate::metrics::Metrics;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// What every column means and which direction is better.
+pub const COLUMNS: [(&str, &str); 18] = [
+    (
+        "fi_success",
+        "FI: full-reward deliveries at the trained TD (higher is better)",
+    ),
+    (
+        "bisection_accuracy",
+        "correct counter on the two anchors (higher is better)",
+    ),
+    ("bp", "bisection point of the logistic fit, steps"),
+    (
+        "bp_over_gm",
+        "BP / geometric mean of the anchors (1 = geometric-mean bisection, as in animals)",
+    ),
+    ("bp_over_am", "BP / arithmetic mean of the anchors"),
+    ("wf", "Weber fraction DL/BP (lower = sharper timing)"),
+    (
+        "foc_over_td",
+        "mean first oven check / TD (1 = checks exactly when the soup is ready)",
+    ),
+    (
+        "foc_cv",
+        "CV of the first oven check (scalar timing: constant across TDs)",
+    ),
+    ("r2_mean_vs_td", "R² of mean FOC vs TD (timing: close to 1)"),
+    (
+        "r2_sd_vs_mean",
+        "R² of FOC SD vs mean (scalar property: close to 1)",
+    ),
+    (
+        "pi_peak_over_td",
+        "peak-interval response peak / TD (1 = peaks at the trained time)",
+    ),
+    ("pi_cv", "peak-interval spread / peak (lower = sharper)"),
+    (
+        "mt_reward",
+        "multi-timer mean reward over TDs incl. OOD (higher is better)",
+    ),
+    ("mt_plateaus", "multi-timer timing plateaus (timers stored)"),
+    (
+        "dual_success",
+        "dual task: soup delivered inside the reward window (higher is better)",
+    ),
+    ("dual_reward", "dual-task mean reward (soup + sink)"),
+    (
+        "unc_success",
+        "uncertainty task: success with a normal oven (higher is better)",
+    ),
+    (
+        "unc_button_use",
+        "uncertainty task: button use when the oven never readies",
+    ),
+];
+
+/// One model's row.
+#[derive(Debug, Clone)]
+pub struct Row {
+    /// Model name.
+    pub model: String,
+    /// Evaluation folders aggregated.
+    pub runs: Vec<PathBuf>,
+    /// Headline spreads.
+    pub values: BTreeMap<String, Spread>,
+}
+
+/// Recomputes the metrics of an `eval` folder from its `records.jsonl` and `eval.json`
+/// (the records are the source of truth; metrics JSON writes NaN as null).
+pub fn load_metrics(folder: &Path) -> Result<Metrics, String> {
+    let read = |name: &str| {
+        let p = folder.join(name);
+        std::fs::read_to_string(&p)
+            .map_err(|e| format!("{}: {e} (not an `eval` output folder)", p.display()))
+    };
+    let info: serde_json::Value =
+        serde_json::from_str(&read("eval.json")?).map_err(|e| format!("eval.json: {e}"))?;
+    let records: Vec<crate::protocol::EvalRecord> = read("records.jsonl")?
+        .lines()
+        .enumerate()
+        .map(|(i, l)| {
+            serde_json::from_str(l).map_err(|e| format!("records.jsonl line {}: {e}", i + 1))
+        })
+        .collect::<Result<_, _>>()?;
+    Ok(crate::metrics::compute_metrics(
+        info["model"].as_str().unwrap_or("unknown"),
+        &records,
+        info["seed"].as_u64().unwrap_or(0),
+    ))
+}
+
+/// Loads every folder's metrics and groups them by model (input order kept).
+pub fn load_rows(folders: &[PathBuf]) -> Result<Vec<Row>, String> {
+    let mut groups: Vec<(String, Vec<PathBuf>, Vec<Metrics>)> = Vec::new();
+    for f in folders {
+        let m = load_metrics(f)?;
+        match groups.iter_mut().find(|g| g.0 == m.model) {
+            Some(g) => {
+                g.1.push(f.clone());
+                g.2.push(m);
+            }
+            None => groups.push((m.model.clone(), vec![f.clone()], vec![m])),
+        }
+    }
+    Ok(groups
+        .into_iter()
+        .map(|(model, runs, ms)| Row {
+            model,
+            runs,
+            values: aggregate(&ms),
+        })
+        .collect())
+}
+
+fn cell(s: Option<&Spread>) -> String {
+    match s {
+        Some(s) if s.n > 1 && s.sd.is_finite() => format!("{:.3} ± {:.3}", s.mean, s.sd),
+        Some(s) if s.mean.is_finite() => format!("{:.3}", s.mean),
+        _ => "–".into(),
+    }
+}
+
+fn escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
+
+/// Columns any row has, in [`COLUMNS`] order.
+fn used_columns(rows: &[Row]) -> Vec<(&'static str, &'static str)> {
+    COLUMNS
+        .iter()
+        .copied()
+        .filter(|(k, _)| rows.iter().any(|r| r.values.contains_key(*k)))
+        .collect()
+}
+
+/// Writes `report.html`, `report.md` and `report.csv` into `out`.
+pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    let cols = used_columns(rows);
+    // CSV: mean and SD columns.
+    let mut csv = String::from("model,runs");
+    for (k, _) in &cols {
+        csv += &format!(",{k},{k}_sd");
+    }
+    csv.push('\n');
+    for r in rows {
+        csv += &format!("{},{}", r.model, r.runs.len());
+        for (k, _) in &cols {
+            match r.values.get(*k) {
+                Some(s) => csv += &format!(",{},{}", s.mean, s.sd),
+                None => csv += ",,",
+            }
+        }
+        csv.push('\n');
+    }
+    // Markdown.
+    let mut md = String::from("# Chronocooked leaderboard\n\n| model | runs |");
+    for (k, _) in &cols {
+        md += &format!(" {k} |");
+    }
+    md += "\n|---|---|";
+    md += &"---|".repeat(cols.len());
+    md.push('\n');
+    for r in rows {
+        md += &format!("| {} | {} |", r.model, r.runs.len());
+        for (k, _) in &cols {
+            md += &format!(" {} |", cell(r.values.get(*k)));
+        }
+        md.push('\n');
+    }
+    md += "\n## Columns\n\n";
+    for (k, what) in &cols {
+        md += &format!("* `{k}`: {what}\n");
+    }
+    // HTML with inline SVG figures.
+    let mut html = String::from(
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>Chronocooked leaderboard</title>\n<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}td,th{border:1px solid #bbb;padding:4px 8px;text-align:right}th{background:#eee}td:first-child{text-align:left}figure{display:inline-block;margin:0.5em;width:46%}figure svg{width:100%;height:auto}</style></head><body>\n<h1>Chronocooked leaderboard</h1>\n<table>\n<tr><th>model</th><th>runs</th>",
+    );
+    for (k, _) in &cols {
+        html += &format!("<th>{k}</th>");
+    }
+    html += "</tr>\n";
+    for r in rows {
+        html += &format!("<tr><td>{}</td><td>{}</td>", escape(&r.model), r.runs.len());
+        for (k, _) in &cols {
+            html += &format!("<td>{}</td>", cell(r.values.get(*k)));
+        }
+        html += "</tr>\n";
+    }
+    html += "</table>\n<h2>Columns</h2>\n<dl>\n";
+    for (k, what) in &cols {
+        html += &format!("<dt><code>{k}</code></dt><dd>{}</dd>\n", escape(what));
+    }
+    html += "</dl>\n";
+    for r in rows {
+        html += &format!("<h2>{}</h2>\n", escape(&r.model));
+        for run in &r.runs {
+            let dir = run.join("figures");
+            let mut svgs: Vec<PathBuf> = std::fs::read_dir(&dir)
+                .map(|d| d.filter_map(|e| e.ok().map(|e| e.path())).collect())
+                .unwrap_or_default();
+            svgs.retain(|p| p.extension().is_some_and(|e| e == "svg"));
+            svgs.sort();
+            for svg in svgs {
+                let text =
+                    std::fs::read_to_string(&svg).map_err(|e| format!("{}: {e}", svg.display()))?;
+                // Drop the XML prolog and namespace URIs: inline SVG in HTML needs neither,
+                // and the page then holds no URL at all.
+                let body = text.find("<svg").map_or(text.as_str(), |i| &text[i..]);
+                let body = body
+                    .replace(" xmlns=\"http://www.w3.org/2000/svg\"", "")
+                    .replace(" xmlns:xlink=\"http://www.w3.org/1999/xlink\"", "");
+                html += &format!(
+                    "<figure>{body}<figcaption>{}</figcaption></figure>\n",
+                    escape(&svg.file_stem().unwrap_or_default().to_string_lossy())
+                );
+            }
+        }
+    }
+    html += "</body></html>\n";
+    let mut files = Vec::new();
+    for (name, text) in [
+        ("report.html", html),
+        ("report.md", md),
+        ("report.csv", csv),
+    ] {
+        let p = out.join(name);
+        let tmp = p.with_extension("tmp");
+        std::fs::write(&tmp, text).map_err(|e| format!("{}: {e}", tmp.display()))?;
+        std::fs::rename(&tmp, &p).map_err(|e| format!("{}: {e}", p.display()))?;
+        files.push(p);
+    }
+    Ok(files)
+}
