@@ -6,6 +6,7 @@ use chronocooked_env::{TaskConfig, make_config};
 use chronocooked_models::activity::{ActivityMeta, TrialRecorder};
 use chronocooked_models::zoo::{TIMING_MODELS, make_timing_agent};
 use chronocooked_models::{Agent, evaluate_agent};
+use chronocooked_training::run_dir::write_atomic;
 use chronocooked_training::timing_run::load_agent;
 use chronocooked_training::{TimingRunConfig, eval_tds, run_timing_training};
 use clap::Args;
@@ -127,10 +128,7 @@ pub fn record(args: RecordArgs) -> Result<()> {
         args.repeats,
         args.seed,
     )?;
-    let json = serde_json::to_vec(&dataset)?;
-    let tmp = args.out.with_extension("json.tmp");
-    std::fs::write(&tmp, json).with_context(|| format!("writing {}", tmp.display()))?;
-    std::fs::rename(&tmp, &args.out)?;
+    write_atomic(&args.out, &serde_json::to_vec(&dataset)?)?;
     if let Some(dir) = &args.figures {
         write_heatmaps(&dataset, dir)?;
     }
@@ -148,10 +146,10 @@ pub fn record(args: RecordArgs) -> Result<()> {
                 )
             })
             .collect();
-        let path = args.out.with_extension("summary.json");
-        let tmp = path.with_extension("tmp");
-        std::fs::write(&tmp, serde_json::to_string_pretty(&summaries)?)?;
-        std::fs::rename(&tmp, &path)?;
+        write_atomic(
+            &args.out.with_extension("summary.json"),
+            serde_json::to_string_pretty(&summaries)?.as_bytes(),
+        )?;
     }
     println!(
         "{} trials × {} units of {} on {task} → {}",

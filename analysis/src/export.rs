@@ -24,10 +24,9 @@ fn code(m: Marker) -> i64 {
     EVENT_CODES.iter().position(|(k, _)| *k == m).unwrap_or(0) as i64
 }
 
-fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    let tmp = path.with_extension("tmp");
-    std::fs::write(&tmp, bytes).map_err(|e| format!("{}: {e}", tmp.display()))?;
-    std::fs::rename(&tmp, path).map_err(|e| format!("{}: {e}", path.display()))
+/// The project's atomic write (temporary file, then rename), with a string error.
+pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
+    chronocooked_training::run_dir::write_atomic(path, bytes).map_err(|e| e.to_string())
 }
 
 fn describe(arrays: &[NpyArray], docs: &[(&str, &str, &str)]) -> Value {

@@ -74,11 +74,7 @@ fn color(i: usize) -> RGBColor {
 }
 
 fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
-    let (lo, hi) = values
-        .filter(|v| v.is_finite())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
-            (a.min(v), b.max(v))
-        });
+    let (lo, hi) = crate::neural::finite_range(values);
     if !lo.is_finite() {
         return (0.0, 1.0);
     }
@@ -278,25 +274,12 @@ pub fn write_heatmap(
     let mut rows: Vec<(usize, Vec<f64>)> = (0..units)
         .map(|i| {
             let col: Vec<f64> = (0..time).map(|t| avg[t * units + i]).collect();
-            let (lo, hi) = col
-                .iter()
-                .filter(|v| v.is_finite())
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
-                    (a.min(v), b.max(v))
-                });
+            let (lo, hi) = crate::neural::finite_range(col.iter().copied());
             let norm: Vec<f64> = col
                 .iter()
                 .map(|&v| if hi > lo { (v - lo) / (hi - lo) } else { 0.0 })
                 .collect();
-            let peak = norm
-                .iter()
-                .enumerate()
-                .fold(
-                    (0, f64::NEG_INFINITY),
-                    |b, (t, &v)| if v > b.1 { (t, v) } else { b },
-                )
-                .0;
-            (peak, norm)
+            (crate::neural::argmax(&norm), norm)
         })
         .collect();
     rows.sort_by_key(|r| r.0);

@@ -76,23 +76,13 @@ pub fn foc_stats(groups: &[(u32, Vec<f64>)]) -> Vec<FocStats> {
     groups
         .iter()
         .map(|(td, v)| {
-            let n = v.len();
-            let mean = if n > 0 {
-                v.iter().sum::<f64>() / n as f64
-            } else {
-                f64::NAN
-            };
-            let sd = if n > 1 {
-                (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1) as f64).sqrt()
-            } else {
-                f64::NAN
-            };
+            let s = crate::aggregate::Spread::of(v.iter().copied());
             FocStats {
                 td: *td,
-                n,
-                mean,
-                sd,
-                cv: sd / mean,
+                n: v.len(),
+                mean: s.mean,
+                sd: s.sd,
+                cv: s.sd / s.mean,
             }
         })
         .collect()

@@ -200,14 +200,32 @@ pub fn classify_ramps(avg: &[f64], units: usize, r_min: f64, p_max: f64) -> Vec<
         .collect()
 }
 
+/// Index of the largest value (the first on ties; 0 for an empty slice).
+pub fn argmax(v: &[f64]) -> usize {
+    v.iter()
+        .enumerate()
+        .fold(
+            (0, f64::NEG_INFINITY),
+            |b, (t, &x)| if x > b.1 { (t, x) } else { b },
+        )
+        .0
+}
+
+/// `(min, max)` of the finite values (`(∞, −∞)` when there are none).
+pub fn finite_range(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
+    values
+        .into_iter()
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(v), b.max(v))
+        })
+}
+
 /// Min–max normalised copy of every unit's series (constant units → all 0).
 fn normalise_units(avg: &[f64], units: usize) -> Vec<f64> {
     let mut out = avg.to_vec();
     for i in 0..units {
-        let col = avg.iter().skip(i).step_by(units).filter(|v| v.is_finite());
-        let (lo, hi) = col.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
-            (a.min(v), b.max(v))
-        });
+        let (lo, hi) = finite_range(avg.iter().skip(i).step_by(units).copied());
         for v in out.iter_mut().skip(i).step_by(units) {
             *v = if v.is_finite() && hi > lo {
                 (*v - lo) / (hi - lo)
@@ -241,15 +259,7 @@ pub fn sequentiality_index(avg: &[f64], units: usize) -> f64 {
         if col.iter().all(|&v| v <= 0.0) {
             continue;
         }
-        let peak = col
-            .iter()
-            .enumerate()
-            .fold(
-                (0, f64::NEG_INFINITY),
-                |b, (t, &v)| if v > b.1 { (t, v) } else { b },
-            )
-            .0;
-        counts[peak] += 1.0;
+        counts[argmax(&col)] += 1.0;
         active += 1.0;
     }
     if active == 0.0 {
@@ -310,14 +320,7 @@ pub struct TimeCellUnit {
 }
 
 fn ridge_ratio(col: &[f64], half_width: usize) -> (usize, f64) {
-    let peak = col
-        .iter()
-        .enumerate()
-        .fold(
-            (0, f64::NEG_INFINITY),
-            |b, (t, &v)| if v > b.1 { (t, v) } else { b },
-        )
-        .0;
+    let peak = argmax(col);
     let (mut ridge, mut nr, mut back, mut nb) = (0.0, 0, 0.0, 0);
     for (t, &v) in col.iter().enumerate() {
         if t.abs_diff(peak) <= half_width {
@@ -346,12 +349,7 @@ pub fn time_cells(cube: &Cube, half_width: usize, shuffles: usize, seed: u64) ->
                     .collect()
             };
             let trials: Vec<Vec<f64>> = (0..cube.trials).map(series).collect();
-            let (lo, hi) = trials
-                .iter()
-                .flatten()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
-                    (a.min(v), b.max(v))
-                });
+            let (lo, hi) = finite_range(trials.iter().flatten().copied());
             let span = (hi - lo).max(1e-12);
             let norm: Vec<Vec<f64>> = trials
                 .iter()

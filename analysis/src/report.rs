@@ -235,9 +235,7 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
         ("report.csv", csv),
     ] {
         let p = out.join(name);
-        let tmp = p.with_extension("tmp");
-        std::fs::write(&tmp, text).map_err(|e| format!("{}: {e}", tmp.display()))?;
-        std::fs::rename(&tmp, &p).map_err(|e| format!("{}: {e}", p.display()))?;
+        crate::export::write_atomic(&p, text.as_bytes())?;
         files.push(p);
     }
     Ok(files)

@@ -67,13 +67,11 @@ pub fn neural_summary(
     let full = Cube::from_f32(&aligned, used.len(), window, n);
     let varying: Vec<usize> = cols
         .filter(|&i| {
-            let vals = (0..full.trials)
-                .flat_map(|k| (0..window).map(move |t| (k, t)))
-                .map(|(k, t)| full.at(k, t, i))
-                .filter(|v| v.is_finite());
-            let (lo, hi) = vals.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
-                (a.min(v), b.max(v))
-            });
+            let (lo, hi) = crate::neural::finite_range(
+                (0..full.trials)
+                    .flat_map(|k| (0..window).map(move |t| (k, t)))
+                    .map(|(k, t)| full.at(k, t, i)),
+            );
             hi - lo > 1e-9
         })
         .collect();

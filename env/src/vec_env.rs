@@ -162,21 +162,28 @@ impl VecEnv {
         Ok(())
     }
 
+    /// One action (and `mask_len` mask entries) per env, every code in `0..=5`.
+    fn check_actions(&self, actions: &[u8], mask_len: usize) -> Result<(), EnvError> {
+        let n = self.kitchens.len();
+        if actions.len() != n || mask_len != n {
+            return Err(EnvError::param(
+                "actions",
+                format!("{} actions", actions.len()),
+                format!("exactly {n} (one per env)"),
+            ));
+        }
+        match actions.iter().find(|&&a| a as usize >= Action::COUNT) {
+            Some(&bad) => Err(EnvError::InvalidAction { action: bad as i64 }),
+            None => Ok(()),
+        }
+    }
+
     /// Steps every env with `actions[i]` (reference codes `0..=5`).
     ///
     /// Errors (before any env is stepped) on a wrong number of actions or a code
     /// outside `0..=5`; in `Disabled` mode, on stepping a finished env.
     pub fn step(&mut self, actions: &[u8]) -> Result<(), EnvError> {
-        if actions.len() != self.kitchens.len() {
-            return Err(EnvError::param(
-                "actions",
-                format!("{} actions", actions.len()),
-                format!("exactly {} (one per env)", self.kitchens.len()),
-            ));
-        }
-        if let Some(&bad) = actions.iter().find(|&&a| a as usize >= Action::COUNT) {
-            return Err(EnvError::InvalidAction { action: bad as i64 });
-        }
+        self.check_actions(actions, actions.len())?;
         if self.mode == Autoreset::Disabled && self.kitchens.iter().any(Kitchen::is_done) {
             return Err(EnvError::EpisodeOver);
         }
@@ -214,16 +221,7 @@ impl VecEnv {
     /// Steps only the envs with `skip[i] == false` (evaluation batches in which some
     /// episodes already ended; `Disabled` mode). Skipped envs keep their outputs.
     pub fn step_masked(&mut self, actions: &[u8], skip: &[bool]) -> Result<(), EnvError> {
-        if actions.len() != self.kitchens.len() || skip.len() != self.kitchens.len() {
-            return Err(EnvError::param(
-                "actions",
-                format!("{} actions", actions.len()),
-                format!("exactly {} (one per env)", self.kitchens.len()),
-            ));
-        }
-        if let Some(&bad) = actions.iter().find(|&&a| a as usize >= Action::COUNT) {
-            return Err(EnvError::InvalidAction { action: bad as i64 });
-        }
+        self.check_actions(actions, skip.len())?;
         let len = self.obs_len;
         for (i, k) in self.kitchens.iter_mut().enumerate() {
             if skip[i] {
