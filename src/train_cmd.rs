@@ -2,6 +2,7 @@
 
 use anyhow::{Context, Result, bail};
 use chronocooked_models::Architecture;
+use chronocooked_training::zoo::{Family, zoo, zoo_entry};
 use chronocooked_training::{PRESETS, Progress, UpdateLog, preset_settings, resolve, run_training};
 use clap::{Args, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -131,22 +132,25 @@ pub fn run(args: TrainArgs) -> Result<()> {
 /// `zoo` subcommands.
 #[derive(Subcommand, Debug)]
 pub enum ZooCommand {
-    /// List models, hidden sizes, tasks and presets.
+    /// List every model (deep RL, timing models, baselines), tasks and presets.
     List {
-        /// Print JSON.
+        /// Print JSON (the whole registry: descriptions, parameters, presets).
         #[arg(long)]
         json: bool,
     },
-    /// Show one model's preset settings for a task.
+    /// Show one model: description, parameters and (deep RL) the resolved preset for a task.
     Show {
-        /// Model name (cnn-mlp, lstm125, …).
+        /// Model name (cnn-mlp, lstm125, ddm, timecells-ms, oracle, …).
         model: String,
-        /// Task id.
+        /// Task id (deep RL presets are keyed by task).
         #[arg(long, default_value = "FixedInterval-v0")]
         task: String,
-        /// Preset.
+        /// Preset (deep RL).
         #[arg(long, default_value = "reference")]
         preset: String,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
     },
 }
 
@@ -154,39 +158,21 @@ pub enum ZooCommand {
 pub fn run_zoo(cmd: ZooCommand) -> Result<()> {
     match cmd {
         ZooCommand::List { json } => {
-            let mut models: Vec<String> =
-                Architecture::all().iter().map(Architecture::name).collect();
-            models.extend(
-                chronocooked_models::zoo::TIMING_MODELS
-                    .iter()
-                    .map(|m| m.name.to_string()),
-            );
+            let entries = zoo();
             let tasks: Vec<&str> = chronocooked_env::all_tasks().iter().map(|t| t.id).collect();
             if json {
-                let v = serde_json::json!({"models": models, "tasks": tasks, "presets": PRESETS});
+                let v = serde_json::json!({"models": entries, "tasks": tasks, "presets": PRESETS});
                 println!("{}", serde_json::to_string_pretty(&v)?);
                 return Ok(());
             }
-            println!("Deep RL models (PPO, trained with `train`):");
-            println!(
-                "  cnn-mlp        CNN trunk (Conv1x1 6->8, ReLU, Conv1x1 8->6, Linear->64, ReLU) + heads pi=[64], vf=[64]"
-            );
-            for (kind, what) in [
-                ("lstm", "LSTM core shared by actor and critic"),
-                ("gru", "GRU core shared by actor and critic"),
-                ("rnn", "vanilla tanh RNN core"),
-                (
-                    "ctrnn",
-                    "continuous-time RNN, alpha = dt/softplus(tau), dt 0.1, learnable tau",
-                ),
-            ] {
-                println!("  {kind}{{8,125,256}}  CNN trunk + {what}");
+            for family in [Family::DeepRl, Family::Timing, Family::Baseline] {
+                println!("{}:", family.label());
+                for e in entries.iter().filter(|e| e.family == family) {
+                    println!("  {:<19} {}", e.name, e.description);
+                }
+                println!();
             }
-            println!("\nTiming models (trained with `train`, episodes via --set episodes=N):");
-            for m in chronocooked_models::zoo::TIMING_MODELS {
-                println!("  {:<19} {}", m.name, m.description);
-            }
-            println!("\nTasks: {}", tasks.join(", "));
+            println!("Tasks: {}", tasks.join(", "));
             println!("\nPresets (training/presets/*.toml, overridable with --set key=value):");
             println!(
                 "  reference  the paper's: 1 env, n_steps 1000, n_epochs 20, batch 64 (CNN-MLP) / 128 (recurrent), lr 3e-4"
@@ -194,28 +180,51 @@ pub fn run_zoo(cmd: ZooCommand) -> Result<()> {
             println!(
                 "  fast       quickest wall-clock on a 2-core CPU: recurrent 1 env x 1000 steps, 10 epochs, batch 256 (16x16-step chunks), lr 3e-4; CNN-MLP 16 envs x 64 steps, 4 epochs, batch 256, lr 1e-3; greedy eval every 10k steps"
             );
-            println!(
-                "\n`chronocooked zoo show MODEL --task ID --preset NAME` prints the resolved settings."
-            );
+            println!("\n`chronocooked zoo show MODEL [--task ID --preset NAME]` describes one model.");
         }
         ZooCommand::Show {
             model,
             task,
             preset,
+            json,
         } => {
-            let arch: Architecture = model.parse().map_err(anyhow::Error::msg)?;
-            let pairs = preset_settings(&task, arch, &preset)?;
-            let cfg = resolve::<&str>(&task, arch, &preset, 0, &[])?;
-            println!(
-                "# {} on {} ({preset} preset): settings applied in order",
-                arch.name(),
-                task
-            );
-            for (k, v) in pairs {
-                println!("{k} = {v}");
+            let entry = zoo_entry(&model)?;
+            let settings = if entry.family == Family::DeepRl {
+                let arch: Architecture = model.parse().map_err(anyhow::Error::msg)?;
+                let pairs = preset_settings(&task, arch, &preset)?;
+                let cfg = resolve::<&str>(&task, arch, &preset, 0, &[])?;
+                Some((pairs, cfg))
+            } else {
+                None
+            };
+            if json {
+                let v = serde_json::json!({
+                    "model": entry,
+                    "task": task,
+                    "preset": settings.as_ref().map(|(pairs, cfg)| serde_json::json!({
+                        "name": preset, "settings": pairs, "resolved": cfg
+                    })),
+                });
+                println!("{}", serde_json::to_string_pretty(&v)?);
+                return Ok(());
             }
-            println!("\n# resolved configuration");
-            println!("{}", serde_json::to_string_pretty(&cfg)?);
+            println!("{} ({})\n  {}\n", entry.name, entry.family.label(), entry.description);
+            if !entry.parameters.is_empty() {
+                println!("parameters:");
+                for p in &entry.parameters {
+                    println!("  {:<18} {:<10} {}", p.name, p.value, p.meaning);
+                }
+                println!();
+            }
+            println!("usage: {}", entry.usage);
+            if let Some((pairs, cfg)) = settings {
+                println!("\n# {preset} preset on {task}: settings applied in order");
+                for (k, v) in pairs {
+                    println!("{k} = {v}");
+                }
+                println!("\n# resolved configuration");
+                println!("{}", serde_json::to_string_pretty(&cfg)?);
+            }
         }
     }
     Ok(())

@@ -17,6 +17,7 @@ pub mod run_dir;
 pub mod state;
 pub mod timing_run;
 pub mod trainer;
+pub mod zoo;
 
 pub use config::{Curriculum, LrSchedule, ObsEncoding, PpoConfig, TrainConfig};
 pub use error::TrainError;

@@ -1,0 +1,321 @@
+//! The model zoo: one registry of every model the lab can train, evaluate or record — the
+//! deep-RL architectures (PPO), the biologically plausible timing models and the two
+//! reference agents (oracle, random) — with a description, parameters and presets.
+
+use crate::error::TrainError;
+use crate::presets::PRESETS;
+use crate::config::ObsEncoding;
+use crate::obs::ObsEncoder;
+use crate::params::flat_params;
+use chronocooked_env::{Action, Autoreset, VecEnv, make_config};
+use chronocooked_models::{Architecture, PolicyConfig};
+use serde::Serialize;
+
+/// What kind of model an entry is (decides how it is trained).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Family {
+    /// PPO actor–critic network (`train --steps`, presets).
+    DeepRl,
+    /// Timing model + TD learner (`train`, episodes via `--set episodes=N`).
+    Timing,
+    /// Reference agent with nothing to train (`eval --agent NAME`).
+    Baseline,
+}
+
+impl Family {
+    /// Display name.
+    pub fn label(self) -> &'static str {
+        match self {
+            Family::DeepRl => "deep RL (PPO)",
+            Family::Timing => "timing model",
+            Family::Baseline => "baseline",
+        }
+    }
+}
+
+/// One parameter of a model: name, default value, meaning (with units).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ZooParam {
+    /// Parameter name (the `--set` key where it can be overridden).
+    pub name: String,
+    /// Default value.
+    pub value: String,
+    /// Meaning and units.
+    pub meaning: String,
+}
+
+/// One model of the zoo.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ZooEntry {
+    /// Zoo name (what `train --model`, `sweep` and `zoo show` take).
+    pub name: String,
+    /// Family.
+    pub family: Family,
+    /// One-line description.
+    pub description: String,
+    /// Parameters with defaults.
+    pub parameters: Vec<ZooParam>,
+    /// Hyperparameter presets (deep RL only).
+    pub presets: Vec<String>,
+    /// How to get a trained instance.
+    pub usage: String,
+}
+
+fn p(name: &str, value: impl ToString, meaning: &str) -> ZooParam {
+    ZooParam {
+        name: name.into(),
+        value: value.to_string(),
+        meaning: meaning.into(),
+    }
+}
+
+/// The baseline agents.
+pub const BASELINES: [(&str, &str); 2] = [
+    (
+        "oracle",
+        "scripted optimal policy that reads the true oven timer (upper bound: FOC = TD, P(long) 0/1 on the anchors)",
+    ),
+    (
+        "random",
+        "uniform random actions (lower bound: fits fail, reported as such)",
+    ),
+];
+
+/// Number of trainable parameters of `arch` with the paper's input (code channels) on the
+/// reference FI grid.
+pub fn parameter_count(arch: Architecture) -> usize {
+    let task = make_config("FixedInterval-v0", &[] as &[&str]).expect("FI is registered");
+    let envs = VecEnv::new(&task, 1, Autoreset::SameStep).expect("FI builds");
+    let encoder = ObsEncoder::new(ObsEncoding::Codes, &envs);
+    let cfg = PolicyConfig::new(arch, encoder.cells(), encoder.channels(), Action::COUNT);
+    flat_params(&cfg.init(0, &chronocooked_models::cpu())).len()
+}
+
+fn deep_entry(arch: Architecture) -> ZooEntry {
+    let trunk = "Conv1x1 6->8, ReLU, Conv1x1 8->6, ReLU, flatten, Linear->64, ReLU";
+    let (description, mut parameters) = match arch.core {
+        None => (
+            "CNN trunk + heads pi=[64], vf=[64]; no memory".to_string(),
+            vec![],
+        ),
+        Some(kind) => {
+            let what = match kind.name() {
+                "lstm" => "LSTM",
+                "gru" => "GRU",
+                "rnn" => "vanilla tanh RNN",
+                _ => "continuous-time RNN (h <- (1-a)h + a tanh(W_in x + W_rec h + b), a = dt/softplus(tau))",
+            };
+            let mut ps = vec![p("hidden", arch.hidden, "units of the recurrent core")];
+            if kind.name() == "ctrnn" {
+                ps.push(p("dt", 0.1, "CTRNN integration step (model time units)"));
+                ps.push(p(
+                    "tau_raw",
+                    1.0,
+                    "initial raw time constant per unit (learnable; tau = softplus(tau_raw))",
+                ));
+            }
+            (
+                format!(
+                    "CNN trunk + {what} core ({} units) shared by actor and critic + heads pi=[64], vf=[64]",
+                    arch.hidden
+                ),
+                ps,
+            )
+        }
+    };
+    parameters.insert(
+        0,
+        p(
+            "parameters",
+            parameter_count(arch),
+            "trainable weights on the reference 5x3 grid",
+        ),
+    );
+    parameters.insert(1, p("trunk", "cnn", trunk));
+    ZooEntry {
+        name: arch.name(),
+        family: Family::DeepRl,
+        description,
+        parameters,
+        presets: PRESETS.iter().map(|s| s.to_string()).collect(),
+        usage: format!(
+            "chronocooked train --model {} --task ID [--preset reference|fast] [--steps N] [--set key=value]",
+            arch.name()
+        ),
+    }
+}
+
+/// Parameters of timing model `name`, read from a freshly built agent (so they always match
+/// the code).
+fn timing_parameters(name: &str) -> Vec<ZooParam> {
+    use chronocooked_models::timers::Timer;
+    use chronocooked_models::timing::Representation;
+    let task = make_config("FixedInterval-v0", &[] as &[&str]).expect("FI is registered");
+    let env = chronocooked_env::ChronoEnv::new(&task).expect("FI builds");
+    let Ok(agent) = chronocooked_models::zoo::make_timing_agent(name, &env, 0) else {
+        return vec![];
+    };
+    let mut ps = match &agent.timer {
+        Timer::Ddm(d) => vec![
+            p("threshold", d.acc.threshold, "accumulator threshold z"),
+            p(
+                "noise",
+                d.acc.noise,
+                "diffusion noise m (CV of the crossing time = m/sqrt(z A))",
+            ),
+            p(
+                "initial_interval",
+                d.initial_interval,
+                "interval the drift starts at (steps)",
+            ),
+            p("rate", d.rate, "drift learning rate after a reinforced interval"),
+            p("start", d.start, "response threshold as a fraction of z"),
+        ],
+        Timer::Sbf(s) => {
+            let (lo, hi) = s
+                .model
+                .freqs
+                .iter()
+                .fold((f64::INFINITY, 0.0f64), |(a, b), &f| (a.min(f), b.max(f)));
+            vec![
+                p("oscillators", s.model.freqs.len(), "cortical oscillators"),
+                p(
+                    "frequencies",
+                    format!("{lo:.2}-{hi:.2}"),
+                    "oscillator band drawn (Hz)",
+                ),
+                p(
+                    "seconds_per_step",
+                    s.seconds_per_step,
+                    "model seconds per env step",
+                ),
+                p(
+                    "memory_noise",
+                    s.model.memory_noise,
+                    "CV of the stored duration (kappa)",
+                ),
+                p(
+                    "learning_rate",
+                    s.model.learning_rate,
+                    "striatal weight learning rate",
+                ),
+                p(
+                    "threshold",
+                    s.threshold,
+                    "response threshold of the striatal detector readout",
+                ),
+            ]
+        }
+        Timer::TimeCells(tc) => match &tc.repr {
+            Representation::Presence => vec![p("units", 1, "one unit while the oven is on")],
+            Representation::Csc { units } => {
+                vec![p("units", units, "delay-line units, one per step since onset")]
+            }
+            Representation::Microstimulus {
+                decay,
+                sigma,
+                count,
+            } => vec![
+                p("units", count, "microstimuli m"),
+                p("decay", decay, "memory-trace decay d per step"),
+                p("sigma", sigma, "width of each microstimulus"),
+            ],
+            Representation::Laplace {
+                cells,
+                tau_min,
+                tau_max,
+                order,
+            } => vec![
+                p("units", cells, "time cells with log-spaced peak times"),
+                p("tau_star", format!("{tau_min}-{tau_max}"), "peak times (steps)"),
+                p("k", order, "order of the inverse-Laplace approximation"),
+            ],
+        },
+    };
+    let sarsa = &agent.learner.config;
+    ps.extend([
+        p("alpha", sarsa.alpha, "SARSA(lambda) learning rate"),
+        p("gamma", sarsa.gamma, "discount per step"),
+        p(
+            "lambda",
+            sarsa.lambda,
+            "eligibility-trace decay (replacing traces)",
+        ),
+        p(
+            "response_cost",
+            agent.config.response_cost,
+            "internal cost of one interact",
+        ),
+        p(
+            "episodes",
+            chronocooked_models::TimingTrainConfig::default().episodes,
+            "training episodes (--set episodes=N)",
+        ),
+    ]);
+    ps
+}
+
+/// Every model of the zoo, in display order: deep RL, timing models, baselines.
+pub fn zoo() -> Vec<ZooEntry> {
+    let mut v: Vec<ZooEntry> = Architecture::all().into_iter().map(deep_entry).collect();
+    v.extend(
+        chronocooked_models::zoo::TIMING_MODELS
+            .iter()
+            .map(|m| ZooEntry {
+                name: m.name.into(),
+                family: Family::Timing,
+                description: m.description.into(),
+                parameters: timing_parameters(m.name),
+                presets: vec![],
+                usage: format!(
+                    "chronocooked train --model {} --task ID [--set episodes=N] [--set alpha=0.05]",
+                    m.name
+                ),
+            }),
+    );
+    v.extend(BASELINES.iter().map(|(name, what)| ZooEntry {
+        name: (*name).into(),
+        family: Family::Baseline,
+        description: (*what).into(),
+        parameters: vec![],
+        presets: vec![],
+        usage: format!("chronocooked eval --agent {name} --task ID --out DIR"),
+    }));
+    v
+}
+
+/// The family of a model name (accepts any hidden size for deep models, e.g. `lstm64`).
+pub fn family_of(name: &str) -> Result<Family, TrainError> {
+    if BASELINES.iter().any(|b| b.0 == name) {
+        return Ok(Family::Baseline);
+    }
+    if chronocooked_models::zoo::is_timing_model(name) {
+        return Ok(Family::Timing);
+    }
+    name.parse::<Architecture>()
+        .map(|_| Family::DeepRl)
+        .map_err(|e| TrainError::InvalidParam {
+            field: "model".into(),
+            value: name.into(),
+            allowed: format!(
+                "{e}; timing models: {}; baselines: oracle, random",
+                chronocooked_models::zoo::TIMING_MODELS
+                    .iter()
+                    .map(|m| m.name)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        })
+}
+
+/// The zoo entry of `name` (deep models of any hidden size are described on the fly).
+pub fn zoo_entry(name: &str) -> Result<ZooEntry, TrainError> {
+    match family_of(name)? {
+        Family::DeepRl => Ok(deep_entry(name.parse().expect("checked"))),
+        _ => Ok(zoo()
+            .into_iter()
+            .find(|e| e.name == name)
+            .expect("registered")),
+    }
+}
