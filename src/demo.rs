@@ -1,6 +1,6 @@
-//! `demo`: the README's main command. Runs the oracle and a random policy on every
-//! registered task from every free start cell (and every trained TD), writes a GIF
-//! of one oracle episode per task and a summary table (text + JSON).
+//! `env demo`: oracle vs random policy on every registered task from every free start cell
+//! (and every trained TD), a GIF of one oracle episode per task and a summary table
+//! (text + JSON).
 
 use crate::env_cmd::{RenderPolicy, play_episode};
 use anyhow::Result;
@@ -8,11 +8,11 @@ use chronocooked_env::{ChronoEnv, ResetOptions, TaskFamily, TaskParams, all_task
 use clap::Args;
 use std::path::PathBuf;
 
-/// Arguments of `demo`.
+/// Arguments of `env demo`.
 #[derive(Args, Debug)]
 pub struct DemoArgs {
     /// Output folder for GIFs and the summary.
-    #[arg(long, default_value = "lab-out/demo")]
+    #[arg(long, default_value = "lab-out/env-demo")]
     pub out: PathBuf,
     /// Base seed.
     #[arg(long, default_value_t = 0)]

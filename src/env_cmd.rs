@@ -102,6 +102,8 @@ pub enum EnvCommand {
         #[arg(long, allow_hyphen_values = true)]
         actions: String,
     },
+    /// Oracle vs random policy on every task from every start cell: GIFs and a summary.
+    Demo(crate::demo::DemoArgs),
     /// Render an oracle or random episode as an animated GIF (and optional PNG frames / ASCII).
     Render {
         #[command(flatten)]
@@ -197,6 +199,7 @@ pub fn run(cmd: EnvCommand) -> Result<()> {
             }
             Ok(())
         }
+        EnvCommand::Demo(args) => crate::demo::run(args),
         EnvCommand::Render {
             task,
             policy,

@@ -6,6 +6,8 @@ mod eval_cmd;
 mod export_cmd;
 mod play;
 mod report_cmd;
+mod study;
+mod sweep_cmd;
 mod timing_cmd;
 mod train_cmd;
 
@@ -27,8 +29,9 @@ enum Command {
         #[command(subcommand)]
         command: env_cmd::EnvCommand,
     },
-    /// Run the built-in demo on defaults (oracle episode of every task, GIFs, summary).
-    Demo(demo::DemoArgs),
+    /// The built-in demo study: oracle, random, timing models and short LSTM/CTRNN agents on
+    /// FI and bisection — trained, evaluated, recorded, exported — and the leaderboard.
+    Demo(study::StudyArgs),
     /// Train a PPO agent or a timing model (run folder with config, curves, model).
     Train(train_cmd::TrainArgs),
     /// Evaluate an agent with its task's protocol: per-episode records + metrics JSON.
@@ -37,6 +40,12 @@ enum Command {
     Export(export_cmd::ExportArgs),
     /// Leaderboard (HTML with inline figures, Markdown, CSV) from `eval` folders.
     Report(report_cmd::ReportArgs),
+    /// Run a sweep file's jobs in parallel (train → eval → record → export, finished jobs
+    /// skipped), then the leaderboard; or `--emit slurm` for a cluster job array.
+    Sweep(sweep_cmd::SweepArgs),
+    /// One job of a sweep, in this process (what sweep workers and Slurm tasks run).
+    #[command(name = "sweep-job", hide = true)]
+    SweepJob(sweep_cmd::SweepJobArgs),
     /// Record the neural activity of a trained agent (JSON activity dataset).
     Record(timing_cmd::RecordArgs),
     /// The model zoo: architectures, tasks and presets.
@@ -55,13 +64,15 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Env { command } => env_cmd::run(command),
-        Command::Demo(args) => demo::run(args),
+        Command::Demo(args) => study::run(args),
         Command::Bench { command } => env_cmd::run_bench(command),
         Command::Train(args) => train_cmd::run(args),
         Command::Record(args) => timing_cmd::record(args),
         Command::Eval(args) => eval_cmd::run(args),
         Command::Export(args) => export_cmd::run(args),
         Command::Report(args) => report_cmd::run(args),
+        Command::Sweep(args) => sweep_cmd::run(args),
+        Command::SweepJob(args) => sweep_cmd::run_job_cmd(args),
         Command::Zoo { command } => train_cmd::run_zoo(command),
     };
     match result {

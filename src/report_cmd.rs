@@ -1,5 +1,6 @@
 //! `report`: the leaderboard (HTML with inline SVG figures, Markdown, CSV) from `eval`
-//! output folders; folders of the same model are aggregated (mean ± SD).
+//! output folders, or from any run / sweep folders holding them; folders of the same model
+//! are aggregated (mean ± SD), with the neural summaries recorded next to them.
 
 use anyhow::{Result, bail};
 use clap::Args;
@@ -11,17 +12,41 @@ pub struct ReportArgs {
     /// `eval` output folders (any number; the same model's folders are aggregated).
     #[arg(long = "eval", value_name = "DIR", num_args = 1..)]
     pub evals: Vec<PathBuf>,
-    /// Output folder (report.html, report.md, report.csv).
+    /// Run or sweep folders searched for `eval` folders (e.g. a sweep's output, or several
+    /// sweeps' outputs to merge them into one report).
+    #[arg(long = "runs", value_name = "DIR", num_args = 1..)]
+    pub runs: Vec<PathBuf>,
+    /// Output folder (report.html, report.md, report.csv, psychometric_grid.svg/png).
     #[arg(long, default_value = "report")]
     pub out: PathBuf,
 }
 
 /// Runs `report`.
 pub fn run(args: ReportArgs) -> Result<()> {
-    if args.evals.is_empty() {
-        bail!("give the evaluation folders to compare: --eval DIR [DIR ...] (from `eval`)");
+    use chronocooked_analysis::leaderboard::{find_eval_folders, load_rows};
+    if args.evals.is_empty() && args.runs.is_empty() {
+        bail!(
+            "say what to compare: --eval DIR [DIR ...] (from `eval`) or --runs DIR [DIR ...] (run or sweep folders)"
+        );
     }
-    let rows = chronocooked_analysis::report::load_rows(&args.evals).map_err(anyhow::Error::msg)?;
+    for d in &args.runs {
+        if !d.is_dir() {
+            bail!("--runs {}: no such folder", d.display());
+        }
+    }
+    let mut folders = args.evals.clone();
+    folders.extend(find_eval_folders(&args.runs));
+    if folders.is_empty() {
+        bail!(
+            "no evaluation folders (eval.json + records.jsonl) under {}; run `eval` or a sweep first",
+            args.runs
+                .iter()
+                .map(|p| p.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
+    let rows = load_rows(&folders).map_err(anyhow::Error::msg)?;
     for f in
         chronocooked_analysis::report::write_report(&rows, &args.out).map_err(anyhow::Error::msg)?
     {

@@ -228,7 +228,7 @@ fn env_play_records_keyboard_steps_in_the_replay_shape() {
 #[test]
 fn demo_runs_every_task_and_writes_gifs() {
     let dir = temp_dir("demo");
-    let out = run_ok(&["demo", "--out", dir.to_str().unwrap()]);
+    let out = run_ok(&["env", "demo", "--out", dir.to_str().unwrap()]);
     assert!(out.contains("Uncertainty-v0"));
     let summary: Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();

@@ -101,6 +101,51 @@ pub struct ScalarProperty {
     pub r2_sd_vs_mean: f64,
 }
 
+/// Pools per-TD statistics of several runs into one [`FocStats`] per TD (exact pooled mean
+/// and sample SD from each run's n, mean and SD), sorted by TD.
+pub fn pool_foc_stats(stats: &[FocStats]) -> Vec<FocStats> {
+    let mut tds: Vec<u32> = stats.iter().map(|s| s.td).collect();
+    tds.sort_unstable();
+    tds.dedup();
+    tds.into_iter()
+        .map(|td| {
+            let g: Vec<&FocStats> = stats
+                .iter()
+                .filter(|s| s.td == td && s.n > 0 && s.mean.is_finite())
+                .collect();
+            let n: usize = g.iter().map(|s| s.n).sum();
+            let mean = if n > 0 {
+                g.iter().map(|s| s.n as f64 * s.mean).sum::<f64>() / n as f64
+            } else {
+                f64::NAN
+            };
+            let ss: f64 = g
+                .iter()
+                .map(|s| {
+                    let within = if s.n > 1 && s.sd.is_finite() {
+                        (s.n - 1) as f64 * s.sd * s.sd
+                    } else {
+                        0.0
+                    };
+                    within + s.n as f64 * (s.mean - mean).powi(2)
+                })
+                .sum();
+            let sd = if n > 1 {
+                (ss / (n - 1) as f64).sqrt()
+            } else {
+                f64::NAN
+            };
+            FocStats {
+                td,
+                n,
+                mean,
+                sd,
+                cv: sd / mean,
+            }
+        })
+        .collect()
+}
+
 /// Regressions of mean FOC on TD and of SD on mean over the TDs with data.
 pub fn scalar_property(stats: &[FocStats]) -> ScalarProperty {
     let ok: Vec<&FocStats> = stats.iter().filter(|s| s.mean.is_finite()).collect();

@@ -25,6 +25,7 @@ pub mod export;
 pub mod figures;
 pub mod foc;
 pub mod human;
+pub mod leaderboard;
 pub mod metrics;
 pub mod neural;
 pub mod npz;

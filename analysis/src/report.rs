@@ -2,13 +2,12 @@
 //! (inline SVG figures, no external resources), Markdown and CSV. Rows = models (folders of
 //! the same model are aggregated: mean ± SD over runs); columns = headline metrics.
 
-use crate::aggregate::{Spread, aggregate};
-use crate::metrics::Metrics;
-use std::collections::BTreeMap;
+use crate::aggregate::Spread;
+pub use crate::leaderboard::{Row, load_metrics, load_rows, load_rows_from_runs};
 use std::path::{Path, PathBuf};
 
 /// What every column means and which direction is better.
-pub const COLUMNS: [(&str, &str); 18] = [
+pub const COLUMNS: [(&str, &str); 24] = [
     (
         "fi_success",
         "FI: full-reward deliveries at the trained TD (higher is better)",
@@ -24,6 +23,10 @@ pub const COLUMNS: [(&str, &str); 18] = [
     ),
     ("bp_over_am", "BP / arithmetic mean of the anchors"),
     ("wf", "Weber fraction DL/BP (lower = sharper timing)"),
+    (
+        "wf_cv_anchors",
+        "CV of the Weber fraction across anchor pairs (scalar timing: close to 0)",
+    ),
     (
         "foc_over_td",
         "mean first oven check / TD (1 = checks exactly when the soup is ready)",
@@ -60,65 +63,27 @@ pub const COLUMNS: [(&str, &str); 18] = [
         "unc_button_use",
         "uncertainty task: button use when the oven never readies",
     ),
+    (
+        "frac_ramping",
+        "neural: fraction of ramping units (|r| ≥ 0.9, p ≤ 0.05) after oven-on",
+    ),
+    (
+        "frac_time_cells",
+        "neural: fraction of time cells (shuffle-significant, reliable peak)",
+    ),
+    (
+        "frac_oscillating",
+        "neural: fraction of units with a spectral peak ≥ 4× the median power",
+    ),
+    (
+        "sequentiality",
+        "neural: sequentiality index (1 = tiling sequence, 0 = identical units)",
+    ),
+    (
+        "decode_error",
+        "neural: cross-validated ridge decoding error of elapsed time, steps (lower is better)",
+    ),
 ];
-
-/// One model's row.
-#[derive(Debug, Clone)]
-pub struct Row {
-    /// Model name.
-    pub model: String,
-    /// Evaluation folders aggregated.
-    pub runs: Vec<PathBuf>,
-    /// Headline spreads.
-    pub values: BTreeMap<String, Spread>,
-}
-
-/// Recomputes the metrics of an `eval` folder from its `records.jsonl` and `eval.json`
-/// (the records are the source of truth; metrics JSON writes NaN as null).
-pub fn load_metrics(folder: &Path) -> Result<Metrics, String> {
-    let read = |name: &str| {
-        let p = folder.join(name);
-        std::fs::read_to_string(&p)
-            .map_err(|e| format!("{}: {e} (not an `eval` output folder)", p.display()))
-    };
-    let info: serde_json::Value =
-        serde_json::from_str(&read("eval.json")?).map_err(|e| format!("eval.json: {e}"))?;
-    let records: Vec<crate::protocol::EvalRecord> = read("records.jsonl")?
-        .lines()
-        .enumerate()
-        .map(|(i, l)| {
-            serde_json::from_str(l).map_err(|e| format!("records.jsonl line {}: {e}", i + 1))
-        })
-        .collect::<Result<_, _>>()?;
-    Ok(crate::metrics::compute_metrics(
-        info["model"].as_str().unwrap_or("unknown"),
-        &records,
-        info["seed"].as_u64().unwrap_or(0),
-    ))
-}
-
-/// Loads every folder's metrics and groups them by model (input order kept).
-pub fn load_rows(folders: &[PathBuf]) -> Result<Vec<Row>, String> {
-    let mut groups: Vec<(String, Vec<PathBuf>, Vec<Metrics>)> = Vec::new();
-    for f in folders {
-        let m = load_metrics(f)?;
-        match groups.iter_mut().find(|g| g.0 == m.model) {
-            Some(g) => {
-                g.1.push(f.clone());
-                g.2.push(m);
-            }
-            None => groups.push((m.model.clone(), vec![f.clone()], vec![m])),
-        }
-    }
-    Ok(groups
-        .into_iter()
-        .map(|(model, runs, ms)| Row {
-            model,
-            runs,
-            values: aggregate(&ms),
-        })
-        .collect())
-}
 
 fn cell(s: Option<&Spread>) -> String {
     match s {
@@ -132,6 +97,26 @@ fn escape(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
+}
+
+/// An SVG file as inline markup: the XML prolog and namespace URIs dropped (inline SVG in
+/// HTML needs neither, and the page then holds no URL at all).
+fn inline_svg(svg: &Path) -> Result<String, String> {
+    let text = std::fs::read_to_string(svg).map_err(|e| format!("{}: {e}", svg.display()))?;
+    let body = text.find("<svg").map_or(text.as_str(), |i| &text[i..]);
+    Ok(body
+        .replace(" xmlns=\"http://www.w3.org/2000/svg\"", "")
+        .replace(" xmlns:xlink=\"http://www.w3.org/1999/xlink\"", ""))
+}
+
+/// Caption of one evaluation folder: its task (from `eval.json`) and path.
+fn run_caption(folder: &Path) -> String {
+    let task = std::fs::read_to_string(folder.join("eval.json"))
+        .ok()
+        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+        .and_then(|v| v["task"].as_str().map(str::to_string))
+        .unwrap_or_else(|| "unknown task".into());
+    format!("{task} — {}", folder.display())
 }
 
 /// Columns any row has, in [`COLUMNS`] order.
@@ -184,7 +169,7 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
     }
     // HTML with inline SVG figures.
     let mut html = String::from(
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>Chronocooked leaderboard</title>\n<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}td,th{border:1px solid #bbb;padding:4px 8px;text-align:right}th{background:#eee}td:first-child{text-align:left}figure{display:inline-block;margin:0.5em;width:46%}figure svg{width:100%;height:auto}</style></head><body>\n<h1>Chronocooked leaderboard</h1>\n<table>\n<tr><th>model</th><th>runs</th>",
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>Chronocooked leaderboard</title>\n<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}td,th{border:1px solid #bbb;padding:4px 8px;text-align:right}th{background:#eee}td:first-child{text-align:left}figure{display:inline-block;margin:0.5em;width:46%}figure.wide{width:96%}figure svg{width:100%;height:auto}</style></head><body>\n<h1>Chronocooked leaderboard</h1>\n<table>\n<tr><th>model</th><th>runs</th>",
     );
     for (k, _) in &cols {
         html += &format!("<th>{k}</th>");
@@ -202,30 +187,34 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
         html += &format!("<dt><code>{k}</code></dt><dd>{}</dd>\n", escape(what));
     }
     html += "</dl>\n";
+    let grid_rows: Vec<(String, Vec<crate::metrics::BisectionMetrics>)> = rows
+        .iter()
+        .map(|r| (r.model.clone(), r.bisection.clone()))
+        .collect();
+    let grid = crate::figures::psychometric_grid(&out.join("psychometric_grid"), &grid_rows)
+        .map_err(|e| e.to_string())?;
+    if let Some(svg) = grid.iter().find(|p| p.extension().is_some_and(|e| e == "svg")) {
+        html += "<h2>Psychometric curves (bisection)</h2>\n";
+        html += &format!(
+            "<figure class=\"wide\">{}<figcaption>P(long) per probe: grey dots = runs, blue = mean over runs, red = logistic fit of the pooled counts; AM/GM = arithmetic/geometric mean of the anchors, BP = bisection point</figcaption></figure>\n",
+            inline_svg(svg)?
+        );
+    }
     for r in rows {
         html += &format!("<h2>{}</h2>\n", escape(&r.model));
         for run in &r.runs {
-            let dir = run.join("figures");
-            let mut svgs: Vec<PathBuf> = std::fs::read_dir(&dir)
-                .map(|d| d.filter_map(|e| e.ok().map(|e| e.path())).collect())
-                .unwrap_or_default();
-            svgs.retain(|p| p.extension().is_some_and(|e| e == "svg"));
-            svgs.sort();
-            for svg in svgs {
-                let text =
-                    std::fs::read_to_string(&svg).map_err(|e| format!("{}: {e}", svg.display()))?;
-                // Drop the XML prolog and namespace URIs: inline SVG in HTML needs neither,
-                // and the page then holds no URL at all.
-                let body = text.find("<svg").map_or(text.as_str(), |i| &text[i..]);
-                let body = body
-                    .replace(" xmlns=\"http://www.w3.org/2000/svg\"", "")
-                    .replace(" xmlns:xlink=\"http://www.w3.org/1999/xlink\"", "");
+            html += &format!("<h3>{}</h3>\n", escape(&run_caption(run)));
+            for svg in crate::leaderboard::run_figures(run) {
                 html += &format!(
-                    "<figure>{body}<figcaption>{}</figcaption></figure>\n",
+                    "<figure>{}<figcaption>{}</figcaption></figure>\n",
+                    inline_svg(&svg)?,
                     escape(&svg.file_stem().unwrap_or_default().to_string_lossy())
                 );
             }
         }
+    }
+    if grid.iter().any(|p| p.extension().is_some_and(|e| e == "png")) {
+        md += "\n## Psychometric curves\n\n![psychometric grid](psychometric_grid.png)\n";
     }
     html += "</body></html>\n";
     let mut files = Vec::new();
@@ -238,5 +227,6 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
         crate::export::write_atomic(&p, text.as_bytes())?;
         files.push(p);
     }
+    files.extend(grid);
     Ok(files)
 }

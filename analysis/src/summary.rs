@@ -22,18 +22,29 @@ pub struct NeuralSummary {
     /// Steps after oven-on analysed.
     pub window: usize,
     /// Fraction of ramping units (|r| ≥ 0.9, p ≤ 0.05).
+    #[serde(deserialize_with = "f64_or_nan")]
     pub frac_ramping: f64,
     /// Fraction of time cells (shuffle p < 0.05, odd/even reliability > 0.5).
+    #[serde(deserialize_with = "f64_or_nan")]
     pub frac_time_cells: f64,
     /// Fraction of oscillating units (trial-averaged spectrum: a non-DC peak ≥ 4× the
     /// median power; needs windows of ≥ 8 steps).
+    #[serde(deserialize_with = "f64_or_nan")]
     pub frac_oscillating: f64,
     /// Sequentiality index of the trial average.
+    #[serde(deserialize_with = "f64_or_nan")]
     pub sequentiality: f64,
     /// Cross-validated ridge decoding error (steps).
+    #[serde(deserialize_with = "f64_or_nan")]
     pub decode_ridge: f64,
     /// Cross-validated Bayesian decoding error (steps).
+    #[serde(deserialize_with = "f64_or_nan")]
     pub decode_bayes: f64,
+}
+
+/// Reads a number written by serde_json, where NaN is written as `null`.
+pub fn f64_or_nan<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
 }
 
 /// Summarises `dataset` (population `population`, or all units when `None`), aligned to

@@ -15,6 +15,7 @@ pub mod presets;
 pub mod rollout;
 pub mod run_dir;
 pub mod state;
+pub mod sweep;
 pub mod timing_run;
 pub mod trainer;
 pub mod zoo;

@@ -1,0 +1,385 @@
+//! `sweep`: run a sweep file's jobs in parallel on this machine (bounded worker processes,
+//! finished jobs skipped, interrupted jobs continued), or emit a Slurm job array for them;
+//! `sweep-job`: run one job's stages in this process (what workers and Slurm tasks call).
+
+use anyhow::{Context, Result, bail};
+use chronocooked_training::run_dir::write_atomic;
+use chronocooked_training::sweep::{
+    Job, STAGES, SweepFile, finished_stages, job_dir, job_done, mark_stage, slurm_script,
+};
+use chronocooked_training::zoo::Family;
+use clap::Args;
+use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// Arguments of `sweep`.
+#[derive(Args, Debug)]
+pub struct SweepArgs {
+    /// Sweep file (TOML: tasks, models, sizes, seeds, preset, steps, episodes, set, variants,
+    /// record, export, stochastic). See `sweeps/demo.toml`.
+    pub file: PathBuf,
+    /// Output folder (default `lab-out/<sweep name>`); job folders are `<task>/<model>/seed<N>`.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Worker processes at once (default: the number of cores).
+    #[arg(long)]
+    pub workers: Option<usize>,
+    /// Instead of running, write a cluster submission: `slurm` (job array + commands).
+    #[arg(long, value_name = "SCHEDULER")]
+    pub emit: Option<String>,
+    /// Slurm: array tasks running at once.
+    #[arg(long, default_value_t = 64)]
+    pub max_parallel: usize,
+    /// Slurm: wall-time limit per job (HH:MM:SS).
+    #[arg(long, default_value = "04:00:00")]
+    pub time: String,
+    /// List the jobs and whether each is finished, run nothing.
+    #[arg(long)]
+    pub dry_run: bool,
+    /// Do not write the leaderboard after the jobs.
+    #[arg(long)]
+    pub no_report: bool,
+}
+
+/// Arguments of `sweep-job` (one job of a sweep, run in this process).
+#[derive(Args, Debug)]
+pub struct SweepJobArgs {
+    /// Sweep file.
+    pub file: PathBuf,
+    /// Sweep output folder.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Job id (`<task>/<model>/seed<N>`, as listed by `sweep --dry-run`).
+    #[arg(long)]
+    pub id: String,
+}
+
+fn absolute(p: &Path) -> Result<PathBuf> {
+    if p.is_absolute() {
+        return Ok(p.to_path_buf());
+    }
+    Ok(std::env::current_dir()?.join(p))
+}
+
+/// Runs `sweep`.
+pub fn run(args: SweepArgs) -> Result<()> {
+    let sweep = SweepFile::load(&args.file)?;
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| PathBuf::from("lab-out").join(&sweep.name));
+    let file = absolute(&args.file)?;
+    let jobs = sweep.jobs()?;
+    if args.dry_run {
+        for j in &jobs {
+            let state = if job_done(&job_dir(&out, &j.id)) {
+                "done"
+            } else {
+                "todo"
+            };
+            println!("{state}  {}", j.id);
+        }
+        return Ok(());
+    }
+    if let Some(kind) = &args.emit {
+        if kind != "slurm" {
+            bail!("unknown scheduler `{kind}` for --emit (allowed: slurm)");
+        }
+        return emit_slurm(&sweep, &file, &absolute(&out)?, &jobs, &args);
+    }
+    let workers = args.workers.unwrap_or_else(|| {
+        std::thread::available_parallelism()
+            .map(|n| n.get())
+            .unwrap_or(1)
+    });
+    run_sweep(&sweep, &file, &out, workers, !args.no_report)
+}
+
+fn emit_slurm(
+    sweep: &SweepFile,
+    file: &Path,
+    out: &Path,
+    jobs: &[Job],
+    args: &SweepArgs,
+) -> Result<()> {
+    let t = &args.time;
+    let ok = t.split(':').count() == 3 && t.split(':').all(|p| p.parse::<u32>().is_ok());
+    if !ok {
+        bail!("invalid --time `{t}` (allowed: HH:MM:SS, e.g. 04:00:00)");
+    }
+    if args.max_parallel == 0 {
+        bail!("--max-parallel must be at least 1");
+    }
+    let bin = std::env::current_exe()?.display().to_string();
+    let files = slurm_script(
+        &sweep.name,
+        &bin,
+        file,
+        out,
+        jobs,
+        args.max_parallel,
+        &args.time,
+    );
+    let dir = out.join("slurm");
+    std::fs::create_dir_all(dir.join("logs"))
+        .with_context(|| format!("creating {}", dir.display()))?;
+    for (name, text) in [
+        ("commands.txt", &files.commands),
+        ("sweep.sbatch", &files.array_script),
+        ("report.sbatch", &files.report_script),
+    ] {
+        write_atomic(&dir.join(name), text.as_bytes())?;
+    }
+    println!(
+        "{} jobs → {}\nsubmit:  jobid=$(sbatch --parsable {})\nmerge:   sbatch --dependency=afterok:$jobid {}",
+        jobs.len(),
+        dir.join("commands.txt").display(),
+        dir.join("sweep.sbatch").display(),
+        dir.join("report.sbatch").display()
+    );
+    Ok(())
+}
+
+/// Runs every unfinished job of `sweep` with at most `workers` worker processes, then (if
+/// `report`) writes the leaderboard to `out/report`. Fails, after every job had its turn,
+/// if any job failed (their logs are named).
+pub fn run_sweep(
+    sweep: &SweepFile,
+    file: &Path,
+    out: &Path,
+    workers: usize,
+    report: bool,
+) -> Result<()> {
+    let workers = workers.max(1);
+    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    let jobs = sweep.jobs()?;
+    let pending: Vec<&Job> = jobs
+        .iter()
+        .filter(|j| !job_done(&job_dir(out, &j.id)))
+        .collect();
+    eprintln!(
+        "sweep `{}`: {} jobs, {} already finished, running {} with {workers} workers → {}",
+        sweep.name,
+        jobs.len(),
+        jobs.len() - pending.len(),
+        pending.len(),
+        out.display()
+    );
+    let exe = std::env::current_exe()?;
+    let multi = MultiProgress::new();
+    let total = multi.add(ProgressBar::new(jobs.len() as u64));
+    total.set_style(
+        ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} jobs {msg}")
+            .expect("valid template")
+            .progress_chars("=> "),
+    );
+    total.set_position((jobs.len() - pending.len()) as u64);
+    let spinner = ProgressStyle::with_template("  {spinner} {elapsed:>4} {msg}")
+        .expect("valid template");
+    let mut queue = pending.into_iter();
+    let mut running: Vec<(&Job, Child, ProgressBar)> = Vec::new();
+    let mut failed: Vec<String> = Vec::new();
+    loop {
+        while running.len() < workers {
+            let Some(job) = queue.next() else { break };
+            let dir = job_dir(out, &job.id);
+            std::fs::create_dir_all(&dir)?;
+            let log = std::fs::OpenOptions::new()
+                .create(true)
+                .append(true)
+                .open(dir.join("log.txt"))?;
+            let child = Command::new(&exe)
+                .arg("sweep-job")
+                .arg(file)
+                .arg("--out")
+                .arg(out)
+                .arg("--id")
+                .arg(&job.id)
+                .env("RAYON_NUM_THREADS", "1")
+                .stdin(Stdio::null())
+                .stdout(log.try_clone()?)
+                .stderr(log)
+                .spawn()
+                .with_context(|| format!("starting a worker for {}", job.id))?;
+            let bar = multi.add(ProgressBar::new_spinner());
+            bar.set_style(spinner.clone());
+            bar.set_message(job.id.clone());
+            running.push((job, child, bar));
+        }
+        if running.is_empty() {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(200));
+        let mut i = 0;
+        while i < running.len() {
+            let (job, child, bar) = &mut running[i];
+            match child.try_wait()? {
+                None => {
+                    let stages = finished_stages(&job_dir(out, &job.id));
+                    bar.set_message(format!("{}  [{}]", job.id, stages.join(" ")));
+                    bar.tick();
+                    i += 1;
+                }
+                Some(status) => {
+                    if !status.success() {
+                        let log = job_dir(out, &job.id).join("log.txt");
+                        failed.push(format!("{} ({status}; log {})", job.id, log.display()));
+                        total.set_message(format!("{} failed", failed.len()));
+                    }
+                    bar.finish_and_clear();
+                    multi.remove(bar);
+                    total.inc(1);
+                    running.swap_remove(i);
+                }
+            }
+        }
+    }
+    total.finish();
+    if report {
+        let report_dir = out.join("report");
+        let rows = chronocooked_analysis::report::load_rows_from_runs(&[out.to_path_buf()])
+            .map_err(anyhow::Error::msg)?;
+        if rows.is_empty() {
+            eprintln!("no finished evaluation to report");
+        } else {
+            for f in chronocooked_analysis::report::write_report(&rows, &report_dir)
+                .map_err(anyhow::Error::msg)?
+            {
+                println!("{}", f.display());
+            }
+        }
+    }
+    if !failed.is_empty() {
+        bail!(
+            "{} of {} jobs failed (rerun the sweep to retry them):\n  {}",
+            failed.len(),
+            jobs.len(),
+            failed.join("\n  ")
+        );
+    }
+    Ok(())
+}
+
+/// Runs `sweep-job`.
+pub fn run_job_cmd(args: SweepJobArgs) -> Result<()> {
+    let sweep = SweepFile::load(&args.file)?;
+    let jobs = sweep.jobs()?;
+    let Some(job) = jobs.iter().find(|j| j.id == args.id) else {
+        bail!(
+            "no job `{}` in {} (list them with `sweep {} --dry-run`)",
+            args.id,
+            args.file.display(),
+            args.file.display()
+        );
+    };
+    run_job(&sweep, job, &args.out)
+}
+
+/// Removes temporary files a killed writer left behind (`*.tmp<pid>`).
+fn remove_stale_temps(dir: &Path) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let p = e.path();
+        if p.is_dir() {
+            remove_stale_temps(&p);
+        } else if p
+            .extension()
+            .and_then(|x| x.to_str())
+            .is_some_and(|x| x.contains("tmp"))
+        {
+            let _ = std::fs::remove_file(&p);
+        }
+    }
+}
+
+/// Runs the unfinished stages of `job` (train → eval → record → export) in this process.
+pub fn run_job(sweep: &SweepFile, job: &Job, out: &Path) -> Result<()> {
+    let dir = job_dir(out, &job.id);
+    std::fs::create_dir_all(&dir)?;
+    remove_stale_temps(&dir);
+    write_atomic(
+        &dir.join("job.json"),
+        serde_json::to_string_pretty(job)?.as_bytes(),
+    )?;
+    let done = finished_stages(&dir);
+    let trained = job.family != Family::Baseline;
+    let wanted: Vec<&str> = STAGES
+        .iter()
+        .copied()
+        .filter(|s| match *s {
+            "train" | "record" => trained && (*s == "train" || sweep.record),
+            "export" => sweep.export,
+            _ => true,
+        })
+        .collect();
+    let run = dir.join("run");
+    for (k, stage) in wanted.iter().enumerate() {
+        if done.iter().any(|d| d == stage) {
+            continue;
+        }
+        let t0 = Instant::now();
+        eprintln!("[{}] {stage}", job.id);
+        match *stage {
+            "train" => train_stage(sweep, job, &run)?,
+            "eval" => crate::eval_cmd::run(crate::eval_cmd::EvalArgs {
+                run: trained.then(|| run.clone()),
+                agent: (!trained).then(|| job.model.clone()),
+                task: (!trained).then(|| job.task.clone()),
+                env: if trained { vec![] } else { job.env.clone() },
+                stochastic: sweep.stochastic,
+                seed: job.seed,
+                human: None,
+                from: None,
+                out: dir.join("eval"),
+            })?,
+            "record" => crate::timing_cmd::record(crate::timing_cmd::RecordArgs {
+                run: run.clone(),
+                task: None,
+                env: vec![],
+                tds: vec![],
+                repeats: 1,
+                seed: job.seed,
+                out: dir.join("activity.json"),
+                summary: true,
+                figures: Some(dir.join("neural_figures")),
+            })?,
+            "export" => crate::export_cmd::run(crate::export_cmd::ExportArgs {
+                activity: (trained && sweep.record).then(|| dir.join("activity.json")),
+                eval: Some(dir.join("eval")),
+                window: 200,
+                out: dir.join("export"),
+            })?,
+            _ => unreachable!("stages are fixed"),
+        }
+        mark_stage(
+            &dir,
+            &job.id,
+            stage,
+            t0.elapsed().as_secs_f64(),
+            k + 1 == wanted.len(),
+        )?;
+    }
+    Ok(())
+}
+
+fn train_stage(sweep: &SweepFile, job: &Job, run: &Path) -> Result<()> {
+    if run.join("summary.json").is_file() {
+        return Ok(());
+    }
+    let resume = job.family == Family::DeepRl && run.join("config.json").is_file();
+    crate::train_cmd::run(crate::train_cmd::TrainArgs {
+        task: job.task.clone(),
+        model: job.model.clone(),
+        preset: sweep.preset.clone(),
+        seed: job.seed,
+        steps: None,
+        sets: if resume { vec![] } else { job.sets.clone() },
+        out: (!resume).then(|| run.to_path_buf()),
+        resume: resume.then(|| run.to_path_buf()),
+        quiet: true,
+    })
+}

@@ -1,0 +1,477 @@
+//! Sweeps: a TOML file naming models × sizes × tasks × seeds × override variants expands into
+//! jobs; each job trains (unless a baseline), evaluates, records activity and exports, in its
+//! own folder `OUT/<task>/<model>[~<variant>]/seed<N>/`. Finished stages are remembered in
+//! `progress.json` (written atomically after each stage), so an interrupted sweep rerun redoes
+//! nothing that finished. `slurm_script` turns the same plan into a Slurm job array.
+
+use crate::error::TrainError;
+use crate::zoo::{Family, family_of};
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// A sweep file (TOML). Every list is crossed with every other.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SweepFile {
+    /// Name (Slurm job name, report title).
+    #[serde(default = "default_name")]
+    pub name: String,
+    /// Task ids.
+    pub tasks: Vec<String>,
+    /// Zoo names; a bare recurrent kind (`lstm`, `gru`, `rnn`, `ctrnn`) is crossed with `sizes`.
+    pub models: Vec<String>,
+    /// Hidden sizes for bare recurrent kinds (default `[125]`).
+    #[serde(default = "default_sizes")]
+    pub sizes: Vec<usize>,
+    /// Seeds (default `[0]`).
+    #[serde(default = "default_seeds")]
+    pub seeds: Vec<u64>,
+    /// PPO preset (`reference` or `fast`; default `reference`).
+    #[serde(default = "default_preset")]
+    pub preset: String,
+    /// PPO env-step budget (default: the preset's).
+    #[serde(default)]
+    pub steps: Option<u64>,
+    /// Timing-model training episodes (default: the model's).
+    #[serde(default)]
+    pub episodes: Option<usize>,
+    /// `key=value` settings for every PPO run (`env.<param>` settings also reach timing
+    /// models and evaluation).
+    #[serde(default)]
+    pub set: Vec<String>,
+    /// Override variants: each inner list of `key=value` settings is one variant; jobs are
+    /// crossed with them (default: one variant without settings).
+    #[serde(default)]
+    pub variants: Vec<Vec<String>>,
+    /// Variants of one task only, keyed by task id (e.g. FI at several TDs:
+    /// `"FixedInterval-v0" = [["env.td=6"], ["env.td=12"]]`), crossed with `variants`.
+    #[serde(default)]
+    pub task_variants: std::collections::BTreeMap<String, Vec<Vec<String>>>,
+    /// Record neural activity (+ neural summary, heat maps) of trained models (default true).
+    #[serde(default = "yes")]
+    pub record: bool,
+    /// Export activity and records to NPZ/CSV (default true).
+    #[serde(default = "yes")]
+    pub export: bool,
+    /// Stochastic evaluation with N episodes per condition instead of the reference protocol.
+    #[serde(default)]
+    pub stochastic: Option<usize>,
+}
+
+fn default_name() -> String {
+    "sweep".into()
+}
+fn default_sizes() -> Vec<usize> {
+    vec![125]
+}
+fn default_seeds() -> Vec<u64> {
+    vec![0]
+}
+fn default_preset() -> String {
+    "reference".into()
+}
+fn yes() -> bool {
+    true
+}
+
+/// One unit of work of a sweep.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Job {
+    /// Stable id, also the job folder relative to the sweep output (`task/model/seedN`).
+    pub id: String,
+    /// Task id.
+    pub task: String,
+    /// Zoo name.
+    pub model: String,
+    /// Model family (decides the training command).
+    #[serde(skip, default = "deep")]
+    pub family: Family,
+    /// Seed.
+    pub seed: u64,
+    /// Training settings (`--set`), variant settings included.
+    pub sets: Vec<String>,
+    /// Task settings (`env.<param>=v` without the prefix) for evaluation.
+    pub env: Vec<String>,
+    /// Leaderboard row: the model plus its variant's non-task settings (runs of one model
+    /// on different task settings, e.g. FI TDs, share a row).
+    pub row: String,
+}
+
+fn deep() -> Family {
+    Family::DeepRl
+}
+
+/// Stages of a job, in order.
+pub const STAGES: [&str; 4] = ["train", "eval", "record", "export"];
+
+fn bad(field: &str, value: impl ToString, allowed: &str) -> TrainError {
+    TrainError::InvalidParam {
+        field: field.into(),
+        value: value.to_string(),
+        allowed: allowed.into(),
+    }
+}
+
+/// A folder-safe label of a variant (`learning_rate=1e-3,ent_coef=0.01` →
+/// `learning_rate-1e-3_ent_coef-0.01`).
+pub fn variant_label(sets: &[String]) -> String {
+    sets.iter()
+        .map(|s| {
+            s.chars()
+                .map(|c| match c {
+                    '=' => '-',
+                    c if c.is_ascii_alphanumeric() || matches!(c, '.' | '-' | '_') => c,
+                    _ => '_',
+                })
+                .collect::<String>()
+        })
+        .collect::<Vec<_>>()
+        .join("_")
+}
+
+impl SweepFile {
+    /// Parses a sweep file's text (`source` names it in errors).
+    pub fn parse(text: &str, source: &str) -> Result<Self, TrainError> {
+        let f: SweepFile = toml::from_str(text).map_err(|e| TrainError::PresetFile {
+            file: source.into(),
+            message: e.to_string(),
+        })?;
+        f.validate()?;
+        Ok(f)
+    }
+
+    /// Reads and parses a sweep file.
+    pub fn load(path: &Path) -> Result<Self, TrainError> {
+        let text = std::fs::read_to_string(path).map_err(|e| TrainError::io(path, e))?;
+        Self::parse(&text, &path.display().to_string())
+    }
+
+    /// Checks every list and name (typed errors name the field and allowed values).
+    pub fn validate(&self) -> Result<(), TrainError> {
+        for (field, empty) in [
+            ("tasks", self.tasks.is_empty()),
+            ("models", self.models.is_empty()),
+            ("sizes", self.sizes.is_empty()),
+            ("seeds", self.seeds.is_empty()),
+        ] {
+            if empty {
+                return Err(bad(field, "[]", "a non-empty list"));
+            }
+        }
+        let tasks: Vec<&str> = chronocooked_env::all_tasks().iter().map(|t| t.id).collect();
+        for t in &self.tasks {
+            if !tasks.contains(&t.as_str()) {
+                return Err(bad("tasks", t, &tasks.join(", ")));
+            }
+        }
+        if !crate::presets::PRESETS.contains(&self.preset.as_str()) {
+            return Err(bad(
+                "preset",
+                &self.preset,
+                &crate::presets::PRESETS.join(", "),
+            ));
+        }
+        if self.steps == Some(0) {
+            return Err(bad("steps", 0, "a positive env-step budget"));
+        }
+        if self.episodes == Some(0) {
+            return Err(bad("episodes", 0, "a positive number of episodes"));
+        }
+        if self.stochastic == Some(0) {
+            return Err(bad("stochastic", 0, "a positive number of episodes"));
+        }
+        for m in self.expanded_models() {
+            family_of(&m)?;
+        }
+        for t in self.task_variants.keys() {
+            if !self.tasks.contains(t) {
+                return Err(bad("task_variants", t, &self.tasks.join(", ")));
+            }
+        }
+        let task_sets = self.task_variants.values().flatten().flatten();
+        for s in self.set.iter().chain(self.variants.iter().flatten()).chain(task_sets) {
+            if !s.contains('=') {
+                return Err(TrainError::BadOverride(s.clone()));
+            }
+        }
+        Ok(())
+    }
+
+    /// Model names after crossing bare recurrent kinds with `sizes`.
+    pub fn expanded_models(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        for m in &self.models {
+            if matches!(m.as_str(), "lstm" | "gru" | "rnn" | "ctrnn") {
+                out.extend(self.sizes.iter().map(|h| format!("{m}{h}")));
+            } else {
+                out.push(m.clone());
+            }
+        }
+        out
+    }
+
+    /// Variants of `task`: its task variants crossed with the global variants (one empty
+    /// variant when there are none).
+    fn variants_of(&self, task: &str) -> Vec<Vec<String>> {
+        let global: Vec<Vec<String>> = if self.variants.is_empty() {
+            vec![vec![]]
+        } else {
+            self.variants.clone()
+        };
+        let local: Vec<Vec<String>> = match self.task_variants.get(task) {
+            Some(v) if !v.is_empty() => v.clone(),
+            _ => vec![vec![]],
+        };
+        local
+            .iter()
+            .flat_map(|l| global.iter().map(move |g| [l.clone(), g.clone()].concat()))
+            .collect()
+    }
+
+    /// Every job, in a stable order (task, model, variant, seed). Baselines have nothing to
+    /// train: they take only the task settings (`env.*`) of the variants, and the
+    /// deterministic oracle one seed only.
+    pub fn jobs(&self) -> Result<Vec<Job>, TrainError> {
+        let mut jobs = Vec::new();
+        for task in &self.tasks {
+            let variants = self.variants_of(task);
+            for model in self.expanded_models() {
+                let family = family_of(&model)?;
+                let mut vs: Vec<Vec<String>> = variants.clone();
+                if family == Family::Baseline {
+                    for v in &mut vs {
+                        v.retain(|s| s.starts_with("env."));
+                    }
+                    vs.dedup();
+                }
+                let seeds: &[u64] = if model == "oracle" {
+                    &self.seeds[..1]
+                } else {
+                    &self.seeds
+                };
+                for variant in &vs {
+                    for &seed in seeds {
+                        jobs.push(self.job(task, &model, family, variant, seed));
+                    }
+                }
+            }
+        }
+        Ok(jobs)
+    }
+
+    fn job(&self, task: &str, model: &str, family: Family, variant: &[String], seed: u64) -> Job {
+        let mut sets: Vec<String> = Vec::new();
+        let env_only = |v: &[String]| -> Vec<String> {
+            v.iter().filter(|s| s.starts_with("env.")).cloned().collect()
+        };
+        match family {
+            Family::DeepRl => {
+                if let Some(s) = self.steps {
+                    sets.push(format!("total_steps={s}"));
+                }
+                sets.extend(self.set.iter().cloned());
+            }
+            Family::Timing => {
+                if let Some(e) = self.episodes {
+                    sets.push(format!("episodes={e}"));
+                }
+                sets.extend(env_only(&self.set));
+            }
+            Family::Baseline => sets.extend(env_only(&self.set)),
+        }
+        sets.extend(variant.iter().cloned());
+        let env: Vec<String> = sets
+            .iter()
+            .filter_map(|s| s.strip_prefix("env.").map(str::to_string))
+            .collect();
+        let label = variant_label(variant);
+        let folder = if label.is_empty() {
+            model.to_string()
+        } else {
+            format!("{model}~{label}")
+        };
+        let model_sets: Vec<String> = variant
+            .iter()
+            .filter(|s| !s.starts_with("env."))
+            .cloned()
+            .collect();
+        let row = if model_sets.is_empty() {
+            model.to_string()
+        } else {
+            format!("{model}~{}", variant_label(&model_sets))
+        };
+        Job {
+            id: format!("{task}/{folder}/seed{seed}"),
+            task: task.into(),
+            model: model.into(),
+            family,
+            seed,
+            sets,
+            env,
+            row,
+        }
+    }
+}
+
+/// Stages a job folder has finished (from its `progress.json`; empty when absent or
+/// unreadable, so a damaged file only causes work to be redone).
+pub fn finished_stages(job_dir: &Path) -> Vec<String> {
+    std::fs::read_to_string(job_dir.join("progress.json"))
+        .ok()
+        .and_then(|t| serde_json::from_str::<JobProgress>(&t).ok())
+        .map(|p| p.finished)
+        .unwrap_or_default()
+}
+
+/// Contents of a job's `progress.json`.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct JobProgress {
+    /// Job id.
+    pub id: String,
+    /// Finished stages, in order.
+    pub finished: Vec<String>,
+    /// Wall seconds of each finished stage.
+    pub seconds: Vec<f64>,
+    /// Whether every stage the job needs is finished.
+    pub done: bool,
+}
+
+/// Records that `stage` of the job in `job_dir` finished after `seconds`.
+pub fn mark_stage(
+    job_dir: &Path,
+    id: &str,
+    stage: &str,
+    seconds: f64,
+    done: bool,
+) -> Result<(), TrainError> {
+    let mut p: JobProgress = std::fs::read_to_string(job_dir.join("progress.json"))
+        .ok()
+        .and_then(|t| serde_json::from_str(&t).ok())
+        .unwrap_or_default();
+    p.id = id.into();
+    if !p.finished.iter().any(|s| s == stage) {
+        p.finished.push(stage.into());
+        p.seconds.push(seconds);
+    }
+    p.done = done;
+    let json = serde_json::to_string_pretty(&p).unwrap_or_default();
+    crate::run_dir::write_atomic(&job_dir.join("progress.json"), json.as_bytes())
+}
+
+/// Whether the job in `job_dir` is completely finished.
+pub fn job_done(job_dir: &Path) -> bool {
+    std::fs::read_to_string(job_dir.join("progress.json"))
+        .ok()
+        .and_then(|t| serde_json::from_str::<JobProgress>(&t).ok())
+        .is_some_and(|p| p.done)
+}
+
+/// Quotes `s` for bash (single quotes).
+pub fn shell_quote(s: &str) -> String {
+    if !s.is_empty()
+        && s.chars()
+            .all(|c| c.is_ascii_alphanumeric() || "-_./=:,+~@".contains(c))
+    {
+        s.to_string()
+    } else {
+        format!("'{}'", s.replace('\'', "'\\''"))
+    }
+}
+
+/// The command line that runs (or finishes) one job: `BIN sweep-job FILE --out OUT --id ID`.
+pub fn job_command(bin: &str, sweep_file: &Path, out: &Path, id: &str) -> String {
+    [
+        shell_quote(bin),
+        "sweep-job".into(),
+        shell_quote(&sweep_file.display().to_string()),
+        "--out".into(),
+        shell_quote(&out.display().to_string()),
+        "--id".into(),
+        shell_quote(id),
+    ]
+    .join(" ")
+}
+
+/// Files of a Slurm submission.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SlurmFiles {
+    /// `commands.txt`: one job command per line (array index i runs line i+1).
+    pub commands: String,
+    /// `sweep.sbatch`: the job array.
+    pub array_script: String,
+    /// `report.sbatch`: merges every job into one leaderboard (submit with
+    /// `--dependency=afterok:<array job id>`).
+    pub report_script: String,
+}
+
+/// Slurm job array for `jobs` (`max_parallel` tasks at once, `time` per task as `HH:MM:SS`).
+pub fn slurm_script(
+    name: &str,
+    bin: &str,
+    sweep_file: &Path,
+    out: &Path,
+    jobs: &[Job],
+    max_parallel: usize,
+    time: &str,
+) -> SlurmFiles {
+    let slurm_dir = out.join("slurm");
+    let commands: String = jobs
+        .iter()
+        .map(|j| job_command(bin, sweep_file, out, &j.id) + "\n")
+        .collect();
+    let q = |p: &Path| shell_quote(&p.display().to_string());
+    let safe_name: String = name
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
+        .collect();
+    let array_script = format!(
+        "#!/bin/bash\n\
+         #SBATCH --job-name=chronocooked-{safe_name}\n\
+         #SBATCH --array=0-{last}%{max_parallel}\n\
+         #SBATCH --cpus-per-task=1\n\
+         #SBATCH --mem=4G\n\
+         #SBATCH --time={time}\n\
+         #SBATCH --output={logs}/%A_%a.out\n\
+         # One array task per line of commands.txt ({n} jobs). Each command skips stages it\n\
+         # already finished, so resubmitting the array after a preemption is safe.\n\
+         set -euo pipefail\n\
+         export RAYON_NUM_THREADS=1\n\
+         COMMANDS={commands_file}\n\
+         LINE=$(sed -n \"$((SLURM_ARRAY_TASK_ID + 1))p\" \"$COMMANDS\")\n\
+         if [ -z \"$LINE\" ]; then\n  \
+           echo \"no command for array index $SLURM_ARRAY_TASK_ID\" >&2\n  \
+           exit 1\n\
+         fi\n\
+         echo \"$LINE\"\n\
+         eval \"$LINE\"\n",
+        last = jobs.len().saturating_sub(1),
+        logs = q(&slurm_dir.join("logs")),
+        n = jobs.len(),
+        commands_file = q(&slurm_dir.join("commands.txt")),
+    );
+    let report_script = format!(
+        "#!/bin/bash\n\
+         #SBATCH --job-name=chronocooked-{safe_name}-report\n\
+         #SBATCH --cpus-per-task=1\n\
+         #SBATCH --mem=4G\n\
+         #SBATCH --time=00:30:00\n\
+         #SBATCH --output={logs}/report.out\n\
+         # Submit after the array: sbatch --dependency=afterok:<array job id> report.sbatch\n\
+         set -euo pipefail\n\
+         {bin} report --runs {out} --out {report}\n",
+        logs = q(&slurm_dir.join("logs")),
+        bin = shell_quote(bin),
+        out = q(out),
+        report = q(&out.join("report")),
+    );
+    SlurmFiles {
+        commands,
+        array_script,
+        report_script,
+    }
+}
+
+/// Folder of job `id` under the sweep output `out`.
+pub fn job_dir(out: &Path, id: &str) -> PathBuf {
+    out.join(id)
+}
