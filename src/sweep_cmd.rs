@@ -176,8 +176,8 @@ pub fn run_sweep(
             .progress_chars("=> "),
     );
     total.set_position((jobs.len() - pending.len()) as u64);
-    let spinner = ProgressStyle::with_template("  {spinner} {elapsed:>4} {msg}")
-        .expect("valid template");
+    let spinner =
+        ProgressStyle::with_template("  {spinner} {elapsed:>4} {msg}").expect("valid template");
     let mut queue = pending.into_iter();
     let mut running: Vec<(&Job, Child, ProgressBar)> = Vec::new();
     let mut failed: Vec<String> = Vec::new();

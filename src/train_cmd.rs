@@ -180,7 +180,9 @@ pub fn run_zoo(cmd: ZooCommand) -> Result<()> {
             println!(
                 "  fast       quickest wall-clock on a 2-core CPU: recurrent 1 env x 1000 steps, 10 epochs, batch 256 (16x16-step chunks), lr 3e-4; CNN-MLP 16 envs x 64 steps, 4 epochs, batch 256, lr 1e-3; greedy eval every 10k steps"
             );
-            println!("\n`chronocooked zoo show MODEL [--task ID --preset NAME]` describes one model.");
+            println!(
+                "\n`chronocooked zoo show MODEL [--task ID --preset NAME]` describes one model."
+            );
         }
         ZooCommand::Show {
             model,
@@ -208,7 +210,12 @@ pub fn run_zoo(cmd: ZooCommand) -> Result<()> {
                 println!("{}", serde_json::to_string_pretty(&v)?);
                 return Ok(());
             }
-            println!("{} ({})\n  {}\n", entry.name, entry.family.label(), entry.description);
+            println!(
+                "{} ({})\n  {}\n",
+                entry.name,
+                entry.family.label(),
+                entry.description
+            );
             if !entry.parameters.is_empty() {
                 println!("parameters:");
                 for p in &entry.parameters {

@@ -219,8 +219,11 @@ pub fn load_rows(folders: &[PathBuf]) -> Result<Vec<Row>, String> {
                     }
                 }
             }
-            let bisection: Vec<BisectionMetrics> =
-                g.metrics.iter().filter_map(|m| m.bisection.clone()).collect();
+            let bisection: Vec<BisectionMetrics> = g
+                .metrics
+                .iter()
+                .filter_map(|m| m.bisection.clone())
+                .collect();
             if let Some(c) = wf_constancy(&bisection) {
                 values.insert("wf_cv_anchors".into(), Spread::of([c]));
             }

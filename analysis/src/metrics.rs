@@ -3,7 +3,7 @@
 
 use crate::foc::{FocStats, ScalarProperty, episode_foc, foc_stats, scalar_property};
 use crate::protocol::EvalRecord;
-use crate::psychometric::{LogisticFit, ProbeCounts, bp_relative, fit_with_ci, transition_p_value};
+use crate::psychometric::{LogisticFit, ProbeCounts, bp_relative, check_transition, fit_with_ci};
 use chronocooked_env::{Counter, Events, TaskParams, make_config};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -395,25 +395,11 @@ fn bisection_metrics(records: &[EvalRecord], seed: u64) -> Option<BisectionMetri
             total += b;
         }
     }
-    let tmin = probes.first().map_or(0.0, |p| p.t);
-    let tmax = probes.last().map_or(0.0, |p| p.t);
     let (fit, fit_error) = match fit_with_ci(&probes, 0.95, 500, seed) {
-        Ok(f) => {
-            // A fit only counts when the transition is real: rising, significant against a
-            // flat P(long) (likelihood ratio, p ≤ 0.05), with BP inside the probed range.
-            let p = transition_p_value(&probes, &f);
-            if f.scale < 0.0 || p > 0.05 || f.bp < tmin || f.bp > tmax {
-                (
-                    None,
-                    Some(format!(
-                        "no reliable psychometric transition (BP {:.2}, scale {:.2}, likelihood-ratio p = {:.3})",
-                        f.bp, f.scale, p
-                    )),
-                )
-            } else {
-                (Some(f), None)
-            }
-        }
+        Ok(f) => match check_transition(&probes, &f) {
+            Ok(()) => (Some(f), None),
+            Err(why) => (None, Some(why)),
+        },
         Err(e) => (None, Some(e.to_string())),
     };
     let rel = fit

@@ -56,7 +56,8 @@ fn solve4(mut a: [[f64; 4]; 4], mut b: [f64; 4]) -> Option<[f64; 4]> {
 }
 
 /// Levenberg–Marquardt least-squares fit of a Gaussian plus baseline to `rate[t]`
-/// (NaN points skipped). `None` without a usable peak.
+/// (NaN points skipped). `None` without a usable peak (flat data, or a fitted peak outside
+/// the observed times).
 pub fn fit_gaussian(rate: &[f64]) -> Option<GaussianFit> {
     let pts: Vec<(f64, f64)> = rate
         .iter()
@@ -123,7 +124,9 @@ pub fn fit_gaussian(rate: &[f64]) -> Option<GaussianFit> {
             break;
         }
     }
-    (p[0] > 0.0 && p[2] > 0.0 && p.iter().all(|v| v.is_finite())).then(|| GaussianFit {
+    // A peak outside the observed times is a monotone trend, not a peak: no fit.
+    let inside = p[1] >= pts[0].0 && p[1] <= pts.last()?.0;
+    (p[0] > 0.0 && p[2] > 0.0 && inside && p.iter().all(|v| v.is_finite())).then(|| GaussianFit {
         amplitude: p[0],
         peak: p[1],
         spread: p[2].abs(),

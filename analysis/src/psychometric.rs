@@ -287,3 +287,19 @@ pub fn transition_p_value(data: &[ProbeCounts], fit: &LogisticFit) -> f64 {
     let lr = (2.0 * (fit.log_lik - flat)).max(0.0);
     erfc((lr / 2.0).sqrt())
 }
+
+/// Whether a fit describes a real psychometric transition: rising (`s > 0`), significant
+/// against a flat P(long) (likelihood ratio, p ≤ 0.05) and with BP inside the probed range.
+/// The error says which condition failed.
+pub fn check_transition(data: &[ProbeCounts], fit: &LogisticFit) -> Result<(), String> {
+    let tmin = data.iter().map(|p| p.t).fold(f64::INFINITY, f64::min);
+    let tmax = data.iter().map(|p| p.t).fold(f64::NEG_INFINITY, f64::max);
+    let p = transition_p_value(data, fit);
+    if fit.scale < 0.0 || p > 0.05 || fit.bp < tmin || fit.bp > tmax {
+        return Err(format!(
+            "no reliable psychometric transition (BP {:.2}, scale {:.2}, likelihood-ratio p = {:.3})",
+            fit.bp, fit.scale, p
+        ));
+    }
+    Ok(())
+}

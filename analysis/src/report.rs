@@ -193,7 +193,10 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
         .collect();
     let grid = crate::figures::psychometric_grid(&out.join("psychometric_grid"), &grid_rows)
         .map_err(|e| e.to_string())?;
-    if let Some(svg) = grid.iter().find(|p| p.extension().is_some_and(|e| e == "svg")) {
+    if let Some(svg) = grid
+        .iter()
+        .find(|p| p.extension().is_some_and(|e| e == "svg"))
+    {
         html += "<h2>Psychometric curves (bisection)</h2>\n";
         html += &format!(
             "<figure class=\"wide\">{}<figcaption>P(long) per probe: grey dots = runs, blue = mean over runs, red = logistic fit of the pooled counts; AM/GM = arithmetic/geometric mean of the anchors, BP = bisection point</figcaption></figure>\n",
@@ -213,7 +216,10 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
             }
         }
     }
-    if grid.iter().any(|p| p.extension().is_some_and(|e| e == "png")) {
+    if grid
+        .iter()
+        .any(|p| p.extension().is_some_and(|e| e == "png"))
+    {
         md += "\n## Psychometric curves\n\n![psychometric grid](psychometric_grid.png)\n";
     }
     html += "</body></html>\n";

@@ -189,7 +189,12 @@ impl SweepFile {
             }
         }
         let task_sets = self.task_variants.values().flatten().flatten();
-        for s in self.set.iter().chain(self.variants.iter().flatten()).chain(task_sets) {
+        for s in self
+            .set
+            .iter()
+            .chain(self.variants.iter().flatten())
+            .chain(task_sets)
+        {
             if !s.contains('=') {
                 return Err(TrainError::BadOverride(s.clone()));
             }
@@ -262,7 +267,10 @@ impl SweepFile {
     fn job(&self, task: &str, model: &str, family: Family, variant: &[String], seed: u64) -> Job {
         let mut sets: Vec<String> = Vec::new();
         let env_only = |v: &[String]| -> Vec<String> {
-            v.iter().filter(|s| s.starts_with("env.")).cloned().collect()
+            v.iter()
+                .filter(|s| s.starts_with("env."))
+                .cloned()
+                .collect()
         };
         match family {
             Family::DeepRl => {

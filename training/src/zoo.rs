@@ -2,11 +2,11 @@
 //! deep-RL architectures (PPO), the biologically plausible timing models and the two
 //! reference agents (oracle, random) — with a description, parameters and presets.
 
-use crate::error::TrainError;
-use crate::presets::PRESETS;
 use crate::config::ObsEncoding;
+use crate::error::TrainError;
 use crate::obs::ObsEncoder;
 use crate::params::flat_params;
+use crate::presets::PRESETS;
 use chronocooked_env::{Action, Autoreset, VecEnv, make_config};
 use chronocooked_models::{Architecture, PolicyConfig};
 use serde::Serialize;
@@ -104,7 +104,9 @@ fn deep_entry(arch: Architecture) -> ZooEntry {
                 "lstm" => "LSTM",
                 "gru" => "GRU",
                 "rnn" => "vanilla tanh RNN",
-                _ => "continuous-time RNN (h <- (1-a)h + a tanh(W_in x + W_rec h + b), a = dt/softplus(tau))",
+                _ => {
+                    "continuous-time RNN (h <- (1-a)h + a tanh(W_in x + W_rec h + b), a = dt/softplus(tau))"
+                }
             };
             let mut ps = vec![p("hidden", arch.hidden, "units of the recurrent core")];
             if kind.name() == "ctrnn" {
@@ -169,7 +171,11 @@ fn timing_parameters(name: &str) -> Vec<ZooParam> {
                 d.initial_interval,
                 "interval the drift starts at (steps)",
             ),
-            p("rate", d.rate, "drift learning rate after a reinforced interval"),
+            p(
+                "rate",
+                d.rate,
+                "drift learning rate after a reinforced interval",
+            ),
             p("start", d.start, "response threshold as a fraction of z"),
         ],
         Timer::Sbf(s) => {
@@ -210,7 +216,11 @@ fn timing_parameters(name: &str) -> Vec<ZooParam> {
         Timer::TimeCells(tc) => match &tc.repr {
             Representation::Presence => vec![p("units", 1, "one unit while the oven is on")],
             Representation::Csc { units } => {
-                vec![p("units", units, "delay-line units, one per step since onset")]
+                vec![p(
+                    "units",
+                    units,
+                    "delay-line units, one per step since onset",
+                )]
             }
             Representation::Microstimulus {
                 decay,
@@ -228,7 +238,11 @@ fn timing_parameters(name: &str) -> Vec<ZooParam> {
                 order,
             } => vec![
                 p("units", cells, "time cells with log-spaced peak times"),
-                p("tau_star", format!("{tau_min}-{tau_max}"), "peak times (steps)"),
+                p(
+                    "tau_star",
+                    format!("{tau_min}-{tau_max}"),
+                    "peak times (steps)",
+                ),
                 p("k", order, "order of the inverse-Laplace approximation"),
             ],
         },

@@ -258,6 +258,27 @@ where
     Ok(())
 }
 
+/// Most rows a heat map draws; larger populations (e.g. 1,000 SBF oscillators) are shown as
+/// this many bands, each the mean of adjacent units in peak-time order (keeps the SVG small).
+pub const MAX_HEATMAP_ROWS: usize = 200;
+
+/// Averages consecutive rows into at most `max` bands (rows unchanged when there are fewer).
+fn bin_rows(rows: Vec<Vec<f64>>, max: usize) -> Vec<Vec<f64>> {
+    if rows.len() <= max {
+        return rows;
+    }
+    let n = rows.len();
+    (0..max)
+        .map(|b| {
+            let (lo, hi) = (b * n / max, ((b + 1) * n / max).max(b * n / max + 1));
+            let width = rows[lo].len();
+            (0..width)
+                .map(|t| rows[lo..hi].iter().map(|r| r[t]).sum::<f64>() / (hi - lo) as f64)
+                .collect()
+        })
+        .collect()
+}
+
 /// Heat map of a `[time, units]` trial average, each unit min–max normalised and units
 /// sorted by peak time (the usual time-cell sequence plot); SVG and PNG.
 pub fn write_heatmap(
@@ -283,7 +304,7 @@ pub fn write_heatmap(
         })
         .collect();
     rows.sort_by_key(|r| r.0);
-    let rows: Vec<Vec<f64>> = rows.into_iter().map(|r| r.1).collect();
+    let rows = bin_rows(rows.into_iter().map(|r| r.1).collect(), MAX_HEATMAP_ROWS);
     let svg = stem.with_extension("svg");
     let png = stem.with_extension("png");
     draw_heatmap(
@@ -300,4 +321,3 @@ pub fn write_heatmap(
     )?;
     Ok(vec![svg, png])
 }
-

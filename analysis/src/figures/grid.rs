@@ -5,7 +5,7 @@
 
 use super::draw::{Chart, FigureError, Series, draw_chart, ensure_font, err};
 use crate::metrics::BisectionMetrics;
-use crate::psychometric::{ProbeCounts, fit_logistic};
+use crate::psychometric::{ProbeCounts, check_transition, fit_logistic};
 use plotters::prelude::*;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -42,7 +42,12 @@ pub fn panel_chart(model: &str, runs: &[&BisectionMetrics]) -> Chart {
         .enumerate()
         .map(|(i, b)| Series {
             label: if i == 0 { "runs".into() } else { String::new() },
-            points: b.probes.iter().zip(&b.p_long).map(|(p, &v)| (p.t, v)).collect(),
+            points: b
+                .probes
+                .iter()
+                .zip(&b.p_long)
+                .map(|(p, &v)| (p.t, v))
+                .collect(),
             line: false,
             color: 7,
         })
@@ -76,7 +81,10 @@ pub fn panel_chart(model: &str, runs: &[&BisectionMetrics]) -> Chart {
         ((f64::from(s) * f64::from(l)).sqrt(), "GM".to_string()),
     ];
     let mut title = format!("{model} · {s}–{l}");
-    if let Ok(fit) = fit_logistic(&pooled) {
+    // The fit is drawn only when it passes the same transition test as the metrics.
+    if let Ok(fit) = fit_logistic(&pooled)
+        && check_transition(&pooled, &fit).is_ok()
+    {
         let (t0, t1) = (
             pooled.first().map_or(0.0, |p| p.t),
             pooled.last().map_or(1.0, |p| p.t),
@@ -93,10 +101,8 @@ pub fn panel_chart(model: &str, runs: &[&BisectionMetrics]) -> Chart {
             line: true,
             color: 3,
         });
-        if fit.bp.is_finite() && fit.bp > t0 && fit.bp < t1 {
-            markers.push((fit.bp, "BP".to_string()));
-            title = format!("{title} · BP {:.1}", fit.bp);
-        }
+        markers.push((fit.bp, "BP".to_string()));
+        title = format!("{title} · BP {:.1}", fit.bp);
     }
     Chart {
         title,
@@ -142,10 +148,7 @@ pub fn psychometric_grid(
     if let Some(dir) = stem.parent() {
         std::fs::create_dir_all(dir).map_err(err(stem))?;
     }
-    let size = (
-        PANEL.0 * pairs.len() as u32,
-        PANEL.1 * models.len() as u32,
-    );
+    let size = (PANEL.0 * pairs.len() as u32, PANEL.1 * models.len() as u32);
     let svg = stem.with_extension("svg");
     let png = stem.with_extension("png");
     let grid = (models.len(), pairs.len());

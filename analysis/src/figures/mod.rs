@@ -6,8 +6,8 @@
 mod draw;
 pub mod grid;
 
-pub use draw::{Chart, FigureError, Series, write_chart, write_heatmap};
 use draw::err;
+pub use draw::{Chart, FigureError, Series, write_chart, write_heatmap};
 pub use grid::psychometric_grid;
 use std::path::{Path, PathBuf};
 
