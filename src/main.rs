@@ -1,5 +1,6 @@
 //! `chronocooked` — the Chronocooked Lab command line (a thin layer over the crates).
 
+mod adapt_cmd;
 mod demo;
 mod env_cmd;
 mod eval_cmd;
@@ -36,6 +37,9 @@ enum Command {
     Train(train_cmd::TrainArgs),
     /// Evaluate an agent with its task's protocol: per-episode records + metrics JSON.
     Eval(eval_cmd::EvalArgs),
+    /// Uncertainty adaptation: keep training a trained agent on a new task and count the
+    /// episodes it needs to adapt.
+    Adapt(adapt_cmd::AdaptArgs),
     /// Export activity / evaluation records to NPZ (numpy), CSV and JSON metadata.
     Export(export_cmd::ExportArgs),
     /// Leaderboard (HTML with inline figures, Markdown, CSV) from `eval` folders.
@@ -70,6 +74,7 @@ fn main() -> ExitCode {
         Command::Record(args) => timing_cmd::record(args),
         Command::Eval(args) => eval_cmd::run(args),
         Command::Export(args) => export_cmd::run(args),
+        Command::Adapt(args) => adapt_cmd::run(args),
         Command::Report(args) => report_cmd::run(args),
         Command::Sweep(args) => sweep_cmd::run(args),
         Command::SweepJob(args) => sweep_cmd::run_job_cmd(args),

@@ -296,7 +296,8 @@ fn remove_stale_temps(dir: &Path) {
     }
 }
 
-/// Runs the unfinished stages of `job` (train → eval → record → export) in this process.
+/// Runs the unfinished stages of `job` (train → eval → adapt → record → export) in this
+/// process.
 pub fn run_job(sweep: &SweepFile, job: &Job, out: &Path) -> Result<()> {
     let dir = job_dir(out, &job.id);
     std::fs::create_dir_all(&dir)?;
@@ -312,6 +313,7 @@ pub fn run_job(sweep: &SweepFile, job: &Job, out: &Path) -> Result<()> {
         .copied()
         .filter(|s| match *s {
             "train" | "record" => trained && (*s == "train" || sweep.record),
+            "adapt" => trained && sweep.adapt && job.task == "FixedInterval-v0",
             "export" => sweep.export,
             _ => true,
         })
@@ -335,6 +337,18 @@ pub fn run_job(sweep: &SweepFile, job: &Job, out: &Path) -> Result<()> {
                 human: None,
                 from: None,
                 out: dir.join("eval"),
+            })?,
+            "adapt" => crate::adapt_cmd::run(crate::adapt_cmd::AdaptArgs {
+                run: run.clone(),
+                task: "Uncertainty-v0".into(),
+                env: vec![],
+                episodes: sweep.adapt_episodes.unwrap_or(3000),
+                steps: sweep.adapt_steps.unwrap_or(100_000),
+                window: 100,
+                threshold: 0.8,
+                epsilon: 0.05,
+                seed: job.seed,
+                out: dir.join("adapt"),
             })?,
             "record" => crate::timing_cmd::record(crate::timing_cmd::RecordArgs {
                 run: run.clone(),

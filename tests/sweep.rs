@@ -264,6 +264,9 @@ preset = "fast"
 steps = 40000
 episodes = 300
 set = ["checkpoint_every=4000", "eval_every=0"]
+adapt = true
+adapt_steps = 2000
+adapt_episodes = 300
 "#,
     )
     .unwrap();
@@ -353,7 +356,20 @@ set = ["checkpoint_every=4000", "eval_every=0"]
             serde_json::from_str::<Value>(&text).unwrap_or_else(|e| panic!("{}: {e}", f.display()));
         }
     }
+    // Trained FI agents went through the uncertainty adaptation stage.
+    for id in &ids[1..] {
+        let a: Value = serde_json::from_str(
+            &std::fs::read_to_string(out.join(id).join("adapt/adapt.json")).unwrap(),
+        )
+        .unwrap();
+        assert_eq!(a["task"], "Uncertainty-v0", "{id}");
+    }
+    assert!(
+        !out.join(&ids[0]).join("adapt").exists(),
+        "the oracle has nothing to adapt"
+    );
     let html = std::fs::read_to_string(out.join("report/report.html")).unwrap();
+    assert!(html.contains("unc_adapted"));
     for model in ["oracle", "ddm", "lstm8", "timecells-csc"] {
         assert!(html.contains(&format!("<td>{model}</td>")), "{model} row");
     }

@@ -114,20 +114,6 @@ pub fn aggregate(runs: &[Metrics]) -> BTreeMap<String, Spread> {
         .collect()
 }
 
-/// Episodes an agent needs to adapt (uncertainty experiment): the first episode index at
-/// which the success rate over the last `window` episodes reaches `threshold`
-/// (`None` if it never does). `successes` in episode order from the switch on.
-pub fn episodes_to_adapt(successes: &[bool], window: usize, threshold: f64) -> Option<usize> {
-    let w = window.max(1);
-    let mut hits = 0usize;
-    for (i, &s) in successes.iter().enumerate() {
-        hits += usize::from(s);
-        if i >= w {
-            hits -= usize::from(successes[i - w]);
-        }
-        if i + 1 >= w && hits as f64 / w as f64 >= threshold {
-            return Some(i + 1);
-        }
-    }
-    None
-}
+/// Episodes an agent needs to adapt (uncertainty experiment); see
+/// [`chronocooked_training::adapt::episodes_to_adapt`].
+pub use chronocooked_training::adapt::episodes_to_adapt;

@@ -81,7 +81,7 @@ pub fn records_from_trace(text: &str) -> Result<Vec<EvalRecord>, String> {
                 rec.episode.actions.push(a);
                 rec.episode.infos.push(t.info);
                 rec.episode.reward += t.reward;
-                if is_success(t.info.events, t.reward) {
+                if is_success(&t.info, t.reward) {
                     rec.episode.success = true;
                 }
             }

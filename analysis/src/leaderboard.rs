@@ -121,6 +121,14 @@ pub fn load_neural(folder: &Path) -> Option<NeuralSummary> {
     all.into_iter().find(|s| s.units == max)
 }
 
+/// Episodes to adapt measured next to an evaluation folder (`../adapt/adapt.json` from
+/// `adapt`): `Some(n)` adapted after n episodes, `None` inside means it never adapted.
+pub fn load_adaptation(folder: &Path) -> Option<Option<usize>> {
+    let text = std::fs::read_to_string(folder.parent()?.join("adapt").join("adapt.json")).ok()?;
+    let v: serde_json::Value = serde_json::from_str(&text).ok()?;
+    Some(v["episodes_to_adapt"].as_u64().map(|n| n as usize))
+}
+
 /// Neural column keys of the leaderboard.
 pub const NEURAL_COLUMNS: [&str; 5] = [
     "frac_ramping",
@@ -168,6 +176,7 @@ pub fn load_rows(folders: &[PathBuf]) -> Result<Vec<Row>, String> {
         runs: Vec<PathBuf>,
         metrics: Vec<Metrics>,
         neural: Vec<NeuralSummary>,
+        adapt: Vec<Option<usize>>,
     }
     let mut groups: Vec<Group> = Vec::new();
     for f in folders {
@@ -181,11 +190,13 @@ pub fn load_rows(folders: &[PathBuf]) -> Result<Vec<Row>, String> {
                     runs: vec![],
                     metrics: vec![],
                     neural: vec![],
+                    adapt: vec![],
                 });
                 groups.len() - 1
             }
         };
         let g = &mut groups[idx];
+        g.adapt.extend(load_adaptation(f));
         g.runs.push(f.clone());
         g.neural.extend(load_neural(f));
         g.metrics.push(m);
@@ -218,6 +229,12 @@ pub fn load_rows(folders: &[PathBuf]) -> Result<Vec<Row>, String> {
                         values.insert(key.into(), Spread::of([v]));
                     }
                 }
+            }
+            if !g.adapt.is_empty() {
+                let eps = g.adapt.iter().map(|a| a.map_or(f64::NAN, |n| n as f64));
+                values.insert("unc_episodes_to_adapt".into(), Spread::of(eps));
+                let adapted = g.adapt.iter().map(|a| f64::from(u8::from(a.is_some())));
+                values.insert("unc_adapted".into(), Spread::of(adapted));
             }
             let bisection: Vec<BisectionMetrics> = g
                 .metrics

@@ -7,7 +7,7 @@ pub use crate::leaderboard::{Row, load_metrics, load_rows, load_rows_from_runs};
 use std::path::{Path, PathBuf};
 
 /// What every column means and which direction is better.
-pub const COLUMNS: [(&str, &str); 24] = [
+pub const COLUMNS: [(&str, &str); 26] = [
     (
         "fi_success",
         "FI: full-reward deliveries at the trained TD (higher is better)",
@@ -62,6 +62,14 @@ pub const COLUMNS: [(&str, &str); 24] = [
     (
         "unc_button_use",
         "uncertainty task: button use when the oven never readies",
+    ),
+    (
+        "unc_episodes_to_adapt",
+        "uncertainty adaptation: episodes an FI-trained agent plays on the uncertainty task until 80% of the never-ready ovens in the last 100 episodes are solved with the button (lower is better; runs that adapted)",
+    ),
+    (
+        "unc_adapted",
+        "uncertainty adaptation: fraction of runs that adapted within the budget (higher is better)",
     ),
     (
         "frac_ramping",

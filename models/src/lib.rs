@@ -21,7 +21,9 @@ pub use agent::{Agent, EpisodeRecord, Percept, PerceptParser, evaluate_agent, ru
 pub use cores::{CoreConfig, CoreKind, CoreState, RecurrentCore};
 pub use policy::{ActorCritic, Architecture, PAPER_SIZES, PolicyConfig, PolicyOutput};
 pub use timing_agent::{TimingAgent, TimingAgentConfig};
-pub use timing_train::{TimingCurvePoint, TimingTrainConfig, train_timing_agent};
+pub use timing_train::{
+    TimingCurvePoint, TimingTrainConfig, adaptation_episodes, train_timing_agent,
+};
 pub use trunk::{Trunk, TrunkConfig};
 
 /// The compute device used by the lab: burn's `flex` CPU backend.

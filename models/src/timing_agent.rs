@@ -138,6 +138,16 @@ impl TimingAgent {
         }
     }
 
+    /// Moves the trained agent to the task of `env` (a layout with the same grid, e.g. FI →
+    /// uncertainty): the percept parser, choice cells and ready-cue flag follow the new
+    /// layout; learned weights and timer memories are kept.
+    pub fn transfer_to(&mut self, env: &ChronoEnv) {
+        let fresh = TimingAgent::new(&self.name, self.timer.clone(), env, self.config.clone());
+        self.parser = fresh.parser;
+        self.shows_ready = fresh.shows_ready;
+        self.choice_cells = fresh.choice_cells;
+    }
+
     /// Sets the exploration rate (training schedule).
     pub fn set_epsilon(&mut self, epsilon: f64) {
         self.config.epsilon = epsilon;

@@ -107,3 +107,33 @@ pub fn train_timing_agent(
     agent.set_training(false);
     Ok(curve)
 }
+
+/// Plays `episodes` training episodes of `config` with learning on and exploration
+/// `epsilon`, and returns `(never_ready, success)` of each episode in order — the
+/// adaptation record of an already trained agent moved to a new task.
+pub fn adaptation_episodes(
+    agent: &mut TimingAgent,
+    config: &TaskConfig,
+    episodes: usize,
+    epsilon: f64,
+    seed: u64,
+) -> Result<Vec<(bool, bool)>, EnvError> {
+    let mut env = ChronoEnv::new(config)?;
+    agent.transfer_to(&env);
+    agent.set_epsilon(epsilon);
+    agent.set_training(true);
+    let mut out = Vec::with_capacity(episodes);
+    for ep in 0..episodes {
+        let rec = run_episode(
+            &mut env,
+            agent,
+            derive_seed(seed, ep as u64),
+            &ResetOptions::default(),
+            None,
+        )?;
+        let never_ready = rec.infos.last().is_some_and(|i| i.never_ready);
+        out.push((never_ready, rec.success));
+    }
+    agent.set_training(false);
+    Ok(out)
+}

@@ -143,6 +143,10 @@ pub struct TrainConfig {
     pub ppo: PpoConfig,
     /// Curriculum.
     pub curriculum: Curriculum,
+    /// Run folder whose final policy initialises the weights (fine-tuning, e.g. an FI agent
+    /// adapting to the uncertainty task); the architecture must match.
+    #[serde(default)]
+    pub init_from: Option<String>,
 }
 
 impl TrainConfig {
@@ -162,6 +166,7 @@ impl TrainConfig {
             stop_at_success: None,
             ppo: PpoConfig::default(),
             curriculum: Curriculum::None,
+            init_from: None,
         }
     }
 
@@ -182,6 +187,12 @@ impl TrainConfig {
             "checkpoint_every" => self.checkpoint_every = parse(key, v, "integer >= 0")?,
             "eval_every" => self.eval_every = parse(key, v, "integer >= 0")?,
             "stats_window" => self.stats_window = parse_pos(key, v)?,
+            "init_from" => {
+                self.init_from = match v {
+                    "none" | "" => None,
+                    _ => Some(v.to_string()),
+                }
+            }
             "stop_at_success" => {
                 self.stop_at_success = match v {
                     "none" | "" => None,

@@ -4,9 +4,7 @@
 use crate::act::{argmax, policy_step};
 use crate::config::ObsEncoding;
 use crate::obs::ObsEncoder;
-use chronocooked_env::{
-    Action, Autoreset, EnvError, Events, ResetOptions, TaskConfig, TaskParams, VecEnv,
-};
+use chronocooked_env::{Action, Autoreset, EnvError, ResetOptions, TaskConfig, TaskParams, VecEnv};
 use chronocooked_models::ActorCritic;
 use serde::{Deserialize, Serialize};
 
@@ -107,7 +105,7 @@ pub fn evaluate_policy(
             e.len += 1;
             if envs.terminated[i] || envs.truncated[i] {
                 done[i] = true;
-                e.success = envs.infos[i].events.has(Events::DELIVERY) && envs.rewards[i] >= 0.999;
+                e.success = chronocooked_models::agent::is_success(&envs.infos[i], envs.rewards[i]);
             }
         }
     }

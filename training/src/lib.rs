@@ -3,6 +3,7 @@
 
 pub mod act;
 pub mod adam;
+pub mod adapt;
 pub mod config;
 pub mod error;
 pub mod evaluate;

@@ -41,7 +41,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), TrainError> {
 }
 
 /// Column names of `curves.csv`.
-pub const CURVE_COLUMNS: [&str; 21] = [
+pub const CURVE_COLUMNS: [&str; 22] = [
     "update",
     "env_steps",
     "wall_s",
@@ -63,6 +63,7 @@ pub const CURVE_COLUMNS: [&str; 21] = [
     "num_timers",
     "never_ready_prob",
     "eval_success",
+    "never_ready_success",
 ];
 
 fn curve_line(r: &UpdateLog) -> String {
@@ -74,7 +75,7 @@ fn curve_line(r: &UpdateLog) -> String {
         }
     };
     format!(
-        "{},{},{:.3},{:.1},{:.4},{:.4},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+        "{},{},{:.3},{:.1},{:.4},{:.4},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
         r.update,
         r.env_steps,
         r.wall_s,
@@ -95,7 +96,8 @@ fn curve_line(r: &UpdateLog) -> String {
         r.learning_rate,
         r.num_timers,
         r.never_ready_prob,
-        r.eval_success.map(f).unwrap_or_default()
+        r.eval_success.map(f).unwrap_or_default(),
+        f(r.never_ready_success)
     )
 }
 

@@ -14,8 +14,15 @@ pub struct EpisodeStat {
     pub ret: f32,
     /// Steps.
     pub len: u32,
-    /// Ended with a delivery paying the full reward (≥ 1).
+    /// Ended with a delivery paying the full reward available (see `is_success`).
     pub success: bool,
+    /// The oven never readied by itself in this episode (uncertainty task).
+    #[serde(default)]
+    pub never_ready: bool,
+}
+
+fn nan() -> f64 {
+    f64::NAN
 }
 
 /// Reads an `f64` that JSON wrote as `null` (NaN/inf) back as NaN.
@@ -51,6 +58,10 @@ pub struct UpdateLog {
     /// Fraction of the last `stats_window` episodes ending in a full-reward delivery.
     #[serde(deserialize_with = "nan_or_f64")]
     pub success_rate: f64,
+    /// Success rate among the never-ready episodes of the same window (uncertainty task;
+    /// NaN when there were none).
+    #[serde(default = "nan", deserialize_with = "nan_or_f64")]
+    pub never_ready_success: f64,
     /// Episodes finished so far.
     pub episodes: u64,
     /// Mean clipped-surrogate loss over the update's minibatches.

@@ -53,6 +53,15 @@ pub struct SweepFile {
     /// Export activity and records to NPZ/CSV (default true).
     #[serde(default = "yes")]
     pub export: bool,
+    /// Uncertainty adaptation of every trained FI agent (`adapt` stage; default false).
+    #[serde(default)]
+    pub adapt: bool,
+    /// Adaptation budget of timing agents (episodes; default 3000).
+    #[serde(default)]
+    pub adapt_episodes: Option<usize>,
+    /// Adaptation budget of PPO agents (env steps; default 100k).
+    #[serde(default)]
+    pub adapt_steps: Option<u64>,
     /// Stochastic evaluation with N episodes per condition instead of the reference protocol.
     #[serde(default)]
     pub stochastic: Option<usize>,
@@ -102,7 +111,7 @@ fn deep() -> Family {
 }
 
 /// Stages of a job, in order.
-pub const STAGES: [&str; 4] = ["train", "eval", "record", "export"];
+pub const STAGES: [&str; 5] = ["train", "eval", "adapt", "record", "export"];
 
 fn bad(field: &str, value: impl ToString, allowed: &str) -> TrainError {
     TrainError::InvalidParam {

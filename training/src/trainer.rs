@@ -13,7 +13,7 @@ use crate::rollout::{Chunk, Rollout, chunks};
 pub use crate::state::{EpisodeStat, TrainerState, UpdateLog};
 use burn::module::Module;
 use burn::tensor::{Device, Int, Tensor, TensorData};
-use chronocooked_env::{Action, Autoreset, Events, TaskParams, VecEnv, make_config};
+use chronocooked_env::{Action, Autoreset, TaskParams, VecEnv, make_config};
 use chronocooked_models::cores::SeqAux;
 use chronocooked_models::{ActorCritic, CoreState, PolicyConfig};
 use rand::SeedableRng;
@@ -50,7 +50,24 @@ impl Trainer {
             Action::COUNT,
         );
         let device = chronocooked_models::cpu_autodiff();
-        let model = policy_cfg.init(cfg.seed, &device);
+        let mut model = policy_cfg.init(cfg.seed, &device);
+        if let Some(dir) = &cfg.init_from {
+            let (source, ..) = crate::run_dir::load_policy(std::path::Path::new(dir))?;
+            let theta = flat_params(&source);
+            let want = flat_params(&model).len();
+            if theta.len() != want {
+                return Err(TrainError::InvalidParam {
+                    field: "init_from".into(),
+                    value: dir.clone(),
+                    allowed: format!(
+                        "a run of the same architecture ({} parameters; that run has {})",
+                        want,
+                        theta.len()
+                    ),
+                });
+            }
+            model = write_params(model, &theta);
+        }
         let theta = flat_params(&model);
         let adam = Adam::new(
             theta.len(),
@@ -308,11 +325,12 @@ impl Trainer {
                 if term || trunc {
                     let info = &self.envs.final_infos[e];
                     let success =
-                        info.events.has(Events::DELIVERY) && self.envs.rewards[e] >= 0.999;
+                        chronocooked_models::agent::is_success(info, self.envs.rewards[e]);
                     self.state.recent.push_back(EpisodeStat {
                         ret: self.state.ep_return[e],
                         len: self.state.ep_len[e],
                         success,
+                        never_ready: info.never_ready,
                     });
                     while self.state.recent.len() > self.cfg.stats_window.max(1) {
                         self.state.recent.pop_front();
@@ -553,6 +571,14 @@ impl Trainer {
                 f64::NAN
             } else {
                 recent.iter().filter(|e| e.success).count() as f64 / k
+            },
+            never_ready_success: {
+                let nr: Vec<&EpisodeStat> = recent.iter().filter(|e| e.never_ready).collect();
+                if nr.is_empty() {
+                    f64::NAN
+                } else {
+                    nr.iter().filter(|e| e.success).count() as f64 / nr.len() as f64
+                }
             },
             episodes: self.state.episodes,
             policy_loss: pl / c,

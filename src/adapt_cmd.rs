@@ -1,0 +1,77 @@
+//! `adapt`: the uncertainty-adaptation protocol — a trained agent keeps learning on a new
+//! task (default `Uncertainty-v0`) and the episodes it needs to adapt are counted.
+
+use anyhow::Result;
+use chronocooked_training::adapt::{AdaptConfig, run_adaptation};
+use clap::Args;
+use std::path::PathBuf;
+
+/// Arguments of `adapt`.
+#[derive(Args, Debug)]
+pub struct AdaptArgs {
+    /// Run folder of the trained agent (PPO or timing model).
+    #[arg(long)]
+    pub run: PathBuf,
+    /// Task to adapt to.
+    #[arg(long, default_value = "Uncertainty-v0")]
+    pub task: String,
+    /// Task overrides `key=value` (default: the run's own `td`).
+    #[arg(long = "env", value_name = "KEY=VALUE")]
+    pub env: Vec<String>,
+    /// Episodes played by a timing agent.
+    #[arg(long, default_value_t = 3000)]
+    pub episodes: usize,
+    /// Env steps of PPO fine-tuning.
+    #[arg(long, default_value_t = 100_000)]
+    pub steps: u64,
+    /// Window (episodes of every kind) of the success rates.
+    #[arg(long, default_value_t = 100)]
+    pub window: usize,
+    /// Success among the window's never-ready episodes that counts as adapted.
+    #[arg(long, default_value_t = 0.8)]
+    pub threshold: f64,
+    /// Exploration of a timing agent while adapting.
+    #[arg(long, default_value_t = 0.05)]
+    pub epsilon: f64,
+    /// Seed.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Output folder (adapt.json, adapt.csv; PPO: the fine-tuning run in run/).
+    #[arg(long, default_value = "adapt")]
+    pub out: PathBuf,
+}
+
+/// Runs `adapt`.
+pub fn run(args: AdaptArgs) -> Result<()> {
+    let env = if args.env.is_empty() {
+        let (_, own) = chronocooked_training::timing_run::run_task(&args.run)?;
+        own.into_iter().filter(|s| s.starts_with("td=")).collect()
+    } else {
+        args.env.clone()
+    };
+    let cfg = AdaptConfig {
+        task: args.task.clone(),
+        env,
+        episodes: args.episodes,
+        steps: args.steps,
+        window: args.window,
+        threshold: args.threshold,
+        epsilon: args.epsilon,
+        seed: args.seed,
+    };
+    let r = run_adaptation(&args.run, &cfg, &args.out)?;
+    println!(
+        "{} ({} → {}): {} episodes; never-ready success {:.2} → {:.2} (normal ovens {:.2}); adapted {} → {}",
+        r.model,
+        r.from_task,
+        r.task,
+        r.episodes,
+        r.initial_success,
+        r.final_success,
+        r.final_normal_success,
+        r.episodes_to_adapt
+            .map_or("never".to_string(), |n| format!("after {n} episodes")),
+        args.out.join("adapt.json").display()
+    );
+    Ok(())
+}
