@@ -650,7 +650,12 @@ fn report_is_self_contained_and_has_every_model() {
     for title in ["oracle · 4–12", "random · 4–12"] {
         assert!(grid.contains(title), "{title} panel missing");
     }
-    assert!(std::fs::metadata(rep.join("psychometric_grid.png")).unwrap().len() > 1000);
+    assert!(
+        std::fs::metadata(rep.join("psychometric_grid.png"))
+            .unwrap()
+            .len()
+            > 1000
+    );
     assert!(html.contains("Psychometric curves"));
     let csv = std::fs::read_to_string(rep.join("report.csv")).unwrap();
     assert_eq!(csv.lines().count(), 3, "header + 2 models");

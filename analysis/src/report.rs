@@ -6,6 +6,9 @@ use crate::aggregate::Spread;
 pub use crate::leaderboard::{Row, load_metrics, load_rows, load_rows_from_runs};
 use std::path::{Path, PathBuf};
 
+/// What the `runs` column counts.
+pub const RUNS_LEGEND: &str = "evaluation folders aggregated in the row (seeds, and task settings such as FI TDs); every other cell is the mean ± SD over the runs that have the metric";
+
 /// What every column means and which direction is better.
 pub const COLUMNS: [(&str, &str); 26] = [
     (
@@ -117,14 +120,21 @@ fn inline_svg(svg: &Path) -> Result<String, String> {
         .replace(" xmlns:xlink=\"http://www.w3.org/1999/xlink\"", ""))
 }
 
-/// Caption of one evaluation folder: its task (from `eval.json`) and path.
-fn run_caption(folder: &Path) -> String {
-    let task = std::fs::read_to_string(folder.join("eval.json"))
+/// Runs per row and task whose figures are inlined in the HTML.
+pub const FIGURE_RUNS: usize = 3;
+
+/// Task of an evaluation folder (from `eval.json`).
+fn run_task(folder: &Path) -> String {
+    std::fs::read_to_string(folder.join("eval.json"))
         .ok()
         .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
         .and_then(|v| v["task"].as_str().map(str::to_string))
-        .unwrap_or_else(|| "unknown task".into());
-    format!("{task} — {}", folder.display())
+        .unwrap_or_else(|| "unknown task".into())
+}
+
+/// Caption of one evaluation folder: its task and path.
+fn run_caption(folder: &Path) -> String {
+    format!("{} — {}", run_task(folder), folder.display())
 }
 
 /// Columns any row has, in [`COLUMNS`] order.
@@ -172,6 +182,7 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
         md.push('\n');
     }
     md += "\n## Columns\n\n";
+    md += &format!("* `runs`: {RUNS_LEGEND}\n");
     for (k, what) in &cols {
         md += &format!("* `{k}`: {what}\n");
     }
@@ -191,6 +202,10 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
         html += "</tr>\n";
     }
     html += "</table>\n<h2>Columns</h2>\n<dl>\n";
+    html += &format!(
+        "<dt><code>runs</code></dt><dd>{}</dd>\n",
+        escape(RUNS_LEGEND)
+    );
     for (k, what) in &cols {
         html += &format!("<dt><code>{k}</code></dt><dd>{}</dd>\n", escape(what));
     }
@@ -213,7 +228,28 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
     }
     for r in rows {
         html += &format!("<h2>{}</h2>\n", escape(&r.model));
+        // Figures of up to FIGURE_RUNS runs per row and task (large sweeps stay readable);
+        // the rest are named.
+        let mut shown: Vec<(String, usize)> = Vec::new();
         for run in &r.runs {
+            let task = run_task(run);
+            let count = match shown.iter_mut().find(|s| s.0 == task) {
+                Some(s) => {
+                    s.1 += 1;
+                    s.1
+                }
+                None => {
+                    shown.push((task.clone(), 1));
+                    1
+                }
+            };
+            if count > FIGURE_RUNS {
+                html += &format!(
+                    "<p>{} (figures in its folder)</p>\n",
+                    escape(&run_caption(run))
+                );
+                continue;
+            }
             html += &format!("<h3>{}</h3>\n", escape(&run_caption(run)));
             for svg in crate::leaderboard::run_figures(run) {
                 html += &format!(
