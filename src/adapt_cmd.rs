@@ -15,7 +15,8 @@ pub struct AdaptArgs {
     /// Task to adapt to.
     #[arg(long, default_value = "Uncertainty-v0")]
     pub task: String,
-    /// Task overrides `key=value` (default: the run's own `td`).
+    /// Task overrides `key=value` (default: the run's own task settings without
+    /// `never_ready_prob` when it was trained on the task to adapt to, else its `td`).
     #[arg(long = "env", value_name = "KEY=VALUE")]
     pub env: Vec<String>,
     /// Episodes played by a timing agent.
@@ -27,7 +28,8 @@ pub struct AdaptArgs {
     /// Window (episodes of every kind) of the success rates.
     #[arg(long, default_value_t = 100)]
     pub window: usize,
-    /// Success among the window's never-ready episodes that counts as adapted.
+    /// Success on both the never-ready and the normal ovens of the window that counts as
+    /// adapted.
     #[arg(long, default_value_t = 0.8)]
     pub threshold: f64,
     /// Exploration of a timing agent while adapting.
@@ -44,8 +46,16 @@ pub struct AdaptArgs {
 /// Runs `adapt`.
 pub fn run(args: AdaptArgs) -> Result<()> {
     let env = if args.env.is_empty() {
-        let (_, own) = chronocooked_training::timing_run::run_task(&args.run)?;
-        own.into_iter().filter(|s| s.starts_with("td=")).collect()
+        let (task, own) = chronocooked_training::timing_run::run_task(&args.run)?;
+        own.into_iter()
+            .filter(|s| {
+                if task == args.task {
+                    !s.starts_with("never_ready_prob")
+                } else {
+                    s.starts_with("td=")
+                }
+            })
+            .collect()
     } else {
         args.env.clone()
     };

@@ -313,7 +313,15 @@ pub fn run_job(sweep: &SweepFile, job: &Job, out: &Path) -> Result<()> {
         .copied()
         .filter(|s| match *s {
             "train" | "record" => trained && (*s == "train" || sweep.record),
-            "adapt" => trained && sweep.adapt && job.task == "FixedInterval-v0",
+            "adapt" => {
+                trained
+                    && sweep.adapt
+                    && job.task == "Uncertainty-v0"
+                    && job
+                        .env
+                        .iter()
+                        .any(|e| e.replace(' ', "") == "never_ready_prob=0")
+            }
             "export" => sweep.export,
             _ => true,
         })
@@ -341,7 +349,12 @@ pub fn run_job(sweep: &SweepFile, job: &Job, out: &Path) -> Result<()> {
             "adapt" => crate::adapt_cmd::run(crate::adapt_cmd::AdaptArgs {
                 run: run.clone(),
                 task: "Uncertainty-v0".into(),
-                env: vec![],
+                env: job
+                    .env
+                    .iter()
+                    .filter(|e| !e.starts_with("never_ready_prob"))
+                    .cloned()
+                    .collect(),
                 episodes: sweep.adapt_episodes.unwrap_or(3000),
                 steps: sweep.adapt_steps.unwrap_or(100_000),
                 window: 100,

@@ -74,10 +74,12 @@ fn a_button_delivery_is_a_success_only_when_the_oven_never_readies() {
 }
 
 #[test]
-fn an_fi_trained_timing_agent_learns_the_button_on_the_uncertainty_task() {
+fn a_timing_agent_trained_without_uncertainty_adapts_to_it() {
     let dir = temp_dir("timing");
-    let mut cfg = TimingRunConfig::new("FixedInterval-v0", "ddm", 0);
+    // Pre-training on the same task without uncertainty (the oven always readies).
+    let mut cfg = TimingRunConfig::new("Uncertainty-v0", "sbf", 0);
     cfg.set("episodes=3000").unwrap();
+    cfg.set("env.never_ready_prob=0").unwrap();
     let run = dir.join("run");
     chronocooked_training::run_timing_training(&cfg, &run, "test", |_| {}).unwrap();
     let adapt = AdaptConfig {
@@ -86,22 +88,22 @@ fn an_fi_trained_timing_agent_learns_the_button_on_the_uncertainty_task() {
     };
     let r = run_adaptation(&run, &adapt, &dir.join("adapt")).unwrap();
     assert_eq!(r.episodes, 4000);
-    assert_eq!(r.from_task, "FixedInterval-v0");
-    // Trained without uncertainty, the agent rarely finishes a never-ready oven at first;
-    // it keeps solving normal ovens and learns to use the button (measured: 0.16 in the
-    // first 100 episodes, 0.5–0.7 later, normal ovens ≈ 0.9).
-    assert!(r.initial_success < 0.3, "{}", r.initial_success);
-    assert!(r.final_normal_success > 0.8, "{}", r.final_normal_success);
-    let late: Vec<f64> = r.curve[2000..].iter().map(|c| c.1).collect();
-    let late_mean = late.iter().sum::<f64>() / late.len() as f64;
+    assert_eq!(r.from_task, "Uncertainty-v0");
     assert!(
-        late_mean > r.initial_success + 0.2,
-        "never-ready success {} -> {late_mean}",
-        r.initial_success
+        r.env.is_empty(),
+        "the task's own never-ready probability: {:?}",
+        r.env
     );
+    // At first the button is rarely used (measured 0.11); the agent adapts (measured after
+    // ≈ 800 episodes) without giving up the normal ovens.
+    assert!(r.initial_success < 0.3, "{}", r.initial_success);
+    let n = r.episodes_to_adapt.expect("adapts within 4000 episodes");
+    assert!((100..4000).contains(&n), "{n}");
+    let at = r.curve[n - 1];
+    assert!(at.1 >= 0.8 && at.2 >= 0.8, "{at:?}");
+    assert!(r.final_normal_success > 0.8, "{}", r.final_normal_success);
     // Same seed, same result; the files are written.
     let again = run_adaptation(&run, &adapt, &dir.join("adapt2")).unwrap();
-    assert_eq!(again.curve.len(), r.curve.len());
     assert_eq!(again.episodes_to_adapt, r.episodes_to_adapt);
     assert_eq!(
         again
@@ -114,7 +116,7 @@ fn an_fi_trained_timing_agent_learns_the_button_on_the_uncertainty_task() {
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("adapt/adapt.json")).unwrap())
             .unwrap();
-    assert_eq!(json["episodes"].as_u64(), Some(4000));
+    assert_eq!(json["episodes_to_adapt"].as_u64(), Some(n as u64));
     let csv = std::fs::read_to_string(dir.join("adapt/adapt.csv")).unwrap();
     assert_eq!(csv.lines().count(), 4001);
 }

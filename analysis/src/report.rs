@@ -68,7 +68,7 @@ pub const COLUMNS: [(&str, &str); 26] = [
     ),
     (
         "unc_episodes_to_adapt",
-        "uncertainty adaptation: episodes an FI-trained agent plays on the uncertainty task until 80% of the never-ready ovens in the last 100 episodes are solved with the button (lower is better; runs that adapted)",
+        "uncertainty adaptation: episodes an agent trained without uncertainty plays until, in the last 100 episodes, 80% of the never-ready ovens are solved with the button and 80% of the normal ones without it (lower is better; runs that adapted)",
     ),
     (
         "unc_adapted",

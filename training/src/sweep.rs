@@ -53,7 +53,9 @@ pub struct SweepFile {
     /// Export activity and records to NPZ/CSV (default true).
     #[serde(default = "yes")]
     pub export: bool,
-    /// Uncertainty adaptation of every trained FI agent (`adapt` stage; default false).
+    /// Uncertainty adaptation (`adapt` stage; default false) of every trained agent of an
+    /// `Uncertainty-v0` job whose oven always readies (`env.never_ready_prob=0`): it keeps
+    /// learning with the task's default never-ready probability.
     #[serde(default)]
     pub adapt: bool,
     /// Adaptation budget of timing agents (episodes; default 3000).
@@ -118,6 +120,30 @@ fn bad(field: &str, value: impl ToString, allowed: &str) -> TrainError {
         field: field.into(),
         value: value.to_string(),
         allowed: allowed.into(),
+    }
+}
+
+/// Whether a `key=value` setting applies to `model` (of `family`) on `task`: task settings
+/// (`env.*`) apply to every model; others to the family that knows the key (PPO settings to
+/// deep-RL models, timing settings to timing models, none to baselines).
+pub fn applies(family: Family, task: &str, model: &str, kv: &str) -> bool {
+    if kv.starts_with("env.") {
+        return true;
+    }
+    match family {
+        Family::DeepRl => {
+            let Ok(arch) = model.parse() else {
+                return false;
+            };
+            let (k, v) = kv.split_once('=').unwrap_or((kv, ""));
+            crate::config::TrainConfig::base(task, arch)
+                .set(k, v)
+                .is_ok()
+        }
+        Family::Timing => crate::timing_run::TimingRunConfig::new(task, model, 0)
+            .set(kv)
+            .is_ok(),
+        Family::Baseline => false,
     }
 }
 
@@ -208,6 +234,22 @@ impl SweepFile {
                 return Err(TrainError::BadOverride(s.clone()));
             }
         }
+        // Every variant setting must apply to some model of the sweep.
+        let models = self.expanded_models();
+        for task in &self.tasks {
+            for s in self.variants_of(task).into_iter().flatten() {
+                let used = models
+                    .iter()
+                    .any(|m| family_of(m).is_ok_and(|f| applies(f, task, m, &s)));
+                if !used {
+                    return Err(bad(
+                        "variants",
+                        &s,
+                        "settings some model of the sweep accepts (PPO or timing-model settings, or env.<task parameter>)",
+                    ));
+                }
+            }
+        }
         Ok(())
     }
 
@@ -227,6 +269,14 @@ impl SweepFile {
     /// Variants of `task`: its task variants crossed with the global variants (one empty
     /// variant when there are none).
     fn variants_of(&self, task: &str) -> Vec<Vec<String>> {
+        self.variant_parts(task)
+            .into_iter()
+            .map(|(l, g)| [l, g].concat())
+            .collect()
+    }
+
+    /// `(task variant, global variant)` pairs of `task`.
+    fn variant_parts(&self, task: &str) -> Vec<(Vec<String>, Vec<String>)> {
         let global: Vec<Vec<String>> = if self.variants.is_empty() {
             vec![vec![]]
         } else {
@@ -238,34 +288,42 @@ impl SweepFile {
         };
         local
             .iter()
-            .flat_map(|l| global.iter().map(move |g| [l.clone(), g.clone()].concat()))
+            .flat_map(|l| global.iter().map(move |g| (l.clone(), g.clone())))
             .collect()
     }
 
-    /// Every job, in a stable order (task, model, variant, seed). Baselines have nothing to
-    /// train: they take only the task settings (`env.*`) of the variants, and the
-    /// deterministic oracle one seed only.
+    /// Every job, in a stable order (task, model, variant, seed). Each model takes the
+    /// variant settings that apply to its family ([`applies`]: baselines only the task
+    /// settings); the deterministic oracle runs one seed only.
     pub fn jobs(&self) -> Result<Vec<Job>, TrainError> {
         let mut jobs = Vec::new();
         for task in &self.tasks {
-            let variants = self.variants_of(task);
+            let variants = self.variant_parts(task);
             for model in self.expanded_models() {
                 let family = family_of(&model)?;
-                let mut vs: Vec<Vec<String>> = variants.clone();
-                if family == Family::Baseline {
-                    for v in &mut vs {
-                        v.retain(|s| s.starts_with("env."));
+                // Each model takes the variant settings that apply to it; variants that then
+                // coincide are run once.
+                let mut vs: Vec<(Vec<String>, Vec<String>)> = Vec::new();
+                for (l, g) in &variants {
+                    let keep = |v: &[String]| -> Vec<String> {
+                        v.iter()
+                            .filter(|s| applies(family, task, &model, s))
+                            .cloned()
+                            .collect()
+                    };
+                    let kept = (keep(l), keep(g));
+                    if !vs.contains(&kept) {
+                        vs.push(kept);
                     }
-                    vs.dedup();
                 }
                 let seeds: &[u64] = if model == "oracle" {
                     &self.seeds[..1]
                 } else {
                     &self.seeds
                 };
-                for variant in &vs {
+                for (local, global) in &vs {
                     for &seed in seeds {
-                        jobs.push(self.job(task, &model, family, variant, seed));
+                        jobs.push(self.job(task, &model, family, (local, global), seed));
                     }
                 }
             }
@@ -273,7 +331,19 @@ impl SweepFile {
         Ok(jobs)
     }
 
-    fn job(&self, task: &str, model: &str, family: Family, variant: &[String], seed: u64) -> Job {
+    /// The job of `model` on `task` with a task variant and a model variant (both already
+    /// filtered to the settings that apply). The row label carries only the model variant's
+    /// non-task settings: task conditions (e.g. FI TDs) share a leaderboard row.
+    fn job(
+        &self,
+        task: &str,
+        model: &str,
+        family: Family,
+        (local, global): (&[String], &[String]),
+        seed: u64,
+    ) -> Job {
+        let variant: Vec<String> = [local, global].concat();
+        let variant = &variant[..];
         let mut sets: Vec<String> = Vec::new();
         let env_only = |v: &[String]| -> Vec<String> {
             v.iter()
@@ -307,7 +377,7 @@ impl SweepFile {
         } else {
             format!("{model}~{label}")
         };
-        let model_sets: Vec<String> = variant
+        let model_sets: Vec<String> = global
             .iter()
             .filter(|s| !s.starts_with("env."))
             .cloned()
