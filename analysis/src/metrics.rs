@@ -54,6 +54,17 @@ pub struct BisectionMetrics {
     pub bp_over_gm: Option<f64>,
 }
 
+impl BisectionMetrics {
+    /// `(probe duration, P(long))` per probe (NaN where the exclusion rule applies).
+    pub fn points(&self) -> Vec<(f64, f64)> {
+        self.probes
+            .iter()
+            .zip(&self.p_long)
+            .map(|(p, &v)| (p.t, v))
+            .collect()
+    }
+}
+
 /// Fixed-interval metrics.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct FiMetrics {

@@ -51,6 +51,22 @@ pub struct TimingCurvePoint {
     pub eval_success: Option<f64>,
 }
 
+/// Training episode number `ep` of a run seeded `seed` (default reset, no recording).
+fn training_episode(
+    env: &mut ChronoEnv,
+    agent: &mut TimingAgent,
+    seed: u64,
+    ep: usize,
+) -> Result<crate::agent::EpisodeRecord, EnvError> {
+    run_episode(
+        env,
+        agent,
+        derive_seed(seed, ep as u64),
+        &ResetOptions::default(),
+        None,
+    )
+}
+
 /// Trains `agent` on `config` for `train.episodes` episodes from `seed`; evaluates on
 /// `eval_tds` from every start cell. Calls `progress` at every curve point.
 pub fn train_timing_agent(
@@ -70,13 +86,7 @@ pub fn train_timing_agent(
         let frac = (ep as f64 / anneal).min(1.0);
         agent.set_epsilon(train.epsilon_start + (train.epsilon_end - train.epsilon_start) * frac);
         agent.set_training(true);
-        let rec = run_episode(
-            &mut env,
-            agent,
-            derive_seed(seed, ep as u64),
-            &ResetOptions::default(),
-            None,
-        )?;
+        let rec = training_episode(&mut env, agent, seed, ep)?;
         steps += rec.actions.len() as u64;
         window.push_back((rec.success, rec.reward));
         if window.len() > 100 {
@@ -124,13 +134,7 @@ pub fn adaptation_episodes(
     agent.set_training(true);
     let mut out = Vec::with_capacity(episodes);
     for ep in 0..episodes {
-        let rec = run_episode(
-            &mut env,
-            agent,
-            derive_seed(seed, ep as u64),
-            &ResetOptions::default(),
-            None,
-        )?;
+        let rec = training_episode(&mut env, agent, seed, ep)?;
         let never_ready = rec.infos.last().is_some_and(|i| i.never_ready);
         out.push((never_ready, rec.success));
     }

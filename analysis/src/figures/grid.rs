@@ -42,12 +42,7 @@ pub fn panel_chart(model: &str, runs: &[&BisectionMetrics]) -> Chart {
         .enumerate()
         .map(|(i, b)| Series {
             label: if i == 0 { "runs".into() } else { String::new() },
-            points: b
-                .probes
-                .iter()
-                .zip(&b.p_long)
-                .map(|(p, &v)| (p.t, v))
-                .collect(),
+            points: b.points(),
             line: false,
             color: 7,
         })

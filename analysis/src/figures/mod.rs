@@ -24,12 +24,7 @@ pub fn eval_figures(
     if let Some(b) = &metrics.bisection {
         let mut series = vec![Series {
             label: "P(long)".into(),
-            points: b
-                .probes
-                .iter()
-                .zip(&b.p_long)
-                .map(|(p, &v)| (p.t, v))
-                .collect(),
+            points: b.points(),
             line: false,
             color: 0,
         }];
