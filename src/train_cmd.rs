@@ -178,7 +178,7 @@ pub fn run_zoo(cmd: ZooCommand) -> Result<()> {
                 "  reference  the paper's: 1 env, n_steps 1000, n_epochs 20, batch 64 (CNN-MLP) / 128 (recurrent), lr 3e-4"
             );
             println!(
-                "  fast       quickest wall-clock on a 2-core CPU: recurrent 1 env x 1000 steps, 10 epochs, batch 256 (16x16-step chunks), lr 3e-4; CNN-MLP 16 envs x 64 steps, 4 epochs, batch 256, lr 1e-3; greedy eval every 10k steps"
+                "  fast       quickest wall-clock on a 2-core CPU: recurrent 1 env x 1000 steps, 10 epochs, batch 256 (16x16-step chunks), lr 3e-4 (CTRNN 1e-3); CNN-MLP 16 envs x 64 steps, 4 epochs, batch 256, lr 1e-3; greedy eval every 10k steps"
             );
             println!(
                 "\n`chronocooked zoo show MODEL [--task ID --preset NAME]` describes one model."

@@ -65,7 +65,9 @@ fn section_pairs(
 }
 
 /// The `key=value` settings of `preset` for `task` and `model`, in application order
-/// (common, common feed-forward/recurrent, task, task feed-forward/recurrent, model-specific).
+/// (per file — common, then the task's: `[preset]`, `[preset.feedforward|recurrent]`,
+/// `[preset.<core kind>]` (e.g. `[fast.ctrnn]`), `[preset.<model name>]` (e.g.
+/// `[reference.lstm125]`)).
 pub fn preset_settings(
     task: &str,
     model: Architecture,
@@ -88,11 +90,16 @@ pub fn preset_settings(
         let Some((f, text)) = PRESET_FILES.iter().find(|(n, _)| *n == file) else {
             continue;
         };
+        let core = model.core.map(|k| k.name());
         for path in [
             vec![preset],
             vec![preset, kind],
+            core.map_or_else(Vec::new, |k| vec![preset, k]),
             vec![preset, name.as_str()],
         ] {
+            if path.is_empty() {
+                continue;
+            }
             out.extend(section_pairs(f, text, &path)?);
         }
     }
