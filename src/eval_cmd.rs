@@ -91,14 +91,8 @@ pub fn run(args: EvalArgs) -> Result<()> {
                 format!("{} holds no eval.json (not an eval folder)", dir.display())
             })?,
         )?;
-        let text = std::fs::read_to_string(dir.join("records.jsonl"))?;
-        let records: Vec<EvalRecord> = text
-            .lines()
-            .enumerate()
-            .map(|(i, l)| {
-                serde_json::from_str(l).with_context(|| format!("records.jsonl line {}", i + 1))
-            })
-            .collect::<Result<_>>()?;
+        let records = chronocooked_analysis::protocol::read_records(dir)
+            .map_err(|e| anyhow::anyhow!("{e} (not an eval folder)"))?;
         return write_metrics(&args.out, &info, &records);
     }
     if let Some(file) = &args.human {

@@ -2,7 +2,6 @@
 //! metadata file describing every array.
 
 use anyhow::{Context, Result, bail};
-use chronocooked_analysis::EvalRecord;
 use clap::Args;
 use std::path::PathBuf;
 
@@ -47,20 +46,8 @@ pub fn run(args: ExportArgs) -> Result<()> {
         );
     }
     if let Some(dir) = &args.eval {
-        let path = dir.join("records.jsonl");
-        let text = std::fs::read_to_string(&path).with_context(|| {
-            format!(
-                "{} holds no records.jsonl (not an eval folder)",
-                dir.display()
-            )
-        })?;
-        let records: Vec<EvalRecord> = text
-            .lines()
-            .enumerate()
-            .map(|(i, l)| {
-                serde_json::from_str(l).with_context(|| format!("records.jsonl line {}", i + 1))
-            })
-            .collect::<Result<_>>()?;
+        let records = chronocooked_analysis::protocol::read_records(dir)
+            .map_err(|e| anyhow::anyhow!("{e} (not an eval folder)"))?;
         files.extend(
             chronocooked_analysis::export::export_eval(&records, &args.out)
                 .map_err(anyhow::Error::msg)?,

@@ -54,11 +54,9 @@ pub fn run(args: StudyArgs) -> Result<()> {
     let file = args.out.join("sweep.toml");
     write_atomic(&file, text.as_bytes())?;
     let file = std::path::absolute(&file)?;
-    let workers = args.workers.unwrap_or_else(|| {
-        std::thread::available_parallelism()
-            .map(|n| n.get())
-            .unwrap_or(1)
-    });
+    let workers = args
+        .workers
+        .unwrap_or_else(crate::sweep_cmd::default_workers);
     let t0 = std::time::Instant::now();
     crate::sweep_cmd::run_sweep(&sweep, &file, &args.out, workers, true)?;
     eprintln!(

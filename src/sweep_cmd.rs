@@ -56,11 +56,11 @@ pub struct SweepJobArgs {
     pub id: String,
 }
 
-fn absolute(p: &Path) -> Result<PathBuf> {
-    if p.is_absolute() {
-        return Ok(p.to_path_buf());
-    }
-    Ok(std::env::current_dir()?.join(p))
+/// Worker processes when none is asked for: one per core.
+pub fn default_workers() -> usize {
+    std::thread::available_parallelism()
+        .map(|n| n.get())
+        .unwrap_or(1)
 }
 
 /// Runs `sweep`.
@@ -70,7 +70,7 @@ pub fn run(args: SweepArgs) -> Result<()> {
         .out
         .clone()
         .unwrap_or_else(|| PathBuf::from("lab-out").join(&sweep.name));
-    let file = absolute(&args.file)?;
+    let file = std::path::absolute(&args.file)?;
     let jobs = sweep.jobs()?;
     if args.dry_run {
         for j in &jobs {
@@ -87,13 +87,9 @@ pub fn run(args: SweepArgs) -> Result<()> {
         if kind != "slurm" {
             bail!("unknown scheduler `{kind}` for --emit (allowed: slurm)");
         }
-        return emit_slurm(&sweep, &file, &absolute(&out)?, &jobs, &args);
+        return emit_slurm(&sweep, &file, &std::path::absolute(&out)?, &jobs, &args);
     }
-    let workers = args.workers.unwrap_or_else(|| {
-        std::thread::available_parallelism()
-            .map(|n| n.get())
-            .unwrap_or(1)
-    });
+    let workers = args.workers.unwrap_or_else(default_workers);
     run_sweep(&sweep, &file, &out, workers, !args.no_report)
 }
 

@@ -186,7 +186,7 @@ pub fn export_activity(
         (
             "success",
             "bool",
-            "1 if the trial ended with a full-reward delivery",
+            "1 if the trial ended with a delivery paying the full reward available (the button reward on never-ready ovens)",
         ),
         ("event_trial", "trial index", "trial of each event marker"),
         (
@@ -361,7 +361,7 @@ pub fn export_eval(records: &[EvalRecord], dir: &Path) -> Result<Vec<PathBuf>, S
         (
             "success",
             "bool",
-            "1 if the episode ended with a full-reward delivery",
+            "1 if the episode ended with a delivery paying the full reward available (the button reward on never-ready ovens)",
         ),
         ("steps", "steps", "episode length"),
         (

@@ -37,13 +37,8 @@ pub fn load_metrics(folder: &Path) -> Result<Metrics, String> {
     };
     let info: serde_json::Value =
         serde_json::from_str(&read("eval.json")?).map_err(|e| format!("eval.json: {e}"))?;
-    let records: Vec<crate::protocol::EvalRecord> = read("records.jsonl")?
-        .lines()
-        .enumerate()
-        .map(|(i, l)| {
-            serde_json::from_str(l).map_err(|e| format!("records.jsonl line {}: {e}", i + 1))
-        })
-        .collect::<Result<_, _>>()?;
+    let records = crate::protocol::read_records(folder)
+        .map_err(|e| format!("{e} (not an `eval` output folder)"))?;
     Ok(crate::metrics::compute_metrics(
         info["model"].as_str().unwrap_or("unknown"),
         &records,

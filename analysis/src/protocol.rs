@@ -56,6 +56,19 @@ fn cond(kind: &str, task: &str, env: Vec<String>, td: u32) -> Condition {
     }
 }
 
+/// Reads the per-episode records (`records.jsonl`) of an `eval` output folder; errors name
+/// the file (and the line of a malformed record).
+pub fn read_records(folder: &std::path::Path) -> Result<Vec<EvalRecord>, String> {
+    let path = folder.join("records.jsonl");
+    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    text.lines()
+        .enumerate()
+        .map(|(i, l)| {
+            serde_json::from_str(l).map_err(|e| format!("{} line {}: {e}", path.display(), i + 1))
+        })
+        .collect()
+}
+
 /// The reference conditions for an agent trained on `task` with overrides `env`.
 pub fn reference_conditions(task: &str, env: &[String]) -> Result<Vec<Condition>, EnvError> {
     let config = make_config(task, env)?;

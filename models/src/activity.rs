@@ -128,7 +128,7 @@ pub struct Trial {
     pub events: Vec<Event>,
     /// Total reward of the episode.
     pub reward: f32,
-    /// Whether the episode ended with a full-reward delivery.
+    /// Whether the episode ended in a success (`agent::is_success`).
     pub success: bool,
 }
 

@@ -19,7 +19,7 @@ pub struct EvalEpisode {
     pub ret: f32,
     /// Steps taken.
     pub len: u32,
-    /// Ended with a full-reward delivery.
+    /// Ended in a success (`chronocooked_models::agent::is_success`).
     pub success: bool,
 }
 

@@ -55,7 +55,7 @@ pub struct UpdateLog {
     /// Mean length of the last `stats_window` episodes.
     #[serde(deserialize_with = "nan_or_f64")]
     pub ep_len_mean: f64,
-    /// Fraction of the last `stats_window` episodes ending in a full-reward delivery.
+    /// Fraction of the last `stats_window` episodes ending in a success (`is_success`).
     #[serde(deserialize_with = "nan_or_f64")]
     pub success_rate: f64,
     /// Success rate among the never-ready episodes of the same window (uncertainty task;

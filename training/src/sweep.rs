@@ -95,7 +95,6 @@ pub struct Job {
     /// Zoo name.
     pub model: String,
     /// Model family (decides the training command).
-    #[serde(skip, default = "deep")]
     pub family: Family,
     /// Seed.
     pub seed: u64,
@@ -106,10 +105,6 @@ pub struct Job {
     /// Leaderboard row: the model plus its variant's non-task settings (runs of one model
     /// on different task settings, e.g. FI TDs, share a row).
     pub row: String,
-}
-
-fn deep() -> Family {
-    Family::DeepRl
 }
 
 /// Stages of a job, in order.

@@ -9,10 +9,10 @@ use crate::params::flat_params;
 use crate::presets::PRESETS;
 use chronocooked_env::{Action, Autoreset, VecEnv, make_config};
 use chronocooked_models::{Architecture, PolicyConfig};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// What kind of model an entry is (decides how it is trained).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Family {
     /// PPO actor–critic network (`train --steps`, presets).
