@@ -7,6 +7,7 @@ pub mod activity;
 pub mod agent;
 pub mod cores;
 pub mod init;
+pub mod native;
 pub mod policy;
 pub mod sarsa;
 pub mod timers;

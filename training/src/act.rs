@@ -73,3 +73,68 @@ pub fn argmax(logits: &[f32]) -> usize {
     }
     best
 }
+
+/// Recurrent state as flat vectors `(h [N, H], c [N, H] for the LSTM)`; both empty
+/// (`(vec![], None)`) for CNN-MLP.
+pub type FlatState = (Vec<f32>, Option<Vec<f32>>);
+
+/// The policy as used during a rollout, on either engine (same function).
+pub enum Actor {
+    /// burn module without autodiff.
+    Burn {
+        /// The policy.
+        model: ActorCritic,
+        /// Its device.
+        device: Device,
+    },
+    /// The native engine with a copy of the parameters.
+    Native {
+        /// The engine.
+        net: chronocooked_models::native::NativePolicy,
+        /// Flat parameters.
+        theta: Vec<f32>,
+        /// Work buffers.
+        cache: chronocooked_models::native::Cache,
+    },
+}
+
+impl Actor {
+    /// One batched step: `obs [N, cells, C]`, `keep [N]`, state → logits `[N, A]`,
+    /// values `[N]`, new state.
+    pub fn step(
+        &mut self,
+        obs: &[f32],
+        cells: usize,
+        channels: usize,
+        keep: &[f32],
+        state: &FlatState,
+    ) -> (Vec<f32>, Vec<f32>, FlatState) {
+        let n = keep.len();
+        match self {
+            Actor::Burn { model, device } => {
+                let st = (!state.0.is_empty())
+                    .then(|| CoreState::from_vecs(state.0.clone(), state.1.clone(), n, device));
+                let (l, v, st) = policy_step(model, obs, cells, channels, keep, st, device);
+                let st = st.map(|s| s.to_vecs()).unwrap_or((Vec::new(), None));
+                (l, v, st)
+            }
+            Actor::Native { net, theta, cache } => {
+                let batch = chronocooked_models::native::SeqBatch {
+                    obs,
+                    steps: 1,
+                    batch: n,
+                    keep,
+                    h0: &state.0,
+                    c0: state.1.as_deref(),
+                };
+                net.forward(theta, &batch, cache);
+                let (h, c) = cache.final_state();
+                (
+                    cache.logits.clone(),
+                    cache.values.clone(),
+                    (h.to_vec(), c.map(<[f32]>::to_vec)),
+                )
+            }
+        }
+    }
+}

@@ -9,6 +9,7 @@ pub mod error;
 pub mod evaluate;
 pub mod gae;
 pub mod loss;
+pub mod minibatch;
 pub mod obs;
 pub mod params;
 pub mod ppo_agent;
@@ -21,7 +22,7 @@ pub mod timing_run;
 pub mod trainer;
 pub mod zoo;
 
-pub use config::{Curriculum, LrSchedule, ObsEncoding, PpoConfig, TrainConfig};
+pub use config::{Curriculum, Engine, LrSchedule, ObsEncoding, PpoConfig, TrainConfig};
 pub use error::TrainError;
 pub use evaluate::{EvalEpisode, eval_tds, evaluate_policy, success_rate};
 pub use ppo_agent::PpoAgent;

@@ -1,21 +1,22 @@
 //! The PPO training loop: rollouts on a [`VecEnv`], GAE, minibatch epochs with BPTT
 //! over stored chunks, curricula, and exact checkpoint/restore of the whole state.
 
-use crate::act::{policy_step, sample};
+use crate::act::{Actor, FlatState, sample};
 use crate::adam::{Adam, AdamParams, clip_global_norm};
-use crate::config::{Curriculum, LrSchedule, TrainConfig};
+use crate::config::{Curriculum, Engine, LrSchedule, TrainConfig};
 use crate::error::TrainError;
 use crate::gae::{compute_gae, explained_variance};
-use crate::loss::{LossCoefs, LossStats, OutputBatch, normalize_advantages, ppo_output_grads};
+use crate::loss::LossCoefs;
+use crate::minibatch::{Minibatch, burn_gradient};
 use crate::obs::ObsEncoder;
-use crate::params::{flat_grads, flat_params, param_offset, write_params};
-use crate::rollout::{Chunk, Rollout, chunks};
+use crate::params::{flat_params, write_params};
+use crate::rollout::{Rollout, chunks};
 pub use crate::state::{EpisodeStat, TrainerState, UpdateLog};
 use burn::module::Module;
-use burn::tensor::{Device, Int, Tensor, TensorData};
+use burn::tensor::Device;
 use chronocooked_env::{Action, Autoreset, TaskParams, VecEnv, make_config};
-use chronocooked_models::cores::SeqAux;
-use chronocooked_models::{ActorCritic, CoreState, PolicyConfig};
+use chronocooked_models::native::{Cache, NativePolicy};
+use chronocooked_models::{ActorCritic, CoreKind, PolicyConfig};
 use rand::SeedableRng;
 use rand::seq::SliceRandom;
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -33,6 +34,9 @@ pub struct Trainer {
     rollout: Rollout,
     state: TrainerState,
     scratch_obs: Vec<f32>,
+    native: NativePolicy,
+    cache: Cache,
+    grad: Vec<f32>,
 }
 
 impl Trainer {
@@ -69,6 +73,8 @@ impl Trainer {
             model = write_params(model, &theta);
         }
         let theta = flat_params(&model);
+        let native = NativePolicy::new(&policy_cfg);
+        assert_eq!(native.num_params(), theta.len(), "native layout matches the module");
         let adam = Adam::new(
             theta.len(),
             AdamParams {
@@ -115,6 +121,9 @@ impl Trainer {
         let rollout = Rollout::new(p.n_envs, p.n_steps, encoder.len());
         let mut t = Trainer {
             scratch_obs: vec![0.0; p.n_envs * encoder.len()],
+            grad: vec![0.0; native.num_params()],
+            native,
+            cache: Cache::default(),
             cfg,
             policy_cfg,
             device,
@@ -241,47 +250,37 @@ impl Trainer {
     }
 
     /// Collects one rollout with the current policy.
-    fn collect(&mut self, policy: &ActorCritic) -> Result<(), TrainError> {
+    fn collect(&mut self, actor: &mut Actor) -> Result<(), TrainError> {
         let (n, t_len) = (self.cfg.ppo.n_envs, self.cfg.ppo.n_steps);
         let gamma = self.cfg.ppo.gamma;
-        let inf = chronocooked_models::cpu();
         let (cells, ch, olen) = (
             self.encoder.cells(),
             self.encoder.channels(),
             self.encoder.len(),
         );
         let l = self.chunk_len();
-        let recurrent = self.cfg.model.is_recurrent();
-        let mut core: Option<CoreState> = if recurrent {
-            Some(match self.state.core_state.take() {
-                Some((h, c)) => CoreState::from_vecs(h, c, n, &inf),
-                None => policy
-                    .zero_state(n, &inf)
-                    .expect("recurrent policy has a state"),
-            })
-        } else {
-            None
+        let arch = self.cfg.model;
+        let recurrent = arch.is_recurrent();
+        let mut core: FlatState = match self.state.core_state.take() {
+            Some(st) => st,
+            None if recurrent => (
+                vec![0.0; n * arch.hidden],
+                (arch.core == Some(CoreKind::Lstm)).then(|| vec![0.0; n * arch.hidden]),
+            ),
+            None => (Vec::new(), None),
         };
         self.rollout.chunk_states.clear();
         let obs_tensor_len = n * olen;
         let mut final_buf = vec![0f32; olen];
         for t in 0..t_len {
             if recurrent && t % l == 0 {
-                let st = core.as_ref().expect("state");
-                self.rollout.chunk_states.push(st.to_vecs());
+                self.rollout.chunk_states.push(core.clone());
             }
             self.encoder
                 .encode_batch(&self.envs.obs, &mut self.scratch_obs);
             let keep = self.state.keep.clone();
-            let (logits, values, new_core) = policy_step(
-                policy,
-                &self.scratch_obs,
-                cells,
-                ch,
-                &keep,
-                core.take(),
-                &inf,
-            );
+            let (logits, values, new_core) =
+                actor.step(&self.scratch_obs, cells, ch, &keep, &core);
             core = new_core;
             let base = t * n;
             self.rollout.obs[base * olen..base * olen + obs_tensor_len]
@@ -310,13 +309,12 @@ impl Trainer {
                             [e * self.envs.obs_len()..(e + 1) * self.envs.obs_len()],
                         &mut final_buf,
                     );
-                    let st = core.as_ref().map(|s| {
-                        s.select(Tensor::<1, Int>::from_data(
-                            TensorData::new(vec![e as i64], [1]),
-                            &inf,
-                        ))
-                    });
-                    let (_, v, _) = policy_step(policy, &final_buf, cells, ch, &[1.0], st, &inf);
+                    let h = arch.hidden;
+                    let st: FlatState = (
+                        core.0.get(e * h..(e + 1) * h).unwrap_or(&[]).to_vec(),
+                        core.1.as_ref().map(|c| c[e * h..(e + 1) * h].to_vec()),
+                    );
+                    let (_, v, _) = actor.step(&final_buf, cells, ch, &[1.0], &st);
                     r += gamma * v[0];
                 }
                 self.rollout.rewards[base + e] = r;
@@ -346,16 +344,8 @@ impl Trainer {
         self.encoder
             .encode_batch(&self.envs.obs, &mut self.scratch_obs);
         let keep = self.state.keep.clone();
-        let (_, last_values, _) = policy_step(
-            policy,
-            &self.scratch_obs,
-            cells,
-            ch,
-            &keep,
-            core.clone(),
-            &inf,
-        );
-        self.state.core_state = core.map(|s| s.to_vecs());
+        let (_, last_values, _) = actor.step(&self.scratch_obs, cells, ch, &keep, &core);
+        self.state.core_state = recurrent.then_some(core);
         let (adv, ret) = compute_gae(
             &self.rollout.rewards,
             &self.rollout.values,
@@ -370,112 +360,27 @@ impl Trainer {
         Ok(())
     }
 
-    /// Builds the loss inputs of one minibatch of chunks and returns the forward output.
-    fn minibatch_loss(&self, mb: &[Chunk], l: usize) -> (LossStats, Tensor<1>, Option<SeqAux>) {
-        let r = &self.rollout;
-        let n = r.n_envs;
-        let b = mb.len();
-        let (cells, ch, olen) = (
-            self.encoder.cells(),
-            self.encoder.channels(),
-            self.encoder.len(),
-        );
-        let m = l * b;
-        let mut obs = vec![0f32; m * olen];
-        let mut keep = vec![1f32; m];
-        let mut mask = vec![0f32; m];
-        let mut actions = vec![0i64; m];
-        let mut old_lp = vec![0f32; m];
-        let mut adv = vec![0f32; m];
-        let mut ret = vec![0f32; m];
-        let mut old_v = vec![0f32; m];
-        for (j, c) in mb.iter().enumerate() {
-            for t in 0..c.len {
-                let src = (c.start + t) * n + c.env;
-                let dst = t * b + j;
-                obs[dst * olen..(dst + 1) * olen]
-                    .copy_from_slice(&r.obs[src * olen..(src + 1) * olen]);
-                keep[dst] = r.keep[src];
-                mask[dst] = 1.0;
-                actions[dst] = r.actions[src];
-                old_lp[dst] = r.log_probs[src];
-                adv[dst] = r.advantages[src];
-                ret[dst] = r.returns[src];
-                old_v[dst] = r.values[src];
-            }
-        }
-        if self.cfg.ppo.normalize_advantage {
-            normalize_advantages(&mut adv, &mask);
-        }
-        let d = &self.device;
-        let state = self.cfg.model.is_recurrent().then(|| {
-            let h_dim = self.cfg.model.hidden;
-            let mut h = Vec::with_capacity(b * h_dim);
-            let mut cst: Option<Vec<f32>> = None;
-            for c in mb {
-                let (hs, cs) = &r.chunk_states[c.index];
-                h.extend_from_slice(&hs[c.env * h_dim..(c.env + 1) * h_dim]);
-                if let Some(cs) = cs {
-                    cst.get_or_insert_with(Vec::new)
-                        .extend_from_slice(&cs[c.env * h_dim..(c.env + 1) * h_dim]);
-                }
-            }
-            CoreState::from_vecs(h, cst, b, d)
-        });
-        let obs_t = Tensor::<4>::from_data(TensorData::new(obs, [l, b, cells, ch]), d);
-        let keep_t: Vec<Option<Tensor<2>>> = keep
-            .chunks_exact(b)
-            .map(|k| {
-                k.iter()
-                    .any(|&v| v != 1.0)
-                    .then(|| Tensor::<2>::from_data(TensorData::new(k.to_vec(), [b, 1]), d))
-            })
-            .collect();
-        let out = self.model.forward_seq_train(obs_t, state, &keep_t);
-        let a_n = Action::COUNT;
-        let both = chronocooked_models::to_vec(&Tensor::cat(
-            vec![out.logits.clone(), out.values.clone()],
-            1,
-        ));
-        let mut logits = Vec::with_capacity(m * a_n);
-        let mut values = Vec::with_capacity(m);
-        for row in both.chunks_exact(a_n + 1) {
-            logits.extend_from_slice(&row[..a_n]);
-            values.push(row[a_n]);
-        }
-        let p = &self.cfg.ppo;
-        let (stats, d_logits, d_values) = ppo_output_grads(
-            OutputBatch {
-                logits: &logits,
-                values: &values,
-                actions: &actions,
-                old_log_prob: &old_lp,
-                advantages: &adv,
-                returns: &ret,
-                old_values: &old_v,
-                mask: &mask,
-            },
-            LossCoefs {
-                clip_range: p.clip_range,
-                clip_range_vf: p.clip_range_vf,
-                ent_coef: p.ent_coef,
-                vf_coef: p.vf_coef,
-            },
-        );
-        let g_l = Tensor::<2>::from_data(TensorData::new(d_logits, [m, a_n]), d);
-        let g_v = Tensor::<2>::from_data(TensorData::new(d_values, [m, 1]), d);
-        // Same parameter gradients as the full loss: backward of Σ out·(∂L/∂out).
-        let surrogate = (out.logits * g_l).sum() + (out.values * g_v).sum();
-        (stats, surrogate, out.aux)
-    }
-
     /// One PPO update: a rollout, then `n_epochs` passes of minibatch steps.
     /// Returns the learning-curve row (already appended to the state's curve).
     pub fn update(&mut self) -> Result<UpdateLog, TrainError> {
         let started = Instant::now();
         self.apply_curriculum()?;
-        let policy = self.model.valid();
-        self.collect(&policy)?;
+        let engine = self.cfg.ppo.engine;
+        let mut actor = match engine {
+            Engine::Native => Actor::Native {
+                net: self.native.clone(),
+                theta: self.state.theta.clone(),
+                cache: std::mem::take(&mut self.cache),
+            },
+            Engine::Burn => Actor::Burn {
+                model: self.model.valid(),
+                device: chronocooked_models::cpu(),
+            },
+        };
+        self.collect(&mut actor)?;
+        if let Actor::Native { cache, .. } = actor {
+            self.cache = cache;
+        }
         let rollout_s = started.elapsed().as_secs_f64();
         let p = self.cfg.ppo.clone();
         let lr = match p.lr_schedule {
@@ -493,7 +398,32 @@ impl Trainer {
         'epochs: for _ in 0..p.n_epochs {
             all.shuffle(&mut self.state.rng);
             for mb in all.chunks(per_mb) {
-                let (out, surrogate, aux) = self.minibatch_loss(mb, l);
+                let batch = Minibatch::gather(
+                    &self.rollout,
+                    mb,
+                    l,
+                    self.cfg.model.hidden,
+                    p.normalize_advantage,
+                );
+                let coefs = LossCoefs {
+                    clip_range: p.clip_range,
+                    clip_range_vf: p.clip_range_vf,
+                    ent_coef: p.ent_coef,
+                    vf_coef: p.vf_coef,
+                };
+                let (out, pending) = match engine {
+                    Engine::Native => {
+                        let (out, dl, dv) =
+                            batch.loss_native(&self.native, &self.state.theta, &mut self.cache, coefs);
+                        (out, Pending::Native(dl, dv))
+                    }
+                    Engine::Burn => {
+                        let shape = (self.encoder.cells(), self.encoder.channels());
+                        let (out, sur, aux) =
+                            batch.loss_burn(&self.model, &self.device, shape, Action::COUNT, coefs);
+                        (out, Pending::Burn(sur, aux))
+                    }
+                };
                 if let Some(target) = p.target_kl
                     && out.approx_kl > 1.5 * target as f64
                 {
@@ -505,32 +435,22 @@ impl Trainer {
                         out.policy_loss, out.value_loss, out.entropy_loss
                     )));
                 }
-                let grads = surrogate.backward();
-                let mut g = flat_grads(&self.model, &grads);
-                if let Some(aux) = aux {
-                    let id = aux.weight_id;
-                    let (dw, sur) = aux.finish(&grads);
-                    if let Some(dw) = dw
-                        && let Some(off) = param_offset(&self.model, id)
-                    {
-                        let dw = chronocooked_models::to_vec(&dw);
-                        g[off..off + dw.len()]
-                            .iter_mut()
-                            .zip(&dw)
-                            .for_each(|(a, b)| *a += b);
+                match pending {
+                    Pending::Native(dl, dv) => {
+                        let theta = &self.state.theta;
+                        self.native
+                            .backward(theta, &mut self.cache, &dl, &dv, &mut self.grad);
                     }
-                    if let Some(sur) = sur {
-                        let g2 = flat_grads(&self.model, &sur.backward());
-                        g.iter_mut().zip(&g2).for_each(|(a, b)| *a += b);
-                    }
+                    Pending::Burn(sur, aux) => self.grad = burn_gradient(&self.model, sur, aux),
                 }
-                let norm = clip_global_norm(&mut g, p.max_grad_norm as f64);
+                let norm = clip_global_norm(&mut self.grad, p.max_grad_norm as f64);
                 if !norm.is_finite() {
                     return Err(self.diverged("non-finite gradient norm".into()));
                 }
-                self.state.adam.step(&mut self.state.theta, &g, lr);
-                let model = std::mem::replace(&mut self.model, policy.clone());
-                self.model = write_params(model, &self.state.theta);
+                self.state.adam.step(&mut self.state.theta, &self.grad, lr);
+                if engine == Engine::Burn {
+                    self.sync_model();
+                }
                 pl += out.policy_loss;
                 vl += out.value_loss;
                 el += out.entropy_loss;
@@ -542,6 +462,9 @@ impl Trainer {
         }
         if self.state.theta.iter().any(|x| !x.is_finite()) {
             return Err(self.diverged("non-finite parameters after the update".into()));
+        }
+        if engine == Engine::Native {
+            self.sync_model();
         }
         self.state.updates += 1;
         self.advance_multi_timer()?;
@@ -605,6 +528,11 @@ impl Trainer {
         }
     }
 
+    /// Writes the flat parameters into the burn module.
+    fn sync_model(&mut self) {
+        self.model = write_params(self.model.clone(), &self.state.theta);
+    }
+
     fn diverged(&self, what: String) -> TrainError {
         TrainError::Diverged {
             step: self.state.steps,
@@ -612,4 +540,12 @@ impl Trainer {
             checkpoint: "the run folder's checkpoints/".into(),
         }
     }
+}
+
+/// A minibatch's gradient still to be computed, per engine.
+enum Pending {
+    /// `∂L/∂logits [M, A]`, `∂L/∂values [M]`.
+    Native(Vec<f32>, Vec<f32>),
+    /// burn surrogate and the split-BPTT auxiliary data.
+    Burn(burn::tensor::Tensor<1>, Option<chronocooked_models::cores::SeqAux>),
 }

@@ -1,0 +1,288 @@
+//! Forward and backward passes of the whole actor–critic (trunk, core, heads) on a flat
+//! parameter vector.
+
+use super::Layout;
+use super::core::{self, CoreCache};
+use super::kernels::{
+    Mat, add_bias, add_col_sums, matmul, matmul_nt, matmul_tn, relu_inplace, tanh_inplace,
+};
+use crate::PolicyConfig;
+
+/// A batch of `B` sequences of `T` steps, time-major (row `t·B + b`).
+#[derive(Debug, Clone, Copy)]
+pub struct SeqBatch<'a> {
+    /// Observations `[T, B, cells, C]`.
+    pub obs: &'a [f32],
+    /// Steps `T`.
+    pub steps: usize,
+    /// Sequences `B`.
+    pub batch: usize,
+    /// `[T, B]`: 0 where an episode starts (the incoming state is zeroed), else 1.
+    pub keep: &'a [f32],
+    /// Initial hidden state `[B, H]` (empty for CNN-MLP).
+    pub h0: &'a [f32],
+    /// Initial LSTM cell state `[B, H]` (`None` for the other models).
+    pub c0: Option<&'a [f32]>,
+}
+
+/// Activations of the last forward pass (kept for the backward pass) and reusable
+/// work buffers; outputs are read from [`Cache::logits`], [`Cache::values`] and
+/// [`Cache::final_state`].
+#[derive(Debug, Default, Clone)]
+pub struct Cache {
+    rows: usize,
+    steps: usize,
+    batch: usize,
+    x: Vec<f32>,
+    a1: Vec<f32>,
+    a2: Vec<f32>,
+    f: Vec<f32>,
+    xw: Vec<f32>,
+    core: CoreCache,
+    z: Vec<f32>,
+    /// Action logits `[T·B, A]`.
+    pub logits: Vec<f32>,
+    /// State values `[T·B]`.
+    pub values: Vec<f32>,
+    dz: Vec<f32>,
+    dlat: Vec<f32>,
+    df: Vec<f32>,
+    da2: Vec<f32>,
+    da1: Vec<f32>,
+    scratch: Vec<f32>,
+}
+
+impl Cache {
+    /// The latent fed to the heads `[T·B, L]` (core output, or trunk features for CNN-MLP).
+    pub fn latent(&self) -> &[f32] {
+        if self.core.is_empty() {
+            &self.f
+        } else {
+            self.core.h()
+        }
+    }
+
+    /// State after the last step: `(h [B, H], c [B, H] for the LSTM)` (empty for CNN-MLP).
+    pub fn final_state(&self) -> (&[f32], Option<&[f32]>) {
+        self.core.final_state(self.steps, self.batch)
+    }
+}
+
+fn resize(v: &mut Vec<f32>, len: usize) {
+    v.clear();
+    v.resize(len, 0.0);
+}
+
+/// The native engine for one policy configuration.
+#[derive(Debug, Clone)]
+pub struct NativePolicy {
+    cfg: PolicyConfig,
+    layout: Layout,
+}
+
+impl NativePolicy {
+    /// The engine for policies built from `cfg`.
+    pub fn new(cfg: &PolicyConfig) -> Self {
+        NativePolicy {
+            cfg: *cfg,
+            layout: Layout::new(cfg),
+        }
+    }
+
+    /// Parameter count (length of the flat vector).
+    pub fn num_params(&self) -> usize {
+        self.layout.total
+    }
+
+    /// Parameter layout.
+    pub fn layout(&self) -> &Layout {
+        &self.layout
+    }
+
+    fn latent_dim(&self) -> usize {
+        if self.cfg.arch.is_recurrent() {
+            self.cfg.arch.hidden
+        } else {
+            self.cfg.trunk.features
+        }
+    }
+
+    /// Forward pass of `batch` with parameters `theta`; fills `cache` (outputs and what
+    /// [`NativePolicy::backward`] needs).
+    pub fn forward(&self, theta: &[f32], batch: &SeqBatch<'_>, cache: &mut Cache) {
+        assert_eq!(theta.len(), self.layout.total, "parameter vector length");
+        let t = &self.cfg.trunk;
+        let l = &self.layout;
+        let n = batch.steps * batch.batch;
+        assert_eq!(batch.obs.len(), n * t.cells * t.channels, "observation length");
+        assert_eq!(batch.keep.len(), n, "keep mask length");
+        cache.rows = n;
+        cache.steps = batch.steps;
+        cache.batch = batch.batch;
+        let nc = n * t.cells;
+        cache.x.clear();
+        cache.x.extend_from_slice(batch.obs);
+        // conv1 (per cell) + ReLU.
+        resize(&mut cache.a1, nc * t.conv1);
+        let x = Mat::new(&cache.x, nc, t.channels);
+        linear(x, theta, l.conv1, t.conv1, &mut cache.a1);
+        relu_inplace(&mut cache.a1);
+        // conv2 (per cell), no non-linearity; flattened cell-major.
+        resize(&mut cache.a2, nc * t.conv2);
+        linear(Mat::new(&cache.a1, nc, t.conv1), theta, l.conv2, t.conv2, &mut cache.a2);
+        // dense + ReLU.
+        resize(&mut cache.f, n * t.features);
+        let a2 = Mat::new(&cache.a2, n, t.cells * t.conv2);
+        linear(a2, theta, l.dense, t.features, &mut cache.f);
+        relu_inplace(&mut cache.f);
+        // Recurrent core.
+        if let (Some(kind), Some(inp), Some(rec)) = (self.cfg.arch.core, l.core_in, l.core_rec) {
+            let (h, g) = (self.cfg.arch.hidden, kind.gates());
+            resize(&mut cache.xw, n * g * h);
+            let f = Mat::new(&cache.f, n, t.features);
+            linear(f, theta, inp, g * h, &mut cache.xw);
+            let params = core::CoreParams {
+                kind,
+                hidden: h,
+                w_rec: rec.0.of(theta),
+                b_rec: rec.1.map(|b| b.of(theta)),
+                tau: l.tau.map(|b| b.of(theta)),
+                dt: self.cfg.ctrnn_dt,
+            };
+            core::forward(&params, &cache.xw, batch, &mut cache.core);
+        } else {
+            cache.core.clear();
+        }
+        // Heads: z = tanh(latent W_h + b_h) = [z_pi | z_vf].
+        let hh = self.cfg.head_hidden;
+        let lat_dim = self.latent_dim();
+        resize(&mut cache.z, n * 2 * hh);
+        let latent = if cache.core.is_empty() {
+            &cache.f
+        } else {
+            cache.core.h()
+        };
+        linear(Mat::new(latent, n, lat_dim), theta, l.hidden, 2 * hh, &mut cache.z);
+        tanh_inplace(&mut cache.z);
+        let a_n = self.cfg.actions;
+        resize(&mut cache.logits, n * a_n);
+        let z_pi = Mat::strided(&cache.z, n, hh, 2 * hh);
+        linear(z_pi, theta, l.pi, a_n, &mut cache.logits);
+        resize(&mut cache.values, n);
+        let z_vf = Mat::strided(&cache.z[hh..], n, hh, 2 * hh);
+        linear(z_vf, theta, l.vf, 1, &mut cache.values);
+    }
+
+    /// Gradient of `Σ d_logits·logits + Σ d_values·values` with respect to every parameter
+    /// (written to `grad`, same layout as `theta`), for the last forward pass in `cache`.
+    /// Gradients do not flow into the initial state.
+    pub fn backward(
+        &self,
+        theta: &[f32],
+        cache: &mut Cache,
+        d_logits: &[f32],
+        d_values: &[f32],
+        grad: &mut [f32],
+    ) {
+        let n = cache.rows;
+        let (t, l) = (&self.cfg.trunk, &self.layout);
+        let (hh, a_n, lat_dim) = (self.cfg.head_hidden, self.cfg.actions, self.latent_dim());
+        assert_eq!(grad.len(), l.total, "gradient vector length");
+        assert_eq!(d_logits.len(), n * a_n, "logit gradient length");
+        assert_eq!(d_values.len(), n, "value gradient length");
+        grad.fill(0.0);
+        let s = &mut cache.scratch;
+        // Output layers.
+        let dlg = Mat::new(d_logits, n, a_n);
+        let dv = Mat::new(d_values, n, 1);
+        let z_pi = Mat::strided(&cache.z, n, hh, 2 * hh);
+        let z_vf = Mat::strided(&cache.z[hh..], n, hh, 2 * hh);
+        matmul_tn(z_pi, dlg, l.pi.0.of_mut(grad), false, s);
+        add_col_sums(dlg, l.pi.1.of_mut(grad));
+        matmul_tn(z_vf, dv, l.vf.0.of_mut(grad), false, s);
+        add_col_sums(dv, l.vf.1.of_mut(grad));
+        resize(&mut cache.dz, n * 2 * hh);
+        let w_pi = Mat::new(l.pi.0.of(theta), hh, a_n);
+        matmul_nt(dlg, w_pi, &mut cache.dz, 2 * hh, false, s);
+        let w_vf = Mat::new(l.vf.0.of(theta), hh, 1);
+        matmul_nt(dv, w_vf, &mut cache.dz[hh..], 2 * hh, false, s);
+        // Through tanh.
+        for (d, &z) in cache.dz.iter_mut().zip(&cache.z) {
+            *d *= 1.0 - z * z;
+        }
+        let dz = Mat::new(&cache.dz, n, 2 * hh);
+        let latent = if cache.core.is_empty() {
+            &cache.f
+        } else {
+            cache.core.h()
+        };
+        matmul_tn(Mat::new(latent, n, lat_dim), dz, l.hidden.0.of_mut(grad), false, s);
+        add_col_sums(dz, l.hidden.1.of_mut(grad));
+        resize(&mut cache.dlat, n * lat_dim);
+        let w_h = Mat::new(l.hidden.0.of(theta), lat_dim, 2 * hh);
+        matmul_nt(dz, w_h, &mut cache.dlat, lat_dim, false, s);
+        // Core (BPTT) → gradient at the trunk features.
+        resize(&mut cache.df, n * t.features);
+        if let (Some(kind), Some(inp), Some(rec)) = (self.cfg.arch.core, l.core_in, l.core_rec) {
+            let (h, g) = (self.cfg.arch.hidden, kind.gates());
+            let params = core::CoreParams {
+                kind,
+                hidden: h,
+                w_rec: rec.0.of(theta),
+                b_rec: rec.1.map(|b| b.of(theta)),
+                tau: l.tau.map(|b| b.of(theta)),
+                dt: self.cfg.ctrnn_dt,
+            };
+            core::backward(&params, &mut cache.core, &cache.dlat, grad, rec, l.tau, s);
+            let dxw = Mat::new(cache.core.dxw(), n, g * h);
+            let f = Mat::new(&cache.f, n, t.features);
+            matmul_tn(f, dxw, inp.0.of_mut(grad), false, s);
+            add_col_sums(dxw, inp.1.of_mut(grad));
+            let w_in = Mat::new(inp.0.of(theta), t.features, g * h);
+            matmul_nt(dxw, w_in, &mut cache.df, t.features, false, s);
+        } else {
+            cache.df.copy_from_slice(&cache.dlat);
+        }
+        // Trunk: dense ReLU, dense, conv2, conv1 ReLU, conv1.
+        for (d, &f) in cache.df.iter_mut().zip(&cache.f) {
+            if f <= 0.0 {
+                *d = 0.0;
+            }
+        }
+        let df = Mat::new(&cache.df, n, t.features);
+        let a2 = Mat::new(&cache.a2, n, t.cells * t.conv2);
+        matmul_tn(a2, df, l.dense.0.of_mut(grad), false, s);
+        add_col_sums(df, l.dense.1.of_mut(grad));
+        resize(&mut cache.da2, n * t.cells * t.conv2);
+        let w_d = Mat::new(l.dense.0.of(theta), t.cells * t.conv2, t.features);
+        matmul_nt(df, w_d, &mut cache.da2, t.cells * t.conv2, false, s);
+        let nc = n * t.cells;
+        let da2 = Mat::new(&cache.da2, nc, t.conv2);
+        matmul_tn(Mat::new(&cache.a1, nc, t.conv1), da2, l.conv2.0.of_mut(grad), false, s);
+        add_col_sums(da2, l.conv2.1.of_mut(grad));
+        resize(&mut cache.da1, nc * t.conv1);
+        let w_2 = Mat::new(l.conv2.0.of(theta), t.conv1, t.conv2);
+        matmul_nt(da2, w_2, &mut cache.da1, t.conv1, false, s);
+        for (d, &a) in cache.da1.iter_mut().zip(&cache.a1) {
+            if a <= 0.0 {
+                *d = 0.0;
+            }
+        }
+        let da1 = Mat::new(&cache.da1, nc, t.conv1);
+        matmul_tn(Mat::new(&cache.x, nc, t.channels), da1, l.conv1.0.of_mut(grad), false, s);
+        add_col_sums(da1, l.conv1.1.of_mut(grad));
+    }
+}
+
+/// `out [M, out_dim] = x W + b` for the weight/bias blocks `(w, b)` of `theta`.
+fn linear(
+    x: Mat<'_>,
+    theta: &[f32],
+    (w, b): (super::Block, super::Block),
+    out_dim: usize,
+    out: &mut [f32],
+) {
+    let w = Mat::new(w.of(theta), x.cols, out_dim);
+    matmul(x, w, out, out_dim, false);
+    add_bias(out, b.of(theta));
+}

@@ -1,0 +1,179 @@
+//! The native engine computes the same function and the same parameter gradients as the
+//! burn modules (autodiff), for every architecture: CNN-MLP and each recurrent core, with
+//! an episode start inside the sequence and a non-zero initial state.
+
+use burn::tensor::{Tensor, TensorData};
+use chronocooked_models::native::{Cache, NativePolicy, SeqBatch};
+use chronocooked_models::{Architecture, CoreKind, CoreState, PolicyConfig, cpu_autodiff, to_vec};
+use chronocooked_training::params::{flat_grads, flat_params, write_params};
+use rand::{Rng, SeedableRng};
+use rand_xoshiro::Xoshiro256PlusPlus;
+
+fn uniform(n: usize, scale: f32, rng: &mut Xoshiro256PlusPlus) -> Vec<f32> {
+    (0..n).map(|_| rng.random_range(-scale..scale)).collect()
+}
+
+fn assert_close(what: &str, got: &[f32], want: &[f32], tol: f32) {
+    assert_eq!(got.len(), want.len(), "{what}: lengths");
+    let scale = want.iter().fold(0f32, |m, v| m.max(v.abs())).max(1e-3);
+    for (i, (a, b)) in got.iter().zip(want).enumerate() {
+        assert!(
+            (a - b).abs() <= tol * scale,
+            "{what}[{i}]: native {a} vs burn {b} (scale {scale})"
+        );
+    }
+}
+
+fn check(arch: Architecture, seed: u64) {
+    let (cells, ch, actions) = (15, 6, 6);
+    let (t, b) = (6, 3);
+    let d = cpu_autodiff();
+    let pc = PolicyConfig::new(arch, cells, ch, actions);
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+    // Perturbed weights (non-zero biases, GRU recurrent bias, spread of CTRNN τ).
+    let model = pc.init(seed, &d);
+    let mut theta = flat_params(&model);
+    for v in theta.iter_mut() {
+        *v += rng.random_range(-0.2..0.2);
+    }
+    let model = write_params(model, &theta);
+    let native = NativePolicy::new(&pc);
+    assert_eq!(native.num_params(), theta.len(), "{arch}: layout size");
+    // Observations: integer codes 0..5 (many zeros, as in the env), one episode start
+    // at step 3 for sequence 1 and at step 0 for sequence 2.
+    let obs: Vec<f32> = (0..t * b * cells * ch)
+        .map(|_| rng.random_range(0..6u8).saturating_sub(2) as f32)
+        .collect();
+    let mut keep = vec![1f32; t * b];
+    keep[3 * b + 1] = 0.0;
+    keep[2] = 0.0;
+    let hid = arch.hidden;
+    let h0 = uniform(b * hid, 0.8, &mut rng);
+    let c0 = uniform(b * hid, 0.8, &mut rng);
+    let lstm = arch.core == Some(CoreKind::Lstm);
+    // burn.
+    let x = Tensor::<4>::from_data(TensorData::new(obs.clone(), [t, b, cells, ch]), &d);
+    let state = arch.is_recurrent().then(|| {
+        CoreState::from_vecs(h0.clone(), lstm.then(|| c0.clone()), b, &d)
+    });
+    let keep_t: Vec<Option<Tensor<2>>> = keep
+        .chunks_exact(b)
+        .map(|k| {
+            k.iter()
+                .any(|&v| v != 1.0)
+                .then(|| Tensor::<2>::from_data(TensorData::new(k.to_vec(), [b, 1]), &d))
+        })
+        .collect();
+    let out = model.forward_seq(x, state, &keep_t);
+    let wl = uniform(t * b * actions, 1.0, &mut rng);
+    let wv = uniform(t * b, 1.0, &mut rng);
+    let objective = (out.logits.clone()
+        * Tensor::<2>::from_data(TensorData::new(wl.clone(), [t * b, actions]), &d))
+    .sum()
+        + (out.values.clone() * Tensor::<2>::from_data(TensorData::new(wv.clone(), [t * b, 1]), &d))
+            .sum();
+    let g_burn = flat_grads(&model, &objective.backward());
+    // native.
+    let mut cache = Cache::default();
+    let batch = SeqBatch {
+        obs: &obs,
+        steps: t,
+        batch: b,
+        keep: &keep,
+        h0: if arch.is_recurrent() { &h0 } else { &[] },
+        c0: lstm.then_some(&c0[..]),
+    };
+    native.forward(&theta, &batch, &mut cache);
+    assert_close(&format!("{arch} logits"), &cache.logits, &to_vec(&out.logits), 2e-5);
+    assert_close(&format!("{arch} values"), &cache.values, &to_vec(&out.values), 2e-5);
+    assert_close(&format!("{arch} latent"), cache.latent(), &to_vec(&out.latent), 2e-5);
+    if let Some(st) = &out.state {
+        let (h, c) = cache.final_state();
+        assert_close(&format!("{arch} final h"), h, &to_vec(&st.h), 2e-5);
+        if let (Some(c), Some(want)) = (c, &st.c) {
+            assert_close(&format!("{arch} final c"), c, &to_vec(want), 2e-5);
+        }
+    }
+    let mut g = vec![f32::NAN; theta.len()];
+    native.backward(&theta, &mut cache, &wl, &wv, &mut g);
+    // Compare block by block so a failure names the parameter.
+    let l = native.layout();
+    let mut blocks = vec![
+        ("conv1.w", l.conv1.0),
+        ("conv1.b", l.conv1.1),
+        ("conv2.w", l.conv2.0),
+        ("conv2.b", l.conv2.1),
+        ("dense.w", l.dense.0),
+        ("dense.b", l.dense.1),
+        ("hidden.w", l.hidden.0),
+        ("hidden.b", l.hidden.1),
+        ("pi.w", l.pi.0),
+        ("pi.b", l.pi.1),
+        ("vf.w", l.vf.0),
+        ("vf.b", l.vf.1),
+    ];
+    if let Some((w, bb)) = l.core_in {
+        blocks.push(("core.in.w", w));
+        blocks.push(("core.in.b", bb));
+    }
+    if let Some((w, bb)) = l.core_rec {
+        blocks.push(("core.rec.w", w));
+        if let Some(bb) = bb {
+            blocks.push(("core.rec.b", bb));
+        }
+    }
+    if let Some(tau) = l.tau {
+        blocks.push(("core.tau", tau));
+    }
+    let covered: usize = blocks.iter().map(|(_, bl)| bl.len).sum();
+    assert_eq!(covered, theta.len(), "{arch}: blocks cover every parameter");
+    for (name, bl) in blocks {
+        assert_close(
+            &format!("{arch} grad {name}"),
+            bl.of(&g),
+            bl.of(&g_burn),
+            2e-4,
+        );
+    }
+}
+
+#[test]
+fn native_forward_and_gradients_equal_burn_autodiff() {
+    check(Architecture::CNN_MLP, 1);
+    for (i, kind) in CoreKind::ALL.into_iter().enumerate() {
+        check(Architecture::recurrent(kind, 12), 10 + i as u64);
+    }
+    // The paper's size exercises the tiled kernels (4 × 16 blocks and their edges).
+    check(Architecture::recurrent(CoreKind::Lstm, 125), 20);
+    check(Architecture::recurrent(CoreKind::Ctrnn, 125), 21);
+}
+
+#[test]
+fn native_outputs_do_not_depend_on_state_before_an_episode_start() {
+    // Two different initial states, episode start at step 0 for every sequence: identical.
+    let pc = PolicyConfig::new(Architecture::recurrent(CoreKind::Lstm, 9), 15, 6, 6);
+    let d = chronocooked_models::cpu();
+    let theta = flat_params(&pc.init(3, &d));
+    let native = NativePolicy::new(&pc);
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(5);
+    let (t, b) = (4, 2);
+    let obs = uniform(t * b * 15 * 6, 2.0, &mut rng);
+    let mut keep = vec![1f32; t * b];
+    keep[..b].fill(0.0);
+    let run = |h0: &[f32], c0: &[f32]| {
+        let mut cache = Cache::default();
+        let batch = SeqBatch {
+            obs: &obs,
+            steps: t,
+            batch: b,
+            keep: &keep,
+            h0,
+            c0: Some(c0),
+        };
+        native.forward(&theta, &batch, &mut cache);
+        cache.logits.clone()
+    };
+    let a = run(&uniform(b * 9, 1.0, &mut rng), &uniform(b * 9, 1.0, &mut rng));
+    let z = run(&[0.0; 18], &[0.0; 18]);
+    assert_eq!(a, z);
+}
