@@ -105,64 +105,105 @@ fn matmul_impl<const FMA: bool>(
     accumulate: bool,
 ) {
     let (m, k, n) = (a.rows, a.cols, b.cols);
+    if m == 1 {
+        // A single row (acting in a rollout): scaled rows of B, skipping zero inputs
+        // (observation codes and ReLU outputs are mostly zero).
+        axpy_row::<FMA>(a, b, c, ldc, accumulate);
+        return;
+    }
     let n_tiled = n - n % NR;
     let m_tiled = m - m % MR;
-    for i0 in (0..m_tiled).step_by(MR) {
-        let arows: [&[f32]; MR] = std::array::from_fn(|r| a.row(i0 + r));
-        for j0 in (0..n_tiled).step_by(NR) {
-            let mut acc = [[0f32; NR]; MR];
-            if accumulate {
-                for (r, acc_r) in acc.iter_mut().enumerate() {
-                    acc_r.copy_from_slice(&c[(i0 + r) * ldc + j0..(i0 + r) * ldc + j0 + NR]);
-                }
-            }
-            for kk in 0..k {
-                let bt: &[f32; NR] = b.data[kk * b.ld + j0..kk * b.ld + j0 + NR]
-                    .try_into()
-                    .expect("tile width");
-                for r in 0..MR {
-                    let av = arows[r][kk];
-                    for j in 0..NR {
-                        acc[r][j] = madd::<FMA>(av, bt[j], acc[r][j]);
-                    }
-                }
-            }
-            for (r, acc_r) in acc.iter().enumerate() {
-                c[(i0 + r) * ldc + j0..(i0 + r) * ldc + j0 + NR].copy_from_slice(acc_r);
-            }
-        }
-        if n_tiled < n {
-            for r in 0..MR {
-                axpy_row::<FMA>(a, b, c, ldc, i0 + r, n_tiled, accumulate);
-            }
+    // The last, partial column block is packed into a zero-padded [K, NR] panel so that
+    // it runs through the same fixed-width kernel.
+    let mut panel = Vec::new();
+    if n_tiled < n {
+        panel.resize(k * NR, 0.0);
+        for kk in 0..k {
+            panel[kk * NR..kk * NR + n - n_tiled]
+                .copy_from_slice(&b.data[kk * b.ld + n_tiled..kk * b.ld + n]);
         }
     }
-    for i in m_tiled..m {
-        axpy_row::<FMA>(a, b, c, ldc, i, 0, accumulate);
+    for j0 in (0..n_tiled).step_by(NR) {
+        for i0 in (0..m_tiled).step_by(MR) {
+            let arows: [&[f32]; MR] = std::array::from_fn(|r| a.row(i0 + r));
+            tile::<FMA, MR>(arows, (b.data, b.ld, j0), c, ldc, (i0, j0), accumulate);
+        }
+        for i in m_tiled..m {
+            tile::<FMA, 1>([a.row(i)], (b.data, b.ld, j0), c, ldc, (i, j0), accumulate);
+        }
+    }
+    if n_tiled < n {
+        // The partial block goes through a dense [M, NR] panel of C as well.
+        let w = n - n_tiled;
+        let mut cp = vec![0f32; m * NR];
+        if accumulate {
+            for i in 0..m {
+                cp[i * NR..i * NR + w].copy_from_slice(&c[i * ldc + n_tiled..i * ldc + n]);
+            }
+        }
+        for i0 in (0..m_tiled).step_by(MR) {
+            let arows: [&[f32]; MR] = std::array::from_fn(|r| a.row(i0 + r));
+            tile::<FMA, MR>(arows, (&panel, NR, 0), &mut cp, NR, (i0, 0), accumulate);
+        }
+        for i in m_tiled..m {
+            tile::<FMA, 1>([a.row(i)], (&panel, NR, 0), &mut cp, NR, (i, 0), accumulate);
+        }
+        for i in 0..m {
+            c[i * ldc + n_tiled..i * ldc + n].copy_from_slice(&cp[i * NR..i * NR + w]);
+        }
     }
 }
 
-/// Row `i` of `C`, columns `j0..N`, as a sum of scaled rows of `B` (zeros in `A` skipped).
+/// `R × NR` block of `C` at `(i0, j0)`: `(+)= Σ_k A[i0 + r, k]·B[k, bj..bj + NR]`, with `B`
+/// given as `(data, row stride, first column)`.
 #[inline(always)]
-fn axpy_row<const FMA: bool>(
-    a: Mat<'_>,
-    b: Mat<'_>,
+fn tile<const FMA: bool, const R: usize>(
+    arows: [&[f32]; R],
+    (bdata, ldb, bj): (&[f32], usize, usize),
     c: &mut [f32],
     ldc: usize,
-    i: usize,
-    j0: usize,
+    (i0, j0): (usize, usize),
     accumulate: bool,
 ) {
+    let k = arows[0].len();
+    let mut acc = [[0f32; NR]; R];
+    if accumulate {
+        for (r, acc_r) in acc.iter_mut().enumerate() {
+            let o = (i0 + r) * ldc + j0;
+            acc_r.copy_from_slice(&c[o..o + NR]);
+        }
+    }
+    for kk in 0..k {
+        let bt: &[f32; NR] = bdata[kk * ldb + bj..kk * ldb + bj + NR]
+            .try_into()
+            .expect("tile width");
+        for r in 0..R {
+            let av = arows[r][kk];
+            for j in 0..NR {
+                acc[r][j] = madd::<FMA>(av, bt[j], acc[r][j]);
+            }
+        }
+    }
+    for (r, acc_r) in acc.iter().enumerate() {
+        let o = (i0 + r) * ldc + j0;
+        c[o..o + NR].copy_from_slice(acc_r);
+    }
+}
+
+/// Row 0 of `C` as a sum of scaled rows of `B` (zeros in `A` skipped).
+#[inline(always)]
+fn axpy_row<const FMA: bool>(a: Mat<'_>, b: Mat<'_>, c: &mut [f32], ldc: usize, accumulate: bool) {
+    let _ = ldc;
     let n = b.cols;
-    let crow = &mut c[i * ldc + j0..i * ldc + n];
+    let crow = &mut c[..n];
     if !accumulate {
         crow.fill(0.0);
     }
-    for (kk, &av) in a.row(i).iter().enumerate() {
+    for (kk, &av) in a.row(0).iter().enumerate() {
         if av == 0.0 {
             continue;
         }
-        let brow = &b.data[kk * b.ld + j0..kk * b.ld + n];
+        let brow = &b.data[kk * b.ld..kk * b.ld + n];
         for (cv, &bv) in crow.iter_mut().zip(brow) {
             *cv = madd::<FMA>(av, bv, *cv);
         }
@@ -381,7 +422,8 @@ mod tests {
         }
         assert_eq!(exp_f32(-1000.0), exp_f32(-87.0));
         assert!(exp_f32(1000.0).is_finite());
-        assert_eq!(sigmoid_f32(-200.0), sigmoid_f32(-87.0));
+        assert_eq!(sigmoid_f32(-200.0), sigmoid_f32(-88.0));
+        assert!(sigmoid_f32(-200.0) > 0.0 && sigmoid_f32(200.0) == 1.0);
         let mut v = vec![0.3f32, -2.0, 5.0];
         tanh_inplace(&mut v);
         assert!((v[1] - (-2.0f32).tanh()).abs() < 3e-7);
