@@ -53,9 +53,9 @@ fn check(arch: Architecture, seed: u64) {
     let lstm = arch.core == Some(CoreKind::Lstm);
     // burn.
     let x = Tensor::<4>::from_data(TensorData::new(obs.clone(), [t, b, cells, ch]), &d);
-    let state = arch.is_recurrent().then(|| {
-        CoreState::from_vecs(h0.clone(), lstm.then(|| c0.clone()), b, &d)
-    });
+    let state = arch
+        .is_recurrent()
+        .then(|| CoreState::from_vecs(h0.clone(), lstm.then(|| c0.clone()), b, &d));
     let keep_t: Vec<Option<Tensor<2>>> = keep
         .chunks_exact(b)
         .map(|k| {
@@ -70,8 +70,9 @@ fn check(arch: Architecture, seed: u64) {
     let objective = (out.logits.clone()
         * Tensor::<2>::from_data(TensorData::new(wl.clone(), [t * b, actions]), &d))
     .sum()
-        + (out.values.clone() * Tensor::<2>::from_data(TensorData::new(wv.clone(), [t * b, 1]), &d))
-            .sum();
+        + (out.values.clone()
+            * Tensor::<2>::from_data(TensorData::new(wv.clone(), [t * b, 1]), &d))
+        .sum();
     let g_burn = flat_grads(&model, &objective.backward());
     // native.
     let mut cache = Cache::default();
@@ -84,9 +85,24 @@ fn check(arch: Architecture, seed: u64) {
         c0: lstm.then_some(&c0[..]),
     };
     native.forward(&theta, &batch, &mut cache);
-    assert_close(&format!("{arch} logits"), &cache.logits, &to_vec(&out.logits), 2e-5);
-    assert_close(&format!("{arch} values"), &cache.values, &to_vec(&out.values), 2e-5);
-    assert_close(&format!("{arch} latent"), cache.latent(), &to_vec(&out.latent), 2e-5);
+    assert_close(
+        &format!("{arch} logits"),
+        &cache.logits,
+        &to_vec(&out.logits),
+        2e-5,
+    );
+    assert_close(
+        &format!("{arch} values"),
+        &cache.values,
+        &to_vec(&out.values),
+        2e-5,
+    );
+    assert_close(
+        &format!("{arch} latent"),
+        cache.latent(),
+        &to_vec(&out.latent),
+        2e-5,
+    );
     if let Some(st) = &out.state {
         let (h, c) = cache.final_state();
         assert_close(&format!("{arch} final h"), h, &to_vec(&st.h), 2e-5);
@@ -173,7 +189,71 @@ fn native_outputs_do_not_depend_on_state_before_an_episode_start() {
         native.forward(&theta, &batch, &mut cache);
         cache.logits.clone()
     };
-    let a = run(&uniform(b * 9, 1.0, &mut rng), &uniform(b * 9, 1.0, &mut rng));
+    let a = run(
+        &uniform(b * 9, 1.0, &mut rng),
+        &uniform(b * 9, 1.0, &mut rng),
+    );
     let z = run(&[0.0; 18], &[0.0; 18]);
     assert_eq!(a, z);
+}
+
+#[test]
+fn native_and_burn_engines_train_alike() {
+    // Two PPO updates (2 envs) from the same seed on each engine: the same rollouts (actions sampled
+    // from logits that agree to ~1e-6 with the same RNG) and the same losses and parameters
+    // up to float rounding (Adam normalises steps, so rounding noise in near-zero gradients
+    // can move a parameter by up to ~lr per step: the bound below is a few such steps).
+    use chronocooked_training::{Trainer, resolve};
+    for model in ["cnn-mlp", "lstm8", "ctrnn8", "gru8"] {
+        let cfg = |engine: &str| {
+            resolve(
+                "FixedInterval-v0",
+                model.parse().unwrap(),
+                "reference",
+                3,
+                &[
+                    "n_envs=2".into(),
+                    "n_steps=150".into(),
+                    "n_epochs=2".into(),
+                    "env.td=4".into(),
+                    format!("engine={engine}"),
+                ],
+            )
+            .unwrap()
+        };
+        let mut native = Trainer::new(cfg("native")).unwrap();
+        let mut burn = Trainer::new(cfg("burn")).unwrap();
+        for update in 0..2 {
+            let a = native.update().unwrap();
+            let b = burn.update().unwrap();
+            assert_eq!(
+                a.episodes, b.episodes,
+                "{model} update {update}: rollouts differ"
+            );
+            for (what, x, y) in [
+                ("policy loss", a.policy_loss, b.policy_loss),
+                ("value loss", a.value_loss, b.value_loss),
+                ("entropy", a.entropy, b.entropy),
+                (
+                    "explained variance",
+                    a.explained_variance,
+                    b.explained_variance,
+                ),
+            ] {
+                assert!(
+                    (x - y).abs() <= 1e-3 * (1.0 + y.abs()),
+                    "{model} update {update} {what}: native {x} vs burn {y}"
+                );
+            }
+        }
+        let (ta, tb) = (&native.state().theta, &burn.state().theta);
+        let max_diff = ta
+            .iter()
+            .zip(tb)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0f32, f32::max);
+        assert!(max_diff < 2e-3, "{model}: parameters differ by {max_diff}");
+        // The burn module the trainer exposes carries the native engine's parameters.
+        assert_eq!(&flat_params(&native.policy()), ta);
+    }
 }

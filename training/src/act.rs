@@ -78,7 +78,9 @@ pub fn argmax(logits: &[f32]) -> usize {
 /// (`(vec![], None)`) for CNN-MLP.
 pub type FlatState = (Vec<f32>, Option<Vec<f32>>);
 
-/// The policy as used during a rollout, on either engine (same function).
+/// The policy as used during a rollout, on either engine (same function). One lives per
+/// rollout, so the variants' sizes do not matter.
+#[allow(clippy::large_enum_variant)]
 pub enum Actor {
     /// burn module without autodiff.
     Burn {

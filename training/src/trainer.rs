@@ -74,7 +74,11 @@ impl Trainer {
         }
         let theta = flat_params(&model);
         let native = NativePolicy::new(&policy_cfg);
-        assert_eq!(native.num_params(), theta.len(), "native layout matches the module");
+        assert_eq!(
+            native.num_params(),
+            theta.len(),
+            "native layout matches the module"
+        );
         let adam = Adam::new(
             theta.len(),
             AdamParams {
@@ -279,8 +283,7 @@ impl Trainer {
             self.encoder
                 .encode_batch(&self.envs.obs, &mut self.scratch_obs);
             let keep = self.state.keep.clone();
-            let (logits, values, new_core) =
-                actor.step(&self.scratch_obs, cells, ch, &keep, &core);
+            let (logits, values, new_core) = actor.step(&self.scratch_obs, cells, ch, &keep, &core);
             core = new_core;
             let base = t * n;
             self.rollout.obs[base * olen..base * olen + obs_tensor_len]
@@ -413,15 +416,19 @@ impl Trainer {
                 };
                 let (out, pending) = match engine {
                     Engine::Native => {
-                        let (out, dl, dv) =
-                            batch.loss_native(&self.native, &self.state.theta, &mut self.cache, coefs);
+                        let (out, dl, dv) = batch.loss_native(
+                            &self.native,
+                            &self.state.theta,
+                            &mut self.cache,
+                            coefs,
+                        );
                         (out, Pending::Native(dl, dv))
                     }
                     Engine::Burn => {
                         let shape = (self.encoder.cells(), self.encoder.channels());
                         let (out, sur, aux) =
                             batch.loss_burn(&self.model, &self.device, shape, Action::COUNT, coefs);
-                        (out, Pending::Burn(sur, aux))
+                        (out, Pending::Burn(Box::new((sur, aux))))
                     }
                 };
                 if let Some(target) = p.target_kl
@@ -441,7 +448,10 @@ impl Trainer {
                         self.native
                             .backward(theta, &mut self.cache, &dl, &dv, &mut self.grad);
                     }
-                    Pending::Burn(sur, aux) => self.grad = burn_gradient(&self.model, sur, aux),
+                    Pending::Burn(b) => {
+                        let (sur, aux) = *b;
+                        self.grad = burn_gradient(&self.model, sur, aux);
+                    }
                 }
                 let norm = clip_global_norm(&mut self.grad, p.max_grad_norm as f64);
                 if !norm.is_finite() {
@@ -547,5 +557,10 @@ enum Pending {
     /// `∂L/∂logits [M, A]`, `∂L/∂values [M]`.
     Native(Vec<f32>, Vec<f32>),
     /// burn surrogate and the split-BPTT auxiliary data.
-    Burn(burn::tensor::Tensor<1>, Option<chronocooked_models::cores::SeqAux>),
+    Burn(
+        Box<(
+            burn::tensor::Tensor<1>,
+            Option<chronocooked_models::cores::SeqAux>,
+        )>,
+    ),
 }

@@ -48,7 +48,6 @@ impl CoreParams<'_> {
 #[derive(Debug, Default, Clone)]
 pub(crate) struct CoreCache {
     hidden: usize,
-    gates_per_unit: usize,
     active: bool,
     steps: usize,
     batch: usize,
@@ -132,7 +131,6 @@ pub(super) fn forward(p: &CoreParams<'_>, xw: &[f32], batch: &SeqBatch<'_>, cc: 
     assert_eq!(batch.h0.len(), b * h, "initial hidden state length");
     cc.active = true;
     cc.hidden = h;
-    cc.gates_per_unit = g;
     cc.steps = t_len;
     cc.batch = b;
     cc.keep.clear();
@@ -158,7 +156,11 @@ pub(super) fn forward(p: &CoreParams<'_>, xw: &[f32], batch: &SeqBatch<'_>, cc: 
     for t in 0..t_len {
         let (r0, r1) = (t * b * h, (t + 1) * b * h);
         let keep = &batch.keep[t * b..(t + 1) * b];
-        let src = if t == 0 { batch.h0 } else { &cc.h[r0 - b * h..r0] };
+        let src = if t == 0 {
+            batch.h0
+        } else {
+            &cc.h[r0 - b * h..r0]
+        };
         masked_copy(&mut cc.h_prev[r0..r1], src, keep, h);
         let hp = Mat::new(&cc.h_prev[r0..r1], b, h);
         let pre = &mut cc.gates[t * b * gh..(t + 1) * b * gh];
@@ -179,7 +181,10 @@ pub(super) fn forward(p: &CoreParams<'_>, xw: &[f32], batch: &SeqBatch<'_>, cc: 
                 for row in pre.chunks_exact_mut(gh) {
                     sigmoid_inplace(&mut row[..2 * h]);
                 }
-                for (bi, (row, hw_row)) in pre.chunks_exact_mut(gh).zip(hw.chunks_exact(gh)).enumerate()
+                for (bi, (row, hw_row)) in pre
+                    .chunks_exact_mut(gh)
+                    .zip(hw.chunks_exact(gh))
+                    .enumerate()
                 {
                     let hn = &mut cc.hn[r0 + bi * h..r0 + (bi + 1) * h];
                     hn.copy_from_slice(&hw_row[2 * h..]);
@@ -376,7 +381,13 @@ pub(super) fn backward(
     }
     let drec = if gru { &cc.dhw } else { &cc.dxw };
     let drec = Mat::new(drec, n, gh);
-    matmul_tn(Mat::new(&cc.h_prev, n, h), drec, rec.0.of_mut(grad), false, scratch);
+    matmul_tn(
+        Mat::new(&cc.h_prev, n, h),
+        drec,
+        rec.0.of_mut(grad),
+        false,
+        scratch,
+    );
     if let Some(bb) = rec.1 {
         super::kernels::add_col_sums(drec, bb.of_mut(grad));
     }

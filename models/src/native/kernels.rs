@@ -361,7 +361,13 @@ mod tests {
 
     #[test]
     fn matmul_matches_naive_on_tile_edges() {
-        for &(m, k, n) in &[(1, 3, 5), (4, 7, 16), (9, 13, 37), (8, 125, 500), (5, 1, 17)] {
+        for &(m, k, n) in &[
+            (1, 3, 5),
+            (4, 7, 16),
+            (9, 13, 37),
+            (8, 125, 500),
+            (5, 1, 17),
+        ] {
             let (a, b) = (data(m * k, 1), data(k * n, 2));
             let want = naive(&a, &b, m, k, n);
             let mut c = vec![0.5f32; m * n];
@@ -387,7 +393,13 @@ mod tests {
         let want = naive(&at, &b, k, m, n);
         let mut c = vec![0f32; k * n];
         let mut s = Vec::new();
-        matmul_tn(Mat::new(&a, m, k), Mat::new(&b, m, n), &mut c, false, &mut s);
+        matmul_tn(
+            Mat::new(&a, m, k),
+            Mat::new(&b, m, n),
+            &mut c,
+            false,
+            &mut s,
+        );
         assert!(c.iter().zip(&want).all(|(x, y)| (x - y).abs() < 1e-4));
         // A·Bᵀ with B [N, K].
         let bt = data(n * k, 5);
@@ -395,17 +407,32 @@ mod tests {
         transpose_into(Mat::new(&bt, n, k), &mut btt);
         let want = naive(&a, &btt, m, k, n);
         let mut c = vec![0f32; m * n];
-        matmul_nt(Mat::new(&a, m, k), Mat::new(&bt, n, k), &mut c, n, false, &mut s);
+        matmul_nt(
+            Mat::new(&a, m, k),
+            Mat::new(&bt, n, k),
+            &mut c,
+            n,
+            false,
+            &mut s,
+        );
         assert!(c.iter().zip(&want).all(|(x, y)| (x - y).abs() < 1e-4));
     }
 
     #[test]
     fn strided_views_read_column_blocks() {
         // The right half of a [3, 4] matrix times a [2, 2] identity is that half.
-        let a = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 10.0, 11.0, 12.0];
+        let a = [
+            1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 10.0, 11.0, 12.0,
+        ];
         let id = [1.0, 0.0, 0.0, 1.0];
         let mut c = vec![0f32; 6];
-        matmul(Mat::strided(&a[2..], 3, 2, 4), Mat::new(&id, 2, 2), &mut c, 2, false);
+        matmul(
+            Mat::strided(&a[2..], 3, 2, 4),
+            Mat::new(&id, 2, 2),
+            &mut c,
+            2,
+            false,
+        );
         assert_eq!(c, vec![3.0, 4.0, 7.0, 8.0, 11.0, 12.0]);
     }
 
@@ -417,7 +444,10 @@ mod tests {
             let want = (x as f64).exp();
             assert!(((e - want) / want).abs() < 3e-7, "exp({x})");
             assert!((sigmoid_f32(x) as f64 - 1.0 / (1.0 + (-x as f64).exp())).abs() < 2e-7);
-            assert!((tanh_f32(x) as f64 - (x as f64).tanh()).abs() < 3e-7, "tanh({x})");
+            assert!(
+                (tanh_f32(x) as f64 - (x as f64).tanh()).abs() < 3e-7,
+                "tanh({x})"
+            );
             x += 0.0137;
         }
         assert_eq!(exp_f32(-1000.0), exp_f32(-87.0));

@@ -114,7 +114,11 @@ impl NativePolicy {
         let t = &self.cfg.trunk;
         let l = &self.layout;
         let n = batch.steps * batch.batch;
-        assert_eq!(batch.obs.len(), n * t.cells * t.channels, "observation length");
+        assert_eq!(
+            batch.obs.len(),
+            n * t.cells * t.channels,
+            "observation length"
+        );
         assert_eq!(batch.keep.len(), n, "keep mask length");
         cache.rows = n;
         cache.steps = batch.steps;
@@ -129,7 +133,13 @@ impl NativePolicy {
         relu_inplace(&mut cache.a1);
         // conv2 (per cell), no non-linearity; flattened cell-major.
         resize(&mut cache.a2, nc * t.conv2);
-        linear(Mat::new(&cache.a1, nc, t.conv1), theta, l.conv2, t.conv2, &mut cache.a2);
+        linear(
+            Mat::new(&cache.a1, nc, t.conv1),
+            theta,
+            l.conv2,
+            t.conv2,
+            &mut cache.a2,
+        );
         // dense + ReLU.
         resize(&mut cache.f, n * t.features);
         let a2 = Mat::new(&cache.a2, n, t.cells * t.conv2);
@@ -162,7 +172,13 @@ impl NativePolicy {
         } else {
             cache.core.h()
         };
-        linear(Mat::new(latent, n, lat_dim), theta, l.hidden, 2 * hh, &mut cache.z);
+        linear(
+            Mat::new(latent, n, lat_dim),
+            theta,
+            l.hidden,
+            2 * hh,
+            &mut cache.z,
+        );
         tanh_inplace(&mut cache.z);
         let a_n = self.cfg.actions;
         resize(&mut cache.logits, n * a_n);
@@ -216,7 +232,13 @@ impl NativePolicy {
         } else {
             cache.core.h()
         };
-        matmul_tn(Mat::new(latent, n, lat_dim), dz, l.hidden.0.of_mut(grad), false, s);
+        matmul_tn(
+            Mat::new(latent, n, lat_dim),
+            dz,
+            l.hidden.0.of_mut(grad),
+            false,
+            s,
+        );
         add_col_sums(dz, l.hidden.1.of_mut(grad));
         resize(&mut cache.dlat, n * lat_dim);
         let w_h = Mat::new(l.hidden.0.of(theta), lat_dim, 2 * hh);
@@ -258,7 +280,13 @@ impl NativePolicy {
         matmul_nt(df, w_d, &mut cache.da2, t.cells * t.conv2, false, s);
         let nc = n * t.cells;
         let da2 = Mat::new(&cache.da2, nc, t.conv2);
-        matmul_tn(Mat::new(&cache.a1, nc, t.conv1), da2, l.conv2.0.of_mut(grad), false, s);
+        matmul_tn(
+            Mat::new(&cache.a1, nc, t.conv1),
+            da2,
+            l.conv2.0.of_mut(grad),
+            false,
+            s,
+        );
         add_col_sums(da2, l.conv2.1.of_mut(grad));
         resize(&mut cache.da1, nc * t.conv1);
         let w_2 = Mat::new(l.conv2.0.of(theta), t.conv1, t.conv2);
@@ -269,7 +297,13 @@ impl NativePolicy {
             }
         }
         let da1 = Mat::new(&cache.da1, nc, t.conv1);
-        matmul_tn(Mat::new(&cache.x, nc, t.channels), da1, l.conv1.0.of_mut(grad), false, s);
+        matmul_tn(
+            Mat::new(&cache.x, nc, t.channels),
+            da1,
+            l.conv1.0.of_mut(grad),
+            false,
+            s,
+        );
         add_col_sums(da1, l.conv1.1.of_mut(grad));
     }
 }
