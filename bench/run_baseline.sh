@@ -13,7 +13,7 @@
 #
 # Runs from the repository root. Step 1: bench/sb3_baseline.py (SB3 PPO CNN-MLP and
 # RecurrentPPO LSTM125, FI TD=12, one torch thread). Step 2: `chronocooked bench train`
-# (cnn-mlp, lstm125, ctrnn125). Load average is printed before, between and after.
+# (cnn-mlp, lstm125, ctrnn125) on the native engine, then on burn autodiff. Load average is printed before, between and after.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -35,7 +35,10 @@ echo "== SB3 baseline: $PYTHON bench/sb3_baseline.py --ref-dir $REF_DIR --ppo-up
 
 echo "== uptime (between): $(uptime)"
 
-echo "== Rust: $CHRONOCOOKED bench train --updates $RUST_UPDATES"
+echo "== Rust (native engine, the default): $CHRONOCOOKED bench train --updates $RUST_UPDATES"
 "$CHRONOCOOKED" bench train --updates "$RUST_UPDATES"
+
+echo "== Rust (burn autodiff engine): $CHRONOCOOKED bench train --updates $RUST_UPDATES --set engine=burn"
+"$CHRONOCOOKED" bench train --updates "$RUST_UPDATES" --set engine=burn
 
 echo "== uptime (after): $(uptime)"

@@ -250,6 +250,7 @@ pub fn bench_train(
         let mut cfg = resolve(task, arch, preset, 0, sets)?;
         cfg.total_steps = u64::MAX;
         let batch = (cfg.ppo.n_envs * cfg.ppo.n_steps) as f64;
+        let engine = format!("{:?}", cfg.ppo.engine).to_ascii_lowercase();
         let mut trainer = chronocooked_training::Trainer::new(cfg)?;
         trainer.update()?;
         let (mut secs, mut roll, mut opt) = (0.0, 0.0, 0.0);
@@ -261,7 +262,7 @@ pub fn bench_train(
         }
         let n = updates.max(1) as f64;
         println!(
-            "{task:<18} {:<10} {preset:<9} {:>8.0} env-steps/s  ({:.3} s/update: rollout {:.3} s, optimise {:.3} s; {} updates)",
+            "{task:<18} {:<10} {preset:<9} {engine:<6} {:>8.0} env-steps/s  ({:.3} s/update: rollout {:.3} s, optimise {:.3} s; {} updates)",
             arch.name(),
             batch * n / secs,
             secs / n,

@@ -257,3 +257,39 @@ fn native_and_burn_engines_train_alike() {
         assert_eq!(&flat_params(&native.policy()), ta);
     }
 }
+
+#[test]
+fn native_ctrnn_with_zero_weights_follows_exact_euler_decay() {
+    // Zero weights and biases: the target tanh(0) = 0, so h_n = (1 − α)^n h_0 with
+    // α = dt / softplus(τ_raw) = 0.1 / ln(1 + e) for the reference τ_raw = 1.
+    let pc = PolicyConfig::new(Architecture::recurrent(CoreKind::Ctrnn, 5), 15, 6, 6);
+    let native = NativePolicy::new(&pc);
+    let mut theta = vec![0f32; native.num_params()];
+    let tau = native.layout().tau.unwrap();
+    theta[tau.offset..tau.offset + tau.len].fill(1.0);
+    let (t, b) = (30, 2);
+    let obs = vec![1f32; t * b * 15 * 6];
+    let keep = vec![1f32; t * b];
+    let h0: Vec<f32> = (0..b * 5).map(|i| i as f32 * 0.2 - 0.9).collect();
+    let mut cache = Cache::default();
+    let batch = SeqBatch {
+        obs: &obs,
+        steps: t,
+        batch: b,
+        keep: &keep,
+        h0: &h0,
+        c0: None,
+    };
+    native.forward(&theta, &batch, &mut cache);
+    let alpha = 0.1 / (1.0 + 1f64.exp()).ln();
+    for step in 0..t {
+        for (i, &h) in h0.iter().enumerate() {
+            let want = (1.0 - alpha).powi(step as i32 + 1) * h as f64;
+            let got = cache.latent()[step * b * 5 + i] as f64;
+            assert!(
+                (got - want).abs() < 1e-6,
+                "step {step} unit {i}: {got} vs {want}"
+            );
+        }
+    }
+}
