@@ -163,68 +163,66 @@ pub(super) fn forward(p: &CoreParams<'_>, xw: &[f32], batch: &SeqBatch<'_>, cc: 
         };
         masked_copy(&mut cc.h_prev[r0..r1], src, keep, h);
         let hp = Mat::new(&cc.h_prev[r0..r1], b, h);
-        let pre = &mut cc.gates[t * b * gh..(t + 1) * b * gh];
+        let xw_t = &xw[t * b * gh..(t + 1) * b * gh];
         match p.kind {
-            CoreKind::Gru => {
-                let hw = &mut cc.hw_step;
-                matmul(hp, w_rec, hw, gh, false);
-                if let Some(bias) = p.b_rec {
-                    super::kernels::add_bias(hw, bias);
-                }
-                pre.copy_from_slice(&xw[t * b * gh..(t + 1) * b * gh]);
-                for (row, hw_row) in pre.chunks_exact_mut(gh).zip(hw.chunks_exact(gh)) {
-                    row[..2 * h]
-                        .iter_mut()
-                        .zip(&hw_row[..2 * h])
-                        .for_each(|(x, &y)| *x += y);
-                }
-                for row in pre.chunks_exact_mut(gh) {
-                    sigmoid_inplace(&mut row[..2 * h]);
-                }
-                for (bi, (row, hw_row)) in pre
-                    .chunks_exact_mut(gh)
-                    .zip(hw.chunks_exact(gh))
-                    .enumerate()
-                {
-                    let hn = &mut cc.hn[r0 + bi * h..r0 + (bi + 1) * h];
-                    hn.copy_from_slice(&hw_row[2 * h..]);
-                    let (rz, nn) = row.split_at_mut(2 * h);
-                    for j in 0..h {
-                        nn[j] += rz[j] * hn[j];
-                    }
-                    tanh_inplace(nn);
-                    let out = &mut cc.h[r0 + bi * h..r0 + (bi + 1) * h];
-                    let hpr = &cc.h_prev[r0 + bi * h..r0 + (bi + 1) * h];
-                    for j in 0..h {
-                        let z = rz[h + j];
-                        out[j] = nn[j] + z * (hpr[j] - nn[j]);
-                    }
-                }
-            }
-            _ => {
-                pre.copy_from_slice(&xw[t * b * gh..(t + 1) * b * gh]);
+            CoreKind::Gru => gru_step(p, cc, t, b, xw_t),
+            kind => {
+                // Pre-activations x_t + h̃ W_rec, then the kind's non-linearity.
+                let pre = &mut cc.gates[t * b * gh..(t + 1) * b * gh];
+                pre.copy_from_slice(xw_t);
                 matmul(hp, w_rec, pre, gh, true);
-                match p.kind {
+                match kind {
                     CoreKind::Lstm => lstm_step(cc, t, b, h, keep, batch.c0, &zero_c),
                     CoreKind::Rnn => {
                         tanh_inplace(pre);
                         cc.h[r0..r1].copy_from_slice(pre);
                     }
                     _ => {
+                        // CTRNN: h = h̃ + α(tanh(pre) − h̃).
                         tanh_inplace(pre);
                         let hp = &cc.h_prev[r0..r1];
-                        let out = &mut cc.h[r0..r1];
-                        for ((o, (&tg, &hv)), a) in out
-                            .chunks_exact_mut(h)
-                            .zip(pre.chunks_exact(h).zip(hp.chunks_exact(h)))
-                            .flat_map(|(o, (tg, hv))| o.iter_mut().zip(tg.iter().zip(hv)))
-                            .zip(alpha.iter().cycle())
+                        let rows = cc.h[r0..r1].chunks_exact_mut(h);
+                        for ((out, tg), hv) in rows.zip(pre.chunks_exact(h)).zip(hp.chunks_exact(h))
                         {
-                            *o = hv + a * (tg - hv);
+                            for j in 0..h {
+                                out[j] = hv[j] + alpha[j] * (tg[j] - hv[j]);
+                            }
                         }
                     }
                 }
             }
+        }
+    }
+}
+
+/// GRU step `t`: `r, z = σ(x_{r,z} + (h̃ W_rec + b_rec)_{r,z})`, `n = tanh(x_n + r ⊙ ĥ_n)` with
+/// `ĥ_n = (h̃ W_rec + b_rec)_n`, `h = n + z ⊙ (h̃ − n)`.
+fn gru_step(p: &CoreParams<'_>, cc: &mut CoreCache, t: usize, b: usize, xw_t: &[f32]) {
+    let h = p.hidden;
+    let gh = 3 * h;
+    let r0 = t * b * h;
+    let hw = &mut cc.hw_step;
+    let hp = Mat::new(&cc.h_prev[r0..r0 + b * h], b, h);
+    matmul(hp, Mat::new(p.w_rec, h, gh), hw, gh, false);
+    if let Some(bias) = p.b_rec {
+        super::kernels::add_bias(hw, bias);
+    }
+    let pre = &mut cc.gates[t * b * gh..(t + 1) * b * gh];
+    pre.copy_from_slice(xw_t);
+    for (bi, (row, hw_row)) in pre.chunks_exact_mut(gh).zip(hw.chunks_exact(gh)).enumerate() {
+        let (rz, nn) = row.split_at_mut(2 * h);
+        rz.iter_mut().zip(&hw_row[..2 * h]).for_each(|(x, &y)| *x += y);
+        sigmoid_inplace(rz);
+        let o = r0 + bi * h;
+        let hn = &mut cc.hn[o..o + h];
+        hn.copy_from_slice(&hw_row[2 * h..]);
+        for j in 0..h {
+            nn[j] += rz[j] * hn[j];
+        }
+        tanh_inplace(nn);
+        let (out, hpr) = (&mut cc.h[o..o + h], &cc.h_prev[o..o + h]);
+        for j in 0..h {
+            out[j] = nn[j] + rz[h + j] * (hpr[j] - nn[j]);
         }
     }
 }
