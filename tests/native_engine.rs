@@ -293,3 +293,24 @@ fn native_ctrnn_with_zero_weights_follows_exact_euler_decay() {
         }
     }
 }
+
+#[test]
+fn native_empty_batch_gives_empty_outputs_and_zero_gradient() {
+    let pc = PolicyConfig::new(Architecture::recurrent(CoreKind::Gru, 7), 15, 6, 6);
+    let native = NativePolicy::new(&pc);
+    let theta = flat_params(&pc.init(1, &chronocooked_models::cpu()));
+    let mut cache = Cache::default();
+    let batch = SeqBatch {
+        obs: &[],
+        steps: 0,
+        batch: 3,
+        keep: &[],
+        h0: &[0.0; 21],
+        c0: None,
+    };
+    native.forward(&theta, &batch, &mut cache);
+    assert!(cache.logits.is_empty() && cache.values.is_empty());
+    let mut g = vec![1f32; theta.len()];
+    native.backward(&theta, &mut cache, &[], &[], &mut g);
+    assert!(g.iter().all(|&v| v == 0.0));
+}

@@ -129,6 +129,9 @@ pub(super) fn forward(p: &CoreParams<'_>, xw: &[f32], batch: &SeqBatch<'_>, cc: 
     let n = t_len * b;
     let gh = g * h;
     assert_eq!(batch.h0.len(), b * h, "initial hidden state length");
+    if let Some(c0) = batch.c0 {
+        assert_eq!(c0.len(), b * h, "initial cell state length");
+    }
     cc.active = true;
     cc.hidden = h;
     cc.steps = t_len;
@@ -209,9 +212,15 @@ fn gru_step(p: &CoreParams<'_>, cc: &mut CoreCache, t: usize, b: usize, xw_t: &[
     }
     let pre = &mut cc.gates[t * b * gh..(t + 1) * b * gh];
     pre.copy_from_slice(xw_t);
-    for (bi, (row, hw_row)) in pre.chunks_exact_mut(gh).zip(hw.chunks_exact(gh)).enumerate() {
+    for (bi, (row, hw_row)) in pre
+        .chunks_exact_mut(gh)
+        .zip(hw.chunks_exact(gh))
+        .enumerate()
+    {
         let (rz, nn) = row.split_at_mut(2 * h);
-        rz.iter_mut().zip(&hw_row[..2 * h]).for_each(|(x, &y)| *x += y);
+        rz.iter_mut()
+            .zip(&hw_row[..2 * h])
+            .for_each(|(x, &y)| *x += y);
         sigmoid_inplace(rz);
         let o = r0 + bi * h;
         let hn = &mut cc.hn[o..o + h];

@@ -123,6 +123,12 @@ impl NativePolicy {
         cache.rows = n;
         cache.steps = batch.steps;
         cache.batch = batch.batch;
+        if n == 0 {
+            cache.core.clear();
+            cache.logits.clear();
+            cache.values.clear();
+            return;
+        }
         let nc = n * t.cells;
         cache.x.clear();
         cache.x.extend_from_slice(batch.obs);
@@ -207,6 +213,9 @@ impl NativePolicy {
         assert_eq!(d_logits.len(), n * a_n, "logit gradient length");
         assert_eq!(d_values.len(), n, "value gradient length");
         grad.fill(0.0);
+        if n == 0 {
+            return;
+        }
         let s = &mut cache.scratch;
         // Output layers.
         let dlg = Mat::new(d_logits, n, a_n);
