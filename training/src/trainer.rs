@@ -398,6 +398,12 @@ impl Trainer {
         let per_mb = (p.batch_size / l).max(1);
         let (mut pl, mut vl, mut el, mut kl, mut cf, mut gn, mut count) =
             (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0usize);
+        let coefs = LossCoefs {
+            clip_range: p.clip_range,
+            clip_range_vf: p.clip_range_vf,
+            ent_coef: p.ent_coef,
+            vf_coef: p.vf_coef,
+        };
         'epochs: for _ in 0..p.n_epochs {
             all.shuffle(&mut self.state.rng);
             for mb in all.chunks(per_mb) {
@@ -408,12 +414,6 @@ impl Trainer {
                     self.cfg.model.hidden,
                     p.normalize_advantage,
                 );
-                let coefs = LossCoefs {
-                    clip_range: p.clip_range,
-                    clip_range_vf: p.clip_range_vf,
-                    ent_coef: p.ent_coef,
-                    vf_coef: p.vf_coef,
-                };
                 let (out, pending) = match engine {
                     Engine::Native => {
                         let (out, dl, dv) = batch.loss_native(

@@ -108,7 +108,7 @@ fn matmul_impl<const FMA: bool>(
     if m == 1 {
         // A single row (acting in a rollout): scaled rows of B, skipping zero inputs
         // (observation codes and ReLU outputs are mostly zero).
-        axpy_row::<FMA>(a, b, c, ldc, accumulate);
+        axpy_row::<FMA>(a, b, c, accumulate);
         return;
     }
     let n_tiled = n - n % NR;
@@ -192,8 +192,7 @@ fn tile<const FMA: bool, const R: usize>(
 
 /// Row 0 of `C` as a sum of scaled rows of `B` (zeros in `A` skipped).
 #[inline(always)]
-fn axpy_row<const FMA: bool>(a: Mat<'_>, b: Mat<'_>, c: &mut [f32], ldc: usize, accumulate: bool) {
-    let _ = ldc;
+fn axpy_row<const FMA: bool>(a: Mat<'_>, b: Mat<'_>, c: &mut [f32], accumulate: bool) {
     let n = b.cols;
     let crow = &mut c[..n];
     if !accumulate {

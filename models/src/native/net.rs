@@ -1,11 +1,11 @@
 //! Forward and backward passes of the whole actor–critic (trunk, core, heads) on a flat
 //! parameter vector.
 
-use super::Layout;
 use super::core::{self, CoreCache};
 use super::kernels::{
     Mat, add_bias, add_col_sums, matmul, matmul_nt, matmul_tn, relu_inplace, tanh_inplace,
 };
+use super::{Block, Layout};
 use crate::PolicyConfig;
 
 /// A batch of `B` sequences of `T` steps, time-major (row `t·B + b`).
@@ -152,19 +152,11 @@ impl NativePolicy {
         linear(a2, theta, l.dense, t.features, &mut cache.f);
         relu_inplace(&mut cache.f);
         // Recurrent core.
-        if let (Some(kind), Some(inp), Some(rec)) = (self.cfg.arch.core, l.core_in, l.core_rec) {
-            let (h, g) = (self.cfg.arch.hidden, kind.gates());
-            resize(&mut cache.xw, n * g * h);
+        if let Some((params, inp)) = self.core_params(theta) {
+            let gh = params.kind.gates() * params.hidden;
+            resize(&mut cache.xw, n * gh);
             let f = Mat::new(&cache.f, n, t.features);
-            linear(f, theta, inp, g * h, &mut cache.xw);
-            let params = core::CoreParams {
-                kind,
-                hidden: h,
-                w_rec: rec.0.of(theta),
-                b_rec: rec.1.map(|b| b.of(theta)),
-                tau: l.tau.map(|b| b.of(theta)),
-                dt: self.cfg.ctrnn_dt,
-            };
+            linear(f, theta, inp, gh, &mut cache.xw);
             core::forward(&params, &cache.xw, batch, &mut cache.core);
         } else {
             cache.core.clear();
@@ -217,114 +209,147 @@ impl NativePolicy {
             return;
         }
         let s = &mut cache.scratch;
-        // Output layers.
-        let dlg = Mat::new(d_logits, n, a_n);
-        let dv = Mat::new(d_values, n, 1);
+        // Output layers; their input gradients land side by side in dz = [dz_pi | dz_vf].
+        resize(&mut cache.dz, n * 2 * hh);
         let z_pi = Mat::strided(&cache.z, n, hh, 2 * hh);
         let z_vf = Mat::strided(&cache.z[hh..], n, hh, 2 * hh);
-        matmul_tn(z_pi, dlg, l.pi.0.of_mut(grad), false, s);
-        add_col_sums(dlg, l.pi.1.of_mut(grad));
-        matmul_tn(z_vf, dv, l.vf.0.of_mut(grad), false, s);
-        add_col_sums(dv, l.vf.1.of_mut(grad));
-        resize(&mut cache.dz, n * 2 * hh);
-        let w_pi = Mat::new(l.pi.0.of(theta), hh, a_n);
-        matmul_nt(dlg, w_pi, &mut cache.dz, 2 * hh, false, s);
-        let w_vf = Mat::new(l.vf.0.of(theta), hh, 1);
-        matmul_nt(dv, w_vf, &mut cache.dz[hh..], 2 * hh, false, s);
-        // Through tanh.
+        let dlg = Mat::new(d_logits, n, a_n);
+        linear_backward(
+            z_pi,
+            dlg,
+            theta,
+            l.pi,
+            grad,
+            Some((&mut cache.dz, 2 * hh)),
+            s,
+        );
+        let dv = Mat::new(d_values, n, 1);
+        linear_backward(
+            z_vf,
+            dv,
+            theta,
+            l.vf,
+            grad,
+            Some((&mut cache.dz[hh..], 2 * hh)),
+            s,
+        );
+        // Through tanh, then the fused hidden layer.
         for (d, &z) in cache.dz.iter_mut().zip(&cache.z) {
             *d *= 1.0 - z * z;
         }
-        let dz = Mat::new(&cache.dz, n, 2 * hh);
         let latent = if cache.core.is_empty() {
             &cache.f
         } else {
             cache.core.h()
         };
-        matmul_tn(
+        resize(&mut cache.dlat, n * lat_dim);
+        linear_backward(
             Mat::new(latent, n, lat_dim),
-            dz,
-            l.hidden.0.of_mut(grad),
-            false,
+            Mat::new(&cache.dz, n, 2 * hh),
+            theta,
+            l.hidden,
+            grad,
+            Some((&mut cache.dlat, lat_dim)),
             s,
         );
-        add_col_sums(dz, l.hidden.1.of_mut(grad));
-        resize(&mut cache.dlat, n * lat_dim);
-        let w_h = Mat::new(l.hidden.0.of(theta), lat_dim, 2 * hh);
-        matmul_nt(dz, w_h, &mut cache.dlat, lat_dim, false, s);
         // Core (BPTT) → gradient at the trunk features.
         resize(&mut cache.df, n * t.features);
-        if let (Some(kind), Some(inp), Some(rec)) = (self.cfg.arch.core, l.core_in, l.core_rec) {
-            let (h, g) = (self.cfg.arch.hidden, kind.gates());
-            let params = core::CoreParams {
-                kind,
-                hidden: h,
-                w_rec: rec.0.of(theta),
-                b_rec: rec.1.map(|b| b.of(theta)),
-                tau: l.tau.map(|b| b.of(theta)),
-                dt: self.cfg.ctrnn_dt,
-            };
+        if let (Some((params, inp)), Some(rec)) = (self.core_params(theta), l.core_rec) {
             core::backward(&params, &mut cache.core, &cache.dlat, grad, rec, l.tau, s);
-            let dxw = Mat::new(cache.core.dxw(), n, g * h);
-            let f = Mat::new(&cache.f, n, t.features);
-            matmul_tn(f, dxw, inp.0.of_mut(grad), false, s);
-            add_col_sums(dxw, inp.1.of_mut(grad));
-            let w_in = Mat::new(inp.0.of(theta), t.features, g * h);
-            matmul_nt(dxw, w_in, &mut cache.df, t.features, false, s);
+            let gh = params.kind.gates() * params.hidden;
+            linear_backward(
+                Mat::new(&cache.f, n, t.features),
+                Mat::new(cache.core.dxw(), n, gh),
+                theta,
+                inp,
+                grad,
+                Some((&mut cache.df, t.features)),
+                s,
+            );
         } else {
             cache.df.copy_from_slice(&cache.dlat);
         }
-        // Trunk: dense ReLU, dense, conv2, conv1 ReLU, conv1.
-        for (d, &f) in cache.df.iter_mut().zip(&cache.f) {
-            if f <= 0.0 {
-                *d = 0.0;
-            }
-        }
-        let df = Mat::new(&cache.df, n, t.features);
-        let a2 = Mat::new(&cache.a2, n, t.cells * t.conv2);
-        matmul_tn(a2, df, l.dense.0.of_mut(grad), false, s);
-        add_col_sums(df, l.dense.1.of_mut(grad));
-        resize(&mut cache.da2, n * t.cells * t.conv2);
-        let w_d = Mat::new(l.dense.0.of(theta), t.cells * t.conv2, t.features);
-        matmul_nt(df, w_d, &mut cache.da2, t.cells * t.conv2, false, s);
+        // Trunk: dense ReLU, dense, conv2 (no non-linearity), conv1 ReLU, conv1.
+        relu_backward(&mut cache.df, &cache.f);
         let nc = n * t.cells;
-        let da2 = Mat::new(&cache.da2, nc, t.conv2);
-        matmul_tn(
-            Mat::new(&cache.a1, nc, t.conv1),
-            da2,
-            l.conv2.0.of_mut(grad),
-            false,
+        resize(&mut cache.da2, nc * t.conv2);
+        linear_backward(
+            Mat::new(&cache.a2, n, t.cells * t.conv2),
+            Mat::new(&cache.df, n, t.features),
+            theta,
+            l.dense,
+            grad,
+            Some((&mut cache.da2, t.cells * t.conv2)),
             s,
         );
-        add_col_sums(da2, l.conv2.1.of_mut(grad));
         resize(&mut cache.da1, nc * t.conv1);
-        let w_2 = Mat::new(l.conv2.0.of(theta), t.conv1, t.conv2);
-        matmul_nt(da2, w_2, &mut cache.da1, t.conv1, false, s);
-        for (d, &a) in cache.da1.iter_mut().zip(&cache.a1) {
-            if a <= 0.0 {
-                *d = 0.0;
-            }
-        }
-        let da1 = Mat::new(&cache.da1, nc, t.conv1);
-        matmul_tn(
-            Mat::new(&cache.x, nc, t.channels),
-            da1,
-            l.conv1.0.of_mut(grad),
-            false,
+        linear_backward(
+            Mat::new(&cache.a1, nc, t.conv1),
+            Mat::new(&cache.da2, nc, t.conv2),
+            theta,
+            l.conv2,
+            grad,
+            Some((&mut cache.da1, t.conv1)),
             s,
         );
-        add_col_sums(da1, l.conv1.1.of_mut(grad));
+        relu_backward(&mut cache.da1, &cache.a1);
+        linear_backward(
+            Mat::new(&cache.x, nc, t.channels),
+            Mat::new(&cache.da1, nc, t.conv1),
+            theta,
+            l.conv1,
+            grad,
+            None,
+            s,
+        );
+    }
+
+    /// The core's parameters in `theta` and its input-projection blocks (`None` for CNN-MLP).
+    fn core_params<'a>(&self, theta: &'a [f32]) -> Option<(core::CoreParams<'a>, (Block, Block))> {
+        let l = &self.layout;
+        let (kind, inp, rec) = (self.cfg.arch.core?, l.core_in?, l.core_rec?);
+        let params = core::CoreParams {
+            kind,
+            hidden: self.cfg.arch.hidden,
+            w_rec: rec.0.of(theta),
+            b_rec: rec.1.map(|b| b.of(theta)),
+            tau: l.tau.map(|b| b.of(theta)),
+            dt: self.cfg.ctrnn_dt,
+        };
+        Some((params, inp))
+    }
+}
+
+/// Backward of `y = x W + b` (blocks `(w, b)` of `theta`) given `dy`: writes `∂W = xᵀ dy`
+/// and `∂b = Σ_rows dy` into `grad` and, when asked, `dx = dy Wᵀ` (row stride given).
+fn linear_backward(
+    x: Mat<'_>,
+    dy: Mat<'_>,
+    theta: &[f32],
+    (w, b): (Block, Block),
+    grad: &mut [f32],
+    dx: Option<(&mut [f32], usize)>,
+    scratch: &mut Vec<f32>,
+) {
+    matmul_tn(x, dy, w.of_mut(grad), false, scratch);
+    add_col_sums(dy, b.of_mut(grad));
+    if let Some((dx, ldx)) = dx {
+        let w = Mat::new(w.of(theta), x.cols, dy.cols);
+        matmul_nt(dy, w, dx, ldx, false, scratch);
+    }
+}
+
+/// Zeroes `d` where the ReLU output `y` is 0 (its derivative).
+fn relu_backward(d: &mut [f32], y: &[f32]) {
+    for (d, &y) in d.iter_mut().zip(y) {
+        if y <= 0.0 {
+            *d = 0.0;
+        }
     }
 }
 
 /// `out [M, out_dim] = x W + b` for the weight/bias blocks `(w, b)` of `theta`.
-fn linear(
-    x: Mat<'_>,
-    theta: &[f32],
-    (w, b): (super::Block, super::Block),
-    out_dim: usize,
-    out: &mut [f32],
-) {
+fn linear(x: Mat<'_>, theta: &[f32], (w, b): (Block, Block), out_dim: usize, out: &mut [f32]) {
     let w = Mat::new(w.of(theta), x.cols, out_dim);
     matmul(x, w, out, out_dim, false);
     add_bias(out, b.of(theta));
