@@ -5,6 +5,7 @@ mod demo;
 mod env_cmd;
 mod eval_cmd;
 mod export_cmd;
+mod paper_cmd;
 mod play;
 mod report_cmd;
 mod study;
@@ -57,6 +58,12 @@ enum Command {
         #[command(subcommand)]
         command: train_cmd::ZooCommand,
     },
+    /// The paper's study: collect a sweep's compact results, analyse them as the paper does
+    /// and compare with the paper's numbers.
+    Paper {
+        #[command(subcommand)]
+        command: paper_cmd::PaperCommand,
+    },
     /// Benchmarks (`bench env`: env steps/s).
     Bench {
         #[command(subcommand)]
@@ -79,6 +86,7 @@ fn main() -> ExitCode {
         Command::Sweep(args) => sweep_cmd::run(args),
         Command::SweepJob(args) => sweep_cmd::run_job_cmd(args),
         Command::Zoo { command } => train_cmd::run_zoo(command),
+        Command::Paper { command } => paper_cmd::run(command),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -4,7 +4,8 @@
 use chronocooked_analysis::foc::linear_fit;
 use chronocooked_analysis::psychometric::bp_relative;
 use chronocooked_analysis::{
-    FitError, ProbeCounts, first_oven_check, fit_logistic, fit_with_ci, foc_stats, scalar_property,
+    FitError, FocConvention, ProbeCounts, first_oven_check, first_oven_check_with, fit_logistic,
+    fit_with_ci, foc_stats, scalar_property,
 };
 use chronocooked_env::{Events, Info};
 use rand::{Rng, SeedableRng};
@@ -126,15 +127,55 @@ fn first_oven_check_follows_the_paper_definition() {
     assert_eq!(first_oven_check(&actions, &infos), Some(5));
     // A pickup on the first check: FOC = its timer.
     assert_eq!(first_oven_check(&[5], &[step(12, pickup)]), Some(12));
-    // An interact elsewhere (no oven check) also breaks the run.
+    // The paper's code walks back over any interact: an interact without effect does not
+    // break the run; the lab's `Checks` convention stops there.
     let actions = [5u8, 5, 5];
     let infos = [step(4, check), step(5, Events::NO_EFFECT), step(6, pickup)];
-    assert_eq!(first_oven_check(&actions, &infos), Some(6));
+    assert_eq!(first_oven_check(&actions, &infos), Some(4));
+    assert_eq!(
+        first_oven_check_with(&actions, &infos, FocConvention::Checks),
+        Some(6)
+    );
     // No pickup: no FOC.
     assert_eq!(
         first_oven_check(&[5, 5], &[step(1, check), step(2, check)]),
         None
     );
+}
+
+#[test]
+fn foc_is_zero_for_an_interact_run_from_the_put() {
+    // Walk to the oven, put the onion (timer -1 before the put step), then interact without
+    // a break until the pickup at timer 4: the paper's code reports FOC 0, the lab's
+    // earlier convention 1.
+    let check = Events::OVEN_CHECK;
+    let pickup = Events::OVEN_CHECK | Events::PICKUP;
+    let actions = [1u8, 5, 5, 5, 5, 5, 2];
+    let infos = [
+        step(-1, 0),
+        step(-1, Events::ONION_IN),
+        step(1, check),
+        step(2, check),
+        step(3, check),
+        step(4, pickup),
+        step(-1, 0),
+    ];
+    assert_eq!(first_oven_check(&actions, &infos), Some(0));
+    assert_eq!(
+        first_oven_check_with(&actions, &infos, FocConvention::Checks),
+        Some(1)
+    );
+    // The same agent with one wait after the put: the run starts at timer 2.
+    let actions = [1u8, 5, 0, 5, 5, 2];
+    let infos = [
+        step(-1, 0),
+        step(-1, Events::ONION_IN),
+        step(1, 0),
+        step(2, check),
+        step(3, pickup),
+        step(-1, 0),
+    ];
+    assert_eq!(first_oven_check(&actions, &infos), Some(2));
 }
 
 #[test]

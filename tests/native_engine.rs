@@ -204,20 +204,36 @@ fn native_and_burn_engines_train_alike() {
     // up to float rounding (Adam normalises steps, so rounding noise in near-zero gradients
     // can move a parameter by up to ~lr per step: the bound below is a few such steps).
     use chronocooked_training::{Trainer, resolve};
-    for model in ["cnn-mlp", "lstm8", "ctrnn8", "gru8"] {
+    // The reference preset (sequence minibatches, detached critic, reservoir gradients in
+    // the clip) and the lab's chunked, trained-through variant.
+    let lab = [
+        "recurrent_batches=chunks",
+        "bptt_len=16",
+        "detach_critic=false",
+    ];
+    for (model, extra) in [
+        ("cnn-mlp", &[][..]),
+        ("lstm8", &[][..]),
+        ("ctrnn8", &[][..]),
+        ("gru8", &[][..]),
+        ("ctrnn-reservoir8", &[][..]),
+        ("lstm8", &lab[..]),
+    ] {
         let cfg = |engine: &str| {
+            let mut sets = vec![
+                "n_envs=2".to_string(),
+                "n_steps=150".into(),
+                "n_epochs=2".into(),
+                "env.td=4".into(),
+                format!("engine={engine}"),
+            ];
+            sets.extend(extra.iter().map(|s| s.to_string()));
             resolve(
                 "FixedInterval-v0",
                 model.parse().unwrap(),
                 "reference",
                 3,
-                &[
-                    "n_envs=2".into(),
-                    "n_steps=150".into(),
-                    "n_epochs=2".into(),
-                    "env.td=4".into(),
-                    format!("engine={engine}"),
-                ],
+                &sets,
             )
             .unwrap()
         };

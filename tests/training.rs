@@ -251,7 +251,7 @@ fn split_graph_bptt_gradients_equal_plain_autodiff() {
         let x = || Tensor::<4>::from_data(TensorData::new(obs.clone(), [t, b, 15, 6]), &d);
         let plain = model.forward_seq(x(), None, &keep);
         let g_plain = flat_grads(&model, &objective(&plain).backward());
-        let split = model.forward_seq_train(x(), None, &keep);
+        let split = model.forward_seq_train(x(), None, &keep, false);
         let l1 = to_vec(&split.logits);
         assert_eq!(l1, to_vec(&plain.logits), "{kind}: forward differs");
         let grads = objective(&split).backward();

@@ -1,29 +1,61 @@
 //! First oven check (FOC), the paper's fixed-interval timing measure.
 //!
-//! FOC = the oven timer at the first action of the unbroken run of interacts next to the
-//! running oven (oven checks) that ends in the pickup. A run is broken by any action that is
-//! not such a check (a move, a wait, an interact elsewhere). Episodes without a pickup have
-//! no FOC.
+//! Both conventions find the pickup (the successful interact at the oven) and walk back
+//! over the unbroken run of interacts that ends in it; FOC is the oven timer (steps since
+//! the onion went in) at the first interact of that run. Episodes without a pickup have no
+//! FOC.
+//!
+//! * [`FocConvention::Paper`] (the default, as the paper's code computes it): the run is
+//!   any consecutive interact actions; a run that starts with the onion put itself (timer
+//!   −1: the agent interacted without a break from the put to the pickup) gives FOC 0.
+//! * [`FocConvention::Checks`] (the lab's earlier choice): only interacts that check the
+//!   running oven extend the run, so the put is never part of it and the same agent gets
+//!   FOC 1.
 
 use chronocooked_env::{Events, Info};
 use chronocooked_models::EpisodeRecord;
+use serde::{Deserialize, Serialize};
 
-/// FOC of one episode from its actions (codes) and per-step `info`; `None` without pickup.
+/// How the run of interacts before the pickup is delimited.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FocConvention {
+    /// The paper's code: any consecutive interacts; a run from the put gives FOC 0.
+    #[default]
+    Paper,
+    /// Only oven checks (interacts at the running oven) extend the run.
+    Checks,
+}
+
+/// FOC of one episode (paper convention) from its actions (codes) and per-step `info`;
+/// `None` without pickup.
 pub fn first_oven_check(actions: &[u8], infos: &[Info]) -> Option<i32> {
+    first_oven_check_with(actions, infos, FocConvention::Paper)
+}
+
+/// FOC of one episode under `convention`; `None` without pickup.
+pub fn first_oven_check_with(
+    actions: &[u8],
+    infos: &[Info],
+    convention: FocConvention,
+) -> Option<i32> {
     let pickup = infos.iter().position(|i| i.events.has(Events::PICKUP))?;
     let mut first = pickup;
     while first > 0 {
         let j = first - 1;
-        let is_check = actions[j] == 5 && infos[j].events.has(Events::OVEN_CHECK);
-        if !is_check {
+        let extends = match convention {
+            FocConvention::Paper => actions[j] == 5,
+            FocConvention::Checks => actions[j] == 5 && infos[j].events.has(Events::OVEN_CHECK),
+        };
+        if !extends {
             break;
         }
         first = j;
     }
-    Some(infos[first].timer_at_action)
+    Some(infos[first].timer_at_action.max(0))
 }
 
-/// FOC of a recorded episode.
+/// FOC of a recorded episode (paper convention).
 pub fn episode_foc(record: &EpisodeRecord) -> Option<i32> {
     first_oven_check(&record.actions, &record.infos)
 }

@@ -17,7 +17,9 @@
 //! * [`report`] — leaderboard (self-contained HTML with inline SVG, Markdown, CSV);
 //! * [`figures`] — SVG/PNG figures (plotters, bundled font);
 //! * [`protocol`] — evaluation conditions per task and the runner (any agent);
-//! * [`metrics`] — behavioural metrics of an evaluation from its per-episode records.
+//! * [`metrics`] — behavioural metrics of an evaluation from its per-episode records;
+//! * [`paper`] — the paper's study: compact sweep results, the paper's analyses beside the
+//!   lab's, and the comparison with the paper's numbers.
 
 pub mod aggregate;
 pub mod decode;
@@ -30,6 +32,7 @@ pub mod metrics;
 pub mod neural;
 pub mod npz;
 pub mod oscillation;
+pub mod paper;
 pub mod peak;
 pub mod protocol;
 pub mod psychometric;
@@ -38,7 +41,8 @@ pub mod summary;
 
 pub use decode::{DecodeResult, Decoder, decode_time};
 pub use foc::{
-    FocStats, ScalarProperty, episode_foc, first_oven_check, foc_stats, scalar_property,
+    FocConvention, FocStats, ScalarProperty, episode_foc, first_oven_check, first_oven_check_with,
+    foc_stats, scalar_property,
 };
 pub use metrics::{Metrics, compute_metrics};
 pub use neural::{Cube, classify_ramps, sequentiality_index, temporal_information, time_cells};

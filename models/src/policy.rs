@@ -17,13 +17,20 @@ use std::str::FromStr;
 pub const PAPER_SIZES: [usize; 3] = [8, 125, 256];
 
 /// A deep-RL architecture by name: `cnn-mlp`, or a core kind with a hidden size
-/// (`lstm125`, `ctrnn8`, `gru256`, `rnn125`; a bare kind means 125 units).
+/// (`lstm125`, `ctrnn8`, `gru256`, `rnn125`; a bare kind means 125 units), optionally as a
+/// fixed random reservoir (`ctrnn-reservoir125`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub struct Architecture {
     /// Recurrent core, `None` for the feed-forward CNN-MLP.
     pub core: Option<CoreKind>,
     /// Hidden units of the core (0 for CNN-MLP).
     pub hidden: usize,
+    /// The core's weights (input projection, recurrent weights, CTRNN τ) keep their random
+    /// initial values: training updates only the trunk and the heads. This is what the
+    /// paper's code does to its CTRNN (the cell is swapped into the policy after the
+    /// optimiser was built, so the optimiser never sees it).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub reservoir: bool,
 }
 
 impl Architecture {
@@ -31,17 +38,28 @@ impl Architecture {
     pub const CNN_MLP: Architecture = Architecture {
         core: None,
         hidden: 0,
+        reservoir: false,
     };
 
-    /// A recurrent architecture.
+    /// A recurrent architecture with a trained core.
     pub fn recurrent(kind: CoreKind, hidden: usize) -> Self {
         Architecture {
             core: Some(kind),
             hidden,
+            reservoir: false,
         }
     }
 
-    /// Every architecture of the zoo: CNN-MLP and each core × {8, 125, 256}.
+    /// A recurrent architecture whose core stays at its random initialisation.
+    pub fn reservoir(kind: CoreKind, hidden: usize) -> Self {
+        Architecture {
+            reservoir: true,
+            ..Architecture::recurrent(kind, hidden)
+        }
+    }
+
+    /// Every architecture of the zoo: CNN-MLP, each core × {8, 125, 256}, and the
+    /// paper's untrained CTRNN (`ctrnn-reservoir`) × {8, 125, 256}.
     pub fn all() -> Vec<Architecture> {
         let mut v = vec![Architecture::CNN_MLP];
         for k in CoreKind::ALL {
@@ -49,14 +67,18 @@ impl Architecture {
                 v.push(Architecture::recurrent(k, h));
             }
         }
+        for h in PAPER_SIZES {
+            v.push(Architecture::reservoir(CoreKind::Ctrnn, h));
+        }
         v
     }
 
-    /// Canonical name (`cnn-mlp`, `lstm125`, …).
+    /// Canonical name (`cnn-mlp`, `lstm125`, `ctrnn-reservoir125`, …).
     pub fn name(&self) -> String {
-        match self.core {
-            None => "cnn-mlp".to_string(),
-            Some(k) => format!("{}{}", k.name(), self.hidden),
+        match (self.core, self.reservoir) {
+            (None, _) => "cnn-mlp".to_string(),
+            (Some(k), false) => format!("{}{}", k.name(), self.hidden),
+            (Some(k), true) => format!("{}-reservoir{}", k.name(), self.hidden),
         }
     }
 
@@ -83,8 +105,12 @@ impl FromStr for Architecture {
             lower.trim_start_matches(|c: char| c.is_ascii_alphabetic() || c == '-' || c == '_');
         let kind_part = lower[..lower.len() - digits.len()].trim_end_matches(['-', '_']);
         let kind_part = kind_part.strip_prefix("cnn-").unwrap_or(kind_part);
-        let allowed =
-            "cnn-mlp, or lstm|gru|rnn|ctrnn followed by a hidden size (e.g. lstm125, ctrnn8)";
+        let (kind_part, reservoir) = match kind_part.strip_suffix("-reservoir") {
+            Some(k) => (k, true),
+            None => (kind_part, false),
+        };
+        let allowed = "cnn-mlp, or lstm|gru|rnn|ctrnn (optionally with -reservoir: an untrained \
+             core) followed by a hidden size (e.g. lstm125, ctrnn8, ctrnn-reservoir125)";
         let kind: CoreKind = kind_part
             .parse()
             .map_err(|_| format!("unknown model `{s}` (allowed: {allowed})"))?;
@@ -97,7 +123,10 @@ impl FromStr for Architecture {
                 .filter(|h| (1..=4096).contains(h))
                 .ok_or_else(|| format!("bad hidden size in `{s}` (allowed: 1..=4096)"))?
         };
-        Ok(Architecture::recurrent(kind, hidden))
+        Ok(Architecture {
+            reservoir,
+            ..Architecture::recurrent(kind, hidden)
+        })
     }
 }
 
@@ -225,6 +254,23 @@ impl ActorCritic {
         }
     }
 
+    /// [`ActorCritic::heads`] with the critic reading a detached copy of `latent` (the
+    /// value loss then trains the value head only).
+    fn heads_detached_critic(&self, latent: Tensor<2>, state: Option<CoreState>) -> PolicyOutput {
+        let hh = self.pi_out.weight.dims()[0];
+        let z = tanh(self.hidden.forward(latent.clone()));
+        let z_vf = tanh(self.hidden.forward(latent.clone().detach()));
+        let logits = self.pi_out.forward(z.narrow(1, 0, hh));
+        let values = self.vf_out.forward(z_vf.narrow(1, hh, hh));
+        PolicyOutput {
+            logits,
+            values,
+            latent,
+            state,
+            aux: None,
+        }
+    }
+
     /// One step for `B` envs: `obs [B, cells, C]`, state, `keep [B, 1]` (0 where an episode
     /// starts; `None` when none does).
     pub fn forward_step(
@@ -277,12 +323,15 @@ impl ActorCritic {
 
     /// [`ActorCritic::forward_seq`] for training: identical outputs, but the recurrent
     /// weight gradient is formed after `backward` from `out.aux` (see
-    /// [`RecurrentCore::forward_seq_train`]).
+    /// [`RecurrentCore::forward_seq_train`]). With `detach_critic` the critic reads a
+    /// detached copy of the core output (sb3-contrib's `shared_lstm=True,
+    /// enable_critic_lstm=False`), so the value loss does not train the core or the trunk.
     pub fn forward_seq_train(
         &self,
         obs: Tensor<4>,
         state: Option<CoreState>,
         keep: &[Option<Tensor<2>>],
+        detach_critic: bool,
     ) -> PolicyOutput {
         let (feat, t, b) = self.seq_features(obs);
         match &self.core {
@@ -291,7 +340,12 @@ impl ActorCritic {
                 let f = feat.dims()[1];
                 let xw = core.input.forward(feat.reshape([t, b, f]));
                 let (h, st, aux) = core.forward_seq_train(xw, st, keep);
-                let mut out = self.heads(h.reshape([t * b, core.hidden]), Some(st));
+                let latent = h.reshape([t * b, core.hidden]);
+                let mut out = if detach_critic {
+                    self.heads_detached_critic(latent, Some(st))
+                } else {
+                    self.heads(latent, Some(st))
+                };
                 out.aux = Some(aux);
                 out
             }

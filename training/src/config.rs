@@ -45,6 +45,47 @@ pub struct PpoConfig {
     /// Which implementation computes the network's forward pass and gradients.
     #[serde(default)]
     pub engine: Engine,
+    /// How recurrent minibatches are cut from the rollout.
+    #[serde(default)]
+    pub recurrent_batches: RecurrentBatches,
+    /// Recurrent policies: the critic reads a detached copy of the core output, so the value
+    /// loss trains only the value head (sb3-contrib `shared_lstm=True,
+    /// enable_critic_lstm=False`, the paper's setting). `false`: the value loss also trains
+    /// the core and the trunk. No effect on CNN-MLP.
+    #[serde(default)]
+    pub detach_critic: bool,
+    /// Reservoir cores (`ctrnn-reservoir…`): their never-applied gradients accumulate across
+    /// minibatches and enter the global gradient-norm clip, as in the paper's code (PyTorch's
+    /// `optimizer.zero_grad()` clears only the optimiser's parameters, while
+    /// `clip_grad_norm_` sees — and rescales — every parameter of the policy). `false`:
+    /// reservoir gradients are dropped before clipping.
+    #[serde(default)]
+    pub reservoir_grad_in_norm: bool,
+}
+
+/// How recurrent minibatches are cut from the rollout.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RecurrentBatches {
+    /// Fixed chunks of `bptt_len` steps of one env (shuffled), each starting from the hidden
+    /// state stored at its first step; backpropagation through time stops at chunk edges.
+    #[default]
+    Chunks,
+    /// sb3-contrib's `RecurrentRolloutBuffer`: the env-major buffer is rotated by a random
+    /// offset each epoch and cut into windows of `batch_size` consecutive transitions; each
+    /// window is split into sequences at episode starts (and at env edges), each sequence
+    /// starting from the hidden state stored during the rollout and padded to the longest.
+    Sequences,
+}
+
+impl RecurrentBatches {
+    /// Setting value (`chunks`, `sequences`).
+    pub fn name(self) -> &'static str {
+        match self {
+            RecurrentBatches::Chunks => "chunks",
+            RecurrentBatches::Sequences => "sequences",
+        }
+    }
 }
 
 /// Implementation of the network during training (same function and gradients).
@@ -91,6 +132,9 @@ impl Default for PpoConfig {
             normalize_advantage: true,
             bptt_len: 0,
             engine: Engine::Native,
+            recurrent_batches: RecurrentBatches::Chunks,
+            detach_critic: false,
+            reservoir_grad_in_norm: false,
         }
     }
 }
@@ -114,10 +158,16 @@ pub enum Curriculum {
     /// Multi-timer: start with one TD and add the next one each time the mean reward
     /// of the last `window` episodes reaches the next threshold.
     MultiTimer {
-        /// Reward thresholds, one per TD added (reference: 0.95, 0.95, 0.9, 0.9, 0.9).
+        /// Reward thresholds, one per level change (reference: 0.95, 0.95, 0.9, 0.9, 0.9).
         thresholds: Vec<f32>,
         /// Episodes averaged.
         window: usize,
+        /// The paper's level 0 before the first TD: one timer with the soup only takeable
+        /// at `timer ≥ TD` (`mode=lower_bounded`), reduced reward 0.1 and no buffers (an
+        /// FI-like warm-up); level `k ≥ 1` then runs `k` timers with the configured task.
+        /// Levels are 0..=|tds| and `thresholds[level]` gates leaving `level`.
+        #[serde(default)]
+        warmup: bool,
     },
     /// Uncertainty: never-ready probability ramps linearly from `start` to `end`
     /// over the first `ramp_fraction` of the budget.
@@ -228,6 +278,15 @@ impl TrainConfig {
                     _ => return Err(TrainError::param(key, v, "native|burn")),
                 }
             }
+            "recurrent_batches" => {
+                p.recurrent_batches = match v {
+                    "chunks" => RecurrentBatches::Chunks,
+                    "sequences" => RecurrentBatches::Sequences,
+                    _ => return Err(TrainError::param(key, v, "chunks|sequences")),
+                }
+            }
+            "detach_critic" => p.detach_critic = parse(key, v, "true|false")?,
+            "reservoir_grad_in_norm" => p.reservoir_grad_in_norm = parse(key, v, "true|false")?,
             "gamma" => p.gamma = parse_unit(key, v)? as f32,
             "gae_lambda" => p.gae_lambda = parse_unit(key, v)? as f32,
             "clip_range" => p.clip_range = parse_positive_f(key, v)? as f32,
@@ -264,6 +323,7 @@ impl TrainConfig {
                     "multi_timer" => Curriculum::MultiTimer {
                         thresholds: vec![0.95, 0.95, 0.9, 0.9, 0.9],
                         window: 100,
+                        warmup: false,
                     },
                     "uncertainty" => Curriculum::Uncertainty {
                         start: 0.0,
@@ -280,6 +340,16 @@ impl TrainConfig {
                         .map(|x| parse_unit(key, x).map(|f| f as f32))
                         .collect::<Result<_, _>>()?;
                 }
+                _ => {
+                    return Err(TrainError::param(
+                        key,
+                        v,
+                        "only with curriculum=multi_timer",
+                    ));
+                }
+            },
+            "curriculum_warmup" => match &mut self.curriculum {
+                Curriculum::MultiTimer { warmup, .. } => *warmup = parse(key, v, "true|false")?,
                 _ => {
                     return Err(TrainError::param(
                         key,

@@ -130,7 +130,8 @@ impl Minibatch {
     }
 
     /// burn engine: forward pass with autodiff and loss; returns the surrogate whose
-    /// `backward` gives the parameter gradient (finish with [`burn_gradient`]).
+    /// `backward` gives the parameter gradient (finish with [`burn_gradient`]). With
+    /// `detach_critic` the value head reads a detached copy of the core output.
     pub fn loss_burn(
         &self,
         model: &ActorCritic,
@@ -138,6 +139,7 @@ impl Minibatch {
         (cells, channels): (usize, usize),
         actions: usize,
         c: LossCoefs,
+        detach_critic: bool,
     ) -> (LossStats, Tensor<1>, Option<SeqAux>) {
         let (l, b) = (self.steps, self.batch);
         let m = l * b;
@@ -156,7 +158,7 @@ impl Minibatch {
                     .then(|| Tensor::<2>::from_data(TensorData::new(k.to_vec(), [b, 1]), device))
             })
             .collect();
-        let out = model.forward_seq_train(obs_t, state, &keep_t);
+        let out = model.forward_seq_train(obs_t, state, &keep_t, detach_critic);
         let both = chronocooked_models::to_vec(&Tensor::cat(
             vec![out.logits.clone(), out.values.clone()],
             1,

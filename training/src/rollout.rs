@@ -23,7 +23,8 @@ pub struct Rollout {
     pub dones: Vec<bool>,
     /// `1 − episode_start` of each observation `[T, N]`.
     pub keep: Vec<f32>,
-    /// Recurrent state before step `k·L`, per chunk `k`: `(h [N, H], c [N, H])`.
+    /// Recurrent state before step `k·S`, stored every `S` steps (`S` = the BPTT chunk
+    /// length, or 1 for sequence minibatches): `(h [N, H], c [N, H])`.
     pub chunk_states: Vec<(Vec<f32>, Option<Vec<f32>>)>,
     /// GAE advantages `[T, N]`.
     pub advantages: Vec<f32>,
@@ -83,4 +84,44 @@ pub fn chunks(n_envs: usize, n_steps: usize, chunk_len: usize) -> Vec<Chunk> {
         }
     }
     v
+}
+
+/// sb3-contrib's recurrent minibatches for one epoch (`RecurrentRolloutBuffer.get`): the
+/// buffer is flattened env-major (`env·T + t`), rotated to start at flat index `split`, and
+/// cut into windows of `batch_size` consecutive transitions (the last one shorter). Each
+/// window splits into sequences at its first transition, at every episode start (`keep` =
+/// 0, time-major `[T, N]`) and wherever the env changes; a sequence is a [`Chunk`] whose
+/// `index` is its first step (its initial state is the state stored before that step).
+pub fn sequence_batches(
+    keep: &[f32],
+    n_envs: usize,
+    n_steps: usize,
+    batch_size: usize,
+    split: usize,
+) -> Vec<Vec<Chunk>> {
+    let m = n_envs * n_steps;
+    let bs = batch_size.max(1);
+    let mut out = Vec::with_capacity(m.div_ceil(bs));
+    let mut k = 0;
+    while k < m {
+        let end = (k + bs).min(m);
+        let mut seqs: Vec<Chunk> = Vec::new();
+        for pos in k..end {
+            let flat = (split + pos) % m;
+            let (env, t) = (flat / n_steps, flat % n_steps);
+            let starts = pos == k || t == 0 || keep[t * n_envs + env] == 0.0;
+            match seqs.last_mut() {
+                Some(c) if !starts => c.len += 1,
+                _ => seqs.push(Chunk {
+                    env,
+                    index: t,
+                    start: t,
+                    len: 1,
+                }),
+            }
+        }
+        out.push(seqs);
+        k = end;
+    }
+    out
 }

@@ -41,7 +41,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), TrainError> {
 }
 
 /// Column names of `curves.csv`.
-pub const CURVE_COLUMNS: [&str; 22] = [
+pub const CURVE_COLUMNS: [&str; 23] = [
     "update",
     "env_steps",
     "wall_s",
@@ -64,6 +64,7 @@ pub const CURVE_COLUMNS: [&str; 22] = [
     "never_ready_prob",
     "eval_success",
     "never_ready_success",
+    "curriculum_level",
 ];
 
 fn curve_line(r: &UpdateLog) -> String {
@@ -75,7 +76,7 @@ fn curve_line(r: &UpdateLog) -> String {
         }
     };
     format!(
-        "{},{},{:.3},{:.1},{:.4},{:.4},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+        "{},{},{:.3},{:.1},{:.4},{:.4},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
         r.update,
         r.env_steps,
         r.wall_s,
@@ -97,7 +98,8 @@ fn curve_line(r: &UpdateLog) -> String {
         r.num_timers,
         r.never_ready_prob,
         r.eval_success.map(f).unwrap_or_default(),
-        f(r.never_ready_success)
+        f(r.never_ready_success),
+        r.curriculum_level
     )
 }
 

@@ -90,6 +90,9 @@ pub struct UpdateLog {
     pub learning_rate: f64,
     /// Multi-timer curriculum: active TDs.
     pub num_timers: usize,
+    /// Multi-timer curriculum level (with the warm-up level 0: 0..=|tds|; else = active TDs).
+    #[serde(default)]
+    pub curriculum_level: usize,
     /// Uncertainty curriculum: never-ready probability.
     #[serde(deserialize_with = "nan_or_f64")]
     pub never_ready_prob: f64,
@@ -134,4 +137,11 @@ pub struct TrainerState {
     pub wall_s: f64,
     /// Learning curve so far.
     pub curve: Vec<UpdateLog>,
+    /// Multi-timer curriculum level (see `UpdateLog::curriculum_level`).
+    #[serde(default)]
+    pub curriculum_level: usize,
+    /// Reservoir cores with `reservoir_grad_in_norm`: the never-applied core gradient
+    /// accumulated (and rescaled by the clip) over every minibatch so far.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub reservoir_grad: Vec<f32>,
 }

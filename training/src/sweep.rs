@@ -18,7 +18,8 @@ pub struct SweepFile {
     pub name: String,
     /// Task ids.
     pub tasks: Vec<String>,
-    /// Zoo names; a bare recurrent kind (`lstm`, `gru`, `rnn`, `ctrnn`) is crossed with `sizes`.
+    /// Zoo names; a bare recurrent kind (`lstm`, `gru`, `rnn`, `ctrnn`, `ctrnn-reservoir`) is
+    /// crossed with `sizes`.
     pub models: Vec<String>,
     /// Hidden sizes for bare recurrent kinds (default `[125]`).
     #[serde(default = "default_sizes")]
@@ -252,7 +253,10 @@ impl SweepFile {
     pub fn expanded_models(&self) -> Vec<String> {
         let mut out = Vec::new();
         for m in &self.models {
-            if matches!(m.as_str(), "lstm" | "gru" | "rnn" | "ctrnn") {
+            if matches!(
+                m.as_str(),
+                "lstm" | "gru" | "rnn" | "ctrnn" | "ctrnn-reservoir"
+            ) {
                 out.extend(self.sizes.iter().map(|h| format!("{m}{h}")));
             } else {
                 out.push(m.clone());

@@ -3,22 +3,22 @@
 
 use crate::act::{Actor, FlatState, sample};
 use crate::adam::{Adam, AdamParams, clip_global_norm};
-use crate::config::{Curriculum, Engine, LrSchedule, TrainConfig};
+use crate::config::{Curriculum, Engine, LrSchedule, RecurrentBatches, TrainConfig};
 use crate::error::TrainError;
 use crate::gae::{compute_gae, explained_variance};
 use crate::loss::LossCoefs;
 use crate::minibatch::{Minibatch, burn_gradient};
 use crate::obs::ObsEncoder;
 use crate::params::{flat_params, write_params};
-use crate::rollout::{Rollout, chunks};
+use crate::rollout::{Chunk, Rollout, chunks, sequence_batches};
 pub use crate::state::{EpisodeStat, TrainerState, UpdateLog};
 use burn::module::Module;
 use burn::tensor::Device;
 use chronocooked_env::{Action, Autoreset, TaskParams, VecEnv, make_config};
 use chronocooked_models::native::{Cache, NativePolicy};
 use chronocooked_models::{ActorCritic, CoreKind, PolicyConfig};
-use rand::SeedableRng;
 use rand::seq::SliceRandom;
+use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use std::collections::VecDeque;
 use std::time::Instant;
@@ -73,7 +73,7 @@ impl Trainer {
             model = write_params(model, &theta);
         }
         let theta = flat_params(&model);
-        let native = NativePolicy::new(&policy_cfg);
+        let native = NativePolicy::new(&policy_cfg).with_detached_critic(p.detach_critic);
         assert_eq!(
             native.num_params(),
             theta.len(),
@@ -106,13 +106,19 @@ impl Trainer {
             since_change: 0,
             episodes: 0,
             num_timers,
+            curriculum_level: 0,
             never_ready_prob: 0.0,
             wall_s: 0.0,
             curve: Vec::new(),
+            reservoir_grad: Vec::new(),
         };
-        if let Curriculum::MultiTimer { .. } = cfg.curriculum {
+        if let Curriculum::MultiTimer { warmup, .. } = cfg.curriculum {
             state.num_timers = 1;
+            state.curriculum_level = usize::from(!warmup);
             envs.set_num_timers(1)?;
+            if warmup {
+                set_warmup(&mut envs, &task, true)?;
+            }
             envs.reset(chronocooked_env::derive_seed(cfg.seed, 0x5EED));
             state.envs = envs.snapshot();
         }
@@ -155,8 +161,12 @@ impl Trainer {
             });
         }
         t.envs.restore(&state.envs)?;
-        if matches!(t.cfg.curriculum, Curriculum::MultiTimer { .. }) {
+        if let Curriculum::MultiTimer { warmup, .. } = t.cfg.curriculum {
             t.envs.set_num_timers(state.num_timers)?;
+            if warmup {
+                let task = make_config(&t.cfg.task, &t.cfg.env)?;
+                set_warmup(&mut t.envs, &task, state.curriculum_level == 0)?;
+            }
         }
         t.model = write_params(t.model, &state.theta);
         t.state = state;
@@ -197,6 +207,71 @@ impl Trainer {
         }
     }
 
+    /// Whether recurrent minibatches are sb3-contrib sequences (else fixed chunks).
+    fn sequence_batches(&self) -> bool {
+        self.cfg.model.is_recurrent()
+            && self.cfg.ppo.recurrent_batches == RecurrentBatches::Sequences
+    }
+
+    /// Rollout steps between stored recurrent states (every step for sequence batches,
+    /// whose sequences may start anywhere).
+    fn state_stride(&self) -> usize {
+        if self.sequence_batches() {
+            1
+        } else {
+            self.chunk_len()
+        }
+    }
+
+    /// One epoch's minibatches: each a list of chunks and the padded chunk length.
+    fn epoch_batches(&mut self, all: &mut [Chunk]) -> Vec<(Vec<Chunk>, usize)> {
+        let p = &self.cfg.ppo;
+        if self.sequence_batches() {
+            let m = p.n_envs * p.n_steps;
+            let split = self.state.rng.random_range(0..m);
+            sequence_batches(&self.rollout.keep, p.n_envs, p.n_steps, p.batch_size, split)
+                .into_iter()
+                .map(|mb| {
+                    let l = mb.iter().map(|c| c.len).max().unwrap_or(1);
+                    (mb, l)
+                })
+                .collect()
+        } else {
+            let l = self.chunk_len();
+            let per_mb = (p.batch_size / l).max(1);
+            all.shuffle(&mut self.state.rng);
+            all.chunks(per_mb).map(|mb| (mb.to_vec(), l)).collect()
+        }
+    }
+
+    /// Reservoir cores: zeroes the core's gradient (its weights never change) — after
+    /// adding it to the accumulated reservoir gradient that the paper's code carries into
+    /// its gradient-norm clip when `reservoir_grad_in_norm` is set — then clips the global
+    /// norm. Returns the norm before clipping.
+    fn clip_gradient(&mut self) -> f64 {
+        let max = self.cfg.ppo.max_grad_norm as f64;
+        let range = match self.native.layout().core_range() {
+            Some(r) if self.cfg.model.reservoir => r,
+            _ => return clip_global_norm(&mut self.grad, max),
+        };
+        if !self.cfg.ppo.reservoir_grad_in_norm {
+            self.grad[range].fill(0.0);
+            return clip_global_norm(&mut self.grad, max);
+        }
+        let acc = &mut self.state.reservoir_grad;
+        if acc.len() != range.len() {
+            acc.clear();
+            acc.resize(range.len(), 0.0);
+        }
+        for (g, a) in self.grad[range.clone()].iter_mut().zip(acc.iter()) {
+            *g += *a;
+        }
+        let norm = clip_global_norm(&mut self.grad, max);
+        acc.copy_from_slice(&self.grad[range.clone()]);
+        self.grad[range].fill(0.0);
+        norm
+    }
+
     fn apply_curriculum(&mut self) -> Result<(), TrainError> {
         if let Curriculum::Uncertainty {
             start,
@@ -220,13 +295,21 @@ impl Trainer {
     }
 
     fn advance_multi_timer(&mut self) -> Result<(), TrainError> {
-        let Curriculum::MultiTimer { thresholds, window } = &self.cfg.curriculum else {
+        let Curriculum::MultiTimer {
+            thresholds,
+            window,
+            warmup,
+        } = &self.cfg.curriculum
+        else {
             return Ok(());
         };
         let n_tds = match &self.envs.config().params {
             TaskParams::MultiTimer { tds, .. } => tds.len(),
             _ => return Ok(()),
         };
+        if *warmup {
+            return self.advance_level(thresholds.clone(), *window, n_tds);
+        }
         let k = self.state.num_timers;
         if k >= n_tds || self.state.since_change < *window {
             return Ok(());
@@ -247,9 +330,45 @@ impl Trainer {
         let mean = recent.iter().sum::<f32>() / recent.len() as f32;
         if mean >= threshold {
             self.state.num_timers = k + 1;
+            self.state.curriculum_level = k + 1;
             self.envs.set_num_timers(k + 1)?;
             self.state.since_change = 0;
         }
+        Ok(())
+    }
+
+    /// The paper's curriculum with its warm-up level: leave level `L` once the mean reward
+    /// of the last `window` episodes (all finished since the last change) reaches
+    /// `thresholds[L]`; level 0 → 1 switches the warm-up rules off, later levels add a TD.
+    fn advance_level(
+        &mut self,
+        thresholds: Vec<f32>,
+        window: usize,
+        n_tds: usize,
+    ) -> Result<(), TrainError> {
+        let level = self.state.curriculum_level;
+        if level >= n_tds || self.state.since_change < window {
+            return Ok(());
+        }
+        let threshold = thresholds
+            .get(level)
+            .or(thresholds.last())
+            .copied()
+            .unwrap_or(0.9);
+        let recent = self.state.recent.iter().rev().take(window);
+        let mean = recent.map(|e| e.ret).sum::<f32>() / window as f32;
+        if mean < threshold {
+            return Ok(());
+        }
+        if level == 0 {
+            let task = make_config(&self.cfg.task, &self.cfg.env)?;
+            set_warmup(&mut self.envs, &task, false)?;
+        } else {
+            self.envs.set_num_timers(level + 1)?;
+            self.state.num_timers = level + 1;
+        }
+        self.state.curriculum_level = level + 1;
+        self.state.since_change = 0;
         Ok(())
     }
 
@@ -262,7 +381,7 @@ impl Trainer {
             self.encoder.channels(),
             self.encoder.len(),
         );
-        let l = self.chunk_len();
+        let l = self.state_stride();
         let arch = self.cfg.model;
         let recurrent = arch.is_recurrent();
         let mut core: FlatState = match self.state.core_state.take() {
@@ -393,9 +512,7 @@ impl Trainer {
                 p.learning_rate * (1.0 - done / self.cfg.total_steps as f64).max(0.0)
             }
         };
-        let l = self.chunk_len();
-        let mut all = chunks(p.n_envs, p.n_steps, l);
-        let per_mb = (p.batch_size / l).max(1);
+        let mut all = chunks(p.n_envs, p.n_steps, self.chunk_len());
         let (mut pl, mut vl, mut el, mut kl, mut cf, mut gn, mut count) =
             (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0usize);
         let coefs = LossCoefs {
@@ -405,11 +522,10 @@ impl Trainer {
             vf_coef: p.vf_coef,
         };
         'epochs: for _ in 0..p.n_epochs {
-            all.shuffle(&mut self.state.rng);
-            for mb in all.chunks(per_mb) {
+            for (mb, l) in self.epoch_batches(&mut all) {
                 let batch = Minibatch::gather(
                     &self.rollout,
-                    mb,
+                    &mb,
                     l,
                     self.cfg.model.hidden,
                     p.normalize_advantage,
@@ -426,8 +542,15 @@ impl Trainer {
                     }
                     Engine::Burn => {
                         let shape = (self.encoder.cells(), self.encoder.channels());
-                        let (out, sur, aux) =
-                            batch.loss_burn(&self.model, &self.device, shape, Action::COUNT, coefs);
+                        let detach = p.detach_critic;
+                        let (out, sur, aux) = batch.loss_burn(
+                            &self.model,
+                            &self.device,
+                            shape,
+                            Action::COUNT,
+                            coefs,
+                            detach,
+                        );
                         (out, Pending::Burn(Box::new((sur, aux))))
                     }
                 };
@@ -453,7 +576,7 @@ impl Trainer {
                         self.grad = burn_gradient(&self.model, sur, aux);
                     }
                 }
-                let norm = clip_global_norm(&mut self.grad, p.max_grad_norm as f64);
+                let norm = self.clip_gradient();
                 if !norm.is_finite() {
                     return Err(self.diverged("non-finite gradient norm".into()));
                 }
@@ -523,6 +646,7 @@ impl Trainer {
             grad_norm: gn / c,
             learning_rate: lr,
             num_timers: self.state.num_timers,
+            curriculum_level: self.state.curriculum_level,
             never_ready_prob: self.state.never_ready_prob,
             eval_success: None,
         };
@@ -550,6 +674,51 @@ impl Trainer {
             checkpoint: "the run folder's checkpoints/".into(),
         }
     }
+}
+
+/// Switches the multi-timer warm-up rules on (one timer, soup only at `timer ≥ TD`, reduced
+/// reward 0.1, no buffers) or back to the configured `task`.
+fn set_warmup(
+    envs: &mut VecEnv,
+    task: &chronocooked_env::TaskConfig,
+    on: bool,
+) -> Result<(), TrainError> {
+    let TaskParams::MultiTimer {
+        mode,
+        under_buffer,
+        over_buffer,
+        reduced_reward,
+        ..
+    } = &task.params
+    else {
+        return Ok(());
+    };
+    let settings = if on {
+        [
+            ("mode", "lower_bounded".to_string()),
+            ("reduced_reward", "0.1".into()),
+            ("under_buffer", "0".into()),
+            ("over_buffer", "0".into()),
+        ]
+    } else {
+        [
+            (
+                "mode",
+                match mode {
+                    chronocooked_env::RewardMode::Exact => "exact",
+                    chronocooked_env::RewardMode::LowerBounded => "lower_bounded",
+                }
+                .to_string(),
+            ),
+            ("reduced_reward", reduced_reward.to_string()),
+            ("under_buffer", under_buffer.to_string()),
+            ("over_buffer", over_buffer.to_string()),
+        ]
+    };
+    for (k, v) in settings {
+        envs.set_param(k, &v)?;
+    }
+    Ok(())
 }
 
 /// A minibatch's gradient still to be computed, per engine.

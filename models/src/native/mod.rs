@@ -70,6 +70,14 @@ pub struct Layout {
 }
 
 impl Layout {
+    /// The flat range of the recurrent core's parameters (input projection, recurrent
+    /// weights, CTRNN τ; contiguous in the visiting order), `None` for CNN-MLP.
+    pub fn core_range(&self) -> Option<std::ops::Range<usize>> {
+        let (w_in, _) = self.core_in?;
+        let end = self.hidden.0.offset;
+        Some(w_in.offset..end)
+    }
+
     /// The layout of the policy `cfg` builds.
     pub fn new(cfg: &PolicyConfig) -> Self {
         let mut at = 0;

@@ -78,6 +78,7 @@ fn resize(v: &mut Vec<f32>, len: usize) {
 pub struct NativePolicy {
     cfg: PolicyConfig,
     layout: Layout,
+    detach_critic: bool,
 }
 
 impl NativePolicy {
@@ -86,7 +87,17 @@ impl NativePolicy {
         NativePolicy {
             cfg: *cfg,
             layout: Layout::new(cfg),
+            detach_critic: false,
         }
+    }
+
+    /// The same engine whose critic reads a *detached* copy of the recurrent core's
+    /// output (sb3-contrib `shared_lstm=True, enable_critic_lstm=False`): the value loss
+    /// trains the value head only, never the core or the trunk. No effect on CNN-MLP
+    /// (its critic shares the trunk, as in SB3's PPO).
+    pub fn with_detached_critic(mut self, detach: bool) -> Self {
+        self.detach_critic = detach;
+        self
     }
 
     /// Parameter count (length of the flat vector).
@@ -243,15 +254,31 @@ impl NativePolicy {
             cache.core.h()
         };
         resize(&mut cache.dlat, n * lat_dim);
-        linear_backward(
-            Mat::new(latent, n, lat_dim),
-            Mat::new(&cache.dz, n, 2 * hh),
-            theta,
-            l.hidden,
-            grad,
-            Some((&mut cache.dlat, lat_dim)),
-            s,
-        );
+        if self.detach_critic && !cache.core.is_empty() {
+            // Weight gradients from both halves; the latent gradient from the policy half only.
+            linear_backward(
+                Mat::new(latent, n, lat_dim),
+                Mat::new(&cache.dz, n, 2 * hh),
+                theta,
+                l.hidden,
+                grad,
+                None,
+                s,
+            );
+            let w = Mat::strided(l.hidden.0.of(theta), lat_dim, hh, 2 * hh);
+            let dz_pi = Mat::strided(&cache.dz, n, hh, 2 * hh);
+            matmul_nt(dz_pi, w, &mut cache.dlat, lat_dim, false, s);
+        } else {
+            linear_backward(
+                Mat::new(latent, n, lat_dim),
+                Mat::new(&cache.dz, n, 2 * hh),
+                theta,
+                l.hidden,
+                grad,
+                Some((&mut cache.dlat, lat_dim)),
+                s,
+            );
+        }
         // Core (BPTT) → gradient at the trunk features.
         resize(&mut cache.df, n * t.features);
         if let (Some((params, inp)), Some(rec)) = (self.core_params(theta), l.core_rec) {

@@ -1,0 +1,359 @@
+//! Compact study results: from a sweep's output folder (run folders with checkpoints,
+//! per-step evaluation records) to what the paper's analysis needs and what a repository
+//! can keep — per job a summary (`job.json`), one line per evaluation episode
+//! (`episodes.csv`), a thinned learning curve (`curve.csv`) and the lab's metrics
+//! (`metrics.json`).
+
+use crate::foc::{FocConvention, first_oven_check_with};
+use crate::protocol::{EvalRecord, read_records};
+use chronocooked_env::Counter;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// What one finished job reports (its `job.json` in the compact results).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct JobSummary {
+    /// Sweep job id (`task/model~variant/seedN`), also its folder.
+    pub id: String,
+    /// Task id.
+    pub task: String,
+    /// Zoo model name.
+    pub model: String,
+    /// Training seed.
+    pub seed: u64,
+    /// Task settings of the job (`key=value`, e.g. `td=12`).
+    pub env: Vec<String>,
+    /// Preset the run used.
+    pub preset: String,
+    /// Env-step budget.
+    pub total_steps: u64,
+    /// Env steps done.
+    pub steps_done: u64,
+    /// Training wall-clock seconds (one core).
+    pub wall_s: f64,
+    /// Mean episode length of the last 100 training episodes at the end (the paper's
+    /// `rollout/ep_len_mean`, used to exclude bisection runs).
+    pub final_ep_len_mean: f64,
+    /// Mean return of the last 100 training episodes at the end.
+    pub final_ep_return_mean: f64,
+    /// Multi-timer curriculum: env steps at which each level was entered (level 0 at 0).
+    pub level_steps: Vec<u64>,
+    /// The run's PPO settings (`config.json`'s `ppo`).
+    pub ppo: serde_json::Value,
+}
+
+/// One evaluation episode (a line of `episodes.csv`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EpisodeRow {
+    /// Condition kind (`fi`, `pi`, `bisection`, `multi_timer`, `buffer`, …).
+    pub kind: String,
+    /// Target / probe duration (steps).
+    pub td: u32,
+    /// PI release factor or multi-timer buffer fraction.
+    pub factor: Option<f64>,
+    /// Condition task settings, space-separated.
+    pub env: String,
+    /// Start cell row.
+    pub row: usize,
+    /// Start cell column.
+    pub col: usize,
+    /// Steps played.
+    pub steps: usize,
+    /// Total reward.
+    pub reward: f32,
+    /// Full-reward delivery.
+    pub success: bool,
+    /// First oven check, paper convention (empty without pickup).
+    pub foc: Option<i32>,
+    /// First oven check counting oven checks only (the lab's earlier convention).
+    pub foc_checks: Option<i32>,
+    /// Delivery counter: 0 main, 1 short, 2 long, −1 none (the paper's code).
+    pub counter: i8,
+    /// Steps from the onion put to the soup pickup (−1: never taken).
+    pub oven_off_time: i32,
+}
+
+impl EpisodeRow {
+    /// The compact line of one evaluation record.
+    pub fn of(r: &EvalRecord) -> Self {
+        let e = &r.episode;
+        let last = e.infos.last();
+        let counter = match last.and_then(|i| i.counter) {
+            Some(Counter::Main) => 0,
+            Some(Counter::Short) => 1,
+            Some(Counter::Long) => 2,
+            None => -1,
+        };
+        EpisodeRow {
+            kind: r.condition.kind.clone(),
+            td: r.condition.td,
+            factor: r.condition.factor,
+            env: r.condition.env.join(" "),
+            row: e.start.0,
+            col: e.start.1,
+            steps: e.actions.len(),
+            reward: e.reward,
+            success: e.success,
+            foc: first_oven_check_with(&e.actions, &e.infos, FocConvention::Paper),
+            foc_checks: first_oven_check_with(&e.actions, &e.infos, FocConvention::Checks),
+            counter,
+            oven_off_time: e
+                .infos
+                .iter()
+                .rev()
+                .map(|i| i.oven_off_time)
+                .find(|&t| t >= 0)
+                .unwrap_or(-1),
+        }
+    }
+}
+
+/// One thinned learning-curve row.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CurveRow {
+    /// Env steps done.
+    pub env_steps: u64,
+    /// Wall-clock seconds.
+    pub wall_s: f64,
+    /// Mean return of the last 100 episodes.
+    pub ep_return_mean: f64,
+    /// Mean length of the last 100 episodes.
+    pub ep_len_mean: f64,
+    /// Success rate of the last 100 episodes.
+    pub success_rate: f64,
+    /// Multi-timer curriculum level.
+    pub curriculum_level: usize,
+}
+
+/// Errors of the compact-results reader and writer (each names the file).
+#[derive(Debug, thiserror::Error)]
+pub enum CollectError {
+    /// A file could not be read or written.
+    #[error("{path}: {message}")]
+    File {
+        /// The file.
+        path: String,
+        /// What went wrong.
+        message: String,
+    },
+}
+
+fn err(path: &Path, e: impl std::fmt::Display) -> CollectError {
+    CollectError::File {
+        path: path.display().to_string(),
+        message: e.to_string(),
+    }
+}
+
+fn read_json(path: &Path) -> Result<serde_json::Value, CollectError> {
+    let text = std::fs::read_to_string(path).map_err(|e| err(path, e))?;
+    serde_json::from_str(&text).map_err(|e| err(path, e))
+}
+
+/// Reads a run's `curves.csv` (by column name).
+pub fn read_curve(path: &Path) -> Result<Vec<CurveRow>, CollectError> {
+    let mut rd = csv::Reader::from_path(path).map_err(|e| err(path, e))?;
+    let header = rd.headers().map_err(|e| err(path, e))?.clone();
+    let col = |name: &str| header.iter().position(|h| h == name);
+    let idx = |name: &str| col(name).ok_or_else(|| err(path, format!("no column `{name}`")));
+    let (steps, wall, ret, len, succ) = (
+        idx("env_steps")?,
+        idx("wall_s")?,
+        idx("ep_return_mean")?,
+        idx("ep_len_mean")?,
+        idx("success_rate")?,
+    );
+    let level = col("curriculum_level");
+    let num = |s: &str| s.parse::<f64>().unwrap_or(f64::NAN);
+    let mut out = Vec::new();
+    for rec in rd.records() {
+        let rec = rec.map_err(|e| err(path, e))?;
+        let get = |i: usize| rec.get(i).unwrap_or("");
+        out.push(CurveRow {
+            env_steps: get(steps).parse().map_err(|e| err(path, e))?,
+            wall_s: num(get(wall)),
+            ep_return_mean: num(get(ret)),
+            ep_len_mean: num(get(len)),
+            success_rate: num(get(succ)),
+            curriculum_level: level.and_then(|i| get(i).parse().ok()).unwrap_or(0),
+        });
+    }
+    Ok(out)
+}
+
+/// Job folders (those with a `job.json`) under a sweep output folder, sorted.
+pub fn job_folders(root: &Path) -> Vec<PathBuf> {
+    fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
+        let Ok(rd) = std::fs::read_dir(dir) else {
+            return;
+        };
+        for e in rd.flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                if p.join("job.json").is_file() {
+                    out.push(p);
+                } else {
+                    walk(&p, out);
+                }
+            }
+        }
+    }
+    let mut out = Vec::new();
+    walk(root, &mut out);
+    out.sort();
+    out
+}
+
+/// The compact results of one finished job folder (`None` while its evaluation is missing).
+pub fn summarise_job(dir: &Path) -> Result<Option<CompactJob>, CollectError> {
+    let eval = dir.join("eval");
+    if !eval.join("metrics.json").is_file() || !eval.join("records.jsonl").is_file() {
+        return Ok(None);
+    }
+    let job = read_json(&dir.join("job.json"))?;
+    let cfg = read_json(&dir.join("run").join("config.json"))?;
+    let curve = read_curve(&dir.join("run").join("curves.csv"))?;
+    let records = read_records(&eval).map_err(|e| err(&eval.join("records.jsonl"), e))?;
+    let s = |v: &serde_json::Value, k: &str| v[k].as_str().unwrap_or_default().to_string();
+    let mut level_steps = vec![0];
+    let mut prev = curve.first().map_or(0, |r| r.curriculum_level);
+    for w in &curve {
+        if w.curriculum_level > prev {
+            level_steps.push(w.env_steps);
+            prev = w.curriculum_level;
+        }
+    }
+    let last = curve.last();
+    let summary = JobSummary {
+        id: s(&job, "id"),
+        task: s(&job, "task"),
+        model: s(&job, "model"),
+        seed: job["seed"].as_u64().unwrap_or(0),
+        env: job["env"]
+            .as_array()
+            .map(|a| {
+                a.iter()
+                    .filter_map(|x| x.as_str().map(String::from))
+                    .collect()
+            })
+            .unwrap_or_default(),
+        preset: s(&cfg, "preset"),
+        total_steps: cfg["total_steps"].as_u64().unwrap_or(0),
+        steps_done: last.map_or(0, |r| r.env_steps),
+        wall_s: last.map_or(f64::NAN, |r| r.wall_s),
+        final_ep_len_mean: last.map_or(f64::NAN, |r| r.ep_len_mean),
+        final_ep_return_mean: last.map_or(f64::NAN, |r| r.ep_return_mean),
+        level_steps,
+        ppo: cfg["ppo"].clone(),
+    };
+    let episodes = records.iter().map(EpisodeRow::of).collect();
+    // Every 10th update, level changes and the last row.
+    let thinned = curve
+        .iter()
+        .enumerate()
+        .filter(|(i, r)| {
+            i % 10 == 9
+                || *i + 1 == curve.len()
+                || (*i > 0 && curve[i - 1].curriculum_level != r.curriculum_level)
+        })
+        .map(|(_, r)| r.clone())
+        .collect();
+    Ok(Some(CompactJob {
+        job: summary,
+        episodes,
+        curve: thinned,
+    }))
+}
+
+fn write_csv<T: Serialize>(path: &Path, rows: &[T]) -> Result<(), CollectError> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    for r in rows {
+        w.serialize(r).map_err(|e| err(path, e))?;
+    }
+    let bytes = w.into_inner().map_err(|e| err(path, e))?;
+    chronocooked_training::run_dir::write_atomic(path, &bytes).map_err(|e| err(path, e))
+}
+
+/// Writes the compact results of every finished job under `sweep_out` into
+/// `to/jobs/<job id>/`; returns `(written, unfinished)` job counts.
+pub fn collect(sweep_out: &Path, to: &Path) -> Result<(usize, usize), CollectError> {
+    let (mut written, mut pending) = (0, 0);
+    for dir in job_folders(sweep_out) {
+        let Some(CompactJob {
+            job: summary,
+            episodes,
+            curve,
+        }) = summarise_job(&dir)?
+        else {
+            pending += 1;
+            continue;
+        };
+        let out = to.join("jobs").join(&summary.id);
+        std::fs::create_dir_all(&out).map_err(|e| err(&out, e))?;
+        let json = serde_json::to_string_pretty(&summary).map_err(|e| err(&out, e))?;
+        let job_path = out.join("job.json");
+        chronocooked_training::run_dir::write_atomic(&job_path, json.as_bytes())
+            .map_err(|e| err(&job_path, e))?;
+        write_csv(&out.join("episodes.csv"), &episodes)?;
+        write_csv(&out.join("curve.csv"), &curve)?;
+        let metrics = dir.join("eval").join("metrics.json");
+        let text = std::fs::read(&metrics).map_err(|e| err(&metrics, e))?;
+        let m_path = out.join("metrics.json");
+        chronocooked_training::run_dir::write_atomic(&m_path, &text)
+            .map_err(|e| err(&m_path, e))?;
+        written += 1;
+    }
+    Ok((written, pending))
+}
+
+/// One job of the compact results, read back.
+#[derive(Debug, Clone)]
+pub struct CompactJob {
+    /// Summary.
+    pub job: JobSummary,
+    /// Evaluation episodes.
+    pub episodes: Vec<EpisodeRow>,
+    /// Thinned learning curve.
+    pub curve: Vec<CurveRow>,
+}
+
+impl CompactJob {
+    /// The value of task setting `key` (e.g. `td`), if the job sets it.
+    pub fn env_value(&self, key: &str) -> Option<&str> {
+        self.job
+            .env
+            .iter()
+            .filter_map(|kv| kv.split_once('='))
+            .find(|(k, _)| *k == key)
+            .map(|(_, v)| v)
+    }
+}
+
+/// Reads every job of a compact results folder (`to/jobs/...`).
+pub fn read_compact(root: &Path) -> Result<Vec<CompactJob>, CollectError> {
+    let mut out = Vec::new();
+    for dir in job_folders(&root.join("jobs")) {
+        let job: JobSummary = {
+            let p = dir.join("job.json");
+            serde_json::from_value(read_json(&p)?).map_err(|e| err(&p, e))?
+        };
+        let ep_path = dir.join("episodes.csv");
+        let episodes = csv::Reader::from_path(&ep_path)
+            .map_err(|e| err(&ep_path, e))?
+            .deserialize()
+            .collect::<Result<Vec<EpisodeRow>, _>>()
+            .map_err(|e| err(&ep_path, e))?;
+        let c_path = dir.join("curve.csv");
+        let curve = csv::Reader::from_path(&c_path)
+            .map_err(|e| err(&c_path, e))?
+            .deserialize()
+            .collect::<Result<Vec<CurveRow>, _>>()
+            .map_err(|e| err(&c_path, e))?;
+        out.push(CompactJob {
+            job,
+            episodes,
+            curve,
+        });
+    }
+    Ok(out)
+}

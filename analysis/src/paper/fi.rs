@@ -1,0 +1,120 @@
+//! Fixed interval as the paper analyses it: first oven checks pooled over runs × start
+//! cells per (model, TD) — mean, SD, CV — and the scalar-property regressions across TDs;
+//! beside them the lab's per-run statistics (mean ± SD over runs).
+
+use super::collect::CompactJob;
+use crate::aggregate::Spread;
+use crate::foc::{FocStats, ScalarProperty, foc_stats, scalar_property};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// FOC statistics of one model at one TD.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FiCell {
+    /// Target duration (steps).
+    pub td: u32,
+    /// Runs evaluated.
+    pub runs: usize,
+    /// Pooled over runs × start cells with the notebook's rule (a run's remaining cells are
+    /// skipped after its first episode without a FOC).
+    pub pooled: FocStats,
+    /// Pooled over every episode with a FOC (no skipping).
+    pub pooled_all: FocStats,
+    /// Mean FOC per run, across runs.
+    pub run_mean: Spread,
+    /// SD of FOC per run, across runs.
+    pub run_sd: Spread,
+    /// CV per run, across runs.
+    pub run_cv: Spread,
+    /// Mean FOC / TD per run, across runs.
+    pub run_ratio: Spread,
+    /// The pooled FOCs (paper rule), for figures.
+    pub focs: Vec<f64>,
+}
+
+/// One model's FI results across TDs.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FiModel {
+    /// Zoo model name.
+    pub model: String,
+    /// Per TD, ascending.
+    pub cells: Vec<FiCell>,
+    /// Regressions on the pooled statistics (the paper's R² table).
+    pub scalar: ScalarProperty,
+    /// The same regressions per run, across runs.
+    pub run_r2_mean_vs_td: Spread,
+    /// R² of SD vs mean per run, across runs.
+    pub run_r2_sd_vs_mean: Spread,
+}
+
+/// FOCs of one run's FI episodes in start-cell order; with `notebook_break` the list stops
+/// at the first episode without a FOC (the notebook's "did not converge" rule).
+pub fn run_focs(job: &CompactJob, notebook_break: bool) -> Vec<f64> {
+    let mut eps: Vec<_> = job.episodes.iter().filter(|e| e.kind == "fi").collect();
+    eps.sort_by_key(|e| (e.row, e.col));
+    let mut out = Vec::new();
+    for e in eps {
+        match e.foc {
+            Some(f) => out.push(f64::from(f)),
+            None if notebook_break => break,
+            None => {}
+        }
+    }
+    out
+}
+
+/// FI analysis of every model among `jobs` (jobs of other tasks are ignored).
+pub fn analyse_fi(jobs: &[CompactJob]) -> Vec<FiModel> {
+    let mut by_model: BTreeMap<&str, BTreeMap<u32, Vec<&CompactJob>>> = BTreeMap::new();
+    for j in jobs.iter().filter(|j| j.job.task == "FixedInterval-v0") {
+        let Some(td) = j.env_value("td").and_then(|v| v.parse().ok()) else {
+            continue;
+        };
+        by_model
+            .entry(&j.job.model)
+            .or_default()
+            .entry(td)
+            .or_default()
+            .push(j);
+    }
+    by_model
+        .into_iter()
+        .map(|(model, tds)| {
+            let mut cells = Vec::new();
+            let mut per_seed: BTreeMap<u64, Vec<FocStats>> = BTreeMap::new();
+            for (td, runs) in tds {
+                let paper: Vec<f64> = runs.iter().flat_map(|j| run_focs(j, true)).collect();
+                let all: Vec<f64> = runs.iter().flat_map(|j| run_focs(j, false)).collect();
+                let per_run: Vec<FocStats> = runs
+                    .iter()
+                    .map(|j| {
+                        let s = foc_stats(&[(td, run_focs(j, false))]).remove(0);
+                        per_seed.entry(j.job.seed).or_default().push(s.clone());
+                        s
+                    })
+                    .collect();
+                cells.push(FiCell {
+                    td,
+                    runs: runs.len(),
+                    pooled: foc_stats(&[(td, paper.clone())]).remove(0),
+                    pooled_all: foc_stats(&[(td, all)]).remove(0),
+                    run_mean: Spread::of(per_run.iter().map(|s| s.mean)),
+                    run_sd: Spread::of(per_run.iter().map(|s| s.sd)),
+                    run_cv: Spread::of(per_run.iter().map(|s| s.cv)),
+                    run_ratio: Spread::of(per_run.iter().map(|s| s.mean / f64::from(td))),
+                    focs: paper,
+                });
+            }
+            let pooled: Vec<FocStats> = cells.iter().map(|c| c.pooled.clone()).collect();
+            let per_run: Vec<ScalarProperty> =
+                per_seed.values().map(|s| scalar_property(s)).collect();
+            FiModel {
+                model: model.to_string(),
+                scalar: scalar_property(&pooled),
+                run_r2_mean_vs_td: Spread::of(per_run.iter().map(|s| s.r2_mean_vs_td)),
+                run_r2_sd_vs_mean: Spread::of(per_run.iter().map(|s| s.r2_sd_vs_mean)),
+                cells,
+            }
+        })
+        .collect()
+}

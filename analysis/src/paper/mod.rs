@@ -1,0 +1,21 @@
+//! The paper's study: compact results of a sweep and the paper's analyses beside the lab's.
+//!
+//! * [`collect`] — a sweep's output folder → compact per-job results (summary, one line per
+//!   evaluation episode, thinned learning curve, metrics) that a repository can keep;
+//! * [`lsq`] — the paper's least-squares psychometric fit (and its failure rules);
+//! * [`fi`] — FOC pooled over runs × start cells per TD, CV, scalar-property R²;
+//! * [`bisection`] — per-run P(long), run exclusion, averaged curve, per-run BP/DL/WF,
+//!   WF vs log2(L/S);
+//! * [`multitimer`] — curriculum levels reached, steps per level, reward per TD;
+//! * [`reference`] — the paper's published numbers;
+//! * [`compare`] — `comparison.csv` rows and the agreement rule;
+//! * [`study`] — the whole analysis of a results folder, written as JSON, CSV and Markdown.
+
+pub mod bisection;
+pub mod collect;
+pub mod compare;
+pub mod fi;
+pub mod lsq;
+pub mod multitimer;
+pub mod reference;
+pub mod study;

@@ -1,0 +1,273 @@
+//! The whole paper analysis of a compact results folder: FI, bisection, multi-timer, the
+//! comparison with the paper, and the cost of each job kind; written as `analysis.json`,
+//! `comparison.csv` and `tables.md`.
+
+use super::bisection::{BisectionModel, analyse_bisection};
+use super::collect::{CollectError, CompactJob, read_compact};
+use super::compare::{ComparisonRow, compare};
+use super::fi::{FiModel, analyse_fi};
+use super::multitimer::{MtCell, analyse_multitimer};
+use super::reference::HUMAN_WF_VS_RATIO;
+use crate::aggregate::Spread;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// Training cost of one job kind (task × model).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct JobCost {
+    /// Task id.
+    pub task: String,
+    /// Zoo model name.
+    pub model: String,
+    /// Finished jobs.
+    pub jobs: usize,
+    /// Training wall-clock seconds per job (one core each).
+    pub wall_s: Spread,
+    /// Env steps per second.
+    pub steps_per_s: Spread,
+    /// Core-hours of all these jobs.
+    pub core_hours: f64,
+}
+
+/// Everything the study reports.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PaperStudy {
+    /// Finished jobs analysed.
+    pub jobs: usize,
+    /// Fixed interval per model.
+    pub fi: Vec<FiModel>,
+    /// Bisection per model.
+    pub bisection: Vec<BisectionModel>,
+    /// Multi-timer per model and curriculum.
+    pub multitimer: Vec<MtCell>,
+    /// Comparison with the paper.
+    pub comparison: Vec<ComparisonRow>,
+    /// Cost per job kind.
+    pub cost: Vec<JobCost>,
+}
+
+/// Cost of each job kind.
+pub fn job_costs(jobs: &[CompactJob]) -> Vec<JobCost> {
+    let mut g: BTreeMap<(&str, &str), Vec<&CompactJob>> = BTreeMap::new();
+    for j in jobs {
+        g.entry((&j.job.task, &j.job.model)).or_default().push(j);
+    }
+    g.into_iter()
+        .map(|((task, model), js)| JobCost {
+            task: task.into(),
+            model: model.into(),
+            jobs: js.len(),
+            wall_s: Spread::of(js.iter().map(|j| j.job.wall_s)),
+            steps_per_s: Spread::of(js.iter().map(|j| j.job.steps_done as f64 / j.job.wall_s)),
+            core_hours: js.iter().map(|j| j.job.wall_s).sum::<f64>() / 3600.0,
+        })
+        .collect()
+}
+
+/// Analyses the compact results under `root`.
+pub fn analyse(root: &Path) -> Result<PaperStudy, CollectError> {
+    let jobs = read_compact(root)?;
+    let fi = analyse_fi(&jobs);
+    let bisection = analyse_bisection(&jobs);
+    let multitimer = analyse_multitimer(&jobs);
+    let comparison = compare(&fi, &bisection, &multitimer);
+    Ok(PaperStudy {
+        jobs: jobs.len(),
+        cost: job_costs(&jobs),
+        fi,
+        bisection,
+        multitimer,
+        comparison,
+    })
+}
+
+fn f(x: f64, digits: usize) -> String {
+    if x.is_finite() {
+        format!("{x:.digits$}")
+    } else {
+        "–".into()
+    }
+}
+
+fn pm(s: &Spread, digits: usize) -> String {
+    if s.n == 0 {
+        "–".into()
+    } else if s.n == 1 {
+        f(s.mean, digits)
+    } else {
+        format!("{} ± {}", f(s.mean, digits), f(s.sd, digits))
+    }
+}
+
+/// Markdown tables of the study (what `RESULTS.md` quotes).
+pub fn tables_markdown(s: &PaperStudy) -> String {
+    let mut m = String::new();
+    let _ = writeln!(m, "# paper-core: tables ({} finished jobs)\n", s.jobs);
+    let _ = writeln!(
+        m,
+        "## Fixed interval: first oven check (paper convention)\n\nPooled over runs × start \
+         cells (the paper's statistic; a run's remaining cells are skipped after an episode \
+         without a check, as in the notebook), and per run (mean ± SD over runs).\n"
+    );
+    let _ = writeln!(
+        m,
+        "| model | TD | runs | n | FOC mean | SD | CV | per-run mean FOC | per-run CV | FOC/TD per run |"
+    );
+    let _ = writeln!(m, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for model in &s.fi {
+        for c in &model.cells {
+            let _ = writeln!(
+                m,
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+                model.model,
+                c.td,
+                c.runs,
+                c.pooled.n,
+                f(c.pooled.mean, 2),
+                f(c.pooled.sd, 2),
+                f(c.pooled.cv, 2),
+                pm(&c.run_mean, 2),
+                pm(&c.run_cv, 2),
+                pm(&c.run_ratio, 2)
+            );
+        }
+    }
+    let _ = writeln!(
+        m,
+        "\n| model | R² mean vs TD (pooled) | R² SD vs mean (pooled) | slope mean vs TD | R² mean vs TD per run | R² SD vs mean per run |"
+    );
+    let _ = writeln!(m, "|---|---:|---:|---:|---:|---:|");
+    for model in &s.fi {
+        let _ = writeln!(
+            m,
+            "| {} | {} | {} | {} | {} | {} |",
+            model.model,
+            f(model.scalar.r2_mean_vs_td, 2),
+            f(model.scalar.r2_sd_vs_mean, 2),
+            f(model.scalar.mean_slope, 2),
+            pm(&model.run_r2_mean_vs_td, 2),
+            pm(&model.run_r2_sd_vs_mean, 2)
+        );
+    }
+    let _ = writeln!(
+        m,
+        "\n## Bisection\n\nRuns excluded when their last 100 training episodes averaged more \
+         than 100 steps (the notebook's rule). BP/DL/WF: least squares on the run-averaged \
+         curve (paper figure) and per run (mean ± SD: the paper's tables); MLE: binomial \
+         maximum likelihood on the pooled counts (the lab's).\n"
+    );
+    let _ = writeln!(
+        m,
+        "| model | anchors | runs (excluded) | anchor acc. | BP (avg curve) | WF (avg curve) | WF per run | DL per run | BP per run | BP (MLE) | WF (MLE) |"
+    );
+    let _ = writeln!(m, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for model in &s.bisection {
+        for c in &model.cells {
+            let excl = c.runs.iter().filter(|r| r.excluded).count();
+            let _ = writeln!(
+                m,
+                "| {} | {}-{} | {} ({}) | {} | {} | {} | {} | {} | {} | {} | {} |",
+                model.model,
+                c.short,
+                c.long,
+                c.runs.len(),
+                excl,
+                pm(&c.anchor_accuracy, 2),
+                c.fit.map_or("failed".into(), |x| f(x.bp, 2)),
+                c.fit.map_or("failed".into(), |x| f(x.wf, 3)),
+                pm(&c.wf, 3),
+                pm(&c.dl, 2),
+                pm(&c.bp, 2),
+                c.mle.as_ref().map_or("–".into(), |x| f(x.bp, 2)),
+                c.mle.as_ref().map_or("–".into(), |x| f(x.wf, 3)),
+            );
+        }
+    }
+    let _ = writeln!(
+        m,
+        "\nWF vs log2(L/S) (human reference: r = {}, p = {}):\n",
+        HUMAN_WF_VS_RATIO.0, HUMAN_WF_VS_RATIO.1
+    );
+    let _ = writeln!(
+        m,
+        "| model | r (avg curves) | p | n | r (per run) | p | n |"
+    );
+    let _ = writeln!(m, "|---|---:|---:|---:|---:|---:|---:|");
+    for model in &s.bisection {
+        let r = |x: &Option<super::bisection::WfRegression>| {
+            x.map_or("– | – | –".into(), |w| {
+                format!("{} | {} | {}", f(w.r, 3), f(w.p, 3), w.n)
+            })
+        };
+        let _ = writeln!(
+            m,
+            "| {} | {} | {} |",
+            model.model,
+            r(&model.wf_vs_ratio),
+            r(&model.wf_vs_ratio_runs)
+        );
+    }
+    let _ = writeln!(m, "\n## Multi-timer\n");
+    let _ = writeln!(
+        m,
+        "| model | curriculum | runs | level reached | runs at level 5 | steps in level 0 | 1 | 2 | 3 | 4 | reward per TD (3/6/9/12/15) |"
+    );
+    let _ = writeln!(m, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|");
+    for c in &s.multitimer {
+        let steps: Vec<String> = c.steps_in_level.iter().map(|s| pm(s, 0)).collect();
+        let rewards: Vec<String> = c.per_td.iter().map(|(_, r, _)| f(r.mean, 2)).collect();
+        let _ = writeln!(
+            m,
+            "| {} | {} | {} | {} | {} | {} | {} |",
+            c.model,
+            c.curriculum,
+            c.runs.len(),
+            pm(&c.level, 1),
+            c.reached_last,
+            steps.join(" | "),
+            rewards.join(" / ")
+        );
+    }
+    let _ = writeln!(m, "\n## Cost per job kind (one core per job)\n");
+    let _ = writeln!(
+        m,
+        "| task | model | jobs | wall-clock s per job | env-steps/s | core-hours |"
+    );
+    let _ = writeln!(m, "|---|---|---:|---:|---:|---:|");
+    for c in &s.cost {
+        let _ = writeln!(
+            m,
+            "| {} | {} | {} | {} | {} | {} |",
+            c.task,
+            c.model,
+            c.jobs,
+            pm(&c.wall_s, 0),
+            pm(&c.steps_per_s, 0),
+            f(c.core_hours, 2)
+        );
+    }
+    m
+}
+
+/// Writes `analysis.json`, `comparison.csv` and `tables.md` into `root`.
+pub fn write_study(root: &Path, s: &PaperStudy) -> Result<(), CollectError> {
+    let e = |p: &Path, m: String| CollectError::File {
+        path: p.display().to_string(),
+        message: m,
+    };
+    let write = |name: &str, bytes: &[u8]| {
+        let p = root.join(name);
+        chronocooked_training::run_dir::write_atomic(&p, bytes).map_err(|x| e(&p, x.to_string()))
+    };
+    let json = serde_json::to_string_pretty(s).map_err(|x| e(root, x.to_string()))?;
+    write("analysis.json", json.as_bytes())?;
+    let mut w = csv::Writer::from_writer(Vec::new());
+    for r in &s.comparison {
+        w.serialize(r).map_err(|x| e(root, x.to_string()))?;
+    }
+    let bytes = w.into_inner().map_err(|x| e(root, x.to_string()))?;
+    write("comparison.csv", &bytes)?;
+    write("tables.md", tables_markdown(s).as_bytes())
+}

@@ -1,0 +1,63 @@
+//! `chronocooked paper`: the paper's study from a sweep's output — compact results kept in
+//! the repository, the paper's analyses beside the lab's, and the comparison table.
+
+use anyhow::{Context, Result};
+use chronocooked_analysis::paper::{collect, study};
+use clap::{Args, Subcommand};
+use std::path::PathBuf;
+
+/// `paper` subcommands.
+#[derive(Subcommand, Debug)]
+pub enum PaperCommand {
+    /// Copy the compact results of every finished job of a sweep (summary, episode lines,
+    /// thinned learning curve, metrics; no checkpoints) into a results folder.
+    Collect(CollectArgs),
+    /// Analyse a results folder as the paper does (and as the lab does), compare with the
+    /// paper's numbers: writes analysis.json, comparison.csv and tables.md there.
+    Analyse(AnalyseArgs),
+}
+
+/// `paper collect`.
+#[derive(Args, Debug)]
+pub struct CollectArgs {
+    /// Sweep output folder (e.g. lab-out/paper-core).
+    pub sweep_out: PathBuf,
+    /// Results folder (e.g. results/paper-core).
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+/// `paper analyse`.
+#[derive(Args, Debug)]
+pub struct AnalyseArgs {
+    /// Results folder written by `paper collect`.
+    pub results: PathBuf,
+}
+
+/// Runs a `paper` subcommand.
+pub fn run(cmd: PaperCommand) -> Result<()> {
+    match cmd {
+        PaperCommand::Collect(a) => {
+            let (written, pending) = collect::collect(&a.sweep_out, &a.out)?;
+            println!(
+                "{written} finished jobs collected into {} ({pending} unfinished skipped)",
+                a.out.display()
+            );
+            Ok(())
+        }
+        PaperCommand::Analyse(a) => {
+            let s = study::analyse(&a.results)
+                .with_context(|| format!("analysing {}", a.results.display()))?;
+            study::write_study(&a.results, &s)?;
+            let agree = s.comparison.iter().filter(|r| r.agree == "yes").count();
+            println!(
+                "{} jobs analysed; {} of {} paper numbers within the lab's interval; wrote {}",
+                s.jobs,
+                agree,
+                s.comparison.len(),
+                a.results.join("tables.md").display()
+            );
+            Ok(())
+        }
+    }
+}

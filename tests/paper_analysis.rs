@@ -1,0 +1,193 @@
+//! The paper's analyses on constructed data with known answers: the least-squares
+//! psychometric fit, the notebook's FI pooling rule, the run exclusion and per-run
+//! fits of bisection, the WF regression and the agreement rules of the comparison.
+
+use chronocooked_analysis::paper::bisection::{analyse_bisection, pearson};
+use chronocooked_analysis::paper::collect::{CompactJob, EpisodeRow, JobSummary};
+use chronocooked_analysis::paper::compare::{agree_mean, agree_sd};
+use chronocooked_analysis::paper::fi::analyse_fi;
+use chronocooked_analysis::paper::lsq::{LsqHow, fit_paper};
+
+fn logistic(d: f64, x0: f64, k: f64) -> f64 {
+    1.0 / (1.0 + (-(d - x0) / k).exp())
+}
+
+#[test]
+fn least_squares_fit_recovers_a_known_curve() {
+    let probes: Vec<f64> = (1..=16).map(f64::from).collect();
+    for (x0, k) in [(7.3, 1.2), (5.0, 0.6), (9.5, 2.5)] {
+        let p: Vec<f64> = probes.iter().map(|&d| logistic(d, x0, k)).collect();
+        let fit = fit_paper(&probes, &p, 4.0, 12.0).expect("fits");
+        assert_eq!(fit.how, LsqHow::Fit);
+        assert!((fit.bp - x0).abs() < 1e-4, "{x0}: {}", fit.bp);
+        assert!((fit.k - k).abs() < 1e-4, "{k}: {}", fit.k);
+        assert!((fit.dl - k * 3f64.ln()).abs() < 1e-4);
+        assert!((fit.wf - fit.dl / fit.bp).abs() < 1e-12);
+    }
+    // NaN proportions (fewer than half valid) are left out of the fit.
+    let mut p: Vec<f64> = probes.iter().map(|&d| logistic(d, 8.0, 1.0)).collect();
+    p[0] = f64::NAN;
+    p[15] = f64::NAN;
+    let fit = fit_paper(&probes, &p, 4.0, 12.0).unwrap();
+    assert!((fit.bp - 8.0).abs() < 1e-4);
+    // A flat curve has its BP outside the probes: "failed", as in the notebook.
+    assert!(fit_paper(&probes, &[0.0; 16], 4.0, 12.0).is_none());
+}
+
+#[test]
+fn a_perfect_step_gives_a_tiny_weber_fraction() {
+    let probes: Vec<f64> = (1..=16).map(f64::from).collect();
+    let p: Vec<f64> = probes
+        .iter()
+        .map(|&d| if d <= 7.0 { 0.0 } else { 1.0 })
+        .collect();
+    let fit = fit_paper(&probes, &p, 4.0, 12.0).expect("step fits or falls back");
+    assert!(fit.wf.abs() < 0.01, "WF {}", fit.wf);
+    match fit.how {
+        // BP between the last short and the first long probe.
+        LsqHow::Fit => assert!(fit.bp > 7.0 && fit.bp < 8.0, "BP {}", fit.bp),
+        // The notebook's 0-based positions: one step below the probe durations.
+        LsqHow::StepFallback => assert!((fit.bp - 6.5).abs() < 1e-12),
+    }
+}
+
+fn job(task: &str, model: &str, seed: u64, env: &[&str], ep_len: f64) -> JobSummary {
+    JobSummary {
+        id: format!("{task}/{model}/seed{seed}"),
+        task: task.into(),
+        model: model.into(),
+        seed,
+        env: env.iter().map(|s| s.to_string()).collect(),
+        preset: "reference".into(),
+        total_steps: 1000,
+        steps_done: 1000,
+        wall_s: 10.0,
+        final_ep_len_mean: ep_len,
+        final_ep_return_mean: 1.0,
+        level_steps: vec![0],
+        ppo: serde_json::Value::Null,
+    }
+}
+
+fn ep(kind: &str, td: u32, cell: (usize, usize), foc: Option<i32>, counter: i8) -> EpisodeRow {
+    EpisodeRow {
+        kind: kind.into(),
+        td,
+        factor: None,
+        env: String::new(),
+        row: cell.0,
+        col: cell.1,
+        steps: 20,
+        reward: 1.0,
+        success: foc.is_some() || counter > 0,
+        foc,
+        foc_checks: foc,
+        counter,
+        oven_off_time: td as i32,
+    }
+}
+
+#[test]
+fn fi_pooling_follows_the_notebook_rule() {
+    // Run 1: FOCs 4, 6 then an episode without a check (cell (1,1)), then 10 (skipped by
+    // the notebook). Run 2: 5, 5, 5.
+    let r1 = CompactJob {
+        job: job("FixedInterval-v0", "m", 1, &["td=6"], 20.0),
+        episodes: vec![
+            ep("fi", 6, (1, 2), Some(10), 0),
+            ep("fi", 6, (0, 0), Some(4), 0),
+            ep("fi", 6, (1, 0), Some(6), 0),
+            ep("fi", 6, (1, 1), None, 0),
+            ep("pi", 6, (0, 0), Some(1), 0),
+        ],
+        curve: vec![],
+    };
+    let r2 = CompactJob {
+        job: job("FixedInterval-v0", "m", 2, &["td=6"], 20.0),
+        episodes: (0..3).map(|c| ep("fi", 6, (c, 0), Some(5), 0)).collect(),
+        curve: vec![],
+    };
+    let fi = analyse_fi(&[r1, r2]);
+    let c = &fi[0].cells[0];
+    assert_eq!(c.td, 6);
+    // Notebook: 4, 6 (run 1, stops at (1,1)) + 5, 5, 5.
+    assert_eq!(c.pooled.n, 5);
+    assert!((c.pooled.mean - 5.0).abs() < 1e-12);
+    let sd = ((1.0 + 1.0) / 4.0f64).sqrt();
+    assert!((c.pooled.sd - sd).abs() < 1e-12);
+    assert!((c.pooled.cv - sd / 5.0).abs() < 1e-12);
+    // Without the rule, the 10 counts.
+    assert_eq!(c.pooled_all.n, 6);
+    // Per run: means 20/3 and 5.
+    assert!((c.run_mean.mean - (20.0 / 3.0 + 5.0) / 2.0).abs() < 1e-12);
+}
+
+fn bisection_job(seed: u64, ep_len: f64, bp: u32) -> CompactJob {
+    // 8 start cells per probe 1..=16; long for probes above `bp`; probe 2 has 5 failures.
+    let mut eps = Vec::new();
+    for d in 1..=16u32 {
+        for c in 0..8usize {
+            let counter = if d == 2 && c < 5 {
+                -1
+            } else if d > bp {
+                2
+            } else {
+                1
+            };
+            eps.push(ep("bisection", d, (c, 0), None, counter));
+        }
+    }
+    CompactJob {
+        job: job("Bisection-v0", "m", seed, &["short=4", "long=12"], ep_len),
+        episodes: eps,
+        curve: vec![],
+    }
+}
+
+#[test]
+fn bisection_excludes_long_runs_and_marks_invalid_probes() {
+    let jobs = vec![
+        bisection_job(1, 30.0, 7),
+        bisection_job(2, 40.0, 8),
+        bisection_job(3, 150.0, 2), // excluded: its training episodes were long
+    ];
+    let b = analyse_bisection(&jobs);
+    let cell = &b[0].cells[0];
+    assert_eq!((cell.short, cell.long), (4, 12));
+    assert_eq!(cell.runs.iter().filter(|r| r.excluded).count(), 1);
+    // Probe 2: 3 of 8 valid (< 50%) → NaN.
+    assert!(cell.runs[0].p_long[1].is_nan());
+    // Averaged curve over the two kept runs: probe 8 is long in run 1 only.
+    assert!((cell.curve[7] - 0.5).abs() < 1e-12);
+    assert!((cell.anchor_accuracy.mean - 1.0).abs() < 1e-12);
+    assert_eq!(cell.wf.n, 2);
+    assert!(cell.fit.is_some());
+    let mle = cell.mle.as_ref().unwrap();
+    assert!(mle.bp > 7.0 && mle.bp < 9.0, "MLE BP {}", mle.bp);
+}
+
+#[test]
+fn pearson_and_agreement_rules_have_known_answers() {
+    let x = [1.0, 2.0, 3.0, 4.0];
+    let w = pearson(&x, &[2.0, 4.0, 6.0, 8.0]).unwrap();
+    assert!((w.r - 1.0).abs() < 1e-12 && w.p == 0.0 && (w.slope - 2.0).abs() < 1e-12);
+    // r = 0.5 with n = 6: t = 0.5·√4/√0.75 = 1.1547, two-sided p = 0.3125 (t table).
+    let y = [1.0, 3.0, 2.0, 5.0, 3.0, 4.0];
+    let x6 = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0];
+    let w = pearson(&x6, &y).unwrap();
+    let r = w.r;
+    let t = r * (4.0 / (1.0 - r * r)).sqrt();
+    assert!(t > 0.0 && w.p > 0.0 && w.p < 1.0);
+    assert!(pearson(&x[..2], &[1.0, 2.0]).is_none());
+    // Mean rule: t(0.975, 3) = 3.182; half-width = 3.182 · 1 · √(1/4 + 1/4) = 2.25.
+    assert_eq!(agree_mean(2.2, 0.0, 1.0, 4), "yes");
+    assert_eq!(agree_mean(2.3, 0.0, 1.0, 4), "no");
+    assert_eq!(agree_mean(f64::NAN, f64::NAN, 1.0, 4), "both-nan");
+    assert_eq!(agree_mean(1.0, f64::NAN, 1.0, 4), "no");
+    assert_eq!(agree_mean(1.0, 1.0, f64::NAN, 1), "n/a");
+    // SD rule (χ², 3 df): [0.566, 3.73] × SD.
+    assert_eq!(agree_sd(0.6, 1.0, 4), "yes");
+    assert_eq!(agree_sd(3.7, 1.0, 4), "yes");
+    assert_eq!(agree_sd(0.5, 1.0, 4), "no");
+    assert_eq!(agree_sd(4.0, 1.0, 4), "no");
+}
