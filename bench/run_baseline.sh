@@ -4,9 +4,9 @@
 #   bash bench/run_baseline.sh [PYTHON] [CHRONOCOOKED] [REF_DIR]
 #
 # Arguments (or environment variables) with defaults:
-#   PYTHON        /work/sb3venv/bin/python   venv with bench/requirements-sb3.txt
+#   PYTHON        .venv-sb3/bin/python   venv with bench/requirements-sb3.txt
 #   CHRONOCOOKED  ./target/release/chronocooked
-#   REF_DIR       /work/refcheck/ref         folder with the original time_production_basic.py
+#   REF_DIR       ref (relative to the repo root) folder holding the original time_production_basic.py
 #   PPO_UPDATES   5   timed SB3 PPO updates (1000 env steps each, after 1 warm-up update)
 #   RPPO_UPDATES  3   timed sb3-contrib RecurrentPPO updates per LSTM layout
 #   RUST_UPDATES  4   updates measured by `chronocooked bench train`
@@ -17,9 +17,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-PYTHON="${1:-${PYTHON:-/work/sb3venv/bin/python}}"
+PYTHON="${1:-${PYTHON:-.venv-sb3/bin/python}}"
 CHRONOCOOKED="${2:-${CHRONOCOOKED:-./target/release/chronocooked}}"
-REF_DIR="${3:-${REF_DIR:-/work/refcheck/ref}}"
+REF_DIR="${3:-${REF_DIR:-ref}}"
 PPO_UPDATES="${PPO_UPDATES:-5}"
 RPPO_UPDATES="${RPPO_UPDATES:-3}"
 RUST_UPDATES="${RUST_UPDATES:-4}"

@@ -7,9 +7,9 @@ step uses it. It needs a Python environment with the packages pinned in
 `time_production_basic.py` (class TimeProductionBasic), which is not part of this
 repository:
 
-    python3 -m venv /work/sb3venv
-    /work/sb3venv/bin/pip install -r bench/requirements-sb3.txt
-    /work/sb3venv/bin/python bench/sb3_baseline.py --ref-dir /path/to/ref \
+    python3 -m venv .venv-sb3
+    .venv-sb3/bin/pip install -r bench/requirements-sb3.txt
+    .venv-sb3/bin/python bench/sb3_baseline.py --ref-dir /path/to/ref \
         --ppo-updates 5 --rppo-updates 3 [--rppo-lstm both] [--json]
 
 `bench/run_baseline.sh` runs this script and then `chronocooked bench train` in one
@@ -201,7 +201,7 @@ def measure(name, env_cls, updates, seed):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--ref-dir", default="/work/refcheck/ref",
+    ap.add_argument("--ref-dir", default="ref",
                     help="folder holding the original time_production_basic.py")
     ap.add_argument("--ppo-updates", type=int, default=5,
                     help="timed PPO updates (1000 steps each) after one warm-up update")

@@ -5,15 +5,21 @@
 # records — no checkpoints) into OUT_DIR.tgz. Resumable: a rerun skips finished stages and
 # PPO runs continue from their last checkpoint.
 #
-#   sweeps/run-jobs.sh BIN SWEEP_FILE OUT_DIR WORKERS SECONDS [ID_REGEX]
+# Jobs whose compact results already sit in RESULTS_DIR/jobs/<id>/ (`chronocooked paper
+# collect`) are skipped too, so a study resumes on a fresh machine from the repository.
+#
+#   sweeps/run-jobs.sh BIN SWEEP_FILE OUT_DIR WORKERS SECONDS [ID_REGEX] [RESULTS_DIR]
 #   e.g. sweeps/run-jobs.sh target/release/chronocooked sweeps/paper-core.toml \
-#            lab-out/paper-core 16 540 'lstm125'
+#            lab-out/paper-core 16 540 'lstm125' results/paper-core
 set -uo pipefail
-bin=$1 file=$2 out=$3 workers=$4 secs=$5 pattern=${6:-.}
+bin=$1 file=$2 out=$3 workers=$4 secs=$5 pattern=${6:-.} results=${7:-}
 mkdir -p "$out"
 tgz=$(realpath -m "$out.tgz")
 "$bin" sweep "$file" --out "$out" --dry-run | awk '$1 == "todo" {print $2}' \
-    | grep -E -- "$pattern" > "$out.todo" || true
+    | grep -E -- "$pattern" \
+    | while read -r id; do
+        [[ -n "$results" && -f "$results/jobs/$id/job.json" ]] || echo "$id"
+    done > "$out.todo" || true
 echo "$(wc -l < "$out.todo") jobs to run, $workers at a time, for at most $secs s"
 setsid xargs -a "$out.todo" -P "$workers" -I{} \
     "$bin" sweep-job "$file" --out "$out" --id {} >> "$out.log" 2>&1 &

@@ -571,3 +571,46 @@ adapt_steps = 2000
     let html = std::fs::read_to_string(out.join("report/report.html")).unwrap();
     assert!(html.contains("unc_adapted") && html.contains("unc_episodes_to_adapt"));
 }
+
+#[test]
+fn paper_study_files_list_the_paper_grid_with_its_cost() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let out = temp_dir("paper-dry");
+    let count = |file: &str| {
+        let f = root.join("sweeps").join(file);
+        let (stdout, _) = run_ok(&[
+            "sweep",
+            f.to_str().unwrap(),
+            "--dry-run",
+            "--out",
+            out.to_str().unwrap(),
+            "--workers",
+            "2",
+        ]);
+        let jobs = stdout.lines().filter(|l| l.starts_with("todo ")).count();
+        let last = stdout.lines().last().unwrap_or_default().to_string();
+        (jobs, last)
+    };
+    // 4 models × (8, 125, 256) (+ CNN-MLP) × (6 FI TDs + 6 anchor pairs + 4 multi-timer
+    // variants + uncertainty) × 4 repeats.
+    let (jobs, last) = count("paper.toml");
+    assert_eq!(jobs, 10 * (6 + 6 + 4 + 1) * 4);
+    assert!(
+        last.starts_with("680 jobs (680 to do); estimated "),
+        "{last}"
+    );
+    let hours: f64 = last
+        .split("estimated ")
+        .nth(1)
+        .and_then(|s| s.split(' ').next())
+        .and_then(|s| s.parse().ok())
+        .unwrap();
+    assert!(hours > 10.0 && hours < 1000.0, "{hours}");
+    // paper-core: CNN, LSTM125, CTRNN125 trained and reservoir × (6 + 6 + 2) × 4.
+    let (jobs, _) = count("paper-core.toml");
+    assert_eq!(jobs, 4 * 14 * 4);
+    let f = SweepFile::load(&root.join("sweeps/paper-core.toml")).unwrap();
+    let ids: Vec<String> = f.jobs().unwrap().into_iter().map(|j| j.id).collect();
+    assert!(ids.iter().any(|i| i.contains("ctrnn-reservoir125")));
+    let _ = std::fs::remove_dir_all(&out);
+}

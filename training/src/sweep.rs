@@ -561,3 +561,36 @@ pub fn slurm_script(
 pub fn job_dir(out: &Path, id: &str) -> PathBuf {
     out.join(id)
 }
+
+/// Measured training throughput (env steps per second, one core, native engine) of the
+/// reference preset on the lab's 2-core development machine (`BENCHMARKS.md`, "Study
+/// throughput"): `(model, steps/s)`. Recurrent throughput with sequence minibatches depends
+/// on episode lengths; these are whole-run averages of FI / bisection jobs.
+pub const REFERENCE_THROUGHPUT: [(&str, f64); 10] = [
+    ("cnn-mlp", 11_000.0),
+    ("lstm8", 4_200.0),
+    ("lstm125", 2_000.0),
+    ("lstm256", 700.0),
+    ("ctrnn8", 6_000.0),
+    ("ctrnn125", 4_900.0),
+    ("ctrnn256", 2_400.0),
+    ("ctrnn-reservoir8", 6_000.0),
+    ("ctrnn-reservoir125", 4_900.0),
+    ("ctrnn-reservoir256", 2_400.0),
+];
+
+/// Estimated single-core training time of one job (seconds): its resolved step budget over
+/// the measured throughput of its model ([`REFERENCE_THROUGHPUT`]); `None` for jobs without
+/// PPO training (timing models train in seconds, baselines not at all) or unmeasured models.
+pub fn estimate_seconds(sweep: &SweepFile, job: &Job) -> Option<f64> {
+    if job.family != Family::DeepRl {
+        return None;
+    }
+    let rate = REFERENCE_THROUGHPUT
+        .iter()
+        .find(|(m, _)| *m == job.model)?
+        .1;
+    let arch = job.model.parse().ok()?;
+    let cfg = crate::presets::resolve(&job.task, arch, &sweep.preset, job.seed, &job.sets).ok()?;
+    Some(cfg.total_steps as f64 / rate)
+}
