@@ -216,3 +216,46 @@ fn reservoir_names_parse_and_print() {
     let old: Architecture = serde_json::from_str(r#"{"core":"ctrnn","hidden":8}"#).unwrap();
     assert!(!old.reservoir);
 }
+
+#[test]
+fn torch_core_init_draws_pytorch_default_ranges() {
+    use chronocooked_models::CoreInit;
+    for (arch, h) in [
+        (Architecture::reservoir(CoreKind::Ctrnn, 125), 125usize),
+        (Architecture::recurrent(CoreKind::Lstm, 125), 125),
+    ] {
+        let mut pc = PolicyConfig::new(arch, 15, 6, 6);
+        pc.core_init = CoreInit::Torch;
+        let theta = flat_params(&pc.init(3, &chronocooked_models::cpu()));
+        let l = NativePolicy::new(&pc).layout().clone();
+        let (w_in, b_in) = l.core_in.unwrap();
+        let (w_rec, _) = l.core_rec.unwrap();
+        let max = |b: chronocooked_models::native::Block| {
+            b.of(&theta).iter().fold(0f32, |m, v| m.max(v.abs())) as f64
+        };
+        let mean_abs = |b: chronocooked_models::native::Block| {
+            b.of(&theta).iter().map(|v| v.abs() as f64).sum::<f64>() / b.len as f64
+        };
+        let kh = 1.0 / (h as f64).sqrt();
+        if arch.core == Some(CoreKind::Ctrnn) {
+            // nn.Linear(64, H) and nn.Linear(H, H, bias=False): U(±1/8) and U(±1/√H).
+            let ki = 1.0 / 8.0;
+            assert!(max(w_in) <= ki && max(w_in) > 0.95 * ki);
+            assert!(max(b_in) <= ki && max(b_in) > 0.9 * ki);
+            assert!(max(w_rec) <= kh && max(w_rec) > 0.95 * kh);
+            // Uniform: mean |w| = bound / 2.
+            assert!((mean_abs(w_rec) / kh - 0.5).abs() < 0.02);
+            let tau = l.tau.unwrap();
+            assert!(tau.of(&theta).iter().all(|&t| t == 1.0));
+        } else {
+            // nn.LSTM: every weight U(±1/√H); the single bias is b_ih + b_hh.
+            assert!(max(w_in) <= kh && max(w_rec) <= kh);
+            assert!(max(b_in) <= 2.0 * kh && max(b_in) > kh);
+            assert!((mean_abs(w_rec) / kh - 0.5).abs() < 0.02);
+        }
+        // The lab's scheme: orthogonal recurrent blocks (row norms 1 for a square block).
+        pc.core_init = CoreInit::Lab;
+        let lab = flat_params(&pc.init(3, &chronocooked_models::cpu()));
+        assert_ne!(w_rec.of(&lab), w_rec.of(&theta));
+    }
+}

@@ -196,6 +196,25 @@ pub struct CoreConfig {
     pub dt: f32,
     /// CTRNN initial raw τ (reference 1.0 → softplus 1.313).
     pub tau_init: f32,
+    /// Initial weight distribution.
+    pub init: CoreInit,
+}
+
+/// How a recurrent core's weights are drawn at initialisation (τ always starts at
+/// `tau_init`). Both give the same architecture; only the starting point differs.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CoreInit {
+    /// The lab's: input weights U(±1/√H), recurrent weights orthogonal (gain 1) per gate
+    /// block, zero biases (LSTM forget-gate bias 1).
+    #[default]
+    Lab,
+    /// PyTorch's defaults for the paper's modules (sb3-contrib creates its LSTM after SB3's
+    /// orthogonal initialisation, and the paper's `CTRNNCell` uses plain `nn.Linear`s):
+    /// LSTM / GRU / RNN every weight and both biases U(±1/√H) (the lab's single input bias
+    /// is the sum `b_ih + b_hh`; the GRU keeps `b_hh` as its recurrent bias); CTRNN input
+    /// weight and bias U(±1/√I) (`nn.Linear(I, H)`), recurrent weight U(±1/√H) without bias.
+    Torch,
 }
 
 impl CoreConfig {
@@ -207,12 +226,16 @@ impl CoreConfig {
             hidden,
             dt: 0.1,
             tau_init: 1.0,
+            init: CoreInit::Lab,
         }
     }
 
     /// Initialises the core: input weights U(±1/√H) (PyTorch's RNN default), recurrent
     /// weights orthogonal (gain 1) per gate block, zero biases (LSTM forget-gate bias 1).
     pub fn init(&self, rng: &mut InitRng, device: &Device) -> RecurrentCore {
+        if self.init == CoreInit::Torch {
+            return self.init_torch(rng, device);
+        }
         let (i, h, g) = (self.input, self.hidden, self.kind.gates());
         let bound = 1.0 / (h as f64).sqrt();
         let mut b_in = vec![0f32; g * h];
@@ -242,6 +265,43 @@ impl CoreConfig {
             input,
             recurrent,
             tau,
+            kind: self.kind,
+            hidden: h,
+            dt: self.dt,
+        }
+    }
+
+    /// [`CoreInit::Torch`]: PyTorch's default initialisation of the paper's modules.
+    fn init_torch(&self, rng: &mut InitRng, device: &Device) -> RecurrentCore {
+        let (i, h, g) = (self.input, self.hidden, self.kind.gates());
+        let kh = 1.0 / (h as f64).sqrt();
+        let (w_in, b_in, w_rec, b_rec) = if self.kind == CoreKind::Ctrnn {
+            let ki = 1.0 / (i as f64).sqrt();
+            let w_in = uniform(i * h, ki, rng);
+            let b_in = uniform(h, ki, rng);
+            (w_in, b_in, uniform(h * h, kh, rng), None)
+        } else {
+            let w_in = uniform(i * g * h, kh, rng);
+            let w_rec = uniform(h * g * h, kh, rng);
+            let b_ih = uniform(g * h, kh, rng);
+            let b_hh = uniform(g * h, kh, rng);
+            if self.kind == CoreKind::Gru {
+                (w_in, b_ih, w_rec, Some(b_hh))
+            } else {
+                let b: Vec<f32> = b_ih.iter().zip(&b_hh).map(|(a, b)| a + b).collect();
+                (w_in, b, w_rec, None)
+            }
+        };
+        RecurrentCore {
+            input: Linear {
+                weight: param(w_in, [i, g * h], device),
+                bias: Some(param(b_in, [g * h], device)),
+            },
+            recurrent: Linear {
+                weight: param(w_rec, [h, g * h], device),
+                bias: b_rec.map(|b| param(b, [g * h], device)),
+            },
+            tau: (self.kind == CoreKind::Ctrnn).then(|| param(vec![self.tau_init; h], [h], device)),
             kind: self.kind,
             hidden: h,
             dt: self.dt,

@@ -19,7 +19,7 @@ pub mod zoo;
 
 pub use activity::{ActivityDataset, ActivityMeta, Marker, StepRecorder, TrialRecorder};
 pub use agent::{Agent, EpisodeRecord, Percept, PerceptParser, evaluate_agent, run_episode};
-pub use cores::{CoreConfig, CoreKind, CoreState, RecurrentCore};
+pub use cores::{CoreConfig, CoreInit, CoreKind, CoreState, RecurrentCore};
 pub use policy::{ActorCritic, Architecture, PAPER_SIZES, PolicyConfig, PolicyOutput};
 pub use timing_agent::{TimingAgent, TimingAgentConfig};
 pub use timing_train::{

@@ -1,7 +1,7 @@
 //! Actor–critic policies: the CNN trunk, an optional recurrent core shared by actor and
 //! critic (as in the paper's recurrent agents), and SB3-style heads `pi=[64]`, `vf=[64]`.
 
-use crate::cores::{CoreConfig, CoreKind, CoreState, RecurrentCore};
+use crate::cores::{CoreConfig, CoreInit, CoreKind, CoreState, RecurrentCore};
 use crate::fast_tanh as tanh;
 use crate::init::{InitRng, linear_orthogonal};
 use crate::trunk::{Trunk, TrunkConfig};
@@ -145,6 +145,9 @@ pub struct PolicyConfig {
     pub ctrnn_dt: f32,
     /// CTRNN initial raw τ (reference 1.0).
     pub ctrnn_tau_init: f32,
+    /// Initial weight distribution of the recurrent core.
+    #[serde(default)]
+    pub core_init: CoreInit,
 }
 
 impl PolicyConfig {
@@ -157,6 +160,7 @@ impl PolicyConfig {
             actions,
             ctrnn_dt: 0.1,
             ctrnn_tau_init: 1.0,
+            core_init: CoreInit::Lab,
         }
     }
 
@@ -170,6 +174,7 @@ impl PolicyConfig {
             let mut c = CoreConfig::new(kind, feat, self.arch.hidden);
             c.dt = self.ctrnn_dt;
             c.tau_init = self.ctrnn_tau_init;
+            c.init = self.core_init;
             c.init(&mut rng, device)
         });
         let latent = if self.arch.is_recurrent() {

@@ -210,6 +210,10 @@ pub struct TrainConfig {
     pub ppo: PpoConfig,
     /// Curriculum.
     pub curriculum: Curriculum,
+    /// Initial weight distribution of the recurrent core (`lab` or `torch`: PyTorch's
+    /// defaults, as in the paper's code).
+    #[serde(default)]
+    pub core_init: chronocooked_models::CoreInit,
     /// Run folder whose final policy initialises the weights (fine-tuning, e.g. an FI agent
     /// adapting to the uncertainty task); the architecture must match.
     #[serde(default)]
@@ -233,6 +237,7 @@ impl TrainConfig {
             stop_at_success: None,
             ppo: PpoConfig::default(),
             curriculum: Curriculum::None,
+            core_init: chronocooked_models::CoreInit::Lab,
             init_from: None,
         }
     }
@@ -254,6 +259,13 @@ impl TrainConfig {
             "checkpoint_every" => self.checkpoint_every = parse(key, v, "integer >= 0")?,
             "eval_every" => self.eval_every = parse(key, v, "integer >= 0")?,
             "stats_window" => self.stats_window = parse_pos(key, v)?,
+            "core_init" => {
+                self.core_init = match v {
+                    "lab" => chronocooked_models::CoreInit::Lab,
+                    "torch" => chronocooked_models::CoreInit::Torch,
+                    _ => return Err(TrainError::param(key, v, "lab|torch")),
+                }
+            }
             "init_from" => {
                 self.init_from = match v {
                     "none" | "" => None,

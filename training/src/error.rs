@@ -17,7 +17,7 @@ pub enum TrainError {
     },
     /// An override names no setting.
     #[error(
-        "unknown setting `{0}` (see `chronocooked zoo list` for presets; settings: seed, total_steps, obs, n_envs, n_steps, batch_size, n_epochs, bptt_len, recurrent_batches, detach_critic, reservoir_grad_in_norm, engine, gamma, gae_lambda, clip_range, clip_range_vf, ent_coef, vf_coef, max_grad_norm, learning_rate, lr_schedule, adam_eps, target_kl, normalize_advantage, checkpoint_every, eval_every, stop_at_success, stats_window, curriculum, curriculum_thresholds, curriculum_window, curriculum_warmup, never_ready_start/end/ramp, init_from, env.<task parameter>)"
+        "unknown setting `{0}` (see `chronocooked zoo list` for presets; settings: seed, total_steps, obs, n_envs, n_steps, batch_size, n_epochs, bptt_len, recurrent_batches, detach_critic, reservoir_grad_in_norm, engine, gamma, gae_lambda, clip_range, clip_range_vf, ent_coef, vf_coef, max_grad_norm, learning_rate, lr_schedule, adam_eps, target_kl, normalize_advantage, checkpoint_every, eval_every, stop_at_success, stats_window, curriculum, curriculum_thresholds, curriculum_window, curriculum_warmup, never_ready_start/end/ramp, core_init, init_from, env.<task parameter>)"
     )]
     UnknownKey(String),
     /// An override is not `key=value`.

@@ -564,19 +564,20 @@ pub fn job_dir(out: &Path, id: &str) -> PathBuf {
 
 /// Measured training throughput (env steps per second, one core, native engine) of the
 /// reference preset on the lab's 2-core development machine (`BENCHMARKS.md`, "Study
-/// throughput"): `(model, steps/s)`. Recurrent throughput with sequence minibatches depends
-/// on episode lengths; these are whole-run averages of FI / bisection jobs.
+/// throughput"): `(model, steps/s)`. With sequence minibatches the throughput grows as
+/// episodes shorten; size-125 and CNN entries are whole-run averages of paper-core jobs, the
+/// others `bench train` at the start of a run scaled by the size-125 ratio (×1.2).
 pub const REFERENCE_THROUGHPUT: [(&str, f64); 10] = [
-    ("cnn-mlp", 11_000.0),
-    ("lstm8", 4_200.0),
+    ("cnn-mlp", 7_000.0),
+    ("lstm8", 16_000.0),
     ("lstm125", 2_000.0),
-    ("lstm256", 700.0),
-    ("ctrnn8", 6_000.0),
+    ("lstm256", 360.0),
+    ("ctrnn8", 20_000.0),
     ("ctrnn125", 4_900.0),
-    ("ctrnn256", 2_400.0),
-    ("ctrnn-reservoir8", 6_000.0),
+    ("ctrnn256", 2_100.0),
+    ("ctrnn-reservoir8", 20_000.0),
     ("ctrnn-reservoir125", 4_900.0),
-    ("ctrnn-reservoir256", 2_400.0),
+    ("ctrnn-reservoir256", 1_800.0),
 ];
 
 /// Estimated single-core training time of one job (seconds): its resolved step budget over

@@ -47,12 +47,13 @@ impl Trainer {
         let p = &cfg.ppo;
         let mut envs = VecEnv::new(&task, p.n_envs, Autoreset::SameStep)?;
         let encoder = ObsEncoder::new(cfg.obs, &envs);
-        let policy_cfg = PolicyConfig::new(
+        let mut policy_cfg = PolicyConfig::new(
             cfg.model,
             encoder.cells(),
             encoder.channels(),
             Action::COUNT,
         );
+        policy_cfg.core_init = cfg.core_init;
         let device = chronocooked_models::cpu_autodiff();
         let mut model = policy_cfg.init(cfg.seed, &device);
         if let Some(dir) = &cfg.init_from {
