@@ -49,13 +49,19 @@ pub fn run(cmd: PaperCommand) -> Result<()> {
             let s = study::analyse(&a.results)
                 .with_context(|| format!("analysing {}", a.results.display()))?;
             study::write_study(&a.results, &s)?;
+            let figures = chronocooked_analysis::paper::figures::write_figures(
+                &a.results.join("figures"),
+                &s,
+            )?;
             let agree = s.comparison.iter().filter(|r| r.agree == "yes").count();
             println!(
-                "{} jobs analysed; {} of {} paper numbers within the lab's interval; wrote {}",
+                "{} jobs analysed; {} of {} paper numbers within the lab's interval; wrote {} \
+                 and {} figure files",
                 s.jobs,
                 agree,
                 s.comparison.len(),
-                a.results.join("tables.md").display()
+                a.results.join("tables.md").display(),
+                figures.len()
             );
             Ok(())
         }

@@ -139,22 +139,31 @@ pub fn psychometric_grid(
             })
         })
         .collect();
+    write_panels(stem, (models.len(), pairs.len()), &charts)
+}
+
+/// Writes `charts` (row-major; `None` leaves a panel empty) as a grid of `(rows, columns)`
+/// panels of 420 × 300 pixels to `<stem>.svg` / `<stem>.png`; returns the files written.
+pub fn write_panels(
+    stem: &Path,
+    grid: (usize, usize),
+    charts: &[Option<Chart>],
+) -> Result<Vec<PathBuf>, FigureError> {
     ensure_font();
     if let Some(dir) = stem.parent() {
         std::fs::create_dir_all(dir).map_err(err(stem))?;
     }
-    let size = (PANEL.0 * pairs.len() as u32, PANEL.1 * models.len() as u32);
+    let size = (PANEL.0 * grid.1 as u32, PANEL.1 * grid.0 as u32);
     let svg = stem.with_extension("svg");
     let png = stem.with_extension("png");
-    let grid = (models.len(), pairs.len());
     {
         let root = SVGBackend::new(&svg, size).into_drawing_area();
-        draw_grid(&root, grid, &charts, &svg)?;
+        draw_grid(&root, grid, charts, &svg)?;
         root.present().map_err(err(&svg))?;
     }
     {
         let root = BitMapBackend::new(&png, size).into_drawing_area();
-        draw_grid(&root, grid, &charts, &png)?;
+        draw_grid(&root, grid, charts, &png)?;
         root.present().map_err(err(&png))?;
     }
     Ok(vec![svg, png])

@@ -8,7 +8,7 @@ pub mod grid;
 
 use draw::err;
 pub use draw::{Chart, FigureError, Series, write_chart, write_heatmap};
-pub use grid::psychometric_grid;
+pub use grid::{psychometric_grid, write_panels};
 use std::path::{Path, PathBuf};
 
 /// The standard figures of one evaluation into `dir` (SVG + PNG each): psychometric curve

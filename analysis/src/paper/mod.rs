@@ -9,12 +9,14 @@
 //! * [`multitimer`] — curriculum levels reached, steps per level, reward per TD;
 //! * [`reference`] — the paper's published numbers;
 //! * [`compare`] — `comparison.csv` rows and the agreement rule;
+//! * [`figures`] — the study's figures in the paper's form;
 //! * [`study`] — the whole analysis of a results folder, written as JSON, CSV and Markdown.
 
 pub mod bisection;
 pub mod collect;
 pub mod compare;
 pub mod fi;
+pub mod figures;
 pub mod lsq;
 pub mod multitimer;
 pub mod reference;

@@ -1,0 +1,267 @@
+//! Figures of the paper's study in the paper's form (SVG + PNG): FOC distributions per TD,
+//! mean FOC vs TD and SD vs mean with their regression lines, the psychometric grid (models ×
+//! anchor pairs) with the paper's least-squares fit and the lab's maximum-likelihood fit,
+//! WF against log2(L/S), and the multi-timer reward per curriculum level.
+
+use super::bisection::BisectionModel;
+use super::fi::FiModel;
+use super::study::PaperStudy;
+use crate::figures::{Chart, FigureError, Series, write_chart, write_panels};
+use crate::foc::linear_fit;
+use std::path::{Path, PathBuf};
+
+fn series(label: &str, points: Vec<(f64, f64)>, line: bool, color: usize) -> Series {
+    Series {
+        label: label.into(),
+        points,
+        line,
+        color,
+    }
+}
+
+fn regression_line(label: &str, pts: &[(f64, f64)], color: usize) -> Option<Series> {
+    let (x, y): (Vec<f64>, Vec<f64>) = pts.iter().copied().filter(|p| p.1.is_finite()).unzip();
+    let (slope, icpt, r2) = linear_fit(&x, &y);
+    if !slope.is_finite() {
+        return None;
+    }
+    let lo = x.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = x.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    Some(series(
+        &format!("{label} fit (R² {r2:.2})"),
+        vec![(lo, slope * lo + icpt), (hi, slope * hi + icpt)],
+        true,
+        color,
+    ))
+}
+
+/// One panel per model: every pooled FOC per TD (dots, spread slightly along x) with the
+/// per-TD mean (line) and FOC = TD (grey).
+pub fn foc_panels(fi: &[FiModel]) -> Vec<Option<Chart>> {
+    fi.iter()
+        .map(|m| {
+            let mut dots = Vec::new();
+            for c in &m.cells {
+                let n = c.focs.len().max(1) as f64;
+                for (i, f) in c.focs.iter().enumerate() {
+                    let jitter = (i as f64 / n - 0.5) * 0.8;
+                    dots.push((f64::from(c.td) + jitter, *f));
+                }
+            }
+            let tds: Vec<f64> = m.cells.iter().map(|c| f64::from(c.td)).collect();
+            let means = m
+                .cells
+                .iter()
+                .map(|c| (f64::from(c.td), c.pooled.mean))
+                .collect();
+            let lo = tds.first().copied().unwrap_or(0.0);
+            let hi = tds.last().copied().unwrap_or(1.0);
+            Some(Chart {
+                title: format!("{}: first oven check", m.model),
+                x_label: "TD (steps)".into(),
+                y_label: "FOC (steps)".into(),
+                series: vec![
+                    series("FOC = TD", vec![(lo, lo), (hi, hi)], true, 7),
+                    series("episodes", dots, false, 0),
+                    series("mean", means, true, 3),
+                ],
+                markers: vec![],
+                y_range: None,
+            })
+        })
+        .collect()
+}
+
+/// Mean FOC vs TD and SD vs mean FOC, every model with its regression line.
+pub fn scalar_panels(fi: &[FiModel]) -> Vec<Option<Chart>> {
+    let mut mean_vs_td = Vec::new();
+    let mut sd_vs_mean = Vec::new();
+    for (k, m) in fi.iter().enumerate() {
+        let a: Vec<(f64, f64)> = m
+            .cells
+            .iter()
+            .map(|c| (f64::from(c.td), c.pooled.mean))
+            .collect();
+        let b: Vec<(f64, f64)> = m
+            .cells
+            .iter()
+            .map(|c| (c.pooled.mean, c.pooled.sd))
+            .collect();
+        mean_vs_td.push(series(&m.model, a.clone(), false, k));
+        mean_vs_td.extend(regression_line(&m.model, &a, k));
+        sd_vs_mean.push(series(&m.model, b.clone(), false, k));
+        sd_vs_mean.extend(regression_line(&m.model, &b, k));
+    }
+    vec![
+        Some(Chart {
+            title: "mean FOC vs TD".into(),
+            x_label: "TD (steps)".into(),
+            y_label: "mean FOC (steps)".into(),
+            series: mean_vs_td,
+            markers: vec![],
+            y_range: None,
+        }),
+        Some(Chart {
+            title: "SD vs mean FOC (scalar property)".into(),
+            x_label: "mean FOC (steps)".into(),
+            y_label: "SD of FOC (steps)".into(),
+            series: sd_vs_mean,
+            markers: vec![],
+            y_range: None,
+        }),
+    ]
+}
+
+fn logistic_points(bp: f64, k: f64, hi: u32) -> Vec<(f64, f64)> {
+    (0..=(hi * 10))
+        .map(|i| {
+            let d = f64::from(i) / 10.0;
+            let p = if k > 0.0 {
+                1.0 / (1.0 + (-(d - bp) / k).exp())
+            } else {
+                f64::from(u8::from(d > bp))
+            };
+            (d, p)
+        })
+        .collect()
+}
+
+/// Models × anchor pairs: the run-averaged P(long), the paper's least-squares fit and the
+/// lab's binomial maximum-likelihood fit; returns the grid shape and its panels.
+pub fn psychometric_panels(bis: &[BisectionModel]) -> ((usize, usize), Vec<Option<Chart>>) {
+    let mut pairs: Vec<(u32, u32)> = bis
+        .iter()
+        .flat_map(|m| m.cells.iter().map(|c| (c.short, c.long)))
+        .collect();
+    pairs.sort_unstable();
+    pairs.dedup();
+    let mut panels = Vec::new();
+    for m in bis {
+        for &(s, l) in &pairs {
+            let Some(c) = m.cells.iter().find(|c| (c.short, c.long) == (s, l)) else {
+                panels.push(None);
+                continue;
+            };
+            let avg: Vec<(f64, f64)> = c
+                .curve
+                .iter()
+                .enumerate()
+                .map(|(i, p)| (i as f64 + 1.0, *p))
+                .collect();
+            let mut ser = vec![series("run average", avg, false, 0)];
+            if let Some(f) = c.fit {
+                ser.push(series(
+                    &format!("least squares (BP {:.1}, WF {:.2})", f.bp, f.wf),
+                    logistic_points(f.bp, f.k, l + 4),
+                    true,
+                    3,
+                ));
+            }
+            if let Some(f) = &c.mle {
+                ser.push(series(
+                    &format!("max. likelihood (BP {:.1})", f.bp),
+                    logistic_points(f.bp, f.scale, l + 4),
+                    true,
+                    2,
+                ));
+            }
+            let am = 0.5 * f64::from(s + l);
+            let gm = f64::from(s * l).sqrt();
+            panels.push(Some(Chart {
+                title: format!("{} {s}-{l}", m.model),
+                x_label: "probe duration (steps)".into(),
+                y_label: "P(long)".into(),
+                series: ser,
+                markers: vec![(am, "AM".into()), (gm, "GM".into())],
+                y_range: Some((-0.05, 1.05)),
+            }));
+        }
+    }
+    ((bis.len(), pairs.len()), panels)
+}
+
+/// WF (least-squares fit of the averaged curve) against log2(L/S), per model with its
+/// regression line.
+pub fn wf_chart(bis: &[BisectionModel]) -> Chart {
+    let mut ser = Vec::new();
+    for (k, m) in bis.iter().enumerate() {
+        let pts: Vec<(f64, f64)> = m
+            .cells
+            .iter()
+            .filter_map(|c| {
+                let f = c.fit?;
+                (f.wf.is_finite() && f.wf > 0.0)
+                    .then(|| ((f64::from(c.long) / f64::from(c.short)).log2(), f.wf))
+            })
+            .collect();
+        if pts.is_empty() {
+            continue;
+        }
+        ser.push(series(&m.model, pts.clone(), false, k));
+        ser.extend(regression_line(&m.model, &pts, k));
+    }
+    Chart {
+        title: "Weber fraction vs anchor ratio".into(),
+        x_label: "log2(L/S)".into(),
+        y_label: "WF".into(),
+        series: ser,
+        markers: vec![],
+        y_range: None,
+    }
+}
+
+/// Multi-timer: the final policy's mean reward per TD, one line per model and curriculum.
+pub fn multitimer_chart(s: &PaperStudy) -> Chart {
+    let ser = s
+        .multitimer
+        .iter()
+        .enumerate()
+        .map(|(k, c)| {
+            series(
+                &format!("{} {} (level {:.1})", c.model, c.curriculum, c.level.mean),
+                c.per_td
+                    .iter()
+                    .map(|(td, r, _)| (f64::from(*td), r.mean))
+                    .collect(),
+                true,
+                k,
+            )
+        })
+        .collect();
+    Chart {
+        title: "multi-timer: reward per TD (final policy)".into(),
+        x_label: "TD (steps)".into(),
+        y_label: "mean reward".into(),
+        series: ser,
+        markers: vec![],
+        y_range: Some((-0.05, 1.05)),
+    }
+}
+
+/// Writes every figure into `dir`; returns the files written.
+pub fn write_figures(dir: &Path, s: &PaperStudy) -> Result<Vec<PathBuf>, FigureError> {
+    let mut out = Vec::new();
+    if !s.fi.is_empty() {
+        let foc = foc_panels(&s.fi);
+        let cols = foc.len().min(4);
+        let rows = foc.len().div_ceil(cols);
+        out.extend(write_panels(&dir.join("fi_foc"), (rows, cols), &foc)?);
+        out.extend(write_panels(
+            &dir.join("fi_scalar"),
+            (1, 2),
+            &scalar_panels(&s.fi),
+        )?);
+    }
+    if !s.bisection.is_empty() {
+        let (grid, panels) = psychometric_panels(&s.bisection);
+        out.extend(write_panels(&dir.join("bisection_grid"), grid, &panels)?);
+        out.extend(write_chart(
+            &dir.join("wf_vs_ratio"),
+            &wf_chart(&s.bisection),
+        )?);
+    }
+    if !s.multitimer.is_empty() {
+        out.extend(write_chart(&dir.join("multitimer"), &multitimer_chart(s))?);
+    }
+    Ok(out)
+}
