@@ -191,3 +191,65 @@ fn pearson_and_agreement_rules_have_known_answers() {
     assert_eq!(agree_sd(0.5, 1.0, 4), "no");
     assert_eq!(agree_sd(4.0, 1.0, 4), "no");
 }
+
+#[test]
+fn study_figures_and_comparison_come_out_of_constructed_jobs() {
+    use chronocooked_analysis::paper::compare::compare;
+    use chronocooked_analysis::paper::figures::write_figures;
+    use chronocooked_analysis::paper::multitimer::analyse_multitimer;
+    use chronocooked_analysis::paper::study::{PaperStudy, job_costs};
+    let mut jobs = Vec::new();
+    for seed in 1..=3u64 {
+        for td in [4u32, 12] {
+            jobs.push(CompactJob {
+                job: job("FixedInterval-v0", "lstm125", seed, &[&format!("td={td}")], 20.0),
+                episodes: (0..12)
+                    .map(|c| ep("fi", td, (c, 0), Some((td + (c as u32 % 3)) as i32 - 1), 0))
+                    .collect(),
+                curve: vec![],
+            });
+        }
+        let mut b = bisection_job(seed, 30.0, 7 + seed as u32 % 2);
+        b.job.model = "lstm125".into();
+        jobs.push(b);
+    }
+    let fi = analyse_fi(&jobs);
+    let bisection = analyse_bisection(&jobs);
+    let multitimer = analyse_multitimer(&jobs);
+    let comparison = compare(&fi, &bisection, &multitimer);
+    // FI CV at TD 4 and 12, FOC means and SDs at 4 and 12, both R² tables (2 × 2), the
+    // bisection WF / DL rows of 4-12 (means and SDs).
+    let tables: Vec<&str> = comparison.iter().map(|r| r.table.as_str()).collect();
+    assert_eq!(tables.iter().filter(|t| **t == "fi_cv").count(), 2);
+    assert_eq!(tables.iter().filter(|t| t.starts_with("bisection")).count(), 4);
+    assert!(comparison.iter().all(|r| r.n <= 3));
+    let cv4 = comparison
+        .iter()
+        .find(|r| r.table == "fi_cv" && r.row == "4")
+        .unwrap();
+    // FOCs 3, 4, 5 repeated: mean 4, SD √(8/11)·… computed from the pooled list.
+    let focs: Vec<f64> = (0..36).map(|i| f64::from(3 + (i % 12) % 3)).collect();
+    let m = focs.iter().sum::<f64>() / 36.0;
+    let sd = (focs.iter().map(|f| (f - m).powi(2)).sum::<f64>() / 35.0).sqrt();
+    assert!((cv4.lab_mean - sd / m).abs() < 1e-12);
+    let study = PaperStudy {
+        jobs: jobs.len(),
+        cost: job_costs(&jobs),
+        fi,
+        bisection,
+        multitimer,
+        comparison,
+    };
+    let dir = std::env::temp_dir().join(format!("cc-paper-fig-{}", std::process::id()));
+    let files = write_figures(&dir, &study).unwrap();
+    let names: Vec<String> = files
+        .iter()
+        .map(|p| p.file_name().unwrap().to_string_lossy().to_string())
+        .collect();
+    for want in ["fi_foc.svg", "fi_scalar.png", "bisection_grid.svg", "wf_vs_ratio.png"] {
+        assert!(names.iter().any(|n| n == want), "{want} missing from {names:?}");
+    }
+    let grid = std::fs::read_to_string(dir.join("bisection_grid.svg")).unwrap();
+    assert!(grid.contains("least squares") && grid.contains("max. likelihood"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
