@@ -1,17 +1,8 @@
 //! `chronocooked` — the Chronocooked Lab command line (a thin layer over the crates).
 
-mod adapt_cmd;
-mod demo;
-mod env_cmd;
-mod eval_cmd;
-mod export_cmd;
-mod paper_cmd;
-mod play;
-mod report_cmd;
-mod study;
-mod sweep_cmd;
-mod timing_cmd;
-mod train_cmd;
+mod cmd;
+
+use cmd::{adapt, bench, demo, env, eval, export, paper, record, report, sweep, train, zoo};
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -29,64 +20,64 @@ enum Command {
     /// Tasks: list, replay action lists, render episodes, play in the terminal.
     Env {
         #[command(subcommand)]
-        command: env_cmd::EnvCommand,
+        command: env::EnvCommand,
     },
     /// The built-in demo study: oracle, random, timing models and short LSTM/CTRNN agents on
     /// FI and bisection — trained, evaluated, recorded, exported — and the leaderboard.
-    Demo(study::StudyArgs),
+    Demo(demo::StudyArgs),
     /// Train a PPO agent or a timing model (run folder with config, curves, model).
-    Train(train_cmd::TrainArgs),
+    Train(train::TrainArgs),
     /// Evaluate an agent with its task's protocol: per-episode records + metrics JSON.
-    Eval(eval_cmd::EvalArgs),
+    Eval(eval::EvalArgs),
     /// Uncertainty adaptation: keep training a trained agent on a new task and count the
     /// episodes it needs to adapt.
-    Adapt(adapt_cmd::AdaptArgs),
+    Adapt(adapt::AdaptArgs),
     /// Export activity / evaluation records to NPZ (numpy), CSV and JSON metadata.
-    Export(export_cmd::ExportArgs),
+    Export(export::ExportArgs),
     /// Leaderboard (HTML with inline figures, Markdown, CSV) from `eval` folders.
-    Report(report_cmd::ReportArgs),
+    Report(report::ReportArgs),
     /// Run a sweep file's jobs in parallel (train → eval → record → export, finished jobs
     /// skipped), then the leaderboard; or `--emit slurm` for a cluster job array.
-    Sweep(sweep_cmd::SweepArgs),
+    Sweep(sweep::SweepArgs),
     /// One job of a sweep, in this process (what sweep workers and Slurm tasks run).
     #[command(name = "sweep-job", hide = true)]
-    SweepJob(sweep_cmd::SweepJobArgs),
+    SweepJob(sweep::SweepJobArgs),
     /// Record the neural activity of a trained agent (JSON activity dataset).
-    Record(timing_cmd::RecordArgs),
+    Record(record::RecordArgs),
     /// The model zoo: architectures, tasks and presets.
     Zoo {
         #[command(subcommand)]
-        command: train_cmd::ZooCommand,
+        command: zoo::ZooCommand,
     },
     /// The paper's study: collect a sweep's compact results, analyse them as the paper does
     /// and compare with the paper's numbers.
     Paper {
         #[command(subcommand)]
-        command: paper_cmd::PaperCommand,
+        command: paper::PaperCommand,
     },
     /// Benchmarks (`bench env`: env steps/s).
     Bench {
         #[command(subcommand)]
-        command: env_cmd::BenchCommand,
+        command: bench::BenchCommand,
     },
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Env { command } => env_cmd::run(command),
-        Command::Demo(args) => study::run(args),
-        Command::Bench { command } => env_cmd::run_bench(command),
-        Command::Train(args) => train_cmd::run(args),
-        Command::Record(args) => timing_cmd::record(args),
-        Command::Eval(args) => eval_cmd::run(args),
-        Command::Export(args) => export_cmd::run(args),
-        Command::Adapt(args) => adapt_cmd::run(args),
-        Command::Report(args) => report_cmd::run(args),
-        Command::Sweep(args) => sweep_cmd::run(args),
-        Command::SweepJob(args) => sweep_cmd::run_job_cmd(args),
-        Command::Zoo { command } => train_cmd::run_zoo(command),
-        Command::Paper { command } => paper_cmd::run(command),
+        Command::Env { command } => env::run(command),
+        Command::Demo(args) => demo::run(args),
+        Command::Bench { command } => bench::run_bench(command),
+        Command::Train(args) => train::run(args),
+        Command::Record(args) => record::record(args),
+        Command::Eval(args) => eval::run(args),
+        Command::Export(args) => export::run(args),
+        Command::Adapt(args) => adapt::run(args),
+        Command::Report(args) => report::run(args),
+        Command::Sweep(args) => sweep::run(args),
+        Command::SweepJob(args) => sweep::run_job_cmd(args),
+        Command::Zoo { command } => zoo::run_zoo(command),
+        Command::Paper { command } => paper::run(command),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -202,7 +202,13 @@ fn study_figures_and_comparison_come_out_of_constructed_jobs() {
     for seed in 1..=3u64 {
         for td in [4u32, 12] {
             jobs.push(CompactJob {
-                job: job("FixedInterval-v0", "lstm125", seed, &[&format!("td={td}")], 20.0),
+                job: job(
+                    "FixedInterval-v0",
+                    "lstm125",
+                    seed,
+                    &[&format!("td={td}")],
+                    20.0,
+                ),
                 episodes: (0..12)
                     .map(|c| ep("fi", td, (c, 0), Some((td + (c as u32 % 3)) as i32 - 1), 0))
                     .collect(),
@@ -221,7 +227,10 @@ fn study_figures_and_comparison_come_out_of_constructed_jobs() {
     // bisection WF / DL rows of 4-12 (means and SDs).
     let tables: Vec<&str> = comparison.iter().map(|r| r.table.as_str()).collect();
     assert_eq!(tables.iter().filter(|t| **t == "fi_cv").count(), 2);
-    assert_eq!(tables.iter().filter(|t| t.starts_with("bisection")).count(), 4);
+    assert_eq!(
+        tables.iter().filter(|t| t.starts_with("bisection")).count(),
+        4
+    );
     assert!(comparison.iter().all(|r| r.n <= 3));
     let cv4 = comparison
         .iter()
@@ -246,8 +255,16 @@ fn study_figures_and_comparison_come_out_of_constructed_jobs() {
         .iter()
         .map(|p| p.file_name().unwrap().to_string_lossy().to_string())
         .collect();
-    for want in ["fi_foc.svg", "fi_scalar.png", "bisection_grid.svg", "wf_vs_ratio.png"] {
-        assert!(names.iter().any(|n| n == want), "{want} missing from {names:?}");
+    for want in [
+        "fi_foc.svg",
+        "fi_scalar.png",
+        "bisection_grid.svg",
+        "wf_vs_ratio.png",
+    ] {
+        assert!(
+            names.iter().any(|n| n == want),
+            "{want} missing from {names:?}"
+        );
     }
     let grid = std::fs::read_to_string(dir.join("bisection_grid.svg")).unwrap();
     assert!(grid.contains("least squares") && grid.contains("max. likelihood"));

@@ -114,12 +114,21 @@ fn deep_entry(arch: Architecture) -> ZooEntry {
                 ps.push(p(
                     "tau_raw",
                     1.0,
-                    "initial raw time constant per unit (learnable; tau = softplus(tau_raw))",
+                    if arch.reservoir {
+                        "initial raw time constant per unit (fixed; tau = softplus(tau_raw))"
+                    } else {
+                        "initial raw time constant per unit (learnable; tau = softplus(tau_raw))"
+                    },
                 ));
             }
+            let trained = if arch.reservoir {
+                " that is never trained (a fixed random reservoir, as the paper's code leaves its CTRNN: only the trunk and heads learn)"
+            } else {
+                ""
+            };
             (
                 format!(
-                    "CNN trunk + {what} core ({} units) shared by actor and critic + heads pi=[64], vf=[64]",
+                    "CNN trunk + {what} core ({} units){trained} shared by actor and critic + heads pi=[64], vf=[64]",
                     arch.hidden
                 ),
                 ps,

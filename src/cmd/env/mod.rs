@@ -1,9 +1,10 @@
-//! `env …` and `bench env` subcommands.
+//! `env`: list the tasks, replay action lists, render episodes, play in the terminal, and
+//! the oracle-vs-random tour (`env demo`).
 
 use anyhow::{Context, Result, bail};
 use chronocooked_env::{
-    Action, ChronoEnv, Oracle, ResetOptions, all_tasks, bench, find_task, make_config,
-    parse_action_list, render, task::common_params, trace,
+    Action, ChronoEnv, Oracle, ResetOptions, all_tasks, parse_action_list, render,
+    task::common_params, trace,
 };
 use clap::{Args, Subcommand, ValueEnum};
 use rand::{Rng, SeedableRng};
@@ -11,7 +12,8 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 use std::io::Write;
 use std::path::PathBuf;
 
-use crate::play;
+mod demo;
+mod play;
 
 /// Task, overrides and reset options shared by replay, render and play.
 #[derive(Args, Debug, Clone)]
@@ -103,7 +105,7 @@ pub enum EnvCommand {
         actions: String,
     },
     /// Oracle vs random policy on every task from every start cell: GIFs and a summary.
-    Demo(crate::demo::DemoArgs),
+    Demo(demo::DemoArgs),
     /// Render an oracle or random episode as an animated GIF (and optional PNG frames / ASCII).
     Render {
         #[command(flatten)]
@@ -138,53 +140,6 @@ pub enum EnvCommand {
     },
 }
 
-/// `bench` subcommands.
-#[derive(Subcommand, Debug)]
-pub enum BenchCommand {
-    /// Env steps/s on one thread: scalar and vectorised, codes and one-hot, random actions.
-    Env {
-        /// Task id.
-        #[arg(long, default_value = "FixedInterval-v0")]
-        task: String,
-        /// Parameter overrides `key=value`.
-        #[arg(long = "set", value_name = "KEY=VALUE")]
-        set: Vec<String>,
-        /// Envs in the vectorised runs.
-        #[arg(long, default_value_t = 256)]
-        n_envs: usize,
-        /// Seconds per measurement.
-        #[arg(long, default_value_t = 3.0)]
-        seconds: f64,
-        /// Print JSON lines instead of a table.
-        #[arg(long)]
-        json: bool,
-    },
-    /// PPO training env-steps/s (rollout + optimisation) per model on one task.
-    Train {
-        /// Task id.
-        #[arg(long, default_value = "FixedInterval-v0")]
-        task: String,
-        /// Models to measure (comma-separated).
-        #[arg(long, default_value = "cnn-mlp,lstm125,ctrnn125")]
-        models: String,
-        /// Preset.
-        #[arg(long, default_value = "reference")]
-        preset: String,
-        /// Updates measured per model (after one warm-up update).
-        #[arg(long, default_value_t = 5)]
-        updates: u64,
-        /// Extra settings `key=value`.
-        #[arg(long = "set", value_name = "KEY=VALUE")]
-        set: Vec<String>,
-    },
-    /// Timing-model trials/s on a 12-step FI trial (after brief training), recording off/on.
-    Timing {
-        /// Trials measured per model and setting.
-        #[arg(long, default_value_t = 20000)]
-        trials: usize,
-    },
-}
-
 /// Runs an `env` subcommand.
 pub fn run(cmd: EnvCommand) -> Result<()> {
     match cmd {
@@ -199,7 +154,7 @@ pub fn run(cmd: EnvCommand) -> Result<()> {
             }
             Ok(())
         }
-        EnvCommand::Demo(args) => crate::demo::run(args),
+        EnvCommand::Demo(args) => demo::run(args),
         EnvCommand::Render {
             task,
             policy,
@@ -346,43 +301,4 @@ fn render_episode(
         out.display()
     );
     Ok(())
-}
-
-/// Runs a `bench` subcommand.
-pub fn run_bench(cmd: BenchCommand) -> Result<()> {
-    match cmd {
-        BenchCommand::Train {
-            task,
-            models,
-            preset,
-            updates,
-            set,
-        } => crate::train_cmd::bench_train(&task, &models, &preset, updates, &set),
-        BenchCommand::Timing { trials } => crate::timing_cmd::bench(trials),
-        BenchCommand::Env {
-            task,
-            set,
-            n_envs,
-            seconds,
-            json,
-        } => {
-            find_task(&task)?;
-            make_config(&task, &set)?;
-            if n_envs == 0 {
-                bail!("--n-envs must be >= 1");
-            }
-            let rows = bench::run(&task, &set, n_envs, seconds)?;
-            for r in rows {
-                if json {
-                    println!("{}", serde_json::to_string(&r)?);
-                } else {
-                    println!(
-                        "{:<18} {:<8} {:<7} {:>14.0} steps/s  ({} steps in {:.2} s)",
-                        r.task, r.mode, r.encoding, r.steps_per_sec, r.steps, r.seconds
-                    );
-                }
-            }
-            Ok(())
-        }
-    }
 }

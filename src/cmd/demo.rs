@@ -10,7 +10,7 @@ use clap::Args;
 use std::path::PathBuf;
 
 /// The demo sweep file, built in.
-pub const DEMO_SWEEP: &str = include_str!("../sweeps/demo.toml");
+pub const DEMO_SWEEP: &str = include_str!("../../sweeps/demo.toml");
 
 /// Arguments of `demo`.
 #[derive(Args, Debug)]
@@ -56,9 +56,9 @@ pub fn run(args: StudyArgs) -> Result<()> {
     let file = std::path::absolute(&file)?;
     let workers = args
         .workers
-        .unwrap_or_else(crate::sweep_cmd::default_workers);
+        .unwrap_or_else(crate::cmd::sweep::default_workers);
     let t0 = std::time::Instant::now();
-    crate::sweep_cmd::run_sweep(&sweep, &file, &args.out, workers, true)?;
+    crate::cmd::sweep::run_sweep(&sweep, &file, &args.out, workers, true)?;
     eprintln!(
         "demo finished in {:.0} s; leaderboard: {}",
         t0.elapsed().as_secs_f64(),

@@ -4,7 +4,7 @@
 //! codes, q quits. With a terminal on stdin keys are read one by one (raw mode);
 //! otherwise characters are read from stdin (scripted sessions, tests).
 
-use crate::env_cmd::TaskArgs;
+use super::TaskArgs;
 use anyhow::{Context, Result};
 use chronocooked_env::{Action, ChronoEnv, render, trace::TraceLine};
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers, read};

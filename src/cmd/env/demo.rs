@@ -2,7 +2,7 @@
 //! (and every trained TD), a GIF of one oracle episode per task and a summary table
 //! (text + JSON).
 
-use crate::env_cmd::{RenderPolicy, play_episode};
+use super::{RenderPolicy, play_episode};
 use anyhow::Result;
 use chronocooked_env::{ChronoEnv, ResetOptions, TaskFamily, TaskParams, all_tasks, render};
 use clap::Args;

@@ -1,76 +1,15 @@
-//! Timing-model training (`train --model ddm|sbf|timecells-*`), `record` (activity
-//! datasets of any trained agent) and `bench timing`.
+//! `record`: the neural activity of any trained agent as an activity dataset (JSON), with
+//! heat maps and the neural summary.
 
-use anyhow::{Context, Result, bail};
+use anyhow::Result;
 use chronocooked_env::{TaskConfig, make_config};
 use chronocooked_models::activity::{ActivityMeta, TrialRecorder};
-use chronocooked_models::zoo::{TIMING_MODELS, make_timing_agent};
 use chronocooked_models::{Agent, evaluate_agent};
+use chronocooked_training::eval_tds;
 use chronocooked_training::run_dir::write_atomic;
 use chronocooked_training::timing_run::load_agent;
-use chronocooked_training::{TimingRunConfig, eval_tds, run_timing_training};
 use clap::Args;
-use indicatif::{ProgressBar, ProgressStyle};
 use std::path::{Path, PathBuf};
-
-/// Trains a timing model (`args` of `train`); `resume` reruns a stopped run from its config.
-pub fn train(
-    task: &str,
-    model: &str,
-    seed: u64,
-    sets: &[String],
-    out: Option<PathBuf>,
-    resume: Option<&Path>,
-    quiet: bool,
-) -> Result<()> {
-    let command = std::env::args().collect::<Vec<_>>().join(" ");
-    let (cfg, dir) = match resume {
-        Some(dir) => {
-            let text = std::fs::read_to_string(dir.join("config.json"))
-                .with_context(|| format!("{} is not a run folder", dir.display()))?;
-            (
-                serde_json::from_str::<TimingRunConfig>(&text)?,
-                dir.to_path_buf(),
-            )
-        }
-        None => {
-            let mut cfg = TimingRunConfig::new(task, model, seed);
-            for kv in sets {
-                cfg.set(kv)?;
-            }
-            let dir =
-                out.unwrap_or_else(|| PathBuf::from(format!("runs/{task}/{model}/seed{seed}")));
-            (cfg, dir)
-        }
-    };
-    let bar = (!quiet).then(|| {
-        let b = ProgressBar::new(cfg.train.episodes as u64);
-        b.set_style(
-            ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} episodes {msg}")
-                .expect("valid template")
-                .progress_chars("=> "),
-        );
-        b
-    });
-    let summary = run_timing_training(&cfg, &dir, &command, |p| {
-        if let Some(b) = &bar {
-            b.set_position(p.episode as u64);
-            b.set_message(format!(
-                "success {:.0}%  eval {:.0}%",
-                p.train_success * 100.0,
-                p.eval_success.unwrap_or(f64::NAN) * 100.0
-            ));
-        }
-    })?;
-    if let Some(b) = bar {
-        b.finish();
-    }
-    if let Err(e) = chronocooked_analysis::figures::learning_curve(&dir) {
-        eprintln!("warning: learning-curve figure not written: {e}");
-    }
-    println!("{}", serde_json::to_string_pretty(&summary)?);
-    Ok(())
-}
 
 /// Arguments of `record`.
 #[derive(Args, Debug)]
@@ -237,52 +176,4 @@ pub fn record_dataset(
         evaluate_agent(agent, config, tds, seed.wrapping_add(r), Some(&mut rec))?;
     }
     Ok(rec.finish())
-}
-
-/// `bench timing`: trials/s of every timing model on a 12-step FI trial, recording off/on.
-pub fn bench(trials: usize) -> Result<()> {
-    if trials == 0 {
-        bail!("--trials must be positive");
-    }
-    let config = make_config("FixedInterval-v0", &["td=12"])?;
-    let env = chronocooked_env::ChronoEnv::new(&config)?;
-    for m in TIMING_MODELS {
-        let mut agent = make_timing_agent(m.name, &env, 0).map_err(anyhow::Error::msg)?;
-        // Train briefly so that trials are the real, timed behaviour.
-        let train = chronocooked_models::TimingTrainConfig {
-            episodes: 1500,
-            eval_every: 0,
-            ..Default::default()
-        };
-        chronocooked_models::train_timing_agent(&mut agent, &config, &train, &[12], 0, |_| {})?;
-        let free = env.layout().free_cells().len();
-        let reps = trials.div_ceil(free).max(1);
-        let mut rates = Vec::new();
-        for recording in [false, true] {
-            let t0 = std::time::Instant::now();
-            let mut n = 0;
-            for r in 0..reps {
-                if recording {
-                    let ds = record_dataset(
-                        &mut agent,
-                        &config,
-                        "FixedInterval-v0",
-                        &[],
-                        &[12],
-                        1,
-                        r as u64,
-                    )?;
-                    n += ds.trials.len();
-                } else {
-                    n += evaluate_agent(&mut agent, &config, &[12], r as u64, None)?.len();
-                }
-            }
-            rates.push(n as f64 / t0.elapsed().as_secs_f64());
-        }
-        println!(
-            "{:<20} {:>10.0} trials/s  recording on: {:>10.0} trials/s",
-            m.name, rates[0], rates[1]
-        );
-    }
-    Ok(())
 }

@@ -351,7 +351,7 @@ pub fn run_job(sweep: &SweepFile, job: &Job, out: &Path) -> Result<()> {
         eprintln!("[{}] {stage}", job.id);
         match *stage {
             "train" => train_stage(sweep, job, &run)?,
-            "eval" => crate::eval_cmd::run(crate::eval_cmd::EvalArgs {
+            "eval" => crate::cmd::eval::run(crate::cmd::eval::EvalArgs {
                 run: trained.then(|| run.clone()),
                 agent: (!trained).then(|| job.model.clone()),
                 task: (!trained).then(|| job.task.clone()),
@@ -362,7 +362,7 @@ pub fn run_job(sweep: &SweepFile, job: &Job, out: &Path) -> Result<()> {
                 from: None,
                 out: dir.join("eval"),
             })?,
-            "adapt" => crate::adapt_cmd::run(crate::adapt_cmd::AdaptArgs {
+            "adapt" => crate::cmd::adapt::run(crate::cmd::adapt::AdaptArgs {
                 run: run.clone(),
                 task: "Uncertainty-v0".into(),
                 env: job
@@ -379,7 +379,7 @@ pub fn run_job(sweep: &SweepFile, job: &Job, out: &Path) -> Result<()> {
                 seed: job.seed,
                 out: dir.join("adapt"),
             })?,
-            "record" => crate::timing_cmd::record(crate::timing_cmd::RecordArgs {
+            "record" => crate::cmd::record::record(crate::cmd::record::RecordArgs {
                 run: run.clone(),
                 task: None,
                 env: vec![],
@@ -390,7 +390,7 @@ pub fn run_job(sweep: &SweepFile, job: &Job, out: &Path) -> Result<()> {
                 summary: true,
                 figures: Some(dir.join("neural_figures")),
             })?,
-            "export" => crate::export_cmd::run(crate::export_cmd::ExportArgs {
+            "export" => crate::cmd::export::run(crate::cmd::export::ExportArgs {
                 activity: (trained && sweep.record).then(|| dir.join("activity.json")),
                 eval: Some(dir.join("eval")),
                 window: 200,
@@ -414,7 +414,7 @@ fn train_stage(sweep: &SweepFile, job: &Job, run: &Path) -> Result<()> {
         return Ok(());
     }
     let resume = job.family == Family::DeepRl && run.join("config.json").is_file();
-    crate::train_cmd::run(crate::train_cmd::TrainArgs {
+    crate::cmd::train::run(crate::cmd::train::TrainArgs {
         task: job.task.clone(),
         model: job.model.clone(),
         preset: sweep.preset.clone(),

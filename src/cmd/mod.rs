@@ -1,0 +1,28 @@
+//! One module per subcommand, named after it: each parses its arguments (clap) and calls
+//! the libraries (ripgrep's thin CLI over libraries).
+//!
+//! * [`env`] — `env list | replay | render | play | demo` (the task tour);
+//! * [`demo`] — `demo`: the built-in demo study (`sweeps/demo.toml`);
+//! * [`train`] — `train`: PPO agents and timing models;
+//! * [`eval`] — `eval`: the reference evaluation protocol;
+//! * [`adapt`] — `adapt`: uncertainty adaptation;
+//! * [`record`] — `record`: neural activity datasets;
+//! * [`export`] — `export`: NPZ / CSV export;
+//! * [`report`] — `report`: the leaderboard;
+//! * [`sweep`] — `sweep` and the hidden `sweep-job`;
+//! * [`paper`] — `paper collect | analyse`: the paper's study;
+//! * [`zoo`] — `zoo list | show`;
+//! * [`bench`] — `bench env | train | timing`.
+
+pub mod adapt;
+pub mod bench;
+pub mod demo;
+pub mod env;
+pub mod eval;
+pub mod export;
+pub mod paper;
+pub mod record;
+pub mod report;
+pub mod sweep;
+pub mod train;
+pub mod zoo;
