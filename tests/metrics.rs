@@ -280,7 +280,8 @@ fn itpc_of_frequency_jittered_oscillators_decays_as_predicted() {
 
 #[test]
 fn aggregation_and_adaptation_have_known_answers() {
-    use chronocooked_analysis::aggregate::{Spread, episodes_to_adapt};
+    use chronocooked_analysis::aggregate::Spread;
+    use chronocooked_training::adapt::episodes_to_adapt;
     let s = Spread::of([1.0, 2.0, 3.0, f64::NAN]);
     assert_eq!((s.mean, s.n), (2.0, 3));
     assert!((s.sd - 1.0).abs() < 1e-12);

@@ -113,7 +113,3 @@ pub fn aggregate(runs: &[Metrics]) -> BTreeMap<String, Spread> {
         })
         .collect()
 }
-
-/// Episodes an agent needs to adapt (uncertainty experiment); see
-/// [`chronocooked_training::adapt::episodes_to_adapt`].
-pub use chronocooked_training::adapt::episodes_to_adapt;

@@ -26,7 +26,7 @@ fn code(m: Marker) -> i64 {
 
 /// The project's atomic write (temporary file, then rename), with a string error.
 pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    chronocooked_training::run_dir::write_atomic(path, bytes).map_err(|e| e.to_string())
+    chronocooked_env::fs::write_atomic(path, bytes).map_err(|e| e.to_string())
 }
 
 fn describe(arrays: &[NpyArray], docs: &[(&str, &str, &str)]) -> Value {

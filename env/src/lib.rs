@@ -10,12 +10,13 @@
 //! * [`VecEnv`] — N envs into preallocated buffers with documented autoreset.
 //! * [`obs`] — the reference "codes" encoding and a one-hot view for networks.
 //! * [`oracle`] — optimal scripted policies; [`render`] — ASCII, PNG, GIF;
-//!   [`trace`] — JSON-lines episode traces.
+//!   [`trace`] — JSON-lines episode traces; [`fs`] — the one atomic file write.
 
 pub mod action;
 pub mod bench;
 pub mod env;
 pub mod error;
+pub mod fs;
 pub mod info;
 pub mod kitchen;
 pub mod layout;

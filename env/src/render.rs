@@ -5,7 +5,6 @@ use crate::error::EnvError;
 use crate::kitchen::CODE_CHANNELS;
 use crate::layout::{Layout, ObjectKind};
 use crate::task::TaskFamily;
-use std::io::Write;
 use std::path::Path;
 
 /// ASCII picture of a codes observation: one 4-character cell per grid cell.
@@ -157,21 +156,9 @@ fn io_err(path: &Path, e: impl std::fmt::Display) -> EnvError {
     EnvError::Output(format!("{}: {e}", path.display()))
 }
 
-/// Writes `bytes` to `path` atomically (temporary file in the same folder, then rename).
+/// Writes `bytes` to `path` atomically ([`crate::fs::write_atomic`]).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), EnvError> {
-    let dir = path.parent().filter(|p| !p.as_os_str().is_empty());
-    if let Some(dir) = dir {
-        std::fs::create_dir_all(dir).map_err(|e| io_err(dir, e))?;
-    }
-    let tmp = path.with_extension(format!(
-        "{}.tmp{}",
-        path.extension().and_then(|e| e.to_str()).unwrap_or(""),
-        std::process::id()
-    ));
-    let mut file = std::fs::File::create(&tmp).map_err(|e| io_err(&tmp, e))?;
-    file.write_all(bytes).map_err(|e| io_err(&tmp, e))?;
-    file.sync_all().map_err(|e| io_err(&tmp, e))?;
-    std::fs::rename(&tmp, path).map_err(|e| io_err(path, e))
+    crate::fs::write_atomic(path, bytes).map_err(|e| io_err(path, e))
 }
 
 /// Encodes a frame as an indexed PNG.

@@ -57,12 +57,8 @@ struct EvalInfo {
 }
 
 fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    if let Some(parent) = path.parent() {
-        std::fs::create_dir_all(parent)
-            .with_context(|| format!("creating {}", parent.display()))?;
-    }
-    chronocooked_training::run_dir::write_atomic(path, bytes)?;
-    Ok(())
+    chronocooked_env::fs::write_atomic(path, bytes)
+        .with_context(|| format!("writing {}", path.display()))
 }
 
 fn write_metrics(out: &Path, info: &EvalInfo, records: &[EvalRecord]) -> Result<()> {

@@ -271,7 +271,7 @@ fn write_csv<T: Serialize>(path: &Path, rows: &[T]) -> Result<(), CollectError> 
         w.serialize(r).map_err(|e| err(path, e))?;
     }
     let bytes = w.into_inner().map_err(|e| err(path, e))?;
-    chronocooked_training::run_dir::write_atomic(path, &bytes).map_err(|e| err(path, e))
+    chronocooked_env::fs::write_atomic(path, &bytes).map_err(|e| err(path, e))
 }
 
 /// Writes the compact results of every finished job under `sweep_out` into
@@ -292,15 +292,14 @@ pub fn collect(sweep_out: &Path, to: &Path) -> Result<(usize, usize), CollectErr
         std::fs::create_dir_all(&out).map_err(|e| err(&out, e))?;
         let json = serde_json::to_string_pretty(&summary).map_err(|e| err(&out, e))?;
         let job_path = out.join("job.json");
-        chronocooked_training::run_dir::write_atomic(&job_path, json.as_bytes())
+        chronocooked_env::fs::write_atomic(&job_path, json.as_bytes())
             .map_err(|e| err(&job_path, e))?;
         write_csv(&out.join("episodes.csv"), &episodes)?;
         write_csv(&out.join("curve.csv"), &curve)?;
         let metrics = dir.join("eval").join("metrics.json");
         let text = std::fs::read(&metrics).map_err(|e| err(&metrics, e))?;
         let m_path = out.join("metrics.json");
-        chronocooked_training::run_dir::write_atomic(&m_path, &text)
-            .map_err(|e| err(&m_path, e))?;
+        chronocooked_env::fs::write_atomic(&m_path, &text).map_err(|e| err(&m_path, e))?;
         written += 1;
     }
     Ok((written, pending))
