@@ -8,7 +8,8 @@
 //!   two means of runs with the lab's spread (the paper's tables come from 4 runs).
 //! * SDs over runs (`*_sd` tables): the paper's SD agrees when it lies in the χ² 95%
 //!   interval of the lab's SD.
-//! * `n/a` when the lab has fewer than two runs with a value; `both-nan` when paper and lab
+//! * `n/a` when the lab has fewer than two runs with a value (or, for the R² rows, fewer than
+//!   three TDs); `both-nan` when paper and lab
 //!   both have no number; `no` when only one of them has one.
 
 use super::bisection::BisectionModel;
@@ -124,11 +125,16 @@ pub fn compare(fi: &[FiModel], bis: &[BisectionModel], mt: &[MtCell]) -> Vec<Com
                 )
             }),
             "fi_r2" | "fi_r2_notebook" => fi_m.map(|m| {
-                if p.column == "mean_vs_td" {
+                let mut row = if p.column == "mean_vs_td" {
                     mean_row(m.scalar.r2_mean_vs_td, m.run_r2_mean_vs_td)
                 } else {
                     mean_row(m.scalar.r2_sd_vs_mean, m.run_r2_sd_vs_mean)
+                };
+                // A regression over fewer than three TDs says nothing yet.
+                if m.cells.len() < 3 {
+                    row.3 = "n/a".into();
                 }
+                row
             }),
             "bisection_wf" => bis_cell(p.row).map(|c| mean_row(c.wf.mean, c.wf)),
             "bisection_dl" => bis_cell(p.row).map(|c| mean_row(c.dl.mean, c.dl)),
