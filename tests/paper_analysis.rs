@@ -178,6 +178,9 @@ fn pearson_and_agreement_rules_have_known_answers() {
     let r = w.r;
     let t = r * (4.0 / (1.0 - r * r)).sqrt();
     assert!(t > 0.0 && w.p > 0.0 && w.p < 1.0);
+    // Exact: p(r = 0.5, n = 6) = I_0.75(2, 1/2) = (5/12) / (4/3) = 0.3125.
+    let p = chronocooked_analysis::neural::correlation_p(0.5, 6);
+    assert!((p - 0.3125).abs() < 1e-12, "{p}");
     assert!(pearson(&x[..2], &[1.0, 2.0]).is_none());
     // Mean rule: t(0.975, 3) = 3.182; half-width = 3.182 · 1 · √(1/4 + 1/4) = 2.25.
     assert_eq!(agree_mean(2.2, 0.0, 1.0, 4), "yes");

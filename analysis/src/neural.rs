@@ -75,83 +75,6 @@ fn unit_series(avg: &[f64], units: usize, i: usize) -> (Vec<f64>, Vec<f64>) {
         .unzip()
 }
 
-/// Regularised incomplete beta `I_x(a, b)` (continued fraction, Numerical-Recipes style
-/// derivation from the Lentz algorithm).
-fn incomplete_beta(x: f64, a: f64, b: f64) -> f64 {
-    if x <= 0.0 {
-        return 0.0;
-    }
-    if x >= 1.0 {
-        return 1.0;
-    }
-    let ln_beta = ln_gamma(a) + ln_gamma(b) - ln_gamma(a + b);
-    let front = (a * x.ln() + b * (1.0 - x).ln() - ln_beta).exp();
-    let cf = |a: f64, b: f64, x: f64| {
-        let tiny = 1e-300;
-        let (mut c, mut d) = (1.0, 1.0 - (a + b) * x / (a + 1.0));
-        if d.abs() < tiny {
-            d = tiny;
-        }
-        d = 1.0 / d;
-        let mut h = d;
-        for m in 1..300 {
-            let m = m as f64;
-            let num = m * (b - m) * x / ((a + 2.0 * m - 1.0) * (a + 2.0 * m));
-            d = 1.0 + num * d;
-            d = if d.abs() < tiny { 1.0 / tiny } else { 1.0 / d };
-            c = 1.0 + num / c;
-            if c.abs() < tiny {
-                c = tiny;
-            }
-            h *= d * c;
-            let num = -(a + m) * (a + b + m) * x / ((a + 2.0 * m) * (a + 2.0 * m + 1.0));
-            d = 1.0 + num * d;
-            d = if d.abs() < tiny { 1.0 / tiny } else { 1.0 / d };
-            c = 1.0 + num / c;
-            if c.abs() < tiny {
-                c = tiny;
-            }
-            let del = d * c;
-            h *= del;
-            if (del - 1.0).abs() < 1e-14 {
-                break;
-            }
-        }
-        h
-    };
-    if x < (a + 1.0) / (a + b + 2.0) {
-        front * cf(a, b, x) / a
-    } else {
-        1.0 - front * cf(b, a, 1.0 - x) / b
-    }
-}
-
-/// `ln Γ(x)` (Lanczos, g = 7).
-fn ln_gamma(x: f64) -> f64 {
-    const C: [f64; 9] = [
-        0.999_999_999_999_809_9,
-        676.520_368_121_885_1,
-        -1_259.139_216_722_402_8,
-        771.323_428_777_653_1,
-        -176.615_029_162_140_6,
-        12.507_343_278_686_905,
-        -0.138_571_095_265_720_12,
-        9.984_369_578_019_572e-6,
-        1.505_632_735_149_311_6e-7,
-    ];
-    if x < 0.5 {
-        let pi = std::f64::consts::PI;
-        return (pi / (pi * x).sin()).ln() - ln_gamma(1.0 - x);
-    }
-    let x = x - 1.0;
-    let mut a = C[0];
-    let t = x + 7.5;
-    for (i, c) in C.iter().enumerate().skip(1) {
-        a += c / (x + i as f64);
-    }
-    0.5 * (2.0 * std::f64::consts::PI).ln() + (x + 0.5) * t.ln() - t + a.ln()
-}
-
 /// Two-sided p-value of a Pearson correlation `r` over `n` points (Student t, n − 2 df).
 pub fn correlation_p(r: f64, n: usize) -> f64 {
     if n < 3 || !r.is_finite() {
@@ -162,7 +85,8 @@ pub fn correlation_p(r: f64, n: usize) -> f64 {
     }
     let df = (n - 2) as f64;
     let t2 = r * r * df / (1.0 - r * r);
-    incomplete_beta(df / (df + t2), 0.5 * df, 0.5)
+    // P(|T| > t) = I_{df/(df+t²)}(df/2, 1/2).
+    statrs::function::beta::beta_reg(0.5 * df, 0.5, df / (df + t2))
 }
 
 /// Ramp classification of one unit.

@@ -258,18 +258,6 @@ pub fn bp_relative(bp: f64, short: f64, long: f64) -> (f64, f64) {
     (bp / (0.5 * (short + long)), bp / (short * long).sqrt())
 }
 
-/// Complementary error function (Abramowitz & Stegun 7.1.26; absolute error < 1.5e-7).
-fn erfc(x: f64) -> f64 {
-    let z = x.abs();
-    let t = 1.0 / (1.0 + 0.327_591_1 * z);
-    let poly = t
-        * (0.254_829_592
-            + t * (-0.284_496_736
-                + t * (1.421_413_741 + t * (-1.453_152_027 + t * 1.061_405_429))));
-    let r = poly * (-z * z).exp();
-    if x >= 0.0 { r } else { 2.0 - r }
-}
-
 /// Likelihood-ratio test of the fitted logistic against a flat P(long) (one parameter
 /// fewer): `p = P(χ²₁ > 2 (ℓ_fit − ℓ_flat))`. Small `p`: a real psychometric transition.
 pub fn transition_p_value(data: &[ProbeCounts], fit: &LogisticFit) -> f64 {
@@ -285,7 +273,7 @@ pub fn transition_p_value(data: &[ProbeCounts], fit: &LogisticFit) -> f64 {
     }
     let flat = long * p.ln() + (total - long) * (1.0 - p).ln();
     let lr = (2.0 * (fit.log_lik - flat)).max(0.0);
-    erfc((lr / 2.0).sqrt())
+    statrs::function::erf::erfc((lr / 2.0).sqrt())
 }
 
 /// Whether a fit describes a real psychometric transition: rising (`s > 0`), significant

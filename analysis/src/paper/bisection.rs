@@ -100,15 +100,7 @@ pub fn pearson(x: &[f64], y: &[f64]) -> Option<WfRegression> {
         return None;
     }
     let r = (sxy / (sxx * syy).sqrt()).clamp(-1.0, 1.0);
-    let df = (n - 2) as f64;
-    let p = if r.abs() >= 1.0 {
-        0.0
-    } else {
-        use statrs::distribution::{ContinuousCDF, StudentsT};
-        let t = r * (df / (1.0 - r * r)).sqrt();
-        let dist = StudentsT::new(0.0, 1.0, df).ok()?;
-        2.0 * (1.0 - dist.cdf(t.abs()))
-    };
+    let p = crate::neural::correlation_p(r, n);
     Some(WfRegression {
         r,
         p,
