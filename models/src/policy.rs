@@ -245,26 +245,21 @@ impl ActorCritic {
         self.core.as_ref().map(|c| c.zero_state(batch, device))
     }
 
-    fn heads(&self, latent: Tensor<2>, state: Option<CoreState>) -> PolicyOutput {
-        let hh = self.pi_out.weight.dims()[0];
-        let z = tanh(self.hidden.forward(latent.clone()));
-        let logits = self.pi_out.forward(z.clone().narrow(1, 0, hh));
-        let values = self.vf_out.forward(z.narrow(1, hh, hh));
-        PolicyOutput {
-            logits,
-            values,
-            latent,
-            state,
-            aux: None,
-        }
-    }
-
-    /// [`ActorCritic::heads`] with the critic reading a detached copy of `latent` (the
+    /// Heads on `latent`; with `detach_critic` the critic reads a detached copy of it (the
     /// value loss then trains the value head only).
-    fn heads_detached_critic(&self, latent: Tensor<2>, state: Option<CoreState>) -> PolicyOutput {
+    fn heads_with(
+        &self,
+        latent: Tensor<2>,
+        state: Option<CoreState>,
+        detach_critic: bool,
+    ) -> PolicyOutput {
         let hh = self.pi_out.weight.dims()[0];
         let z = tanh(self.hidden.forward(latent.clone()));
-        let z_vf = tanh(self.hidden.forward(latent.clone().detach()));
+        let z_vf = if detach_critic {
+            tanh(self.hidden.forward(latent.clone().detach()))
+        } else {
+            z.clone()
+        };
         let logits = self.pi_out.forward(z.narrow(1, 0, hh));
         let values = self.vf_out.forward(z_vf.narrow(1, hh, hh));
         PolicyOutput {
@@ -274,6 +269,10 @@ impl ActorCritic {
             state,
             aux: None,
         }
+    }
+
+    fn heads(&self, latent: Tensor<2>, state: Option<CoreState>) -> PolicyOutput {
+        self.heads_with(latent, state, false)
     }
 
     /// One step for `B` envs: `obs [B, cells, C]`, state, `keep [B, 1]` (0 where an episode
@@ -346,11 +345,7 @@ impl ActorCritic {
                 let xw = core.input.forward(feat.reshape([t, b, f]));
                 let (h, st, aux) = core.forward_seq_train(xw, st, keep);
                 let latent = h.reshape([t * b, core.hidden]);
-                let mut out = if detach_critic {
-                    self.heads_detached_critic(latent, Some(st))
-                } else {
-                    self.heads(latent, Some(st))
-                };
+                let mut out = self.heads_with(latent, Some(st), detach_critic);
                 out.aux = Some(aux);
                 out
             }

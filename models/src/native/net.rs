@@ -254,31 +254,24 @@ impl NativePolicy {
             cache.core.h()
         };
         resize(&mut cache.dlat, n * lat_dim);
-        if self.detach_critic && !cache.core.is_empty() {
-            // Weight gradients from both halves; the latent gradient from the policy half only.
-            linear_backward(
-                Mat::new(latent, n, lat_dim),
-                Mat::new(&cache.dz, n, 2 * hh),
-                theta,
-                l.hidden,
-                grad,
-                None,
-                s,
-            );
-            let w = Mat::strided(l.hidden.0.of(theta), lat_dim, hh, 2 * hh);
-            let dz_pi = Mat::strided(&cache.dz, n, hh, 2 * hh);
-            matmul_nt(dz_pi, w, &mut cache.dlat, lat_dim, false, s);
+        linear_backward(
+            Mat::new(latent, n, lat_dim),
+            Mat::new(&cache.dz, n, 2 * hh),
+            theta,
+            l.hidden,
+            grad,
+            None,
+            s,
+        );
+        // The latent's gradient; a detached critic passes back the policy half only.
+        let cols = if self.detach_critic && !cache.core.is_empty() {
+            hh
         } else {
-            linear_backward(
-                Mat::new(latent, n, lat_dim),
-                Mat::new(&cache.dz, n, 2 * hh),
-                theta,
-                l.hidden,
-                grad,
-                Some((&mut cache.dlat, lat_dim)),
-                s,
-            );
-        }
+            2 * hh
+        };
+        let w = Mat::strided(l.hidden.0.of(theta), lat_dim, cols, 2 * hh);
+        let dz = Mat::strided(&cache.dz, n, cols, 2 * hh);
+        matmul_nt(dz, w, &mut cache.dlat, lat_dim, false, s);
         // Core (BPTT) → gradient at the trunk features.
         resize(&mut cache.df, n * t.features);
         if let (Some((params, inp)), Some(rec)) = (self.core_params(theta), l.core_rec) {
