@@ -17,12 +17,15 @@
 //! * [`report`] — leaderboard (self-contained HTML with inline SVG, Markdown, CSV);
 //! * [`figures`] — SVG/PNG figures (plotters, bundled font);
 //! * [`protocol`] — evaluation conditions per task and the runner (any agent);
+//! * [`eval_folder`] — the evaluation folder (`records.jsonl`, `eval.json`, `metrics.json`,
+//!   figures) written by `eval` and by the Python `evaluate`;
 //! * [`metrics`] — behavioural metrics of an evaluation from its per-episode records;
 //! * [`paper`] — the paper's study: compact sweep results, the paper's analyses beside the
 //!   lab's, and the comparison with the paper's numbers.
 
 pub mod aggregate;
 pub mod decode;
+pub mod eval_folder;
 pub mod export;
 pub mod figures;
 pub mod foc;
@@ -46,5 +49,7 @@ pub use foc::{
 };
 pub use metrics::{Metrics, compute_metrics};
 pub use neural::{Cube, classify_ramps, sequentiality_index, temporal_information, time_cells};
-pub use protocol::{Condition, EvalRecord, Mode, reference_conditions, run_protocol};
+pub use protocol::{
+    Condition, EvalRecord, Mode, reference_conditions, run_protocol, run_protocol_recorded,
+};
 pub use psychometric::{FitError, LogisticFit, ProbeCounts, fit_logistic, fit_with_ci};

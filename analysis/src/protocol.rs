@@ -13,6 +13,7 @@
 use chronocooked_env::{
     ChronoEnv, EnvError, ResetOptions, TaskConfig, TaskParams, derive_seed, make_config,
 };
+use chronocooked_models::activity::TrialRecorder;
 use chronocooked_models::{Agent, EpisodeRecord, run_episode};
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -158,6 +159,18 @@ pub fn run_protocol(
     mode: Mode,
     seed: u64,
 ) -> Result<Vec<EvalRecord>, EnvError> {
+    run_protocol_recorded(agent, conditions, mode, seed, None)
+}
+
+/// [`run_protocol`] that also records the agent's activity (one trial per episode, in
+/// record order) into `recorder` when given.
+pub fn run_protocol_recorded(
+    agent: &mut dyn Agent,
+    conditions: &[Condition],
+    mode: Mode,
+    seed: u64,
+    mut recorder: Option<&mut TrialRecorder>,
+) -> Result<Vec<EvalRecord>, EnvError> {
     agent.set_training(false);
     agent.set_sampling(matches!(mode, Mode::Stochastic { .. }));
     let mut out = Vec::new();
@@ -186,7 +199,7 @@ pub fn run_protocol(
                 never_ready: c.never_ready,
             };
             let s = derive_seed(seed, (ci as u64) << 20 | k as u64);
-            let episode = run_episode(&mut env, agent, s, &options, None)?;
+            let episode = run_episode(&mut env, agent, s, &options, recorder.as_deref_mut())?;
             out.push(EvalRecord {
                 condition: c.clone(),
                 episode,

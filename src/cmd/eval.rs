@@ -2,15 +2,13 @@
 //! records and the metrics; `eval --from DIR` recomputes the metrics from saved records.
 
 use anyhow::{Context, Result, bail};
-use chronocooked_analysis::{
-    EvalRecord, Mode, compute_metrics, reference_conditions, run_protocol,
-};
+use chronocooked_analysis::eval_folder::{self, EvalInfo};
+use chronocooked_analysis::{EvalRecord, Mode, reference_conditions, run_protocol};
 use chronocooked_env::ChronoEnv;
 use chronocooked_models::Agent;
 use chronocooked_models::agent::{OracleAgent, RandomAgent};
 use chronocooked_training::timing_run::load_agent;
 use clap::Args;
-use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
 /// Arguments of `eval`.
@@ -46,47 +44,28 @@ pub struct EvalArgs {
     pub out: PathBuf,
 }
 
-/// What an evaluation was (`eval.json`).
-#[derive(Debug, Clone, Serialize, Deserialize)]
-struct EvalInfo {
-    model: String,
-    task: String,
-    env: Vec<String>,
-    mode: Mode,
-    seed: u64,
-}
-
-fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    chronocooked_env::fs::write_atomic(path, bytes)
-        .with_context(|| format!("writing {}", path.display()))
-}
-
 fn write_metrics(out: &Path, info: &EvalInfo, records: &[EvalRecord]) -> Result<()> {
-    let metrics = compute_metrics(&info.model, records, info.seed);
-    let mut json = serde_json::to_string_pretty(&metrics)?;
-    json.push('\n');
-    write_atomic(&out.join("metrics.json"), json.as_bytes())?;
-    let figures =
-        chronocooked_analysis::figures::eval_figures(&out.join("figures"), &metrics, records)?;
+    let (metrics, figures) =
+        eval_folder::write_metrics(out, info, records).map_err(anyhow::Error::msg)?;
+    report(out, &metrics, figures.len());
+    Ok(())
+}
+
+fn report(out: &Path, metrics: &chronocooked_analysis::Metrics, figures: usize) {
     println!(
         "{}: {} episodes, success {:.1}% → {} ({} figure files)",
-        info.model,
+        metrics.model,
         metrics.episodes,
         metrics.success_rate * 100.0,
         out.join("metrics.json").display(),
-        figures.len()
+        figures
     );
-    Ok(())
 }
 
 /// Runs `eval`.
 pub fn run(args: EvalArgs) -> Result<()> {
     if let Some(dir) = &args.from {
-        let info: EvalInfo = serde_json::from_str(
-            &std::fs::read_to_string(dir.join("eval.json")).with_context(|| {
-                format!("{} holds no eval.json (not an eval folder)", dir.display())
-            })?,
-        )?;
+        let info = eval_folder::read_eval_info(dir).map_err(anyhow::Error::msg)?;
         let records = chronocooked_analysis::protocol::read_records(dir)
             .map_err(|e| anyhow::anyhow!("{e} (not an eval folder)"))?;
         return write_metrics(&args.out, &info, &records);
@@ -149,15 +128,8 @@ pub fn run(args: EvalArgs) -> Result<()> {
 }
 
 fn write_outputs(out: &Path, info: &EvalInfo, records: &[EvalRecord]) -> Result<()> {
-    let mut lines = String::new();
-    for r in records {
-        lines += &serde_json::to_string(r)?;
-        lines.push('\n');
-    }
-    write_atomic(&out.join("records.jsonl"), lines.as_bytes())?;
-    write_atomic(
-        &out.join("eval.json"),
-        serde_json::to_string_pretty(info)?.as_bytes(),
-    )?;
-    write_metrics(out, info, records)
+    let (metrics, figures) =
+        eval_folder::write_eval_folder(out, info, records).map_err(anyhow::Error::msg)?;
+    report(out, &metrics, figures.len());
+    Ok(())
 }

@@ -1,0 +1,127 @@
+"""The lab's evaluation protocol for Python policies, and readers of its outputs."""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+import numpy as np
+
+from . import _core
+from .envs import overrides
+
+
+def evaluate(policy, task: str, out, *, obs_mode: str = "codes", stochastic: int | None = None,
+             seed: int = 0, name: str = "python-policy", **params) -> dict:
+    """Runs the lab's evaluation protocol of ``task`` with a Python ``policy`` and writes the
+    evaluation folder ``out`` exactly as ``chronocooked eval`` does.
+
+    ``policy(obs, state, episode_start) -> (action, state)`` or
+    ``-> (action, state, activity)``: ``obs`` in ``obs_mode`` (``"codes"`` ``uint8 [R, C, 6]``
+    or ``"onehot"`` ``float32 [channels, R, C]``), ``state`` whatever the policy returned on
+    the previous step (``None`` at an episode start), ``episode_start`` True on the first step
+    of every episode. ``activity`` (a 1-D float vector, same length every step) is recorded
+    as the model's neural activity: ``out/activity.json`` and the NPZ export
+    ``out/activity/``.
+
+    Conditions and episodes are those of ``chronocooked eval``: the reference protocol (one
+    greedy episode per free start cell per condition) or ``stochastic=N`` episodes per
+    condition from random start cells. ``params`` are the task parameters the policy was
+    trained with (``--set`` names). Returns a summary dict (episodes, success_rate, paths).
+
+    The folder is a leaderboard row: ``chronocooked report --eval OUT``.
+    """
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    return _core.evaluate(policy, task, os.fspath(out), overrides(params), obs_mode,
+                          stochastic, int(seed), name)
+
+
+def _first(infos, event):
+    for info in infos:
+        if event in info["events"]:
+            return info
+    return None
+
+
+def load_eval(path):
+    """Reads an evaluation folder (``chronocooked eval`` or :func:`evaluate`).
+
+    Returns ``(episodes, conditions)``, two pandas DataFrames: one row per episode
+    (condition kind/task/TD/factor/never_ready, start cell, seed, reward, success, steps,
+    ``first_check`` = oven timer at the first oven check (−1 if none), ``oven_off_time``,
+    ``counter``) and one row per condition of ``metrics.json`` (its summary fields).
+    """
+    import pandas as pd
+
+    path = Path(path)
+    records = path / "records.jsonl"
+    if not records.is_file():
+        raise FileNotFoundError(f"{records}: no records.jsonl ({path} is not an eval folder)")
+    rows = []
+    with open(records) as f:
+        for line_no, line in enumerate(f, 1):
+            if not line.strip():
+                continue
+            try:
+                r = json.loads(line)
+                c, e = r["condition"], r["episode"]
+            except (json.JSONDecodeError, KeyError, TypeError) as err:
+                raise ValueError(f"{records}:{line_no}: not an evaluation record ({err})") from None
+            infos = e["infos"]
+            check = _first(infos, "oven_check")
+            last = infos[-1] if infos else {}
+            rows.append({
+                "kind": c["kind"], "task": c["task"], "td": c["td"],
+                "factor": c.get("factor"), "never_ready": c.get("never_ready"),
+                "start_row": e["start"][0], "start_col": e["start"][1], "seed": e["seed"],
+                "reward": e["reward"], "success": e["success"], "steps": len(e["actions"]),
+                "first_check": check["timer_at_action"] if check else -1,
+                "oven_off_time": last.get("oven_off_time", -1),
+                "counter": last.get("counter"),
+            })
+    episodes = pd.DataFrame(rows)
+    metrics_path = path / "metrics.json"
+    conditions = pd.DataFrame()
+    if metrics_path.is_file():
+        metrics = json.loads(metrics_path.read_text())
+        flat = []
+        for c in metrics.get("conditions", []):
+            row = {}
+            for k, v in c.items():
+                if isinstance(v, dict):
+                    row.update({f"{k}.{kk}": vv for kk, vv in v.items()})
+                else:
+                    row[k] = v
+            flat.append(row)
+        conditions = pd.DataFrame(flat)
+    return episodes, conditions
+
+
+def _npz_path(path) -> Path:
+    path = Path(path)
+    if path.is_dir():
+        for cand in (path / "activity.npz", path / "activity" / "activity.npz"):
+            if cand.is_file():
+                return cand
+        raise FileNotFoundError(f"{path}: no activity.npz (export one with `chronocooked export --activity`)")
+    if not path.is_file():
+        raise FileNotFoundError(f"{path}: no such activity export")
+    return path
+
+
+def load_activity(path):
+    """Reads an activity export (``activity.npz`` + ``activity.meta.json``, from
+    ``chronocooked export`` or :func:`evaluate`; a folder holding them also works).
+
+    Returns ``(arrays, meta)``: a dict of numpy arrays (``activity`` ``[T_total, N]``,
+    ``trial_offsets`` ``[K+1]``, ``aligned`` ``[K', W, N]``, ``td``, ``start``, event arrays,
+    …) and the metadata dict (model, task, seed, dt, units, array descriptions).
+    """
+    npz = _npz_path(path)
+    with np.load(npz, allow_pickle=False) as data:
+        arrays = {k: data[k] for k in data.files}
+    meta_path = npz.with_name(npz.name[: -len(".npz")] + ".meta.json")
+    meta = json.loads(meta_path.read_text()) if meta_path.is_file() else {}
+    return arrays, meta

@@ -1,0 +1,162 @@
+"""NWB export of one recorded model run (needs ``pynwb``).
+
+Time base: the env step. Every array uses ``t = step · dt`` seconds with the dataset's
+``dt`` (1 by convention: one env step = one second of model time); trials are concatenated
+in the order the protocol played them.
+
+Written file:
+
+* ``processing/model/unit_activity`` — ``TimeSeries [time, units]`` with ``rate = 1/dt``
+  (the model's activity behind each action);
+* ``trials`` — one row per episode: ``td``, ``start_row``, ``start_col``, ``reward``,
+  ``success``, ``condition`` (protocol condition kind), start/stop times;
+* ``processing/behavior/task_events`` — ``BehavioralEvents`` with one ``TimeSeries`` per
+  event (oven_on, oven_ready, oven_check, pickup, delivery, reward, sink, button), data =
+  trial index, timestamps = event times (the step the event happened in);
+* ``processing/behavior/Position/agent_position`` — grid cell ``(row, col)`` after each
+  step; ``processing/behavior/actions/action`` — action codes (0 wait, 1 down, 2 up,
+  3 right, 4 left, 5 interact);
+* session metadata: model, task, overrides, seed and the task configuration (JSON) in
+  ``session_id`` / ``experiment_description`` / ``notes``.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import json
+import os
+import uuid
+from pathlib import Path
+
+import numpy as np
+
+from .evaluation import load_activity
+
+
+def _records(eval_dir: Path):
+    path = eval_dir / "records.jsonl"
+    if not path.is_file():
+        raise FileNotFoundError(f"{path}: no records.jsonl ({eval_dir} is not an eval folder)")
+    out = []
+    with open(path) as f:
+        for line_no, line in enumerate(f, 1):
+            if line.strip():
+                try:
+                    out.append(json.loads(line))
+                except json.JSONDecodeError as e:
+                    raise ValueError(f"{path}:{line_no}: not an evaluation record ({e})") from None
+    return out
+
+
+def to_nwb(activity, eval_dir, path, *, overwrite: bool = False) -> Path:
+    """Writes the model run recorded in ``activity`` (an ``activity.npz`` export, a folder
+    holding one, or the ``(arrays, meta)`` pair of :func:`load_activity`) with the episodes
+    of the evaluation folder ``eval_dir`` (same protocol run: :func:`chronocooked.evaluate`
+    writes both) to the NWB file ``path``. Returns ``path``.
+    """
+    try:
+        from pynwb import NWBHDF5IO, NWBFile, TimeSeries
+        from pynwb.behavior import BehavioralEvents, BehavioralTimeSeries, Position, SpatialSeries
+    except ImportError as e:  # pragma: no cover - depends on the installation
+        raise ImportError(
+            "the NWB export needs pynwb: pip install 'chronocooked[nwb]' (or pynwb)") from e
+
+    arrays, meta = activity if isinstance(activity, tuple) else load_activity(activity)
+    eval_dir = Path(eval_dir)
+    path = Path(path)
+    if path.exists() and not overwrite:
+        raise FileExistsError(f"{path} exists (pass overwrite=True to replace it)")
+    records = _records(eval_dir)
+    info = json.loads((eval_dir / "eval.json").read_text())
+    act = np.asarray(arrays["activity"], dtype=np.float32)
+    offsets = np.asarray(arrays["trial_offsets"], dtype=np.int64)
+    k = len(offsets) - 1
+    if len(records) != k:
+        raise ValueError(
+            f"{eval_dir} holds {len(records)} episodes but the activity {k} trials: "
+            "they are not from the same run (write both with chronocooked.evaluate)")
+    for i, r in enumerate(records):
+        steps = len(r["episode"]["actions"])
+        if steps != offsets[i + 1] - offsets[i]:
+            raise ValueError(
+                f"episode {i}: {steps} steps in {eval_dir} but {offsets[i + 1] - offsets[i]} "
+                "in the activity: not the same run")
+    dt = float(meta.get("dt", 1.0))
+    model = meta.get("model", info.get("model", "model"))
+    task = meta.get("task", info.get("task", ""))
+    seed = int(meta.get("seed", info.get("seed", 0)))
+    env = meta.get("env", info.get("env", []))
+    started = _dt.datetime.fromtimestamp(
+        os.path.getmtime(eval_dir / "eval.json"), tz=_dt.timezone.utc).replace(microsecond=0)
+    ident = str(uuid.uuid5(uuid.NAMESPACE_URL,
+                           f"chronocooked:{model}:{task}:{seed}:{','.join(env)}:{started.isoformat()}"))
+    config = {"model": model, "task": task, "env": env, "seed": seed, "dt": dt,
+              "protocol": info.get("mode")}
+    nwb = NWBFile(
+        session_description=f"Chronocooked Lab: model {model} playing {task} "
+                            f"(evaluation protocol, {k} episodes)",
+        identifier=ident,
+        session_start_time=started,
+        session_id=f"{model}-{task}-seed{seed}",
+        experiment_description="Simulated agent in the Chronocooked interval-timing tasks; "
+                               "configuration: " + json.dumps(config, sort_keys=True),
+        notes=json.dumps(config, sort_keys=True),
+        keywords=["interval timing", "reinforcement learning", "Chronocooked", model, task],
+        source_script="chronocooked.nwb.to_nwb",
+        source_script_file_name="chronocooked/nwb.py",
+    )
+    model_mod = nwb.create_processing_module(
+        name="model", description=f"Activity of the units of model {model} (one row per env step)")
+    model_mod.add(TimeSeries(
+        name="unit_activity", data=act, unit="a.u.", rate=1.0 / dt, starting_time=0.0,
+        description=f"Activity of the {act.shape[1]} units of {model} behind each action, "
+                    "[time, units]; trials concatenated (see the trials table)",
+        comments="units: " + json.dumps(meta.get("units", meta.get("populations", []))),
+    ))
+    for name, desc in [("td", "target duration of the episode (steps)"),
+                       ("start_row", "start cell row"), ("start_col", "start cell column"),
+                       ("reward", "total reward of the episode"),
+                       ("success", "full-reward delivery"),
+                       ("condition", "evaluation condition kind (fi, pi, bisection, …)")]:
+        nwb.add_trial_column(name=name, description=desc)
+    for i, r in enumerate(records):
+        e, c = r["episode"], r["condition"]
+        nwb.add_trial(start_time=float(offsets[i] * dt), stop_time=float(offsets[i + 1] * dt),
+                      td=int(e["td"]), start_row=int(e["start"][0]), start_col=int(e["start"][1]),
+                      reward=float(e["reward"]), success=bool(e["success"]),
+                      condition=str(c["kind"]))
+    behavior = nwb.create_processing_module(
+        name="behavior", description="Agent behaviour and task events in the kitchen grid")
+    events = BehavioralEvents(name="task_events")
+    codes = meta.get("event_codes", {})
+    names = {int(c): n for c, n in codes.items()} if isinstance(codes, dict) else {}
+    et = np.asarray(arrays.get("event_trial", []), dtype=np.int64)
+    es = np.asarray(arrays.get("event_step", []), dtype=np.int64)
+    ec = np.asarray(arrays.get("event_code", []), dtype=np.int64)
+    for code in sorted(set(ec.tolist())):
+        sel = ec == code
+        name = names.get(code, f"event_{code}")
+        events.add_timeseries(TimeSeries(
+            name=name, data=et[sel], unit="n.a.",
+            timestamps=((offsets[et[sel]] + es[sel]) * dt).astype(np.float64),
+            description=f"{name} events; data = trial index, timestamp = the step it happened in",
+        ))
+    if len(events.time_series) > 0:
+        behavior.add(events)
+    pos = np.asarray([i["agent"] for r in records for i in r["episode"]["infos"]], dtype=np.float64)
+    actions = np.asarray([a for r in records for a in r["episode"]["actions"]], dtype=np.int64)
+    position = Position(name="Position")
+    position.add_spatial_series(SpatialSeries(
+        name="agent_position", data=pos, reference_frame="kitchen grid, (row, col) of the cell "
+        "after the step's action, (0, 0) = top-left cell", unit="grid cells", rate=1.0 / dt,
+        starting_time=0.0, description="agent cell after each step"))
+    behavior.add(position)
+    behavior.add(BehavioralTimeSeries(name="actions", time_series=[TimeSeries(
+        name="action", data=actions, unit="n.a.", rate=1.0 / dt, starting_time=0.0,
+        description="action code per step: 0 wait, 1 down, 2 up, 3 right, 4 left, 5 interact")]))
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(path.name + ".tmp")
+    with NWBHDF5IO(os.fspath(tmp), "w") as io:
+        io.write(nwb)
+    os.replace(tmp, path)
+    return path

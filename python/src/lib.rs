@@ -1,0 +1,34 @@
+//! `chronocooked._core`: the Rust side of the Python package.
+//!
+//! * [`env`] — one Chronocooked env (`Env`): reset/step with fresh numpy arrays, spaces,
+//!   ANSI and RGB rendering;
+//! * [`vector`] — N envs stepped in Rust (`VecEnv`), batched numpy outputs;
+//! * [`info`] — the Rust `Info` as a dict of plain Python values, or a dict of arrays;
+//! * [`evaluate`] — the lab's evaluation protocol with a Python policy;
+//! * [`registry`] — the task registry and parameter documentation;
+//! * [`errors`] — Rust errors as Python exceptions (`ValueError` for bad input).
+//!
+//! The gymnasium classes live in Python (`chronocooked/envs.py`) on top of these.
+
+mod env;
+mod errors;
+mod evaluate;
+mod info;
+mod registry;
+mod vector;
+
+use pyo3::prelude::*;
+
+/// The extension module `chronocooked._core`.
+#[pymodule]
+fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<env::Env>()?;
+    m.add_class::<vector::VecEnv>()?;
+    m.add_function(wrap_pyfunction!(registry::tasks, m)?)?;
+    m.add_function(wrap_pyfunction!(registry::resolve, m)?)?;
+    m.add_function(wrap_pyfunction!(evaluate::evaluate, m)?)?;
+    m.add_function(wrap_pyfunction!(evaluate::reference_conditions, m)?)?;
+    m.add("EVENT_FLAGS", info::event_flags(m.py())?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}
