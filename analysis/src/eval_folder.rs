@@ -78,3 +78,22 @@ pub fn read_eval_info(dir: &Path) -> Result<EvalInfo, String> {
     })?;
     serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
 }
+
+/// Writes the activity recorded during an evaluation next to it: `activity.json` (the
+/// dataset, as `record` writes it) and its NPZ export `activity/` (aligned window up to 200
+/// steps). Trials are the evaluation's episodes, in `records.jsonl` order. Returns the files.
+pub fn write_activity(
+    out: &Path,
+    dataset: &chronocooked_models::ActivityDataset,
+) -> Result<Vec<PathBuf>, String> {
+    let path = out.join("activity.json");
+    let json = serde_json::to_vec(dataset).map_err(|e| e.to_string())?;
+    write(&path, &json)?;
+    let mut files = vec![path];
+    files.extend(crate::export::export_activity(
+        dataset,
+        &out.join("activity"),
+        200,
+    )?);
+    Ok(files)
+}

@@ -190,8 +190,12 @@ class ChronoVectorEnv(VectorEnv):
         return _core.Env(self.task, overrides(self.params), obs_mode)
 
     def reset(self, *, seed=None, options: dict | None = None):
-        super().reset(seed=seed)
         n = self.num_envs
+        if seed is None or isinstance(seed, (int, np.integer)):
+            super().reset(seed=None if seed is None else int(seed))
+        elif len(seed) != n:
+            raise ValueError(
+                f"invalid value for `seed`: {len(seed)} seeds (allowed: one int, or exactly {n})")
         start, td, never_ready = _reset_options(options)
         mask = None
         if options is not None and options.get("reset_mask") is not None:

@@ -10,9 +10,9 @@ Written file:
   (the model's activity behind each action);
 * ``trials`` — one row per episode: ``td``, ``start_row``, ``start_col``, ``reward``,
   ``success``, ``condition`` (protocol condition kind), start/stop times;
-* ``processing/behavior/task_events`` — ``BehavioralEvents`` with one ``TimeSeries`` per
-  event (oven_on, oven_ready, oven_check, pickup, delivery, reward, sink, button), data =
-  trial index, timestamps = event times (the step the event happened in);
+* ``events/task_events`` — an ``EventsTable``: one row per task event (oven_on, oven_ready,
+  oven_check, pickup, delivery, reward, sink, button) with its timestamp, name, trial and
+  step;
 * ``processing/behavior/Position/agent_position`` — grid cell ``(row, col)`` after each
   step; ``processing/behavior/actions/action`` — action codes (0 wait, 1 down, 2 up,
   3 right, 4 left, 5 interact);
@@ -48,15 +48,19 @@ def _records(eval_dir: Path):
     return out
 
 
-def to_nwb(activity, eval_dir, path, *, overwrite: bool = False) -> Path:
+def to_nwb(activity, eval_dir, path, *, overwrite: bool = False, experimenter=None,
+           institution: str | None = None, lab: str | None = None) -> Path:
     """Writes the model run recorded in ``activity`` (an ``activity.npz`` export, a folder
     holding one, or the ``(arrays, meta)`` pair of :func:`load_activity`) with the episodes
     of the evaluation folder ``eval_dir`` (same protocol run: :func:`chronocooked.evaluate`
-    writes both) to the NWB file ``path``. Returns ``path``.
+    writes both) to the NWB file ``path`` (written to a temporary file, then renamed).
+    ``experimenter`` / ``institution`` / ``lab`` fill the NWB session metadata. Returns
+    ``path``.
     """
     try:
         from pynwb import NWBHDF5IO, NWBFile, TimeSeries
-        from pynwb.behavior import BehavioralEvents, BehavioralTimeSeries, Position, SpatialSeries
+        from pynwb.behavior import BehavioralTimeSeries, Position, SpatialSeries
+        from pynwb.file import Subject
     except ImportError as e:  # pragma: no cover - depends on the installation
         raise ImportError(
             "the NWB export needs pynwb: pip install 'chronocooked[nwb]' (or pynwb)") from e
@@ -104,6 +108,19 @@ def to_nwb(activity, eval_dir, path, *, overwrite: bool = False) -> Path:
         keywords=["interval timing", "reinforcement learning", "Chronocooked", model, task],
         source_script="chronocooked.nwb.to_nwb",
         source_script_file_name="chronocooked/nwb.py",
+        experimenter=experimenter,
+        institution=institution,
+        lab=lab,
+    )
+    # A simulated agent has no species, sex or age: NCBI's "synthetic construct" taxon,
+    # sex "O" (other) and age P0D by convention, so that the required subject fields are set.
+    nwb.subject = Subject(
+        subject_id=f"{model}-seed{seed}",
+        description=f"simulated agent: model {model} (Chronocooked Lab), seed {seed}; species, "
+                    "sex and age are conventions (no organism)",
+        species="http://purl.obolibrary.org/obo/NCBITaxon_32630",
+        sex="O",
+        age="P0D",
     )
     model_mod = nwb.create_processing_module(
         name="model", description=f"Activity of the units of model {model} (one row per env step)")
@@ -127,36 +144,61 @@ def to_nwb(activity, eval_dir, path, *, overwrite: bool = False) -> Path:
                       condition=str(c["kind"]))
     behavior = nwb.create_processing_module(
         name="behavior", description="Agent behaviour and task events in the kitchen grid")
-    events = BehavioralEvents(name="task_events")
     codes = meta.get("event_codes", {})
     names = {int(c): n for c, n in codes.items()} if isinstance(codes, dict) else {}
     et = np.asarray(arrays.get("event_trial", []), dtype=np.int64)
     es = np.asarray(arrays.get("event_step", []), dtype=np.int64)
     ec = np.asarray(arrays.get("event_code", []), dtype=np.int64)
-    for code in sorted(set(ec.tolist())):
-        sel = ec == code
-        name = names.get(code, f"event_{code}")
-        events.add_timeseries(TimeSeries(
-            name=name, data=et[sel], unit="n.a.",
-            timestamps=((offsets[et[sel]] + es[sel]) * dt).astype(np.float64),
-            description=f"{name} events; data = trial index, timestamp = the step it happened in",
-        ))
-    if len(events.time_series) > 0:
-        behavior.add(events)
+    events = nwb.create_events_table(
+        name="task_events",
+        description="Task events (oven_on, oven_ready, oven_check, pickup, delivery, reward, "
+                    "sink, button); timestamp = start of the env step the event happened in",
+        source_description="Chronocooked env step information (info.events)",
+    )
+    events.add_column(name="event", description="event name")
+    events.add_column(name="trial", description="trial (episode) index")
+    events.add_column(name="step", description="step of the event within its trial")
+    for k, s, c in zip(et.tolist(), es.tolist(), ec.tolist()):
+        events.add_row(timestamp=float((offsets[k] + s) * dt), event=names.get(c, f"event_{c}"),
+                       trial=int(k), step=int(s))
     pos = np.asarray([i["agent"] for r in records for i in r["episode"]["infos"]], dtype=np.float64)
     actions = np.asarray([a for r in records for a in r["episode"]["actions"]], dtype=np.int64)
     position = Position(name="Position")
     position.add_spatial_series(SpatialSeries(
         name="agent_position", data=pos, reference_frame="kitchen grid, (row, col) of the cell "
-        "after the step's action, (0, 0) = top-left cell", unit="grid cells", rate=1.0 / dt,
-        starting_time=0.0, description="agent cell after each step"))
+        "after the step's action, (0, 0) = top-left cell", unit="n.a.", rate=1.0 / dt,
+        starting_time=0.0, description="agent grid cell (row, col) after each step, in cells"))
     behavior.add(position)
     behavior.add(BehavioralTimeSeries(name="actions", time_series=[TimeSeries(
         name="action", data=actions, unit="n.a.", rate=1.0 / dt, starting_time=0.0,
         description="action code per step: 0 wait, 1 down, 2 up, 3 right, 4 left, 5 interact")]))
     path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(path.name + ".tmp")
+    tmp = path.with_name(path.stem + ".tmp.nwb")
     with NWBHDF5IO(os.fspath(tmp), "w") as io:
         io.write(nwb)
     os.replace(tmp, path)
     return path
+
+
+def main(argv=None) -> int:
+    """``python -m chronocooked.nwb ACTIVITY EVAL_DIR OUT.nwb`` (used by
+    ``chronocooked export --format nwb``)."""
+    import argparse
+
+    ap = argparse.ArgumentParser(prog="python -m chronocooked.nwb", description=main.__doc__)
+    ap.add_argument("activity", help="activity.npz export (or a folder holding it)")
+    ap.add_argument("eval_dir", help="evaluation folder of the same run")
+    ap.add_argument("out", help="NWB file to write")
+    ap.add_argument("--overwrite", action="store_true")
+    args = ap.parse_args(argv)
+    try:
+        path = to_nwb(args.activity, args.eval_dir, args.out, overwrite=args.overwrite)
+    except (OSError, ValueError, KeyError) as e:
+        print(f"error: {e}", file=__import__("sys").stderr)
+        return 1
+    print(path)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -213,11 +213,7 @@ impl Env {
     /// The current state as an RGB image `uint8 [H, W, 3]`.
     fn render_rgb<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let f = frame(self.env.layout(), self.env.family(), self.env.obs_codes());
-        let rgb: Vec<u8> = f
-            .pixels
-            .iter()
-            .flat_map(|&p| PALETTE[p as usize])
-            .collect();
+        let rgb: Vec<u8> = f.pixels.iter().flat_map(|&p| PALETTE[p as usize]).collect();
         Ok(rgb
             .into_pyarray(py)
             .reshape([f.height, f.width, 3])?

@@ -112,7 +112,9 @@ impl<'py> PyAgent<'py> {
         let code: i64 = match action.extract::<i64>() {
             Ok(c) => c,
             Err(_) => action.call_method0("item")?.extract::<i64>().map_err(|_| {
-                value_err("the policy's action must be an integer in 0..=5 (or a one-element array)")
+                value_err(
+                    "the policy's action must be an integer in 0..=5 (or a one-element array)",
+                )
             })?,
         };
         self.state = tuple.get_item(1)?;
@@ -194,13 +196,16 @@ pub fn evaluate<'py>(
         None => Mode::Reference,
     };
     if name.trim().is_empty() {
-        return Err(value_err("invalid value for `name`: empty (allowed: a model name)"));
+        return Err(value_err(
+            "invalid value for `name`: empty (allowed: a model name)",
+        ));
     }
     let conditions =
         chronocooked_analysis::reference_conditions(task, &overrides).map_err(env_err)?;
     let mut geometries: Vec<Geometry> = Vec::new();
     for c in &conditions {
-        let env = ChronoEnv::new(&make_config(&c.task, &c.env).map_err(env_err)?).map_err(env_err)?;
+        let env =
+            ChronoEnv::new(&make_config(&c.task, &c.env).map_err(env_err)?).map_err(env_err)?;
         let shape = env.codes_space().shape;
         let shape = [shape[0], shape[1], shape[2]];
         let len = shape.iter().product();
@@ -260,15 +265,10 @@ pub fn evaluate<'py>(
     summary.set_item("figures", figures)?;
     let dataset = recorder.finish();
     if dataset.meta.n_units() > 0 {
-        let path = out.join("activity.json");
-        let json = serde_json::to_vec(&dataset).map_err(|e| runtime_err(e.to_string()))?;
-        chronocooked_env::fs::write_atomic(&path, &json)
-            .map_err(|e| pyo3::exceptions::PyOSError::new_err(format!("{}: {e}", path.display())))?;
-        let files =
-            chronocooked_analysis::export::export_activity(&dataset, &out.join("activity"), 200)
-                .map_err(runtime_err)?;
-        summary.set_item("activity", path)?;
-        summary.set_item("activity_export", files)?;
+        let files = chronocooked_analysis::eval_folder::write_activity(&out, &dataset)
+            .map_err(runtime_err)?;
+        summary.set_item("activity", &files[0])?;
+        summary.set_item("activity_export", &files[1..])?;
         summary.set_item("units", dataset.meta.n_units())?;
     }
     Ok(summary)

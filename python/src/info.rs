@@ -130,11 +130,7 @@ pub fn info_arrays<'py>(py: Python<'py>, infos: &[Info]) -> PyResult<Bound<'py, 
         .iter()
         .flat_map(|i| [i64::from(i.agent.0), i64::from(i.agent.1)])
         .collect();
-    let agent = agent
-        .into_pyarray(py)
-        .reshape([infos.len(), 2])
-        .map_err(PyErr::from)?;
-    let agent: Bound<'py, PyArray2<i64>> = agent;
+    let agent: Bound<'py, PyArray2<i64>> = agent.into_pyarray(py).reshape([infos.len(), 2])?;
     d.set_item("agent", agent)?;
     d.set_item(
         "carrying",

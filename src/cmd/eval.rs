@@ -3,9 +3,10 @@
 
 use anyhow::{Context, Result, bail};
 use chronocooked_analysis::eval_folder::{self, EvalInfo};
-use chronocooked_analysis::{EvalRecord, Mode, reference_conditions, run_protocol};
+use chronocooked_analysis::{EvalRecord, Mode, reference_conditions, run_protocol_recorded};
 use chronocooked_env::ChronoEnv;
 use chronocooked_models::Agent;
+use chronocooked_models::activity::{ActivityMeta, TrialRecorder};
 use chronocooked_models::agent::{OracleAgent, RandomAgent};
 use chronocooked_training::timing_run::load_agent;
 use clap::Args;
@@ -42,6 +43,11 @@ pub struct EvalArgs {
     /// Output folder (records.jsonl, eval.json, metrics.json).
     #[arg(long, default_value = "eval")]
     pub out: PathBuf,
+    /// Also record the model's activity during the protocol: `activity.json` and its NPZ
+    /// export `activity/` in the output folder, one trial per evaluated episode (what
+    /// `export --format nwb` pairs with the episodes).
+    #[arg(long)]
+    pub activity: bool,
 }
 
 fn write_metrics(out: &Path, info: &EvalInfo, records: &[EvalRecord]) -> Result<()> {
@@ -116,7 +122,22 @@ pub fn run(args: EvalArgs) -> Result<()> {
         None => Mode::Reference,
     };
     let conditions = reference_conditions(&task, &env)?;
-    let records = run_protocol(agent.as_mut(), &conditions, mode, args.seed)?;
+    let meta = ActivityMeta {
+        model: agent.name(),
+        task: task.clone(),
+        env: env.clone(),
+        seed: args.seed,
+        dt: 1.0,
+        populations: Vec::new(),
+    };
+    let mut recorder = TrialRecorder::new(meta);
+    let records = run_protocol_recorded(
+        agent.as_mut(),
+        &conditions,
+        mode,
+        args.seed,
+        args.activity.then_some(&mut recorder),
+    )?;
     let info = EvalInfo {
         model: agent.name(),
         task,
@@ -124,7 +145,24 @@ pub fn run(args: EvalArgs) -> Result<()> {
         mode,
         seed: args.seed,
     };
-    write_outputs(&args.out, &info, &records)
+    write_outputs(&args.out, &info, &records)?;
+    if args.activity {
+        let dataset = recorder.finish();
+        if dataset.meta.n_units() == 0 {
+            bail!(
+                "{} records no activity (reference agents have no units); drop --activity",
+                info.model
+            );
+        }
+        let files = eval_folder::write_activity(&args.out, &dataset).map_err(anyhow::Error::msg)?;
+        println!(
+            "activity: {} trials × {} units → {}",
+            dataset.trials.len(),
+            dataset.meta.n_units(),
+            files[0].display()
+        );
+    }
+    Ok(())
 }
 
 fn write_outputs(out: &Path, info: &EvalInfo, records: &[EvalRecord]) -> Result<()> {

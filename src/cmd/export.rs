@@ -20,6 +20,76 @@ pub struct ExportArgs {
     /// Output folder.
     #[arg(long, default_value = "export")]
     pub out: PathBuf,
+    /// `npz` (NPZ + CSV + JSON metadata) or `nwb`: also one NWB file `<out>/run.nwb` of the
+    /// activity (from `eval --activity` or the Python `evaluate`) with the episodes of
+    /// `--eval` — written by the Python package (`pip install './python[nwb]'`).
+    #[arg(long, default_value = "npz", value_parser = ["npz", "nwb"])]
+    pub format: String,
+    /// Python interpreter with the `chronocooked` package (NWB export); default
+    /// `$CHRONOCOOKED_PYTHON`, else `.venv/bin/python` when present, else `python3`.
+    #[arg(long)]
+    pub python: Option<PathBuf>,
+}
+
+/// The interpreter for the NWB export.
+fn python(args: &ExportArgs) -> PathBuf {
+    if let Some(p) = &args.python {
+        return p.clone();
+    }
+    if let Some(p) = std::env::var_os("CHRONOCOOKED_PYTHON") {
+        return PathBuf::from(p);
+    }
+    let venv = PathBuf::from(".venv/bin/python");
+    if venv.is_file() {
+        venv
+    } else {
+        PathBuf::from("python3")
+    }
+}
+
+/// Writes `<out>/run.nwb` through the Python package (`python -m chronocooked.nwb`).
+fn export_nwb(args: &ExportArgs) -> Result<PathBuf> {
+    let (Some(_), Some(eval)) = (&args.activity, &args.eval) else {
+        bail!(
+            "--format nwb needs --activity FILE.json (from `eval --activity` or the Python `evaluate`) and --eval DIR of the same run"
+        );
+    };
+    let py = python(args);
+    let probe = std::process::Command::new(&py)
+        .args(["-c", "import chronocooked.nwb, pynwb"])
+        .output();
+    match probe {
+        Ok(o) if o.status.success() => {}
+        Ok(o) => bail!(
+            "the NWB export needs the Python package with pynwb, which {} cannot import ({}): \
+             install it with `pip install './python[nwb]'` (or run `bash scripts/test.sh`, which \
+             builds .venv), or name an interpreter with --python",
+            py.display(),
+            String::from_utf8_lossy(&o.stderr)
+                .trim()
+                .lines()
+                .last()
+                .unwrap_or("")
+        ),
+        Err(e) => bail!(
+            "the NWB export needs a Python interpreter with the `chronocooked` package: {} ({e}); \
+             install it with `pip install './python[nwb]'` or name one with --python",
+            py.display()
+        ),
+    }
+    let target = args.out.join("run.nwb");
+    let status = std::process::Command::new(&py)
+        .args(["-m", "chronocooked.nwb", "--overwrite"])
+        .arg(args.out.join("activity.npz"))
+        .arg(eval)
+        .arg(&target)
+        .stdout(std::process::Stdio::null())
+        .status()
+        .with_context(|| format!("running {}", py.display()))?;
+    if !status.success() {
+        bail!("the NWB export failed (see the message above)");
+    }
+    Ok(target)
 }
 
 /// Runs `export`.
@@ -52,6 +122,9 @@ pub fn run(args: ExportArgs) -> Result<()> {
             chronocooked_analysis::export::export_eval(&records, &args.out)
                 .map_err(anyhow::Error::msg)?,
         );
+    }
+    if args.format == "nwb" {
+        files.push(export_nwb(&args)?);
     }
     for f in files {
         println!("{}", f.display());

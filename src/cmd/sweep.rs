@@ -361,6 +361,7 @@ pub fn run_job(sweep: &SweepFile, job: &Job, out: &Path) -> Result<()> {
                 human: None,
                 from: None,
                 out: dir.join("eval"),
+                activity: false,
             })?,
             "adapt" => crate::cmd::adapt::run(crate::cmd::adapt::AdaptArgs {
                 run: run.clone(),
@@ -395,6 +396,8 @@ pub fn run_job(sweep: &SweepFile, job: &Job, out: &Path) -> Result<()> {
                 eval: Some(dir.join("eval")),
                 window: 200,
                 out: dir.join("export"),
+                format: "npz".into(),
+                python: None,
             })?,
             _ => unreachable!("stages are fixed"),
         }
