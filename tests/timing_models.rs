@@ -218,6 +218,21 @@ fn microstimuli_peak_times_and_heights_match_closed_form() {
         }
         assert!((argmax(&series) as f64 - t_star).abs() <= 0.5 + 1e-9);
     }
+    // Ludvig, Sutton & Kehoe (2008): x = y·exp(−(y − i/m)²/(2σ²))/√(2π), by hand.
+    let root_2pi = (2.0 * std::f64::consts::PI).sqrt();
+    assert!((microstimulus(1.0, 10, 10, 0.08) - 1.0 / root_2pi).abs() < 1e-15);
+    assert!((microstimulus(0.5, 5, 10, 0.08) - 0.5 / root_2pi).abs() < 1e-15);
+    let by_hand = 0.42 * (-(0.42f64 - 0.3).powi(2) / (2.0 * 0.08 * 0.08)).exp() / root_2pi;
+    assert!((microstimulus(0.42, 3, 10, 0.08) - by_hand).abs() < 1e-15);
+    // Peak of unit i = m = 10 (μ = 1 ≥ y* boundary: y* = (1 + √(1 + 4σ²))/2 > 1) is at onset.
+    let (t10, h10) = microstimulus_peak(10, 10, 0.08, 0.985);
+    assert_eq!(t10, 0.0);
+    assert!((h10 - 1.0 / root_2pi).abs() < 1e-15);
+    // Unit 5: y* = (0.5 + √(0.25 + 0.0256))/2, t* = ln y*/ln 0.985, height y*·e^{−(y*−0.5)²/(2σ²)}/√(2π).
+    let y5 = 0.5 * (0.5 + (0.25f64 + 4.0 * 0.0064).sqrt());
+    let (t5, h5) = microstimulus_peak(5, 10, 0.08, 0.985);
+    assert!((t5 - y5.ln() / 0.985f64.ln()).abs() < 1e-12);
+    assert!((h5 - y5 * (-(y5 - 0.5).powi(2) / 0.0128).exp() / root_2pi).abs() < 1e-15);
     // Later microstimuli peak later and lower (the trace decays).
     let peaks: Vec<(f64, f64)> = (1..=m)
         .map(|i| microstimulus_peak(i, m, sigma, d))

@@ -19,6 +19,13 @@ mod vector;
 
 use pyo3::prelude::*;
 
+/// Panics on purpose: the test suite checks that a Rust panic reaches Python as an
+/// exception (`pyo3_runtime.PanicException`) and the interpreter goes on.
+#[pyfunction]
+fn _panic_for_tests() {
+    panic!("deliberate panic (test of the panic boundary)");
+}
+
 /// The extension module `chronocooked._core`.
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -28,6 +35,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(registry::resolve, m)?)?;
     m.add_function(wrap_pyfunction!(evaluate::evaluate, m)?)?;
     m.add_function(wrap_pyfunction!(evaluate::reference_conditions, m)?)?;
+    m.add_function(wrap_pyfunction!(_panic_for_tests, m)?)?;
     m.add("EVENT_FLAGS", info::event_flags(m.py())?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

@@ -251,3 +251,11 @@ def test_task_documentation_lists_parameters():
     assert {"short", "long", "max_timesteps", "reference_compat"} <= keys
     fi = {p["key"]: p for p in tasks["FixedInterval-v0"]["params"]}
     assert "oven_duration" in fi["td"]["aliases"]
+
+
+def test_a_rust_panic_is_an_exception_not_an_abort():
+    with pytest.raises(BaseException, match="deliberate panic"):
+        chronocooked._core._panic_for_tests()
+    env = gym.make("chronocooked/FixedInterval-v0")  # the interpreter and the module go on
+    obs, _ = env.reset(seed=0)
+    assert obs.shape == (5, 3, 6)

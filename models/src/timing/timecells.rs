@@ -5,10 +5,13 @@
 //! * **presence** — one unit, 1 while the stimulus is on;
 //! * **complete serial compound (CSC)** — one unit per step since onset (a tapped delay
 //!   line), the last unit standing for "that long or longer";
-//! * **microstimuli** — a memory trace `y = dᵗ` read by `m` Gaussian basis functions:
-//!   `xᵢ = y · N(y; i/m, σ)`, `i = 1 … m` (defaults `d` 0.985, `σ` 0.08, `m` 10). Unit `i`
-//!   peaks where `y² − μy − σ² = 0` (`μ = i/m`): `y* = (μ + √(μ² + 4σ²))/2`,
-//!   `t* = ln y* / ln d` (at `t = 0` if `y* ≥ 1`);
+//! * **microstimuli** — a memory trace `y = dᵗ` read by `m` Gaussian basis functions,
+//!   exactly Ludvig, Sutton & Kehoe (2008, eqs. 1–2): `xᵢ = y · exp(−(y − i/m)²/(2σ²)) / √(2π)`,
+//!   `i = 1 … m` (defaults `d` 0.985, `σ` 0.08, `m` 10; no `1/σ` factor: the basis function
+//!   is `f(y, μ, σ) = exp(−(y − μ)²/(2σ²))/√(2π)`, so a unit at `y = μ` is `μ/√(2π)` high).
+//!   Unit `i` peaks where `y² − μy − σ² = 0` (`μ = i/m`): `y* = (μ + √(μ² + 4σ²))/2`,
+//!   `t* = ln y* / ln d` (at `t = 0` if `y* ≥ 1`). The TD agent reads the units divided by
+//!   their peak heights ([`TimeCells::normalised_units_into`]); recordings hold the raw `xᵢ`;
 //! * **Laplace time cells** — leaky integrators `dF/dt = −s F + f(t)` at log-spaced rates
 //!   `s = k/τ*`, inverted with Post's formula `f̃ = (−1)ᵏ/k! · s^{k+1} ∂ᵏF/∂sᵏ`. For an
 //!   impulse at 0, `f̃(τ*, t) = s^{k+1} tᵏ e^{−st}/k!`: a bump peaking at `t = τ*` whose
@@ -97,11 +100,12 @@ impl Representation {
     }
 }
 
-/// Microstimulus `i` (1-based) of `m` at trace height `y`: `y · N(y; i/m, σ)`.
+/// Microstimulus `i` (1-based) of `m` at trace height `y` (Ludvig et al. 2008):
+/// `y · exp(−(y − i/m)²/(2σ²)) / √(2π)`.
 pub fn microstimulus(y: f64, i: usize, m: usize, sigma: f64) -> f64 {
     let mu = i as f64 / m as f64;
     let z = (y - mu) / sigma;
-    y * (-0.5 * z * z).exp() / (sigma * (2.0 * std::f64::consts::PI).sqrt())
+    y * (-0.5 * z * z).exp() / (2.0 * std::f64::consts::PI).sqrt()
 }
 
 /// Closed-form peak `(time in steps, height)` of microstimulus `i` of `m`.
