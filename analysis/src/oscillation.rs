@@ -117,3 +117,45 @@ pub fn welch(x: &[f64], segment: usize, dt: f64) -> Spectrum {
         .map_or(f64::NAN, |k| freqs[k]);
     Spectrum { freqs, power, peak }
 }
+
+/// Autocorrelation `r(L)` of `x` for lags `0 … max_lag` (mean removed, biased estimator:
+/// `Σ_t x_t x_{t+L} / Σ_t x_t²`, so `r(0) = 1`; all zeros for a constant series).
+pub fn autocorrelation(x: &[f64], max_lag: usize) -> Vec<f64> {
+    let n = x.len();
+    let mean = x.iter().sum::<f64>() / n.max(1) as f64;
+    let d: Vec<f64> = x.iter().map(|v| v - mean).collect();
+    let var: f64 = d.iter().map(|v| v * v).sum();
+    (0..=max_lag.min(n.saturating_sub(1)))
+        .map(|lag| {
+            if var <= 0.0 {
+                return 0.0;
+            }
+            d.iter().zip(&d[lag..]).map(|(a, b)| a * b).sum::<f64>() / var
+        })
+        .collect()
+}
+
+/// Whether `x` (e.g. a unit's trial average over a window) repeats itself: its
+/// autocorrelation falls below −0.25 and then rises again to a peak ≥ 0.4 at a lag of
+/// 2 … len/2 steps — at least two cycles of a rhythm inside the window. Transients (a bump, a
+/// ramp) have low-frequency spectral peaks but no second autocorrelation peak; white noise
+/// of `len` samples has autocorrelations of SD ≈ 1/√len (≈ 0.16 at 40 steps), so a trough
+/// and a later peak of this size are rare (< 1 in 8 noise units in the tests). Needs ≥ 8
+/// samples.
+pub fn is_oscillating(x: &[f64]) -> bool {
+    if x.len() < 8 {
+        return false;
+    }
+    let r = autocorrelation(x, x.len() / 2);
+    let mut trough = false;
+    for lag in 1..r.len() {
+        if r[lag] <= -0.25 {
+            trough = true;
+        }
+        let local_peak = lag + 1 >= r.len() || r[lag] >= r[lag + 1];
+        if trough && lag >= 2 && r[lag] >= 0.4 && r[lag] >= r[lag - 1] && local_peak {
+            return true;
+        }
+    }
+    false
+}

@@ -4,7 +4,7 @@
 
 use crate::decode::{Decoder, decode_time};
 use crate::neural::{Cube, classify_ramps, sequentiality_index, time_cells};
-use crate::oscillation::welch;
+use crate::oscillation::is_oscillating;
 use chronocooked_models::{ActivityDataset, Marker};
 use serde::{Deserialize, Serialize};
 
@@ -27,8 +27,9 @@ pub struct NeuralSummary {
     /// Fraction of time cells (shuffle p < 0.05, odd/even reliability > 0.5).
     #[serde(deserialize_with = "f64_or_nan")]
     pub frac_time_cells: f64,
-    /// Fraction of oscillating units (trial-averaged spectrum: a non-DC peak ≥ 4× the
-    /// median power; needs windows of ≥ 8 steps).
+    /// Fraction of oscillating units (the trial average repeats itself: an autocorrelation
+    /// trough ≤ −0.25 followed by a peak ≥ 0.4 within half the window,
+    /// [`crate::oscillation::is_oscillating`]; needs windows of ≥ 8 steps).
     #[serde(deserialize_with = "f64_or_nan")]
     pub frac_oscillating: f64,
     /// Sequentiality index of the trial average.
@@ -111,16 +112,7 @@ pub fn neural_summary(
                 .map(|t| avg[t * u + i])
                 .filter(|v| v.is_finite())
                 .collect();
-            if series.len() < 8 {
-                return false;
-            }
-            let s = welch(&series, series.len(), 1.0);
-            let mut p: Vec<f64> = s.power[1..].to_vec();
-            p.sort_by(f64::total_cmp);
-            let median = p[p.len() / 2].max(1e-12);
-            let peak = p.last().copied().unwrap_or(0.0);
-            let peak_bin = s.power.iter().skip(1).position(|&x| x == peak).unwrap_or(0) + 1;
-            peak_bin > 1 && peak >= 4.0 * median
+            is_oscillating(&series)
         })
         .count();
     let frac = |c: usize| c as f64 / u as f64;
