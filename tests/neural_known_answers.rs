@@ -27,7 +27,7 @@ fn gauss(rng: &mut Xoshiro256PlusPlus) -> f64 {
 /// unit `i`, time `t` after oven-on (steps), plus noise of SD `noise`.
 fn signal(p: usize, i: usize, t: f64) -> f64 {
     match p {
-        0 => (t + 1.0) * (0.2 + 0.1 * i as f64) * if i % 2 == 0 { 1.0 } else { -1.0 },
+        0 => (t + 1.0) * (0.2 + 0.1 * i as f64) * if i.is_multiple_of(2) { 1.0 } else { -1.0 },
         1 => (2.0 * PI * t / PERIODS[i] + i as f64).sin(),
         2 => (-(t - i as f64).powi(2) / 2.0).exp(),
         3 => (-(t - 20.0).powi(2) / (2.0 * 3.0f64.powi(2))).exp(),
