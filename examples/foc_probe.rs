@@ -1,7 +1,7 @@
 //! FOC per TD for each timing agent trained on FI at that TD.
 use chronocooked_analysis::episode_foc;
 use chronocooked_env::{ChronoEnv, make_config};
-use chronocooked_models::zoo::{TIMING_MODELS, make_timing_agent};
+use chronocooked_models::timing::zoo::{TIMING_MODELS, make_timing_agent};
 use chronocooked_models::{TimingTrainConfig, evaluate_agent, train_timing_agent};
 
 fn main() {

@@ -7,7 +7,7 @@ use chronocooked_models::agent::{OracleAgent, run_episode};
 use chronocooked_training::adapt::{
     AdaptConfig, episodes_to_adapt, rolling_success, run_adaptation,
 };
-use chronocooked_training::params::flat_params;
+use chronocooked_training::ppo::params::flat_params;
 use chronocooked_training::{TimingRunConfig, Trainer, load_policy, resolve, run_training};
 
 fn temp_dir(name: &str) -> std::path::PathBuf {

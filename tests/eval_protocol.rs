@@ -110,7 +110,7 @@ fn every_task_has_reference_conditions_the_oracle_plays() {
 
 #[test]
 fn multi_timer_dual_and_uncertainty_metrics_on_the_oracle() {
-    use chronocooked_analysis::metrics::count_plateaus;
+    use chronocooked_analysis::behaviour::metrics::count_plateaus;
     let pts = [
         (1, 2.1),
         (2, 2.0),
@@ -205,7 +205,7 @@ fn recorded_play_goes_through_the_same_metrics() {
             }
         }
     }
-    let recs = chronocooked_analysis::human::records_from_trace(&text).unwrap();
+    let recs = chronocooked_analysis::behaviour::human::records_from_trace(&text).unwrap();
     assert_eq!(recs.len(), 2);
     assert!(
         recs.iter()
@@ -214,9 +214,9 @@ fn recorded_play_goes_through_the_same_metrics() {
     assert_eq!(recs[1].episode.start, (4, 2));
     let m = compute_metrics("human", &recs, 0);
     assert_eq!(m.fi.unwrap().foc[0].mean, 6.0);
-    assert!(chronocooked_analysis::human::records_from_trace("{not json").is_err());
+    assert!(chronocooked_analysis::behaviour::human::records_from_trace("{not json").is_err());
     assert!(
-        chronocooked_analysis::human::records_from_trace(
+        chronocooked_analysis::behaviour::human::records_from_trace(
             &text.lines().skip(1).collect::<Vec<_>>().join("\n")
         )
         .is_err()

@@ -2,10 +2,10 @@
 //! reads a detached copy of the recurrent output, reservoir cores never change, and
 //! recurrent minibatches are sb3-contrib's rotated windows cut into sequences.
 
-use chronocooked_models::native::{Cache, NativePolicy, SeqBatch};
+use chronocooked_models::deep::native::{Cache, NativePolicy, SeqBatch};
 use chronocooked_models::{Architecture, CoreKind, PolicyConfig};
-use chronocooked_training::params::flat_params;
-use chronocooked_training::rollout::{Chunk, sequence_batches};
+use chronocooked_training::ppo::params::flat_params;
+use chronocooked_training::ppo::rollout::{Chunk, sequence_batches};
 use chronocooked_training::{Trainer, resolve};
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -230,10 +230,10 @@ fn torch_core_init_draws_pytorch_default_ranges() {
         let l = NativePolicy::new(&pc).layout().clone();
         let (w_in, b_in) = l.core_in.unwrap();
         let (w_rec, _) = l.core_rec.unwrap();
-        let max = |b: chronocooked_models::native::Block| {
+        let max = |b: chronocooked_models::deep::native::Block| {
             b.of(&theta).iter().fold(0f32, |m, v| m.max(v.abs())) as f64
         };
-        let mean_abs = |b: chronocooked_models::native::Block| {
+        let mean_abs = |b: chronocooked_models::deep::native::Block| {
             b.of(&theta).iter().map(|v| v.abs() as f64).sum::<f64>() / b.len as f64
         };
         let kh = 1.0 / (h as f64).sqrt();

@@ -1,8 +1,8 @@
 //! Behavioural metrics with known answers: logistic-fit recovery and interval coverage,
 //! separated and degenerate data, first oven check on hand-built episodes, FOC statistics.
 
-use chronocooked_analysis::foc::linear_fit;
-use chronocooked_analysis::psychometric::bp_relative;
+use chronocooked_analysis::behaviour::foc::linear_fit;
+use chronocooked_analysis::behaviour::psychometric::bp_relative;
 use chronocooked_analysis::{
     FitError, FocConvention, ProbeCounts, first_oven_check, first_oven_check_with, fit_logistic,
     fit_with_ci, foc_stats, scalar_property,
@@ -53,10 +53,12 @@ fn logistic_fit_recovers_known_parameters_and_its_interval_covers() {
     // A real transition is significant; flat random choices are not.
     let strong = simulate(bp, s, 20, &mut rng);
     let f = fit_logistic(&strong).unwrap();
-    assert!(chronocooked_analysis::psychometric::transition_p_value(&strong, &f) < 1e-6);
+    assert!(chronocooked_analysis::behaviour::psychometric::transition_p_value(&strong, &f) < 1e-6);
     let flat = simulate(bp, 1e6, 20, &mut rng);
     if let Ok(f) = fit_logistic(&flat) {
-        assert!(chronocooked_analysis::psychometric::transition_p_value(&flat, &f) > 0.001);
+        assert!(
+            chronocooked_analysis::behaviour::psychometric::transition_p_value(&flat, &f) > 0.001
+        );
     }
     let (am, gm) = bp_relative(8.0, 4.0, 16.0);
     assert!((am - 0.8).abs() < 1e-12 && (gm - 1.0).abs() < 1e-12);
@@ -208,7 +210,7 @@ fn foc_statistics_show_the_scalar_property_on_scalar_data() {
 
 #[test]
 fn gaussian_peak_fit_recovers_known_curve() {
-    use chronocooked_analysis::peak::fit_gaussian;
+    use chronocooked_analysis::behaviour::peak::fit_gaussian;
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(9);
     let (a, mu, sigma, b) = (0.8, 18.0, 4.5, 0.05);
     let rate: Vec<f64> = (0..60)
@@ -230,7 +232,7 @@ fn gaussian_peak_fit_recovers_known_curve() {
 
 #[test]
 fn start_stop_on_a_hand_computed_trial() {
-    use chronocooked_analysis::peak::start_stop;
+    use chronocooked_analysis::behaviour::peak::start_stop;
     // Responses at steps 5..10 (and a stray one at 2): low–high–low with start 5, stop 10.
     let mut r = vec![0.0; 20];
     for v in &mut r[5..10] {
@@ -245,7 +247,7 @@ fn start_stop_on_a_hand_computed_trial() {
 
 #[test]
 fn itpc_of_frequency_jittered_oscillators_decays_as_predicted() {
-    use chronocooked_analysis::oscillation::{itpc, welch};
+    use chronocooked_analysis::neural::oscillation::{itpc, welch};
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(11);
     let (f0, sf, dt, n) = (10.0, 0.5, 1.0 / 400.0, 400);
     let trials: Vec<Vec<f64>> = (0..400)
@@ -280,7 +282,7 @@ fn itpc_of_frequency_jittered_oscillators_decays_as_predicted() {
 
 #[test]
 fn aggregation_and_adaptation_have_known_answers() {
-    use chronocooked_analysis::aggregate::Spread;
+    use chronocooked_analysis::behaviour::aggregate::Spread;
     use chronocooked_training::adapt::episodes_to_adapt;
     let s = Spread::of([1.0, 2.0, 3.0, f64::NAN]);
     assert_eq!((s.mean, s.n), (2.0, 3));

@@ -3,9 +3,9 @@
 //! an episode start inside the sequence and a non-zero initial state.
 
 use burn::tensor::{Tensor, TensorData};
-use chronocooked_models::native::{Cache, NativePolicy, SeqBatch};
+use chronocooked_models::deep::native::{Cache, NativePolicy, SeqBatch};
 use chronocooked_models::{Architecture, CoreKind, CoreState, PolicyConfig, cpu_autodiff, to_vec};
-use chronocooked_training::params::{flat_grads, flat_params, write_params};
+use chronocooked_training::ppo::params::{flat_grads, flat_params, write_params};
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 

@@ -3,8 +3,8 @@
 //! Gaussian bumps, identical bumps and pure noise, recorded as an activity dataset with the
 //! oven turning on at step 0.
 
-use chronocooked_analysis::oscillation::welch;
-use chronocooked_analysis::summary::{NeuralSummary, neural_summary};
+use chronocooked_analysis::neural::oscillation::welch;
+use chronocooked_analysis::neural::summary::{NeuralSummary, neural_summary};
 use chronocooked_models::activity::{Event, Population, Trial};
 use chronocooked_models::{ActivityDataset, ActivityMeta, Marker};
 use rand::{Rng, SeedableRng};

@@ -126,7 +126,7 @@ fn every_model_records_into_the_same_dataset_type() {
             vec!["time_cells", "laplace", "value", "rpe"],
         ),
     ] {
-        let mut a = chronocooked_models::zoo::make_timing_agent(name, &env, 0).unwrap();
+        let mut a = chronocooked_models::timing::zoo::make_timing_agent(name, &env, 0).unwrap();
         let train = chronocooked_models::TimingTrainConfig {
             episodes: 2000,
             eval_every: 0,
@@ -238,8 +238,9 @@ fn every_timing_model_plays_every_task() {
         let config = spec.default_config();
         let env = chronocooked_env::ChronoEnv::new(&config).unwrap();
         let tds = chronocooked_training::eval_tds(&config);
-        for m in chronocooked_models::zoo::TIMING_MODELS {
-            let mut agent = chronocooked_models::zoo::make_timing_agent(m.name, &env, 1).unwrap();
+        for m in chronocooked_models::timing::zoo::TIMING_MODELS {
+            let mut agent =
+                chronocooked_models::timing::zoo::make_timing_agent(m.name, &env, 1).unwrap();
             let train = chronocooked_models::TimingTrainConfig {
                 episodes: 150,
                 eval_every: 0,
@@ -267,7 +268,7 @@ fn every_timing_model_plays_every_task() {
 
 #[test]
 fn neural_summaries_tell_ramps_sequences_and_oscillations_apart() {
-    use chronocooked_analysis::summary::neural_summary;
+    use chronocooked_analysis::neural::summary::neural_summary;
     let summarise = |model: &str, population: &str| {
         let mut cfg = TimingRunConfig::new("FixedInterval-v0", model, 0);
         cfg.set("env.td=18").unwrap();
@@ -307,10 +308,11 @@ fn neural_summaries_tell_ramps_sequences_and_oscillations_apart() {
 #[test]
 fn exported_npz_matches_the_dataset_array_by_array() {
     use chronocooked_analysis::export::export_activity;
-    use chronocooked_analysis::npz::read_npz;
+    use chronocooked_analysis::export::npz::read_npz;
     let config = make_config("FixedInterval-v0", &["td=6"]).unwrap();
     let env = chronocooked_env::ChronoEnv::new(&config).unwrap();
-    let mut agent = chronocooked_models::zoo::make_timing_agent("timecells-ms", &env, 0).unwrap();
+    let mut agent =
+        chronocooked_models::timing::zoo::make_timing_agent("timecells-ms", &env, 0).unwrap();
     let train = chronocooked_models::TimingTrainConfig {
         episodes: 1500,
         eval_every: 0,

@@ -6,9 +6,11 @@ use burn::tensor::{Int, Tensor, TensorData};
 use chronocooked_models::{
     Architecture, CoreConfig, CoreKind, PolicyConfig, cpu, cpu_autodiff, to_vec,
 };
-use chronocooked_training::gae::compute_gae;
-use chronocooked_training::loss::{LossBatch, LossCoefs, OutputBatch, ppo_loss, ppo_output_grads};
-use chronocooked_training::params::{flat_grads, param_offset};
+use chronocooked_training::ppo::gae::compute_gae;
+use chronocooked_training::ppo::loss::{
+    LossBatch, LossCoefs, OutputBatch, ppo_loss, ppo_output_grads,
+};
+use chronocooked_training::ppo::params::{flat_grads, param_offset};
 use chronocooked_training::{Silent, Trainer, load_policy, resolve, run_training};
 
 fn close(a: f64, b: f64, tol: f64) -> bool {
@@ -152,9 +154,9 @@ impl burn::module::ModuleMapper for Zeroer {
     }
 }
 
-fn rand_seed(s: u64) -> chronocooked_models::init::InitRng {
+fn rand_seed(s: u64) -> chronocooked_models::deep::init::InitRng {
     use rand::SeedableRng;
-    chronocooked_models::init::InitRng::seed_from_u64(s)
+    chronocooked_models::deep::init::InitRng::seed_from_u64(s)
 }
 
 fn seq_inputs(t: usize, b: usize, cells: usize, seed: u64) -> Vec<f32> {

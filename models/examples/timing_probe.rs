@@ -1,7 +1,7 @@
 //! Quick probe: train each timing agent on a task and print its learning curve.
 //! `cargo run --release -p chronocooked-models --example timing_probe -- FixedInterval-v0 td=12`
 use chronocooked_env::{ChronoEnv, make_config};
-use chronocooked_models::zoo::{TIMING_MODELS, make_timing_agent};
+use chronocooked_models::timing::zoo::{TIMING_MODELS, make_timing_agent};
 use chronocooked_models::{TimingTrainConfig, train_timing_agent};
 
 fn main() {

@@ -1,31 +1,26 @@
-//! Chronocooked Lab models: the paper's CNN trunk, recurrent cores (LSTM, GRU, RNN,
-//! CTRNN) and actor–critic policies as burn modules; the biologically plausible timing
-//! models ([`timing`]) and the agents that play the tasks with them ([`timing_agent`]);
-//! the one agent interface ([`agent`]) and activity recording ([`activity`]).
+//! Chronocooked Lab models, by family:
+//!
+//! * [`deep`] — the paper's deep-RL networks: CNN trunk, recurrent cores (LSTM, GRU, RNN,
+//!   CTRNN), actor–critic policies as burn modules, and their native twin (`deep::native`);
+//! * [`timing`] — the biologically plausible timing models (drift-diffusion, striatal beat
+//!   frequency, time cells, TD), the agents that play the tasks with them and their zoo;
+//! * [`agent`] — the one agent interface every model plays through, episodes and the
+//!   deterministic evaluation loop; [`activity`] — recording of neural activity.
 
 pub mod activity;
 pub mod agent;
-pub mod cores;
-pub mod init;
-pub mod native;
-pub mod policy;
-pub mod sarsa;
-pub mod timers;
+pub mod deep;
 pub mod timing;
-pub mod timing_agent;
-pub mod timing_train;
-pub mod trunk;
-pub mod zoo;
 
 pub use activity::{ActivityDataset, ActivityMeta, Marker, StepRecorder, TrialRecorder};
 pub use agent::{Agent, EpisodeRecord, Percept, PerceptParser, evaluate_agent, run_episode};
-pub use cores::{CoreConfig, CoreInit, CoreKind, CoreState, RecurrentCore};
-pub use policy::{ActorCritic, Architecture, PAPER_SIZES, PolicyConfig, PolicyOutput};
-pub use timing_agent::{TimingAgent, TimingAgentConfig};
-pub use timing_train::{
+pub use deep::cores::{CoreConfig, CoreInit, CoreKind, CoreState, RecurrentCore};
+pub use deep::policy::{ActorCritic, Architecture, PAPER_SIZES, PolicyConfig, PolicyOutput};
+pub use deep::trunk::{Trunk, TrunkConfig};
+pub use timing::agent::{TimingAgent, TimingAgentConfig};
+pub use timing::train::{
     TimingCurvePoint, TimingTrainConfig, adaptation_episodes, train_timing_agent,
 };
-pub use trunk::{Trunk, TrunkConfig};
 
 /// The compute device used by the lab: burn's `flex` CPU backend.
 pub fn cpu() -> burn::tensor::Device {

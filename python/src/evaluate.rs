@@ -6,7 +6,7 @@
 //! folder are those of `chronocooked eval` (`run_protocol_recorded`, `write_eval_folder`).
 
 use crate::errors::{env_err, runtime_err, value_err};
-use chronocooked_analysis::eval_folder::{EvalInfo, write_eval_folder};
+use chronocooked_analysis::evaluation::folder::{EvalInfo, write_eval_folder};
 use chronocooked_analysis::{Mode, run_protocol_recorded};
 use chronocooked_env::{Action, ChronoEnv, OneHotEncoder, make_config};
 use chronocooked_models::Agent;
@@ -265,7 +265,7 @@ pub fn evaluate<'py>(
     summary.set_item("figures", figures)?;
     let dataset = recorder.finish();
     if dataset.meta.n_units() > 0 {
-        let files = chronocooked_analysis::eval_folder::write_activity(&out, &dataset)
+        let files = chronocooked_analysis::evaluation::folder::write_activity(&out, &dataset)
             .map_err(runtime_err)?;
         summary.set_item("activity", &files[0])?;
         summary.set_item("activity_export", &files[1..])?;

@@ -3,7 +3,7 @@
 use crate::cmd::record::record_dataset;
 use anyhow::{Result, bail};
 use chronocooked_env::{bench, find_task, make_config};
-use chronocooked_models::zoo::{TIMING_MODELS, make_timing_agent};
+use chronocooked_models::timing::zoo::{TIMING_MODELS, make_timing_agent};
 use chronocooked_models::{Architecture, evaluate_agent};
 use chronocooked_training::resolve;
 use clap::Subcommand;

@@ -2,7 +2,7 @@
 //! records and the metrics; `eval --from DIR` recomputes the metrics from saved records.
 
 use anyhow::{Context, Result, bail};
-use chronocooked_analysis::eval_folder::{self, EvalInfo};
+use chronocooked_analysis::evaluation::folder::{self as eval_folder, EvalInfo};
 use chronocooked_analysis::{EvalRecord, Mode, reference_conditions, run_protocol_recorded};
 use chronocooked_env::ChronoEnv;
 use chronocooked_models::Agent;
@@ -72,14 +72,14 @@ fn report(out: &Path, metrics: &chronocooked_analysis::Metrics, figures: usize) 
 pub fn run(args: EvalArgs) -> Result<()> {
     if let Some(dir) = &args.from {
         let info = eval_folder::read_eval_info(dir).map_err(anyhow::Error::msg)?;
-        let records = chronocooked_analysis::protocol::read_records(dir)
+        let records = chronocooked_analysis::evaluation::protocol::read_records(dir)
             .map_err(|e| anyhow::anyhow!("{e} (not an eval folder)"))?;
         return write_metrics(&args.out, &info, &records);
     }
     if let Some(file) = &args.human {
         let text =
             std::fs::read_to_string(file).with_context(|| format!("reading {}", file.display()))?;
-        let records = chronocooked_analysis::human::records_from_trace(&text)
+        let records = chronocooked_analysis::behaviour::human::records_from_trace(&text)
             .map_err(|e| anyhow::anyhow!("{}: {e}", file.display()))?;
         if records.is_empty() {
             bail!(

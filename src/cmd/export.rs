@@ -116,7 +116,7 @@ pub fn run(args: ExportArgs) -> Result<()> {
         );
     }
     if let Some(dir) = &args.eval {
-        let records = chronocooked_analysis::protocol::read_records(dir)
+        let records = chronocooked_analysis::evaluation::protocol::read_records(dir)
             .map_err(|e| anyhow::anyhow!("{e} (not an eval folder)"))?;
         files.extend(
             chronocooked_analysis::export::export_eval(&records, &args.out)

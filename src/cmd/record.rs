@@ -77,7 +77,7 @@ pub fn record(args: RecordArgs) -> Result<()> {
             .populations
             .iter()
             .filter_map(|p| {
-                chronocooked_analysis::summary::neural_summary(
+                chronocooked_analysis::neural::summary::neural_summary(
                     &dataset,
                     Some(&p.name),
                     None,
@@ -134,7 +134,12 @@ fn write_heatmaps(dataset: &chronocooked_models::ActivityDataset, dir: &Path) ->
             "{}: {} (trial average, aligned to oven on)",
             dataset.meta.model, p.name
         );
-        chronocooked_analysis::figures::write_heatmap(&dir.join(&p.name), &title, &sub, p.size)?;
+        chronocooked_analysis::report::figures::write_heatmap(
+            &dir.join(&p.name),
+            &title,
+            &sub,
+            p.size,
+        )?;
         let mut data = Vec::with_capacity(cube.trials * window * p.size);
         for k in 0..cube.trials {
             for t in 0..window {
@@ -148,7 +153,11 @@ fn write_heatmaps(dataset: &chronocooked_models::ActivityDataset, dir: &Path) ->
             data,
         };
         let title = format!("{} {}", dataset.meta.model, p.name);
-        chronocooked_analysis::figures::population_figures(&dir.join(&p.name), &title, &pop)?;
+        chronocooked_analysis::report::figures::population_figures(
+            &dir.join(&p.name),
+            &title,
+            &pop,
+        )?;
     }
     Ok(())
 }

@@ -23,7 +23,7 @@ pub struct ReportArgs {
 
 /// Runs `report`.
 pub fn run(args: ReportArgs) -> Result<()> {
-    use chronocooked_analysis::leaderboard::{find_eval_folders, load_rows};
+    use chronocooked_analysis::report::leaderboard::{find_eval_folders, load_rows};
     if args.evals.is_empty() && args.runs.is_empty() {
         bail!(
             "say what to compare: --eval DIR [DIR ...] (from `eval`) or --runs DIR [DIR ...] (run or sweep folders)"

@@ -18,8 +18,8 @@
 //! are fine-tuned from their final weights (`init_from`) with the run's hyperparameters, and
 //! their rolling success over the last `window` episodes is read from the training curve.
 
-use crate::config::Curriculum;
 use crate::error::TrainError;
+use crate::ppo::config::Curriculum;
 use crate::run_dir::{RunDir, Silent, run_training, write_atomic};
 use crate::timing_run::{is_timing_run, load_timing_agent};
 use chronocooked_env::make_config;

@@ -1,9 +1,9 @@
 //! Deterministic evaluation of a policy from every free start cell (the reference protocol's
 //! core): one episode per start cell per evaluated TD, greedy actions.
 
-use crate::act::{argmax, policy_step};
-use crate::config::ObsEncoding;
-use crate::obs::ObsEncoder;
+use crate::ppo::act::{argmax, policy_step};
+use crate::ppo::config::ObsEncoding;
+use crate::ppo::obs::ObsEncoder;
 use chronocooked_env::{Action, Autoreset, EnvError, ResetOptions, TaskConfig, TaskParams, VecEnv};
 use chronocooked_models::ActorCritic;
 use serde::{Deserialize, Serialize};

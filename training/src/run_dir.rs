@@ -9,10 +9,10 @@
 //! RUN_DIR/model.bpk          final policy (burnpack), RUN_DIR/summary.json
 //! ```
 
-use crate::config::TrainConfig;
 use crate::error::TrainError;
 use crate::evaluate::{eval_tds, evaluate_policy, success_rate};
-use crate::trainer::{Trainer, TrainerState, UpdateLog};
+use crate::ppo::config::TrainConfig;
+use crate::ppo::trainer::{Trainer, TrainerState, UpdateLog};
 use burn::module::Module;
 use chronocooked_env::make_config;
 use chronocooked_models::{ActorCritic, PolicyConfig};
@@ -254,7 +254,7 @@ pub fn load_policy(dir: &Path) -> Result<(ActorCritic, PolicyConfig, TrainConfig
         return Ok((m, pcfg, cfg));
     }
     match run.latest_state()? {
-        Some(s) => Ok((crate::params::write_params(model, &s.theta), pcfg, cfg)),
+        Some(s) => Ok((crate::ppo::params::write_params(model, &s.theta), pcfg, cfg)),
         None => Err(TrainError::Resume {
             path: dir.display().to_string(),
             reason: "neither model.bpk nor a checkpoint".into(),

@@ -10,8 +10,8 @@ use crate::error::TrainError;
 use crate::evaluate::eval_tds;
 use crate::run_dir::write_atomic;
 use chronocooked_env::{ChronoEnv, make_config};
-use chronocooked_models::timing_agent::TimingAgent;
-use chronocooked_models::zoo::make_timing_agent;
+use chronocooked_models::timing::agent::TimingAgent;
+use chronocooked_models::timing::zoo::make_timing_agent;
 use chronocooked_models::{TimingCurvePoint, TimingTrainConfig, train_timing_agent};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -150,11 +150,11 @@ impl TimingRunConfig {
                 "response_cost" => agent.config.response_cost = v,
                 "probe" => agent.config.probe = v,
                 "noise" => match &mut agent.timer {
-                    chronocooked_models::timers::Timer::Ddm(d) => d.acc.noise = v,
+                    chronocooked_models::timing::timers::Timer::Ddm(d) => d.acc.noise = v,
                     _ => return Err(TrainError::UnknownKey("noise (ddm only)".into())),
                 },
                 "memory_noise" => match &mut agent.timer {
-                    chronocooked_models::timers::Timer::Sbf(s) => s.model.memory_noise = v,
+                    chronocooked_models::timing::timers::Timer::Sbf(s) => s.model.memory_noise = v,
                     _ => return Err(TrainError::UnknownKey("memory_noise (sbf only)".into())),
                 },
                 _ => return Err(TrainError::UnknownKey(k.into())),
@@ -315,5 +315,5 @@ pub fn load_agent(
         }
         return Ok(Box::new(agent));
     }
-    Ok(Box::new(crate::ppo_agent::PpoAgent::load(dir, task)?))
+    Ok(Box::new(crate::ppo::agent::PpoAgent::load(dir, task)?))
 }

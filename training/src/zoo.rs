@@ -2,11 +2,11 @@
 //! deep-RL architectures (PPO), the biologically plausible timing models and the two
 //! reference agents (oracle, random) — with a description, parameters and presets.
 
-use crate::config::ObsEncoding;
 use crate::error::TrainError;
-use crate::obs::ObsEncoder;
-use crate::params::flat_params;
-use crate::presets::PRESETS;
+use crate::ppo::config::ObsEncoding;
+use crate::ppo::obs::ObsEncoder;
+use crate::ppo::params::flat_params;
+use crate::ppo::presets::PRESETS;
 use chronocooked_env::{Action, Autoreset, VecEnv, make_config};
 use chronocooked_models::{Architecture, PolicyConfig};
 use serde::{Deserialize, Serialize};
@@ -160,11 +160,11 @@ fn deep_entry(arch: Architecture) -> ZooEntry {
 /// Parameters of timing model `name`, read from a freshly built agent (so they always match
 /// the code).
 fn timing_parameters(name: &str) -> Vec<ZooParam> {
-    use chronocooked_models::timers::Timer;
     use chronocooked_models::timing::Representation;
+    use chronocooked_models::timing::timers::Timer;
     let task = make_config("FixedInterval-v0", &[] as &[&str]).expect("FI is registered");
     let env = chronocooked_env::ChronoEnv::new(&task).expect("FI builds");
-    let Ok(agent) = chronocooked_models::zoo::make_timing_agent(name, &env, 0) else {
+    let Ok(agent) = chronocooked_models::timing::zoo::make_timing_agent(name, &env, 0) else {
         return vec![];
     };
     let mut ps = match &agent.timer {
@@ -283,7 +283,7 @@ fn timing_parameters(name: &str) -> Vec<ZooParam> {
 pub fn zoo() -> Vec<ZooEntry> {
     let mut v: Vec<ZooEntry> = Architecture::all().into_iter().map(deep_entry).collect();
     v.extend(
-        chronocooked_models::zoo::TIMING_MODELS
+        chronocooked_models::timing::zoo::TIMING_MODELS
             .iter()
             .map(|m| ZooEntry {
                 name: m.name.into(),
@@ -313,7 +313,7 @@ pub fn family_of(name: &str) -> Result<Family, TrainError> {
     if BASELINES.iter().any(|b| b.0 == name) {
         return Ok(Family::Baseline);
     }
-    if chronocooked_models::zoo::is_timing_model(name) {
+    if chronocooked_models::timing::zoo::is_timing_model(name) {
         return Ok(Family::Timing);
     }
     name.parse::<Architecture>()
@@ -323,7 +323,7 @@ pub fn family_of(name: &str) -> Result<Family, TrainError> {
             value: name.into(),
             allowed: format!(
                 "{e}; timing models: {}; baselines: oracle, random",
-                chronocooked_models::zoo::TIMING_MODELS
+                chronocooked_models::timing::zoo::TIMING_MODELS
                     .iter()
                     .map(|m| m.name)
                     .collect::<Vec<_>>()

@@ -6,8 +6,8 @@
 
 use super::collect::CompactJob;
 use super::lsq::{LsqFit, fit_paper};
-use crate::aggregate::Spread;
-use crate::psychometric::{LogisticFit, ProbeCounts, fit_logistic};
+use crate::behaviour::aggregate::Spread;
+use crate::behaviour::psychometric::{LogisticFit, ProbeCounts, fit_logistic};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 

@@ -4,8 +4,8 @@
 //! (`episodes.csv`), a thinned learning curve (`curve.csv`) and the lab's metrics
 //! (`metrics.json`).
 
-use crate::foc::{FocConvention, first_oven_check_with};
-use crate::protocol::{EvalRecord, read_records};
+use crate::behaviour::foc::{FocConvention, first_oven_check_with};
+use crate::evaluation::protocol::{EvalRecord, read_records};
 use chronocooked_env::Counter;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};

@@ -16,7 +16,7 @@ use super::bisection::BisectionModel;
 use super::fi::FiModel;
 use super::multitimer::MtCell;
 use super::reference::{MODELS, PaperNumber, lab_model, numbers};
-use crate::aggregate::Spread;
+use crate::behaviour::aggregate::Spread;
 use serde::{Deserialize, Serialize};
 use statrs::distribution::{ChiSquared, ContinuousCDF, StudentsT};
 

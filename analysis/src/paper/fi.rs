@@ -3,8 +3,8 @@
 //! beside them the lab's per-run statistics (mean ± SD over runs).
 
 use super::collect::CompactJob;
-use crate::aggregate::Spread;
-use crate::foc::{FocStats, ScalarProperty, foc_stats, scalar_property};
+use crate::behaviour::aggregate::Spread;
+use crate::behaviour::foc::{FocStats, ScalarProperty, foc_stats, scalar_property};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 

@@ -6,8 +6,8 @@
 use super::bisection::BisectionModel;
 use super::fi::FiModel;
 use super::study::PaperStudy;
-use crate::figures::{Chart, FigureError, Series, write_chart, write_panels};
-use crate::foc::linear_fit;
+use crate::behaviour::foc::linear_fit;
+use crate::report::figures::{Chart, FigureError, Series, write_chart, write_panels};
 use std::path::{Path, PathBuf};
 
 fn series(label: &str, points: Vec<(f64, f64)>, line: bool, color: usize) -> Series {

@@ -3,7 +3,7 @@
 //! (mean over the 12 start cells; a soup never taken counts as −1, as in the notebook).
 
 use super::collect::CompactJob;
-use crate::aggregate::Spread;
+use crate::behaviour::aggregate::Spread;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 

@@ -8,7 +8,7 @@ use super::compare::{ComparisonRow, compare};
 use super::fi::{FiModel, analyse_fi};
 use super::multitimer::{MtCell, analyse_multitimer};
 use super::reference::HUMAN_WF_VS_RATIO;
-use crate::aggregate::Spread;
+use crate::behaviour::aggregate::Spread;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;

@@ -1,13 +1,27 @@
-//! Biologically plausible timing models, plain Rust (no autodiff): drift-diffusion,
-//! striatal beat-frequency, time cells (microstimuli, CSC, presence, Laplace), linear
-//! TD(λ) and a stand-alone CTRNN. The agents that play the tasks with them are in
-//! [`crate::timing_agent`].
+//! Biologically plausible timing models, plain Rust (no autodiff), and the agents that
+//! play the tasks with them:
+//!
+//! * [`ddm`] — drift-diffusion accumulator; [`sbf`] — striatal beat frequency;
+//!   [`timecells`] — time cells (microstimuli, CSC, presence, Laplace); [`td`] — linear
+//!   TD(λ); [`ctrnn`] — a stand-alone CTRNN;
+//! * [`timers`] — a timing model as the clock of an agent (onset, tick, gate, features,
+//!   learning at reinforcement);
+//! * [`sarsa`] — linear SARSA(λ) over state × temporal features;
+//! * [`agent`] — the timing-model agent ([`TimingAgent`]); [`train`] — its training loop;
+//! * [`zoo`] — the registry of timing models (names, descriptions, construction).
 
+pub mod agent;
 pub mod ctrnn;
 pub mod ddm;
+pub mod sarsa;
 pub mod sbf;
 pub mod td;
 pub mod timecells;
+pub mod timers;
+pub mod train;
+pub mod zoo;
+
+pub use agent::{TimingAgent, TimingAgentConfig};
 
 pub use ctrnn::Ctrnn;
 pub use ddm::DriftDiffusion;

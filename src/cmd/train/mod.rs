@@ -71,7 +71,7 @@ pub fn run(args: TrainArgs) -> Result<()> {
         .resume
         .as_deref()
         .is_some_and(chronocooked_training::is_timing_run_config);
-    if timing_resume || chronocooked_models::zoo::is_timing_model(&args.model) {
+    if timing_resume || chronocooked_models::timing::zoo::is_timing_model(&args.model) {
         if args.steps.is_some() {
             bail!("timing models train by episodes: use --set episodes=N instead of --steps");
         }
@@ -124,7 +124,7 @@ pub fn run(args: TrainArgs) -> Result<()> {
     if let Some(b) = bar {
         b.finish();
     }
-    if let Err(e) = chronocooked_analysis::figures::learning_curve(&summary.dir) {
+    if let Err(e) = chronocooked_analysis::report::figures::learning_curve(&summary.dir) {
         eprintln!("warning: learning-curve figure not written: {e}");
     }
     println!("{}", serde_json::to_string_pretty(&summary)?);

@@ -57,7 +57,7 @@ pub fn train(
     if let Some(b) = bar {
         b.finish();
     }
-    if let Err(e) = chronocooked_analysis::figures::learning_curve(&dir) {
+    if let Err(e) = chronocooked_analysis::report::figures::learning_curve(&dir) {
         eprintln!("warning: learning-curve figure not written: {e}");
     }
     println!("{}", serde_json::to_string_pretty(&summary)?);

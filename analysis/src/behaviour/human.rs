@@ -1,0 +1,91 @@
+//! Recorded human play (`env play` JSON lines, the replay trace shape) as evaluation
+//! records, so people and agents go through the same metrics.
+
+use crate::evaluation::protocol::{Condition, EvalRecord};
+use chronocooked_env::trace::TraceLine;
+use chronocooked_env::{TaskConfig, TaskParams};
+use chronocooked_models::EpisodeRecord;
+use chronocooked_models::agent::is_success;
+
+/// Condition kind and task overrides for an episode played on `config` with target `td`.
+fn condition_of(config: &TaskConfig, td: u32) -> Condition {
+    let (kind, env, factor) = match &config.params {
+        TaskParams::FixedInterval { td } => ("fi", vec![format!("td={td}")], None),
+        TaskParams::PeakInterval { td, probe_factor } => (
+            "pi",
+            vec![format!("td={td}"), format!("probe_factor={probe_factor}")],
+            Some(f64::from(*probe_factor)),
+        ),
+        TaskParams::Bisection { short, long } => (
+            "bisection",
+            vec![format!("short={short}"), format!("long={long}")],
+            None,
+        ),
+        TaskParams::MultiTimer { .. } => ("multi_timer", Vec::new(), None),
+        TaskParams::Dual { td, .. } => ("dual", vec![format!("td={td}")], None),
+        TaskParams::Uncertainty { td, .. } => ("uncertainty", vec![format!("td={td}")], None),
+    };
+    Condition {
+        kind: kind.into(),
+        task: config.id.clone(),
+        env,
+        td,
+        never_ready: None,
+        factor,
+    }
+}
+
+/// Parses a trace file (one or more episodes, each starting with its reset line) into
+/// records. Errors name the line that could not be read.
+pub fn records_from_trace(text: &str) -> Result<Vec<EvalRecord>, String> {
+    let mut out: Vec<EvalRecord> = Vec::new();
+    for (i, line) in text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty())
+    {
+        let t: TraceLine =
+            serde_json::from_str(line).map_err(|e| format!("line {}: {e}", i + 1))?;
+        match t.action {
+            None => {
+                let config: TaskConfig = t
+                    .config
+                    .clone()
+                    .ok_or_else(|| format!("line {}: reset line without config", i + 1))
+                    .and_then(|c| {
+                        serde_json::from_value(c).map_err(|e| format!("line {}: {e}", i + 1))
+                    })?;
+                let condition = condition_of(&config, t.info.td);
+                let never = t.info.never_ready;
+                out.push(EvalRecord {
+                    condition: Condition {
+                        never_ready: matches!(config.params, TaskParams::Uncertainty { .. })
+                            .then_some(never),
+                        ..condition
+                    },
+                    episode: EpisodeRecord {
+                        td: t.info.td,
+                        start: (t.info.agent.0 as usize, t.info.agent.1 as usize),
+                        seed: 0,
+                        reward: 0.0,
+                        success: false,
+                        actions: Vec::new(),
+                        infos: Vec::new(),
+                    },
+                });
+            }
+            Some(a) => {
+                let rec = out
+                    .last_mut()
+                    .ok_or_else(|| format!("line {}: step before any reset line", i + 1))?;
+                rec.episode.actions.push(a);
+                rec.episode.infos.push(t.info);
+                rec.episode.reward += t.reward;
+                if is_success(&t.info, t.reward) {
+                    rec.episode.success = true;
+                }
+            }
+        }
+    }
+    Ok(out)
+}

@@ -1,0 +1,16 @@
+//! Behavioural metrics of evaluated episodes:
+//!
+//! * [`foc`] — first oven check (the paper's FI measure), per-TD statistics, scalar property;
+//! * [`psychometric`] — bisection P(long), logistic fit by binomial maximum likelihood,
+//!   BP / T25 / T75 / DL / WF with bootstrap intervals;
+//! * [`peak`] — peak-interval Gaussian(+baseline) fit and single-trial start/stop analysis;
+//! * [`metrics`] — the metrics of one evaluation from its per-episode records;
+//! * [`aggregate`] — headline numbers, mean ± SD across seeds, episodes to adapt;
+//! * [`human`] — recorded human play (`env play`) as evaluation records.
+
+pub mod aggregate;
+pub mod foc;
+pub mod human;
+pub mod metrics;
+pub mod peak;
+pub mod psychometric;

@@ -1,0 +1,99 @@
+//! The evaluation folder: what `chronocooked eval` (and the Python package's `evaluate`)
+//! writes and what `report --eval DIR` reads.
+//!
+//! * `records.jsonl` — one [`EvalRecord`] per episode (condition + actions + infos);
+//! * `eval.json` — [`EvalInfo`]: model, task, overrides, protocol mode, seed;
+//! * `metrics.json` — [`Metrics`] computed from the records;
+//! * `figures/` — the evaluation figures (SVG + PNG).
+//!
+//! Every file is written atomically.
+
+use crate::behaviour::metrics::{Metrics, compute_metrics};
+use crate::evaluation::protocol::{EvalRecord, Mode};
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// What an evaluation was (`eval.json`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EvalInfo {
+    /// Name of the evaluated model (a leaderboard row).
+    pub model: String,
+    /// Task id the protocol was built for.
+    pub task: String,
+    /// Task overrides `key=value`.
+    pub env: Vec<String>,
+    /// Reference (greedy, every start cell) or stochastic protocol.
+    pub mode: Mode,
+    /// Seed of the evaluation.
+    pub seed: u64,
+}
+
+fn write(path: &Path, bytes: &[u8]) -> Result<(), String> {
+    chronocooked_env::fs::write_atomic(path, bytes).map_err(|e| e.to_string())
+}
+
+/// Writes `records.jsonl`, `eval.json`, `metrics.json` and the figures into `out`;
+/// returns the metrics and the figure files.
+pub fn write_eval_folder(
+    out: &Path,
+    info: &EvalInfo,
+    records: &[EvalRecord],
+) -> Result<(Metrics, Vec<PathBuf>), String> {
+    let mut lines = String::new();
+    for r in records {
+        lines += &serde_json::to_string(r).map_err(|e| e.to_string())?;
+        lines.push('\n');
+    }
+    write(&out.join("records.jsonl"), lines.as_bytes())?;
+    let json = serde_json::to_string_pretty(info).map_err(|e| e.to_string())?;
+    write(&out.join("eval.json"), json.as_bytes())?;
+    write_metrics(out, info, records)
+}
+
+/// Writes `metrics.json` and the figures of `records` into `out` (the records and
+/// `eval.json` are left as they are).
+pub fn write_metrics(
+    out: &Path,
+    info: &EvalInfo,
+    records: &[EvalRecord],
+) -> Result<(Metrics, Vec<PathBuf>), String> {
+    let metrics = compute_metrics(&info.model, records, info.seed);
+    let mut json = serde_json::to_string_pretty(&metrics).map_err(|e| e.to_string())?;
+    json.push('\n');
+    write(&out.join("metrics.json"), json.as_bytes())?;
+    let figures = crate::report::figures::eval_figures(&out.join("figures"), &metrics, records)
+        .map_err(|e| e.to_string())?;
+    Ok((metrics, figures))
+}
+
+/// Reads `eval.json` of an evaluation folder; errors name the file.
+pub fn read_eval_info(dir: &Path) -> Result<EvalInfo, String> {
+    let path = dir.join("eval.json");
+    let text = std::fs::read_to_string(&path).map_err(|e| {
+        format!(
+            "{}: {e} ({} is not an eval folder)",
+            path.display(),
+            dir.display()
+        )
+    })?;
+    serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// Writes the activity recorded during an evaluation next to it: `activity.json` (the
+/// dataset, as `record` writes it) and its NPZ export `activity/` (aligned window up to 200
+/// steps). Trials are the evaluation's episodes, in `records.jsonl` order. Returns the files.
+pub fn write_activity(
+    out: &Path,
+    dataset: &chronocooked_models::ActivityDataset,
+) -> Result<Vec<PathBuf>, String> {
+    let path = out.join("activity.json");
+    let json = serde_json::to_vec(dataset).map_err(|e| e.to_string())?;
+    write(&path, &json)?;
+    let mut files = vec![path];
+    files.extend(crate::export::export_activity(
+        dataset,
+        &out.join("activity"),
+        200,
+    )?);
+    Ok(files)
+}

@@ -1,0 +1,387 @@
+//! Figures (plotters; every figure written as SVG and PNG with the bundled DejaVu Sans font,
+//! so no system fonts are needed): the standard figures of an evaluation, of a recorded
+//! population and of a run, and the leaderboard's psychometric grid ([`grid`]). Drawing
+//! primitives (charts, heat maps) live in [`draw`].
+
+mod draw;
+pub mod grid;
+
+use draw::err;
+pub use draw::{Chart, FigureError, Series, write_chart, write_heatmap};
+pub use grid::{psychometric_grid, write_panels};
+use std::path::{Path, PathBuf};
+
+/// The standard figures of one evaluation into `dir` (SVG + PNG each): psychometric curve
+/// (bisection), FOC strip per TD (FI), PI response curves with their Gaussian fits,
+/// reward and oven-off time vs TD (multi-timer). Returns the files written.
+pub fn eval_figures(
+    dir: &Path,
+    metrics: &crate::behaviour::metrics::Metrics,
+    records: &[crate::evaluation::protocol::EvalRecord],
+) -> Result<Vec<PathBuf>, FigureError> {
+    let mut out = Vec::new();
+    let model = &metrics.model;
+    if let Some(b) = &metrics.bisection {
+        let mut series = vec![Series {
+            label: "P(long)".into(),
+            points: b.points(),
+            line: false,
+            color: 0,
+        }];
+        let mut markers = vec![
+            (f64::from(b.short), "S".to_string()),
+            (f64::from(b.long), "L".to_string()),
+            (0.5 * f64::from(b.short + b.long), "AM".to_string()),
+            (
+                (f64::from(b.short) * f64::from(b.long)).sqrt(),
+                "GM".to_string(),
+            ),
+        ];
+        if let Some(f) = &b.fit {
+            let t0 = b.probes.first().map_or(0.0, |p| p.t);
+            let t1 = b.probes.last().map_or(1.0, |p| p.t);
+            let pts = (0..=200)
+                .map(|k| {
+                    let t = t0 + (t1 - t0) * f64::from(k) / 200.0;
+                    let p = if f.scale > 0.0 {
+                        1.0 / (1.0 + (-(t - f.bp) / f.scale).exp())
+                    } else {
+                        f64::from(u8::from(t > f.bp))
+                    };
+                    (t, p)
+                })
+                .collect();
+            series.push(Series {
+                label: format!("logistic fit (BP {:.2}, WF {:.2})", f.bp, f.wf),
+                points: pts,
+                line: true,
+                color: 1,
+            });
+            markers.push((f.bp, "BP".to_string()));
+        }
+        let chart = Chart {
+            title: format!("{model}: bisection {}-{}", b.short, b.long),
+            x_label: "probe duration (steps)".into(),
+            y_label: "P(long)".into(),
+            series,
+            markers,
+            y_range: Some((-0.05, 1.05)),
+        };
+        out.extend(write_chart(&dir.join("psychometric"), &chart)?);
+    }
+    let focs: Vec<(f64, f64)> = records
+        .iter()
+        .filter(|r| r.condition.kind == "fi")
+        .filter_map(|r| {
+            crate::behaviour::foc::episode_foc(&r.episode)
+                .map(|f| (f64::from(r.condition.td), f64::from(f)))
+        })
+        .collect();
+    if let Some(fi) = &metrics.fi {
+        let diag: Vec<(f64, f64)> = fi
+            .foc
+            .iter()
+            .map(|s| (f64::from(s.td), f64::from(s.td)))
+            .collect();
+        let chart = Chart {
+            title: format!("{model}: first oven check"),
+            x_label: "target duration (steps)".into(),
+            y_label: "FOC (oven time, steps)".into(),
+            series: vec![
+                Series {
+                    label: "episodes".into(),
+                    points: focs,
+                    line: false,
+                    color: 0,
+                },
+                Series {
+                    label: "mean".into(),
+                    points: fi.foc.iter().map(|s| (f64::from(s.td), s.mean)).collect(),
+                    line: true,
+                    color: 1,
+                },
+                Series {
+                    label: "FOC = TD".into(),
+                    points: diag,
+                    line: true,
+                    color: 7,
+                },
+            ],
+            ..Chart::default()
+        };
+        out.extend(write_chart(&dir.join("foc"), &chart)?);
+    }
+    if !metrics.pi.is_empty() {
+        let mut series = Vec::new();
+        for (k, c) in metrics.pi.iter().enumerate() {
+            series.push(Series {
+                label: format!("release at {}x TD", c.factor),
+                points: c
+                    .rate
+                    .iter()
+                    .enumerate()
+                    .map(|(t, &v)| (t as f64, v))
+                    .collect(),
+                line: true,
+                color: k,
+            });
+            if let Some(f) = &c.fit {
+                let pts = (0..c.rate.len())
+                    .map(|t| {
+                        let z = (t as f64 - f.peak) / f.spread;
+                        (t as f64, f.amplitude * (-0.5 * z * z).exp() + f.baseline)
+                    })
+                    .collect();
+                series.push(Series {
+                    label: format!("fit: peak {:.1}, CV {:.2}", f.peak, f.cv),
+                    points: pts,
+                    line: false,
+                    color: k + 3,
+                });
+            }
+        }
+        let td = f64::from(metrics.pi[0].td);
+        let chart = Chart {
+            title: format!("{model}: peak-interval probes"),
+            x_label: "oven time (steps)".into(),
+            y_label: "oven checks per episode".into(),
+            series,
+            markers: vec![(td, "TD".into())],
+            y_range: Some((-0.05, 1.05)),
+        };
+        out.extend(write_chart(&dir.join("pi"), &chart)?);
+    }
+    if let Some(mt) = metrics
+        .multi_timer
+        .as_ref()
+        .filter(|m| !m.by_buffer.is_empty())
+    {
+        let mut tds: Vec<u32> = mt.by_buffer.iter().map(|b| b.0).collect();
+        tds.dedup();
+        let series = tds
+            .iter()
+            .enumerate()
+            .map(|(k, &td)| Series {
+                label: format!("TD {td}"),
+                points: mt
+                    .by_buffer
+                    .iter()
+                    .filter(|b| b.0 == td)
+                    .map(|b| (100.0 * b.1, b.2))
+                    .collect(),
+                line: true,
+                color: k,
+            })
+            .collect();
+        out.extend(write_chart(
+            &dir.join("reward_vs_buffer"),
+            &Chart {
+                title: format!("{model}: exact timer, reward vs buffer"),
+                x_label: "buffer (% of TD)".into(),
+                y_label: "mean reward".into(),
+                series,
+                y_range: Some((-0.02, 1.02)),
+                ..Chart::default()
+            },
+        )?);
+    }
+    let mt: Vec<&crate::behaviour::metrics::ConditionSummary> = metrics
+        .conditions
+        .iter()
+        .filter(|c| c.kind == "multi_timer")
+        .collect();
+    if !mt.is_empty() {
+        let chart = Chart {
+            title: format!("{model}: multi-timer reward and oven-off time vs TD"),
+            x_label: "TD (steps; untrained TDs are OOD)".into(),
+            y_label: "mean reward / oven-off time ÷ TD".into(),
+            series: vec![
+                Series {
+                    label: "mean reward".into(),
+                    points: mt
+                        .iter()
+                        .map(|c| (f64::from(c.td), c.mean_reward))
+                        .collect(),
+                    line: true,
+                    color: 0,
+                },
+                Series {
+                    label: "oven-off time / TD".into(),
+                    points: mt
+                        .iter()
+                        .map(|c| (f64::from(c.td), c.mean_oven_off / f64::from(c.td)))
+                        .collect(),
+                    line: true,
+                    color: 1,
+                },
+            ],
+            ..Chart::default()
+        };
+        out.extend(write_chart(&dir.join("multi_timer"), &chart)?);
+    }
+    Ok(out)
+}
+
+/// Population figures of one activity dataset population (`avg` = `[time, units]` trial
+/// average, `cube` = the per-trial data): example ramps (the three units with the largest
+/// |r| against time), the mean Welch spectrum, and decoder error vs time (ridge and Bayes).
+pub fn population_figures(
+    dir: &Path,
+    title: &str,
+    cube: &crate::neural::Cube,
+) -> Result<Vec<PathBuf>, FigureError> {
+    use crate::neural::decode::{Decoder, decode_time};
+    let u = cube.units;
+    let avg = cube.average();
+    let mut out = Vec::new();
+    let mut ramps = crate::neural::classify_ramps(&avg, u, 0.9, 0.05);
+    ramps.sort_by(|a, b| b.r.abs().total_cmp(&a.r.abs()));
+    let series = ramps
+        .iter()
+        .take(3)
+        .enumerate()
+        .map(|(k, r)| Series {
+            label: format!("unit {} (r = {:.2})", r.unit, r.r),
+            points: (0..cube.time)
+                .map(|t| (t as f64, avg[t * u + r.unit]))
+                .collect(),
+            line: true,
+            color: k,
+        })
+        .collect();
+    out.extend(write_chart(
+        &dir.join("ramps"),
+        &Chart {
+            title: format!("{title}: most ramp-like units"),
+            x_label: "time since oven on (steps)".into(),
+            y_label: "trial-averaged activity".into(),
+            series,
+            ..Chart::default()
+        },
+    )?);
+    if cube.time >= 8 {
+        let mut mean_power: Vec<f64> = Vec::new();
+        let mut freqs = Vec::new();
+        for i in 0..u {
+            let x: Vec<f64> = (0..cube.time)
+                .map(|t| avg[t * u + i])
+                .filter(|v| v.is_finite())
+                .collect();
+            if x.len() < 8 {
+                continue;
+            }
+            let s = crate::neural::oscillation::welch(&x, x.len().min(cube.time), 1.0);
+            if mean_power.is_empty() {
+                mean_power = vec![0.0; s.power.len()];
+                freqs = s.freqs.clone();
+            }
+            for (m, p) in mean_power.iter_mut().zip(&s.power) {
+                *m += p / u as f64;
+            }
+        }
+        out.extend(write_chart(
+            &dir.join("spectrum"),
+            &Chart {
+                title: format!("{title}: mean power spectrum"),
+                x_label: "frequency (cycles per step)".into(),
+                y_label: "power".into(),
+                series: vec![Series {
+                    label: String::new(),
+                    points: freqs.into_iter().zip(mean_power).collect(),
+                    line: true,
+                    color: 0,
+                }],
+                ..Chart::default()
+            },
+        )?);
+    }
+    let series = [Decoder::Ridge, Decoder::Bayes]
+        .iter()
+        .enumerate()
+        .map(|(k, &d)| {
+            let r = decode_time(cube, d, 5, 1.0);
+            Series {
+                label: format!("{d:?} (mean {:.2} steps)", r.mean_abs_error),
+                points: r
+                    .error_by_time
+                    .iter()
+                    .enumerate()
+                    .map(|(t, &e)| (t as f64, e))
+                    .collect(),
+                line: true,
+                color: k,
+            }
+        })
+        .collect();
+    out.extend(write_chart(
+        &dir.join("decoding"),
+        &Chart {
+            title: format!("{title}: elapsed-time decoding error"),
+            x_label: "time since oven on (steps)".into(),
+            y_label: "|decoded − true| (steps)".into(),
+            series,
+            ..Chart::default()
+        },
+    )?);
+    Ok(out)
+}
+
+/// Learning curve of a run folder's `curves.csv` (PPO: training success and evaluation
+/// success vs env steps; timing agents: the same vs env steps).
+pub fn learning_curve(run_dir: &Path) -> Result<Vec<PathBuf>, FigureError> {
+    let path = run_dir.join("curves.csv");
+    let text = std::fs::read_to_string(&path).map_err(err(&path))?;
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name);
+    let x = col("env_steps");
+    let train = col("success_rate").or_else(|| col("train_success"));
+    let eval = col("eval_success");
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| {
+            l.split(',')
+                .map(|v| v.parse().unwrap_or(f64::NAN))
+                .collect()
+        })
+        .collect();
+    let pick = |c: Option<usize>| -> Vec<(f64, f64)> {
+        match (x, c) {
+            (Some(x), Some(c)) => rows
+                .iter()
+                .map(|r| {
+                    (
+                        r.get(x).copied().unwrap_or(f64::NAN),
+                        r.get(c).copied().unwrap_or(f64::NAN),
+                    )
+                })
+                .collect(),
+            _ => Vec::new(),
+        }
+    };
+    let mut series = vec![Series {
+        label: "training success".into(),
+        points: pick(train),
+        line: true,
+        color: 0,
+    }];
+    let ev: Vec<(f64, f64)> = pick(eval).into_iter().filter(|p| p.1.is_finite()).collect();
+    if !ev.is_empty() {
+        series.push(Series {
+            label: "greedy evaluation".into(),
+            points: ev,
+            line: false,
+            color: 3,
+        });
+    }
+    write_chart(
+        &run_dir.join("figures").join("learning_curve"),
+        &Chart {
+            title: format!("learning curve: {}", run_dir.display()),
+            x_label: "env steps".into(),
+            y_label: "success rate".into(),
+            series,
+            y_range: Some((-0.02, 1.02)),
+            ..Chart::default()
+        },
+    )
+}

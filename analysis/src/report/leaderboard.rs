@@ -1,0 +1,282 @@
+//! Leaderboard data: finds evaluation folders under any set of run / sweep folders, groups
+//! them into model rows (mean ± SD over runs), adds the neural summaries recorded next to
+//! them and the constancy of the Weber fraction across bisection anchors.
+//!
+//! Folder conventions (what `sweep` writes, and what `eval`/`record` write when pointed
+//! there): an evaluation folder holds `eval.json` + `records.jsonl`; its parent may hold
+//! `activity.summary.json` (from `record --summary`), `neural_figures/` (heat maps) and
+//! `run/figures/` (learning curve). A parent folder named `<model>~<variant>` labels the row.
+
+use crate::behaviour::aggregate::{Spread, aggregate};
+use crate::behaviour::foc::{FocStats, pool_foc_stats, scalar_property};
+use crate::behaviour::metrics::{BisectionMetrics, Metrics};
+use crate::neural::summary::NeuralSummary;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// One model's row.
+#[derive(Debug, Clone)]
+pub struct Row {
+    /// Row label: the model name (with its variant label for sweep variants).
+    pub model: String,
+    /// Evaluation folders aggregated.
+    pub runs: Vec<PathBuf>,
+    /// Headline and neural spreads by column key.
+    pub values: BTreeMap<String, Spread>,
+    /// Bisection metrics of every run that has them (for the psychometric grid).
+    pub bisection: Vec<BisectionMetrics>,
+}
+
+/// Recomputes the metrics of an `eval` folder from its `records.jsonl` and `eval.json`
+/// (the records are the source of truth; metrics JSON writes NaN as null).
+pub fn load_metrics(folder: &Path) -> Result<Metrics, String> {
+    let read = |name: &str| {
+        let p = folder.join(name);
+        std::fs::read_to_string(&p)
+            .map_err(|e| format!("{}: {e} (not an `eval` output folder)", p.display()))
+    };
+    let info: serde_json::Value =
+        serde_json::from_str(&read("eval.json")?).map_err(|e| format!("eval.json: {e}"))?;
+    let records = crate::evaluation::protocol::read_records(folder)
+        .map_err(|e| format!("{e} (not an `eval` output folder)"))?;
+    Ok(crate::behaviour::metrics::compute_metrics(
+        info["model"].as_str().unwrap_or("unknown"),
+        &records,
+        info["seed"].as_u64().unwrap_or(0),
+    ))
+}
+
+/// Whether `dir` is an `eval` output folder.
+pub fn is_eval_folder(dir: &Path) -> bool {
+    dir.join("eval.json").is_file() && dir.join("records.jsonl").is_file()
+}
+
+/// Every evaluation folder at or below `roots` (sorted, each once). Folders that cannot hold
+/// one (`export`, `checkpoints`, `figures`, `report`, `slurm`) are not entered.
+pub fn find_eval_folders(roots: &[PathBuf]) -> Vec<PathBuf> {
+    fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
+        if is_eval_folder(dir) {
+            out.push(dir.to_path_buf());
+            return;
+        }
+        let Ok(entries) = std::fs::read_dir(dir) else {
+            return;
+        };
+        let mut subs: Vec<PathBuf> = entries
+            .flatten()
+            .map(|e| e.path())
+            .filter(|p| p.is_dir())
+            .filter(|p| {
+                !matches!(
+                    p.file_name().and_then(|n| n.to_str()),
+                    Some(
+                        "export"
+                            | "checkpoints"
+                            | "figures"
+                            | "neural_figures"
+                            | "report"
+                            | "slurm"
+                    )
+                )
+            })
+            .collect();
+        subs.sort();
+        for s in subs {
+            walk(&s, out);
+        }
+    }
+    let mut out = Vec::new();
+    for r in roots {
+        walk(r, &mut out);
+    }
+    out.sort();
+    out.dedup();
+    out
+}
+
+/// Row label of an evaluation: the `row` of the sweep job it belongs to (`../job.json`:
+/// the model plus its non-task variant settings), else the model name of `eval.json`.
+fn row_label(folder: &Path, model: &str) -> String {
+    folder
+        .parent()
+        .and_then(|p| std::fs::read_to_string(p.join("job.json")).ok())
+        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+        .and_then(|v| v["row"].as_str().map(str::to_string))
+        .unwrap_or_else(|| model.to_string())
+}
+
+/// Neural summary of the primary population recorded next to an evaluation folder: the
+/// population with the most units (first on ties: PPO `latent`, SBF `oscillators`, time
+/// cells `time_cells`; DDM `accumulator`).
+pub fn load_neural(folder: &Path) -> Option<NeuralSummary> {
+    let path = folder.parent()?.join("activity.summary.json");
+    let text = std::fs::read_to_string(path).ok()?;
+    let all: Vec<NeuralSummary> = serde_json::from_str(&text).ok()?;
+    let max = all.iter().map(|s| s.units).max()?;
+    all.into_iter().find(|s| s.units == max)
+}
+
+/// Episodes to adapt measured next to an evaluation folder (`../adapt/adapt.json` from
+/// `adapt`): `Some(n)` adapted after n episodes, `None` inside means it never adapted.
+pub fn load_adaptation(folder: &Path) -> Option<Option<usize>> {
+    let text = std::fs::read_to_string(folder.parent()?.join("adapt").join("adapt.json")).ok()?;
+    let v: serde_json::Value = serde_json::from_str(&text).ok()?;
+    Some(v["episodes_to_adapt"].as_u64().map(|n| n as usize))
+}
+
+/// Neural column keys of the leaderboard.
+pub const NEURAL_COLUMNS: [&str; 5] = [
+    "frac_ramping",
+    "frac_time_cells",
+    "frac_oscillating",
+    "sequentiality",
+    "decode_error",
+];
+
+/// Value of neural column `key` in a summary.
+fn neural_value(s: &NeuralSummary, key: &str) -> f64 {
+    match key {
+        "frac_ramping" => s.frac_ramping,
+        "frac_time_cells" => s.frac_time_cells,
+        "frac_oscillating" => s.frac_oscillating,
+        "sequentiality" => s.sequentiality,
+        "decode_error" => s.decode_ridge,
+        _ => f64::NAN,
+    }
+}
+
+/// Coefficient of variation of the mean Weber fraction across anchor pairs (needs runs on
+/// at least two different anchor pairs with a fit; `None` otherwise).
+pub fn wf_constancy(bisection: &[BisectionMetrics]) -> Option<f64> {
+    let mut by_pair: BTreeMap<(u32, u32), Vec<f64>> = BTreeMap::new();
+    for b in bisection {
+        if let Some(f) = &b.fit
+            && f.wf.is_finite()
+        {
+            by_pair.entry((b.short, b.long)).or_default().push(f.wf);
+        }
+    }
+    if by_pair.len() < 2 {
+        return None;
+    }
+    let s = Spread::of(by_pair.values().map(|v| Spread::of(v.iter().copied()).mean));
+    Some(s.sd / s.mean)
+}
+
+/// Loads every folder's metrics (and neural summary) and groups them into rows
+/// (input order of first appearance kept).
+pub fn load_rows(folders: &[PathBuf]) -> Result<Vec<Row>, String> {
+    struct Group {
+        label: String,
+        runs: Vec<PathBuf>,
+        metrics: Vec<Metrics>,
+        neural: Vec<NeuralSummary>,
+        adapt: Vec<Option<usize>>,
+    }
+    let mut groups: Vec<Group> = Vec::new();
+    for f in folders {
+        let m = load_metrics(f)?;
+        let label = row_label(f, &m.model);
+        let idx = match groups.iter().position(|g| g.label == label) {
+            Some(i) => i,
+            None => {
+                groups.push(Group {
+                    label,
+                    runs: vec![],
+                    metrics: vec![],
+                    neural: vec![],
+                    adapt: vec![],
+                });
+                groups.len() - 1
+            }
+        };
+        let g = &mut groups[idx];
+        g.adapt.extend(load_adaptation(f));
+        g.runs.push(f.clone());
+        g.neural.extend(load_neural(f));
+        g.metrics.push(m);
+    }
+    Ok(groups
+        .into_iter()
+        .map(|g| {
+            let mut values = aggregate(&g.metrics);
+            if !g.neural.is_empty() {
+                for key in NEURAL_COLUMNS {
+                    let v = g.neural.iter().map(|s| neural_value(s, key));
+                    values.insert(key.into(), Spread::of(v));
+                }
+            }
+            // FI runs trained at different TDs: the scalar-property regressions across them.
+            let foc: Vec<FocStats> = g
+                .metrics
+                .iter()
+                .filter_map(|m| m.fi.as_ref())
+                .flat_map(|f| f.foc.iter().cloned())
+                .collect();
+            let pooled = pool_foc_stats(&foc);
+            if pooled.len() >= 2 {
+                let sp = scalar_property(&pooled);
+                for (key, v) in [
+                    ("r2_mean_vs_td", sp.r2_mean_vs_td),
+                    ("r2_sd_vs_mean", sp.r2_sd_vs_mean),
+                ] {
+                    if values.get(key).is_none_or(|s| s.n == 0) {
+                        values.insert(key.into(), Spread::of([v]));
+                    }
+                }
+            }
+            if !g.adapt.is_empty() {
+                let eps = g.adapt.iter().map(|a| a.map_or(f64::NAN, |n| n as f64));
+                values.insert("unc_episodes_to_adapt".into(), Spread::of(eps));
+                let adapted = g.adapt.iter().map(|a| f64::from(u8::from(a.is_some())));
+                values.insert("unc_adapted".into(), Spread::of(adapted));
+            }
+            let bisection: Vec<BisectionMetrics> = g
+                .metrics
+                .iter()
+                .filter_map(|m| m.bisection.clone())
+                .collect();
+            if let Some(c) = wf_constancy(&bisection) {
+                values.insert("wf_cv_anchors".into(), Spread::of([c]));
+            }
+            Row {
+                model: g.label,
+                runs: g.runs,
+                values,
+                bisection,
+            }
+        })
+        .collect())
+}
+
+/// Rows of every evaluation folder found at or below `roots` (run folders, sweep outputs,
+/// or evaluation folders themselves).
+pub fn load_rows_from_runs(roots: &[PathBuf]) -> Result<Vec<Row>, String> {
+    for r in roots {
+        if !r.is_dir() {
+            return Err(format!("{}: no such folder", r.display()));
+        }
+    }
+    load_rows(&find_eval_folders(roots))
+}
+
+/// Figure files (`.svg`) that belong to an evaluation folder: its own `figures/`, the heat
+/// maps of its `record` (`../neural_figures/`) and the learning curve of its run
+/// (`../run/figures/`), sorted within each folder.
+pub fn run_figures(folder: &Path) -> Vec<PathBuf> {
+    let mut dirs = vec![folder.join("figures")];
+    if let Some(parent) = folder.parent() {
+        dirs.push(parent.join("neural_figures"));
+        dirs.push(parent.join("run").join("figures"));
+    }
+    let mut all = Vec::new();
+    for d in dirs {
+        let mut svgs: Vec<PathBuf> = std::fs::read_dir(&d)
+            .map(|d| d.filter_map(|e| e.ok().map(|e| e.path())).collect())
+            .unwrap_or_default();
+        svgs.retain(|p| p.extension().is_some_and(|e| e == "svg"));
+        svgs.sort();
+        all.extend(svgs);
+    }
+    all
+}

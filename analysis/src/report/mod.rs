@@ -1,0 +1,289 @@
+//! Leaderboard report from evaluation folders (`eval` outputs): one self-contained HTML page
+//! (inline SVG figures, no external resources), Markdown and CSV. Rows = models (folders of
+//! the same model are aggregated: mean ± SD over runs); columns = headline metrics.
+//!
+//! Submodules: [`leaderboard`] — rows and columns of the leaderboard; [`figures`] — the
+//! SVG/PNG figures (plotters, bundled font).
+
+pub mod figures;
+pub mod leaderboard;
+
+use crate::behaviour::aggregate::Spread;
+pub use crate::report::leaderboard::{Row, load_metrics, load_rows, load_rows_from_runs};
+use std::path::{Path, PathBuf};
+
+/// What the `runs` column counts.
+pub const RUNS_LEGEND: &str = "evaluation folders aggregated in the row (seeds, and task settings such as FI TDs); every other cell is the mean ± SD over the runs that have the metric";
+
+/// What every column means and which direction is better.
+pub const COLUMNS: [(&str, &str); 26] = [
+    (
+        "fi_success",
+        "FI: full-reward deliveries at the trained TD (higher is better)",
+    ),
+    (
+        "bisection_accuracy",
+        "correct counter on the two anchors (higher is better)",
+    ),
+    ("bp", "bisection point of the logistic fit, steps"),
+    (
+        "bp_over_gm",
+        "BP / geometric mean of the anchors (1 = geometric-mean bisection, as in animals)",
+    ),
+    ("bp_over_am", "BP / arithmetic mean of the anchors"),
+    ("wf", "Weber fraction DL/BP (lower = sharper timing)"),
+    (
+        "wf_cv_anchors",
+        "CV of the Weber fraction across anchor pairs (scalar timing: close to 0)",
+    ),
+    (
+        "foc_over_td",
+        "mean first oven check / TD (1 = checks exactly when the soup is ready)",
+    ),
+    (
+        "foc_cv",
+        "CV of the first oven check (scalar timing: constant across TDs)",
+    ),
+    ("r2_mean_vs_td", "R² of mean FOC vs TD (timing: close to 1)"),
+    (
+        "r2_sd_vs_mean",
+        "R² of FOC SD vs mean (scalar property: close to 1)",
+    ),
+    (
+        "pi_peak_over_td",
+        "peak-interval response peak / TD (1 = peaks at the trained time)",
+    ),
+    ("pi_cv", "peak-interval spread / peak (lower = sharper)"),
+    (
+        "mt_reward",
+        "multi-timer mean reward over TDs incl. OOD (higher is better)",
+    ),
+    ("mt_plateaus", "multi-timer timing plateaus (timers stored)"),
+    (
+        "dual_success",
+        "dual task: soup delivered inside the reward window (higher is better)",
+    ),
+    ("dual_reward", "dual-task mean reward (soup + sink)"),
+    (
+        "unc_success",
+        "uncertainty task: success with a normal oven (higher is better)",
+    ),
+    (
+        "unc_button_use",
+        "uncertainty task: button use when the oven never readies",
+    ),
+    (
+        "unc_episodes_to_adapt",
+        "uncertainty adaptation: episodes an agent trained without uncertainty plays until, in the last 100 episodes, 80% of the never-ready ovens are solved with the button and 80% of the normal ones without it (lower is better; runs that adapted)",
+    ),
+    (
+        "unc_adapted",
+        "uncertainty adaptation: fraction of runs that adapted within the budget (higher is better)",
+    ),
+    (
+        "frac_ramping",
+        "neural: fraction of ramping units (|r| ≥ 0.9, p ≤ 0.05) after oven-on",
+    ),
+    (
+        "frac_time_cells",
+        "neural: fraction of time cells (shuffle-significant, reliable peak)",
+    ),
+    (
+        "frac_oscillating",
+        "neural: fraction of units with a spectral peak ≥ 4× the median power",
+    ),
+    (
+        "sequentiality",
+        "neural: sequentiality index (1 = tiling sequence, 0 = identical units)",
+    ),
+    (
+        "decode_error",
+        "neural: cross-validated ridge decoding error of elapsed time, steps (lower is better)",
+    ),
+];
+
+fn cell(s: Option<&Spread>) -> String {
+    match s {
+        Some(s) if s.n > 1 && s.sd.is_finite() => format!("{:.3} ± {:.3}", s.mean, s.sd),
+        Some(s) if s.mean.is_finite() => format!("{:.3}", s.mean),
+        _ => "–".into(),
+    }
+}
+
+fn escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
+
+/// An SVG file as inline markup: the XML prolog and namespace URIs dropped (inline SVG in
+/// HTML needs neither, and the page then holds no URL at all).
+fn inline_svg(svg: &Path) -> Result<String, String> {
+    let text = std::fs::read_to_string(svg).map_err(|e| format!("{}: {e}", svg.display()))?;
+    let body = text.find("<svg").map_or(text.as_str(), |i| &text[i..]);
+    Ok(body
+        .replace(" xmlns=\"http://www.w3.org/2000/svg\"", "")
+        .replace(" xmlns:xlink=\"http://www.w3.org/1999/xlink\"", ""))
+}
+
+/// Runs per row and task whose figures are inlined in the HTML.
+pub const FIGURE_RUNS: usize = 3;
+
+/// Task of an evaluation folder (from `eval.json`).
+fn run_task(folder: &Path) -> String {
+    std::fs::read_to_string(folder.join("eval.json"))
+        .ok()
+        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+        .and_then(|v| v["task"].as_str().map(str::to_string))
+        .unwrap_or_else(|| "unknown task".into())
+}
+
+/// Caption of one evaluation folder: its task and path.
+fn run_caption(folder: &Path) -> String {
+    format!("{} — {}", run_task(folder), folder.display())
+}
+
+/// Columns any row has, in [`COLUMNS`] order.
+fn used_columns(rows: &[Row]) -> Vec<(&'static str, &'static str)> {
+    COLUMNS
+        .iter()
+        .copied()
+        .filter(|(k, _)| rows.iter().any(|r| r.values.contains_key(*k)))
+        .collect()
+}
+
+/// Writes `report.html`, `report.md` and `report.csv` into `out`.
+pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    let cols = used_columns(rows);
+    // CSV: mean and SD columns.
+    let mut csv = String::from("model,runs");
+    for (k, _) in &cols {
+        csv += &format!(",{k},{k}_sd");
+    }
+    csv.push('\n');
+    for r in rows {
+        csv += &format!("{},{}", r.model, r.runs.len());
+        for (k, _) in &cols {
+            match r.values.get(*k) {
+                Some(s) => csv += &format!(",{},{}", s.mean, s.sd),
+                None => csv += ",,",
+            }
+        }
+        csv.push('\n');
+    }
+    // Markdown.
+    let mut md = String::from("# Chronocooked leaderboard\n\n| model | runs |");
+    for (k, _) in &cols {
+        md += &format!(" {k} |");
+    }
+    md += "\n|---|---|";
+    md += &"---|".repeat(cols.len());
+    md.push('\n');
+    for r in rows {
+        md += &format!("| {} | {} |", r.model, r.runs.len());
+        for (k, _) in &cols {
+            md += &format!(" {} |", cell(r.values.get(*k)));
+        }
+        md.push('\n');
+    }
+    md += "\n## Columns\n\n";
+    md += &format!("* `runs`: {RUNS_LEGEND}\n");
+    for (k, what) in &cols {
+        md += &format!("* `{k}`: {what}\n");
+    }
+    // HTML with inline SVG figures.
+    let mut html = String::from(
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>Chronocooked leaderboard</title>\n<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}td,th{border:1px solid #bbb;padding:4px 8px;text-align:right}th{background:#eee}td:first-child{text-align:left}figure{display:inline-block;margin:0.5em;width:46%}figure.wide{width:96%}figure svg{width:100%;height:auto}</style></head><body>\n<h1>Chronocooked leaderboard</h1>\n<table>\n<tr><th>model</th><th>runs</th>",
+    );
+    for (k, _) in &cols {
+        html += &format!("<th>{k}</th>");
+    }
+    html += "</tr>\n";
+    for r in rows {
+        html += &format!("<tr><td>{}</td><td>{}</td>", escape(&r.model), r.runs.len());
+        for (k, _) in &cols {
+            html += &format!("<td>{}</td>", cell(r.values.get(*k)));
+        }
+        html += "</tr>\n";
+    }
+    html += "</table>\n<h2>Columns</h2>\n<dl>\n";
+    html += &format!(
+        "<dt><code>runs</code></dt><dd>{}</dd>\n",
+        escape(RUNS_LEGEND)
+    );
+    for (k, what) in &cols {
+        html += &format!("<dt><code>{k}</code></dt><dd>{}</dd>\n", escape(what));
+    }
+    html += "</dl>\n";
+    let grid_rows: Vec<(String, Vec<crate::behaviour::metrics::BisectionMetrics>)> = rows
+        .iter()
+        .map(|r| (r.model.clone(), r.bisection.clone()))
+        .collect();
+    let grid =
+        crate::report::figures::psychometric_grid(&out.join("psychometric_grid"), &grid_rows)
+            .map_err(|e| e.to_string())?;
+    if let Some(svg) = grid
+        .iter()
+        .find(|p| p.extension().is_some_and(|e| e == "svg"))
+    {
+        html += "<h2>Psychometric curves (bisection)</h2>\n";
+        html += &format!(
+            "<figure class=\"wide\">{}<figcaption>P(long) per probe: grey dots = runs, blue = mean over runs, red = logistic fit of the pooled counts; AM/GM = arithmetic/geometric mean of the anchors, BP = bisection point</figcaption></figure>\n",
+            inline_svg(svg)?
+        );
+    }
+    for r in rows {
+        html += &format!("<h2>{}</h2>\n", escape(&r.model));
+        // Figures of up to FIGURE_RUNS runs per row and task (large sweeps stay readable);
+        // the rest are named.
+        let mut shown: Vec<(String, usize)> = Vec::new();
+        for run in &r.runs {
+            let task = run_task(run);
+            let count = match shown.iter_mut().find(|s| s.0 == task) {
+                Some(s) => {
+                    s.1 += 1;
+                    s.1
+                }
+                None => {
+                    shown.push((task.clone(), 1));
+                    1
+                }
+            };
+            if count > FIGURE_RUNS {
+                html += &format!(
+                    "<p>{} (figures in its folder)</p>\n",
+                    escape(&run_caption(run))
+                );
+                continue;
+            }
+            html += &format!("<h3>{}</h3>\n", escape(&run_caption(run)));
+            for svg in crate::report::leaderboard::run_figures(run) {
+                html += &format!(
+                    "<figure>{}<figcaption>{}</figcaption></figure>\n",
+                    inline_svg(&svg)?,
+                    escape(&svg.file_stem().unwrap_or_default().to_string_lossy())
+                );
+            }
+        }
+    }
+    if grid
+        .iter()
+        .any(|p| p.extension().is_some_and(|e| e == "png"))
+    {
+        md += "\n## Psychometric curves\n\n![psychometric grid](psychometric_grid.png)\n";
+    }
+    html += "</body></html>\n";
+    let mut files = Vec::new();
+    for (name, text) in [
+        ("report.html", html),
+        ("report.md", md),
+        ("report.csv", csv),
+    ] {
+        let p = out.join(name);
+        crate::export::write_atomic(&p, text.as_bytes())?;
+        files.push(p);
+    }
+    files.extend(grid);
+    Ok(files)
+}

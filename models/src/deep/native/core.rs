@@ -1,0 +1,406 @@
+//! Recurrent cores of the native engine: forward over a time-major sequence and
+//! back-propagation through time, for the LSTM, GRU, vanilla RNN and CTRNN (same
+//! equations and gate order as [`crate::deep::cores`]).
+//!
+//! Notation per step: `x_t = x W_in + b_in` (given, `[B, G·H]`), `h̃ = keep·h_{t−1}` (the
+//! masked incoming state), `r_t = h̃ W_rec (+ b_rec)`.
+
+use super::Block;
+use super::kernels::{Mat, matmul, matmul_tn, sigmoid_inplace, tanh_inplace, transpose_into};
+use super::net::SeqBatch;
+use crate::CoreKind;
+
+/// Read-only parameters of a core.
+pub(super) struct CoreParams<'a> {
+    pub kind: CoreKind,
+    pub hidden: usize,
+    /// `W_rec [H, G·H]`.
+    pub w_rec: &'a [f32],
+    /// GRU recurrent bias `[G·H]`.
+    pub b_rec: Option<&'a [f32]>,
+    /// CTRNN `τ_raw [H]`.
+    pub tau: Option<&'a [f32]>,
+    /// CTRNN step.
+    pub dt: f32,
+}
+
+impl CoreParams<'_> {
+    /// CTRNN leak `α = min(dt/softplus(τ_raw), 1)` and `dα/dτ_raw` per unit.
+    fn alpha(&self) -> (Vec<f32>, Vec<f32>) {
+        let tau = self.tau.unwrap_or(&[]);
+        tau.iter()
+            .map(|&t| {
+                let t = t as f64;
+                let sp = if t > 20.0 { t } else { t.exp().ln_1p() };
+                let a = self.dt as f64 / sp;
+                if a < 1.0 {
+                    let sig = 1.0 / (1.0 + (-t).exp());
+                    (a as f32, (-a / sp * sig) as f32)
+                } else {
+                    (1.0, 0.0)
+                }
+            })
+            .unzip()
+    }
+}
+
+/// Per-sequence activations and backward work buffers (reused across calls).
+#[derive(Debug, Default, Clone)]
+pub(crate) struct CoreCache {
+    hidden: usize,
+    active: bool,
+    steps: usize,
+    batch: usize,
+    keep: Vec<f32>,
+    /// Outputs `h_t` `[N, H]`.
+    h: Vec<f32>,
+    /// Masked incoming states `h̃_t` `[N, H]`.
+    h_prev: Vec<f32>,
+    /// Activated gates `[N, G·H]` (LSTM i,f,g,o; GRU r,z,n; RNN/CTRNN: tanh target).
+    gates: Vec<f32>,
+    /// LSTM cell `c_t`, its tanh and the masked incoming cell `[N, H]`.
+    c: Vec<f32>,
+    tc: Vec<f32>,
+    c_prev: Vec<f32>,
+    /// GRU `h̃ W_hn + b_hn` `[N, H]`.
+    hn: Vec<f32>,
+    hw_step: Vec<f32>,
+    dxw: Vec<f32>,
+    dhw: Vec<f32>,
+    dh: Vec<f32>,
+    dh_carry: Vec<f32>,
+    dc_carry: Vec<f32>,
+    w_rec_t: Vec<f32>,
+}
+
+impl CoreCache {
+    /// Whether no core ran (CNN-MLP).
+    pub fn is_empty(&self) -> bool {
+        !self.active
+    }
+
+    /// Marks the cache as holding no core activations.
+    pub fn clear(&mut self) {
+        self.active = false;
+    }
+
+    /// Outputs `[N, H]`.
+    pub fn h(&self) -> &[f32] {
+        &self.h
+    }
+
+    /// Gradient at the input projection `x W_in + b_in` `[N, G·H]` (after `backward`).
+    pub fn dxw(&self) -> &[f32] {
+        &self.dxw
+    }
+
+    /// State after the last of `steps` steps of `batch` sequences.
+    pub fn final_state(&self, steps: usize, batch: usize) -> (&[f32], Option<&[f32]>) {
+        if !self.active || steps == 0 {
+            return (&[], None);
+        }
+        let h = self.hidden;
+        let range = (steps - 1) * batch * h..steps * batch * h;
+        let c = (!self.c.is_empty()).then(|| &self.c[range.clone()]);
+        (&self.h[range], c)
+    }
+}
+
+fn resize(v: &mut Vec<f32>, len: usize) {
+    v.clear();
+    v.resize(len, 0.0);
+}
+
+/// Copies `src` rows scaled by their keep value into `dst` (`[B, H]`).
+fn masked_copy(dst: &mut [f32], src: &[f32], keep: &[f32], h: usize) {
+    for ((d, s), &k) in dst.chunks_exact_mut(h).zip(src.chunks_exact(h)).zip(keep) {
+        if k == 1.0 {
+            d.copy_from_slice(s);
+        } else {
+            d.iter_mut().zip(s).for_each(|(d, &s)| *d = s * k);
+        }
+    }
+}
+
+/// Runs the core over the sequence: `xw [N, G·H]` is the input projection (with bias).
+pub(super) fn forward(p: &CoreParams<'_>, xw: &[f32], batch: &SeqBatch<'_>, cc: &mut CoreCache) {
+    let (h, g) = (p.hidden, p.kind.gates());
+    let (t_len, b) = (batch.steps, batch.batch);
+    let n = t_len * b;
+    let gh = g * h;
+    assert_eq!(batch.h0.len(), b * h, "initial hidden state length");
+    if let Some(c0) = batch.c0 {
+        assert_eq!(c0.len(), b * h, "initial cell state length");
+    }
+    cc.active = true;
+    cc.hidden = h;
+    cc.steps = t_len;
+    cc.batch = b;
+    cc.keep.clear();
+    cc.keep.extend_from_slice(batch.keep);
+    resize(&mut cc.h, n * h);
+    resize(&mut cc.h_prev, n * h);
+    resize(&mut cc.gates, n * gh);
+    let lstm = p.kind == CoreKind::Lstm;
+    if lstm {
+        resize(&mut cc.c, n * h);
+        resize(&mut cc.tc, n * h);
+        resize(&mut cc.c_prev, n * h);
+    } else {
+        cc.c.clear();
+    }
+    if p.kind == CoreKind::Gru {
+        resize(&mut cc.hn, n * h);
+        resize(&mut cc.hw_step, b * gh);
+    }
+    let (alpha, _) = p.alpha();
+    let zero_c = vec![0f32; b * h];
+    let w_rec = Mat::new(p.w_rec, h, gh);
+    for t in 0..t_len {
+        let (r0, r1) = (t * b * h, (t + 1) * b * h);
+        let keep = &batch.keep[t * b..(t + 1) * b];
+        let src = if t == 0 {
+            batch.h0
+        } else {
+            &cc.h[r0 - b * h..r0]
+        };
+        masked_copy(&mut cc.h_prev[r0..r1], src, keep, h);
+        let hp = Mat::new(&cc.h_prev[r0..r1], b, h);
+        let xw_t = &xw[t * b * gh..(t + 1) * b * gh];
+        match p.kind {
+            CoreKind::Gru => gru_step(p, cc, t, b, xw_t),
+            kind => {
+                // Pre-activations x_t + h̃ W_rec, then the kind's non-linearity.
+                let pre = &mut cc.gates[t * b * gh..(t + 1) * b * gh];
+                pre.copy_from_slice(xw_t);
+                matmul(hp, w_rec, pre, gh, true);
+                match kind {
+                    CoreKind::Lstm => lstm_step(cc, t, b, h, keep, batch.c0, &zero_c),
+                    CoreKind::Rnn => {
+                        tanh_inplace(pre);
+                        cc.h[r0..r1].copy_from_slice(pre);
+                    }
+                    _ => {
+                        // CTRNN: h = h̃ + α(tanh(pre) − h̃).
+                        tanh_inplace(pre);
+                        let hp = &cc.h_prev[r0..r1];
+                        let rows = cc.h[r0..r1].chunks_exact_mut(h);
+                        for ((out, tg), hv) in rows.zip(pre.chunks_exact(h)).zip(hp.chunks_exact(h))
+                        {
+                            for j in 0..h {
+                                out[j] = hv[j] + alpha[j] * (tg[j] - hv[j]);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// GRU step `t`: `r, z = σ(x_{r,z} + (h̃ W_rec + b_rec)_{r,z})`, `n = tanh(x_n + r ⊙ ĥ_n)` with
+/// `ĥ_n = (h̃ W_rec + b_rec)_n`, `h = n + z ⊙ (h̃ − n)`.
+fn gru_step(p: &CoreParams<'_>, cc: &mut CoreCache, t: usize, b: usize, xw_t: &[f32]) {
+    let h = p.hidden;
+    let gh = 3 * h;
+    let r0 = t * b * h;
+    let hw = &mut cc.hw_step;
+    let hp = Mat::new(&cc.h_prev[r0..r0 + b * h], b, h);
+    matmul(hp, Mat::new(p.w_rec, h, gh), hw, gh, false);
+    if let Some(bias) = p.b_rec {
+        super::kernels::add_bias(hw, bias);
+    }
+    let pre = &mut cc.gates[t * b * gh..(t + 1) * b * gh];
+    pre.copy_from_slice(xw_t);
+    for (bi, (row, hw_row)) in pre
+        .chunks_exact_mut(gh)
+        .zip(hw.chunks_exact(gh))
+        .enumerate()
+    {
+        let (rz, nn) = row.split_at_mut(2 * h);
+        rz.iter_mut()
+            .zip(&hw_row[..2 * h])
+            .for_each(|(x, &y)| *x += y);
+        sigmoid_inplace(rz);
+        let o = r0 + bi * h;
+        let hn = &mut cc.hn[o..o + h];
+        hn.copy_from_slice(&hw_row[2 * h..]);
+        for j in 0..h {
+            nn[j] += rz[j] * hn[j];
+        }
+        tanh_inplace(nn);
+        let (out, hpr) = (&mut cc.h[o..o + h], &cc.h_prev[o..o + h]);
+        for j in 0..h {
+            out[j] = nn[j] + rz[h + j] * (hpr[j] - nn[j]);
+        }
+    }
+}
+
+/// LSTM gate activations and cell update for step `t` (pre-activations already in `gates`).
+fn lstm_step(
+    cc: &mut CoreCache,
+    t: usize,
+    b: usize,
+    h: usize,
+    keep: &[f32],
+    c0: Option<&[f32]>,
+    zero: &[f32],
+) {
+    let (r0, r1) = (t * b * h, (t + 1) * b * h);
+    let src = if t == 0 {
+        c0.unwrap_or(zero)
+    } else {
+        &cc.c[r0 - b * h..r0]
+    };
+    masked_copy(&mut cc.c_prev[r0..r1], src, keep, h);
+    let gh = 4 * h;
+    let pre = &mut cc.gates[t * b * gh..(t + 1) * b * gh];
+    for row in pre.chunks_exact_mut(gh) {
+        sigmoid_inplace(&mut row[..2 * h]);
+        tanh_inplace(&mut row[2 * h..3 * h]);
+        sigmoid_inplace(&mut row[3 * h..]);
+    }
+    for bi in 0..b {
+        let row = &pre[bi * gh..(bi + 1) * gh];
+        let o0 = r0 + bi * h;
+        for j in 0..h {
+            let c = row[h + j] * cc.c_prev[o0 + j] + row[j] * row[2 * h + j];
+            cc.c[o0 + j] = c;
+        }
+        cc.tc[o0..o0 + h].copy_from_slice(&cc.c[o0..o0 + h]);
+        tanh_inplace(&mut cc.tc[o0..o0 + h]);
+        for j in 0..h {
+            cc.h[o0 + j] = row[3 * h + j] * cc.tc[o0 + j];
+        }
+    }
+}
+
+/// Back-propagation through time from `dlat = ∂L/∂h_t` `[N, H]`: accumulates the
+/// recurrent weight (and GRU bias, CTRNN τ) gradients into `grad` at the blocks `rec`
+/// and `tau`, and leaves `∂L/∂(x W_in + b_in)` in the cache ([`CoreCache::dxw`]).
+pub(super) fn backward(
+    p: &CoreParams<'_>,
+    cc: &mut CoreCache,
+    dlat: &[f32],
+    grad: &mut [f32],
+    rec: (Block, Option<Block>),
+    tau: Option<Block>,
+    scratch: &mut Vec<f32>,
+) {
+    let (h, g) = (p.hidden, p.kind.gates());
+    let gh = g * h;
+    let (t_len, b) = (cc.steps, cc.batch);
+    let n = t_len * b;
+    resize(&mut cc.dxw, n * gh);
+    let gru = p.kind == CoreKind::Gru;
+    if gru {
+        resize(&mut cc.dhw, n * gh);
+    }
+    resize(&mut cc.dh, b * h);
+    resize(&mut cc.dh_carry, b * h);
+    resize(&mut cc.dc_carry, b * h);
+    transpose_into(Mat::new(p.w_rec, h, gh), &mut cc.w_rec_t);
+    let (alpha, dalpha_dtau) = p.alpha();
+    let mut dalpha = vec![0f64; alpha.len()];
+    for t in (0..t_len).rev() {
+        let (r0, r1) = (t * b * h, (t + 1) * b * h);
+        for ((d, &l), &c) in cc.dh.iter_mut().zip(&dlat[r0..r1]).zip(&cc.dh_carry) {
+            *d = l + c;
+        }
+        let gates = &cc.gates[t * b * gh..(t + 1) * b * gh];
+        let dx = &mut cc.dxw[t * b * gh..(t + 1) * b * gh];
+        let hp = &cc.h_prev[r0..r1];
+        // `direct`: the part of ∂L/∂h̃ that does not pass through W_rec.
+        cc.dh_carry.fill(0.0);
+        match p.kind {
+            CoreKind::Lstm => {
+                for bi in 0..b {
+                    let gr = &gates[bi * gh..(bi + 1) * gh];
+                    let dr = &mut dx[bi * gh..(bi + 1) * gh];
+                    let o0 = r0 + bi * h;
+                    for j in 0..h {
+                        let (i, f, gg, o) = (gr[j], gr[h + j], gr[2 * h + j], gr[3 * h + j]);
+                        let tc = cc.tc[o0 + j];
+                        let dh = cc.dh[bi * h + j];
+                        let dc = dh * o * (1.0 - tc * tc) + cc.dc_carry[bi * h + j];
+                        dr[j] = dc * gg * i * (1.0 - i);
+                        dr[h + j] = dc * cc.c_prev[o0 + j] * f * (1.0 - f);
+                        dr[2 * h + j] = dc * i * (1.0 - gg * gg);
+                        dr[3 * h + j] = dh * tc * o * (1.0 - o);
+                        cc.dc_carry[bi * h + j] = dc * f;
+                    }
+                }
+            }
+            CoreKind::Gru => {
+                let dhw = &mut cc.dhw[t * b * gh..(t + 1) * b * gh];
+                for bi in 0..b {
+                    let gr = &gates[bi * gh..(bi + 1) * gh];
+                    let o0 = r0 + bi * h;
+                    for j in 0..h {
+                        let (r, z, nn) = (gr[j], gr[h + j], gr[2 * h + j]);
+                        let dh = cc.dh[bi * h + j];
+                        let dnp = dh * (1.0 - z) * (1.0 - nn * nn);
+                        let drp = dnp * cc.hn[o0 + j] * r * (1.0 - r);
+                        let dzp = dh * (hp[bi * h + j] - nn) * z * (1.0 - z);
+                        let k = bi * gh;
+                        dx[k + j] = drp;
+                        dx[k + h + j] = dzp;
+                        dx[k + 2 * h + j] = dnp;
+                        dhw[k + j] = drp;
+                        dhw[k + h + j] = dzp;
+                        dhw[k + 2 * h + j] = dnp * r;
+                        cc.dh_carry[bi * h + j] = dh * z;
+                    }
+                }
+            }
+            CoreKind::Rnn => {
+                for ((d, &dh), &y) in dx.iter_mut().zip(&cc.dh).zip(&cc.h[r0..r1]) {
+                    *d = dh * (1.0 - y * y);
+                }
+            }
+            CoreKind::Ctrnn => {
+                for (k, ((d, &dh), &tg)) in dx.iter_mut().zip(&cc.dh).zip(gates).enumerate() {
+                    let j = k % h;
+                    *d = dh * alpha[j] * (1.0 - tg * tg);
+                    dalpha[j] += (dh * (tg - hp[k])) as f64;
+                    cc.dh_carry[k] = dh * (1.0 - alpha[j]);
+                }
+            }
+        }
+        // ∂L/∂h̃ = direct + (∂L/∂r_t) W_recᵀ, then through the episode-start mask.
+        let dr = if gru {
+            Mat::new(&cc.dhw[t * b * gh..(t + 1) * b * gh], b, gh)
+        } else {
+            Mat::new(&cc.dxw[t * b * gh..(t + 1) * b * gh], b, gh)
+        };
+        matmul(dr, Mat::new(&cc.w_rec_t, gh, h), &mut cc.dh_carry, h, true);
+        let keep = &cc.keep[t * b..(t + 1) * b];
+        for (bi, &k) in keep.iter().enumerate() {
+            if k != 1.0 {
+                cc.dh_carry[bi * h..(bi + 1) * h]
+                    .iter_mut()
+                    .for_each(|v| *v *= k);
+                cc.dc_carry[bi * h..(bi + 1) * h]
+                    .iter_mut()
+                    .for_each(|v| *v *= k);
+            }
+        }
+    }
+    let drec = if gru { &cc.dhw } else { &cc.dxw };
+    let drec = Mat::new(drec, n, gh);
+    matmul_tn(
+        Mat::new(&cc.h_prev, n, h),
+        drec,
+        rec.0.of_mut(grad),
+        false,
+        scratch,
+    );
+    if let Some(bb) = rec.1 {
+        super::kernels::add_col_sums(drec, bb.of_mut(grad));
+    }
+    if let Some(tb) = tau {
+        for ((gt, &da), &dd) in tb.of_mut(grad).iter_mut().zip(&dalpha).zip(&dalpha_dtau) {
+            *gt = (da * dd as f64) as f32;
+        }
+    }
+}

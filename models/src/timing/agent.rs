@@ -1,0 +1,322 @@
+//! Timing-model agents: a timing model ([`Timer`]) supplies the temporal representation
+//! and, for drift-diffusion and SBF, a native "it is time" gate; a linear SARSA(λ) learner
+//! over (discrete state × temporal features) learns where to go and what to do.
+//!
+//! What the agent knows: the codes observation only — its cell, what it carries, the
+//! visible oven value (off / on / ready / cue) — and the layout. It never sees the hidden
+//! oven timer. Its clock starts when it sees the oven turn on; the elapsed time it holds is
+//! the timing model's state. The temporal features freeze when the interval ends (oven
+//! shows ready, or the soup is taken out), which is the model's memory of the interval used
+//! for later choices (bisection counters).
+//!
+//! Learning signals:
+//! * TD: the env reward minus a small response cost per interact (effort), so checking
+//!   the oven early is not free and the "when" is learnable from the features alone;
+//! * native rules at reinforcement — drift-diffusion drift learning and SBF pattern storage
+//!   at the reinforced time: the ready cue when the task shows it; otherwise the pickup time,
+//!   exact when the successful check followed a failed one (the soup became available
+//!   between them), and treated as `(1 − probe) ×` the pickup time when the first check
+//!   succeeded (the soup may have been waiting: aim earlier next time).
+//! * the gate: before the timing model responds, interacting with the oven is not among
+//!   the actions (DDM: until `x ≥ z`; SBF: until the output matches the stored pattern).
+
+use crate::activity::StepRecorder;
+use crate::agent::{Agent, Percept, PerceptParser};
+use crate::timing::sarsa::{SarsaConfig, SarsaLambda};
+use crate::timing::timers::Timer;
+use chronocooked_env::{Action, ChronoEnv, ObjectKind};
+use rand::SeedableRng;
+use rand_xoshiro::Xoshiro256PlusPlus;
+use serde::{Deserialize, Serialize};
+
+/// Visible oven values told apart (larger cue values share the last level).
+pub const OVEN_LEVELS: u32 = 32;
+
+/// Settings of a [`TimingAgent`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TimingAgentConfig {
+    /// TD learner.
+    pub sarsa: SarsaConfig,
+    /// Exploration rate while training (the trainer anneals it).
+    pub epsilon: f64,
+    /// Internal cost of one interact (effort), subtracted from the TD reward.
+    pub response_cost: f64,
+    /// Fraction by which a first-check success shortens the reinforced interval.
+    pub probe: f64,
+}
+
+impl Default for TimingAgentConfig {
+    fn default() -> Self {
+        TimingAgentConfig {
+            sarsa: SarsaConfig::default(),
+            epsilon: 0.1,
+            response_cost: 0.01,
+            probe: 0.15,
+        }
+    }
+}
+
+#[derive(Debug, Clone, Default)]
+struct EpisodeState {
+    last: Option<Percept>,
+    running: bool,
+    clock: u32,
+    ctx: u8,
+    started: Option<u32>,
+    responding: bool,
+    last_was_check: bool,
+    prev_check_failed: bool,
+    interval: Option<u32>,
+    pending: Option<(u32, usize, Vec<f64>)>,
+    reward: f64,
+    value: f64,
+    rpe: f64,
+}
+
+fn default_rng() -> Xoshiro256PlusPlus {
+    Xoshiro256PlusPlus::seed_from_u64(0)
+}
+
+/// A timing model playing a task through a linear SARSA(λ) learner.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct TimingAgent {
+    /// Zoo name (`ddm`, `sbf`, `timecells-csc`, …).
+    pub name: String,
+    /// The timing model.
+    pub timer: Timer,
+    /// The TD learner.
+    pub learner: SarsaLambda,
+    /// Observation parser of the task's layout.
+    pub parser: PerceptParser,
+    /// The task shows a ready cue.
+    pub shows_ready: bool,
+    /// Cells from which a counter is used, with its choice slot (0 short/main, 1 long).
+    pub choice_cells: Vec<(usize, u8)>,
+    /// Settings.
+    pub config: TimingAgentConfig,
+    #[serde(skip)]
+    training: bool,
+    #[serde(skip)]
+    ep: EpisodeState,
+    #[serde(skip, default = "default_rng")]
+    rng: Xoshiro256PlusPlus,
+    #[serde(skip)]
+    q: Vec<f64>,
+    #[serde(skip)]
+    phi: Vec<f64>,
+}
+
+impl TimingAgent {
+    /// An untrained agent with `timer` for the task of `env`.
+    pub fn new(name: &str, timer: Timer, env: &ChronoEnv, config: TimingAgentConfig) -> Self {
+        let layout = env.layout();
+        let choice_cells = layout
+            .free_cells()
+            .iter()
+            .filter_map(|&c| match layout.adjacent_object(c as usize) {
+                Some((ObjectKind::LongCounter, _)) => Some((c as usize, 1)),
+                Some((ObjectKind::ShortCounter | ObjectKind::DeliveryCounter, _)) => {
+                    Some((c as usize, 0))
+                }
+                _ => None,
+            })
+            .collect();
+        let features = timer.n_features() + 1;
+        TimingAgent {
+            name: name.to_string(),
+            learner: SarsaLambda::new(config.sarsa.clone(), Action::COUNT, features),
+            timer,
+            parser: PerceptParser::new(layout),
+            shows_ready: env.family().shows_ready(),
+            choice_cells,
+            config,
+            training: false,
+            ep: EpisodeState::default(),
+            rng: default_rng(),
+            q: Vec::new(),
+            phi: Vec::new(),
+        }
+    }
+
+    /// Moves the trained agent to the task of `env` (a layout with the same grid, e.g. FI →
+    /// uncertainty): the percept parser, choice cells and ready-cue flag follow the new
+    /// layout; learned weights and timer memories are kept.
+    pub fn transfer_to(&mut self, env: &ChronoEnv) {
+        let fresh = TimingAgent::new(&self.name, self.timer.clone(), env, self.config.clone());
+        self.parser = fresh.parser;
+        self.shows_ready = fresh.shows_ready;
+        self.choice_cells = fresh.choice_cells;
+    }
+
+    /// Sets the exploration rate (training schedule).
+    pub fn set_epsilon(&mut self, epsilon: f64) {
+        self.config.epsilon = epsilon;
+    }
+
+    fn state_index(&self, p: &Percept) -> u32 {
+        let oven = u32::from(p.oven).min(OVEN_LEVELS - 1);
+        ((p.cell as u32 * 3 + u32::from(p.carry)) * OVEN_LEVELS) + oven
+    }
+
+    /// Tracks the oven from what is visible; runs the timer and its native learning.
+    fn update_clock(&mut self, p: &Percept) {
+        let Some(last) = self.ep.last else {
+            return;
+        };
+        if last.oven == 0 && p.oven != 0 && p.carry != 2 {
+            self.ep.ctx = if self.shows_ready { 1 } else { p.oven };
+            self.timer.onset(self.ep.ctx, &mut self.rng);
+            self.ep.running = true;
+            self.ep.clock = 1;
+            self.ep.started = None;
+            self.ep.interval = None;
+            self.ep.prev_check_failed = false;
+            self.timer.tick(1, &mut self.rng);
+            return;
+        }
+        if !self.ep.running {
+            return;
+        }
+        if p.carry == 2 && last.carry != 2 {
+            // The soup came out on the last action, taken at `clock`.
+            self.ep.running = false;
+            self.ep.interval = Some(self.ep.clock);
+            if !self.shows_ready && self.training {
+                let exact = self.ep.prev_check_failed;
+                let t = self.ep.clock as f64;
+                let t = if exact {
+                    t
+                } else {
+                    t * (1.0 - self.config.probe)
+                };
+                self.timer.reinforce(self.ep.ctx, t, exact, &mut self.rng);
+            }
+            return;
+        }
+        self.ep.prev_check_failed = self.ep.last_was_check;
+        self.ep.clock += 1;
+        self.timer.tick(self.ep.clock, &mut self.rng);
+        if self.shows_ready && p.oven == 2 {
+            self.ep.running = false;
+            self.ep.interval = Some(self.ep.clock);
+            if self.training {
+                let t = self.ep.clock as f64;
+                self.timer.reinforce(self.ep.ctx, t, true, &mut self.rng);
+            }
+        }
+    }
+
+    fn learn(&mut self, next_q: Option<f64>) {
+        if let Some((s, a, phi)) = self.ep.pending.take() {
+            let q_old = self.learner.q(s, a, &phi);
+            let target = self.ep.reward + next_q.map_or(0.0, |q| self.learner.config.gamma * q);
+            let delta = target - q_old;
+            self.ep.rpe = delta;
+            if self.training {
+                let norm2: f64 = phi.iter().map(|v| v * v).sum();
+                self.learner.apply(delta, norm2);
+            }
+        }
+    }
+}
+
+impl Agent for TimingAgent {
+    fn name(&self) -> String {
+        self.name.clone()
+    }
+
+    fn begin_episode(&mut self, obs: &[u8], seed: u64) {
+        self.rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+        self.ep = EpisodeState {
+            last: Some(self.parser.parse(obs)),
+            ..EpisodeState::default()
+        };
+        self.timer.clear();
+        self.learner.clear_traces();
+    }
+
+    fn act(&mut self, obs: &[u8]) -> Action {
+        let p = self.parser.parse(obs);
+        self.update_clock(&p);
+        self.ep.responding = self.ep.running
+            && self
+                .timer
+                .respond(self.ep.clock, self.ep.started)
+                .then(|| self.ep.started.get_or_insert(self.ep.clock))
+                .is_some();
+        let mut features = std::mem::take(&mut self.phi);
+        self.timer.features_into(self.ep.responding, &mut features);
+        features.insert(0, 1.0);
+        let s = self.state_index(&p);
+        let mut q = std::mem::take(&mut self.q);
+        self.learner.q_all(s, &features, &mut q);
+        let gated = self.timer.has_gate()
+            && self.ep.running
+            && !self.ep.responding
+            && p.carry == 0
+            && self.parser.next_to_oven(p.cell);
+        let allowed: Vec<usize> = (0..Action::COUNT)
+            .filter(|&a| !(gated && a == Action::Interact.code() as usize))
+            .collect();
+        let eps = if self.training {
+            self.config.epsilon
+        } else {
+            0.0
+        };
+        let a = self.learner.choose(&q, &allowed, eps, &mut self.rng);
+        self.learn(Some(q[a]));
+        self.ep.value = q[a];
+        if self.training {
+            self.learner.visit(s, a, &features);
+        }
+        let action = Action::ALL[a];
+        self.ep.last_was_check = self.ep.running
+            && action == Action::Interact
+            && p.carry == 0
+            && self.parser.next_to_oven(p.cell);
+        self.ep.pending = Some((s, a, features.clone()));
+        self.ep.last = Some(p);
+        self.phi = features;
+        self.q = q;
+        action
+    }
+
+    fn observe(&mut self, reward: f32, next_obs: &[u8], terminated: bool, truncated: bool) {
+        let interacted = self
+            .ep
+            .pending
+            .as_ref()
+            .is_some_and(|(_, a, _)| *a == Action::Interact.code() as usize);
+        self.ep.reward = f64::from(reward)
+            - if interacted {
+                self.config.response_cost
+            } else {
+                0.0
+            };
+        if terminated && reward > 0.0 && self.training {
+            let cell = self.ep.last.map_or(usize::MAX, |p| p.cell);
+            if let (Some(&(_, slot)), Some(t)) = (
+                self.choice_cells.iter().find(|(c, _)| *c == cell),
+                self.ep.interval,
+            ) {
+                self.timer.reinforce_choice(slot, t as f64, &mut self.rng);
+            }
+        }
+        if terminated {
+            self.learn(None);
+        } else if truncated {
+            self.ep.pending = None;
+        }
+        let _ = next_obs;
+    }
+
+    fn record(&self, rec: &mut StepRecorder) {
+        self.timer.record(rec);
+        rec.scalar("value", self.ep.value as f32);
+        rec.scalar("rpe", self.ep.rpe as f32);
+    }
+
+    fn set_training(&mut self, on: bool) {
+        self.training = on;
+    }
+}

@@ -1,0 +1,143 @@
+//! Training loop of the timing-model agents: episodes with ε-greedy SARSA(λ) and the
+//! models' native rules, periodic deterministic evaluation from every start cell.
+
+use crate::agent::{Agent, evaluate_agent, run_episode, success_rate};
+use crate::timing::agent::TimingAgent;
+use chronocooked_env::{ChronoEnv, EnvError, ResetOptions, TaskConfig, derive_seed};
+use serde::{Deserialize, Serialize};
+
+/// Settings of a timing-agent training run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TimingTrainConfig {
+    /// Training episodes.
+    pub episodes: usize,
+    /// Exploration at the start …
+    pub epsilon_start: f64,
+    /// … annealed linearly to this value …
+    pub epsilon_end: f64,
+    /// … over this fraction of the episodes.
+    pub anneal_fraction: f64,
+    /// Evaluate every this many episodes (0: only at the end).
+    pub eval_every: usize,
+    /// Stop once an evaluation reaches this success rate.
+    pub stop_at_success: Option<f64>,
+}
+
+impl Default for TimingTrainConfig {
+    fn default() -> Self {
+        TimingTrainConfig {
+            episodes: 6000,
+            epsilon_start: 0.3,
+            epsilon_end: 0.0,
+            anneal_fraction: 0.8,
+            eval_every: 500,
+            stop_at_success: None,
+        }
+    }
+}
+
+/// One point of the learning curve.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TimingCurvePoint {
+    /// Episodes done.
+    pub episode: usize,
+    /// Env steps done.
+    pub steps: u64,
+    /// Success rate of the last (up to) 100 training episodes.
+    pub train_success: f64,
+    /// Mean reward of the last (up to) 100 training episodes.
+    pub train_reward: f64,
+    /// Deterministic evaluation success rate, when evaluated at this point.
+    pub eval_success: Option<f64>,
+}
+
+/// Training episode number `ep` of a run seeded `seed` (default reset, no recording).
+fn training_episode(
+    env: &mut ChronoEnv,
+    agent: &mut TimingAgent,
+    seed: u64,
+    ep: usize,
+) -> Result<crate::agent::EpisodeRecord, EnvError> {
+    run_episode(
+        env,
+        agent,
+        derive_seed(seed, ep as u64),
+        &ResetOptions::default(),
+        None,
+    )
+}
+
+/// Trains `agent` on `config` for `train.episodes` episodes from `seed`; evaluates on
+/// `eval_tds` from every start cell. Calls `progress` at every curve point.
+pub fn train_timing_agent(
+    agent: &mut TimingAgent,
+    config: &TaskConfig,
+    train: &TimingTrainConfig,
+    eval_tds: &[u32],
+    seed: u64,
+    mut progress: impl FnMut(&TimingCurvePoint),
+) -> Result<Vec<TimingCurvePoint>, EnvError> {
+    let mut env = ChronoEnv::new(config)?;
+    let mut curve = Vec::new();
+    let mut window: std::collections::VecDeque<(bool, f32)> = Default::default();
+    let mut steps = 0u64;
+    let anneal = (train.episodes as f64 * train.anneal_fraction).max(1.0);
+    for ep in 0..train.episodes {
+        let frac = (ep as f64 / anneal).min(1.0);
+        agent.set_epsilon(train.epsilon_start + (train.epsilon_end - train.epsilon_start) * frac);
+        agent.set_training(true);
+        let rec = training_episode(&mut env, agent, seed, ep)?;
+        steps += rec.actions.len() as u64;
+        window.push_back((rec.success, rec.reward));
+        if window.len() > 100 {
+            window.pop_front();
+        }
+        let done = ep + 1;
+        let eval_now =
+            done == train.episodes || (train.eval_every > 0 && done % train.eval_every == 0);
+        if eval_now {
+            let records =
+                evaluate_agent(agent, config, eval_tds, derive_seed(seed, 1 << 40), None)?;
+            let rate = success_rate(&records);
+            let n = window.len().max(1) as f64;
+            let point = TimingCurvePoint {
+                episode: done,
+                steps,
+                train_success: window.iter().filter(|w| w.0).count() as f64 / n,
+                train_reward: window.iter().map(|w| f64::from(w.1)).sum::<f64>() / n,
+                eval_success: Some(rate),
+            };
+            progress(&point);
+            curve.push(point);
+            if train.stop_at_success.is_some_and(|s| rate >= s) {
+                break;
+            }
+        }
+    }
+    agent.set_training(false);
+    Ok(curve)
+}
+
+/// Plays `episodes` training episodes of `config` with learning on and exploration
+/// `epsilon`, and returns `(never_ready, success)` of each episode in order — the
+/// adaptation record of an already trained agent moved to a new task.
+pub fn adaptation_episodes(
+    agent: &mut TimingAgent,
+    config: &TaskConfig,
+    episodes: usize,
+    epsilon: f64,
+    seed: u64,
+) -> Result<Vec<(bool, bool)>, EnvError> {
+    let mut env = ChronoEnv::new(config)?;
+    agent.transfer_to(&env);
+    agent.set_epsilon(epsilon);
+    agent.set_training(true);
+    let mut out = Vec::with_capacity(episodes);
+    for ep in 0..episodes {
+        let rec = training_episode(&mut env, agent, seed, ep)?;
+        let never_ready = rec.infos.last().is_some_and(|i| i.never_ready);
+        out.push((never_ready, rec.success));
+    }
+    agent.set_training(false);
+    Ok(out)
+}

@@ -1,0 +1,26 @@
+//! PPO as Stable-Baselines3 / sb3-contrib implement it (feed-forward and recurrent):
+//!
+//! * [`config`] — settings (`TrainConfig`, `PpoConfig`) and their `key=value` surface;
+//!   [`presets`] — the named presets (reference = the paper's code, fast, …);
+//! * [`obs`] — observation encoding for the networks; [`act`] — acting in rollouts on
+//!   either engine; [`rollout`] — the rollout buffer and its minibatch orders (transitions,
+//!   BPTT chunks, whole sequences);
+//! * [`gae`] — generalised advantage estimation; [`loss`] — the clipped surrogate, value and
+//!   entropy terms; [`minibatch`] — loss and gradient of one minibatch on either engine;
+//!   [`adam`] — Adam with SB3's settings; [`params`] — flat parameter vectors;
+//! * [`trainer`] — the update loop, curricula and its checkpointable state ([`state`]);
+//! * [`agent`] — a trained policy as an [`chronocooked_models::Agent`].
+
+pub mod act;
+pub mod adam;
+pub mod agent;
+pub mod config;
+pub mod gae;
+pub mod loss;
+pub mod minibatch;
+pub mod obs;
+pub mod params;
+pub mod presets;
+pub mod rollout;
+pub mod state;
+pub mod trainer;

@@ -1,0 +1,133 @@
+//! Hyperparameter presets keyed by task and model (RL Zoo style), shipped as TOML files
+//! in `training/presets/` and compiled into the binary.
+
+use crate::error::TrainError;
+use crate::ppo::config::TrainConfig;
+use chronocooked_models::Architecture;
+
+/// Preset files: `(name, TOML text)`; `common` applies to every task.
+pub const PRESET_FILES: &[(&str, &str)] = &[
+    ("common", include_str!("../../presets/common.toml")),
+    (
+        "FixedInterval-v0",
+        include_str!("../../presets/FixedInterval-v0.toml"),
+    ),
+    (
+        "PeakInterval-v0",
+        include_str!("../../presets/PeakInterval-v0.toml"),
+    ),
+    (
+        "Bisection-v0",
+        include_str!("../../presets/Bisection-v0.toml"),
+    ),
+    (
+        "MultiTimer-v0",
+        include_str!("../../presets/MultiTimer-v0.toml"),
+    ),
+    (
+        "DualTask-v0",
+        include_str!("../../presets/DualTask-v0.toml"),
+    ),
+    (
+        "Uncertainty-v0",
+        include_str!("../../presets/Uncertainty-v0.toml"),
+    ),
+];
+
+/// Preset names.
+pub const PRESETS: [&str; 2] = ["reference", "fast"];
+
+fn value_string(v: &toml::Value) -> String {
+    match v {
+        toml::Value::String(s) => s.clone(),
+        toml::Value::Array(a) => a.iter().map(value_string).collect::<Vec<_>>().join(","),
+        other => other.to_string(),
+    }
+}
+
+fn section_pairs(
+    file: &str,
+    text: &str,
+    path: &[&str],
+) -> Result<Vec<(String, String)>, TrainError> {
+    let table: toml::Table = text
+        .parse()
+        .map_err(|e: toml::de::Error| TrainError::PresetFile {
+            file: file.to_string(),
+            message: e.to_string(),
+        })?;
+    let mut cur = &table;
+    for key in path {
+        match cur.get(*key) {
+            Some(toml::Value::Table(t)) => cur = t,
+            _ => return Ok(Vec::new()),
+        }
+    }
+    Ok(cur
+        .iter()
+        .filter(|(_, v)| !v.is_table())
+        .map(|(k, v)| (k.clone(), value_string(v)))
+        .collect())
+}
+
+/// The `key=value` settings of `preset` for `task` and `model`, in application order
+/// (per file — common, then the task's: `[preset]`, `[preset.feedforward|recurrent]`,
+/// `[preset.<core kind>]` (e.g. `[fast.ctrnn]`), `[preset.<model name>]` (e.g.
+/// `[reference.lstm125]`)).
+pub fn preset_settings(
+    task: &str,
+    model: Architecture,
+    preset: &str,
+) -> Result<Vec<(String, String)>, TrainError> {
+    if !PRESETS.contains(&preset) {
+        return Err(TrainError::UnknownPreset {
+            name: preset.to_string(),
+            allowed: PRESETS.join(", "),
+        });
+    }
+    let kind = if model.is_recurrent() {
+        "recurrent"
+    } else {
+        "feedforward"
+    };
+    let name = model.name();
+    let mut out = Vec::new();
+    for file in ["common", task] {
+        let Some((f, text)) = PRESET_FILES.iter().find(|(n, _)| *n == file) else {
+            continue;
+        };
+        let core = model.core.map(|k| k.name());
+        for path in [
+            vec![preset],
+            vec![preset, kind],
+            core.map_or_else(Vec::new, |k| vec![preset, k]),
+            vec![preset, name.as_str()],
+        ] {
+            if path.is_empty() {
+                continue;
+            }
+            out.extend(section_pairs(f, text, &path)?);
+        }
+    }
+    Ok(out)
+}
+
+/// A resolved configuration: base defaults, then the preset, then `sets` (`key=value`).
+pub fn resolve<S: AsRef<str>>(
+    task: &str,
+    model: Architecture,
+    preset: &str,
+    seed: u64,
+    sets: &[S],
+) -> Result<TrainConfig, TrainError> {
+    chronocooked_env::find_task(task)?;
+    let mut cfg = TrainConfig::base(task, model);
+    cfg.preset = preset.to_string();
+    for (k, v) in preset_settings(task, model, preset)? {
+        cfg.set(&k, &v)?;
+    }
+    cfg.seed = seed;
+    cfg.apply_overrides(sets)?;
+    cfg.validate()?;
+    Ok(cfg)
+}

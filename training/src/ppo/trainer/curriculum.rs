@@ -1,0 +1,154 @@
+//! Curricula during training: the uncertainty task's never-ready ramp and the multi-timer
+//! levels (with the paper's warm-up level).
+
+use super::Trainer;
+use crate::error::TrainError;
+use crate::ppo::config::Curriculum;
+use chronocooked_env::{TaskParams, VecEnv, make_config};
+
+impl Trainer {
+    pub(super) fn apply_curriculum(&mut self) -> Result<(), TrainError> {
+        if let Curriculum::Uncertainty {
+            start,
+            end,
+            ramp_fraction,
+        } = self.cfg.curriculum
+        {
+            let frac = if ramp_fraction <= 0.0 {
+                1.0
+            } else {
+                (self.state.steps as f64 / (ramp_fraction * self.cfg.total_steps as f64)).min(1.0)
+            };
+            // Quantised to 0.005 so the spec is rebuilt rarely.
+            let p = ((start + (end - start) * frac) * 200.0).round() / 200.0;
+            if (p - self.state.never_ready_prob).abs() > 1e-9 || self.state.updates == 0 {
+                self.envs.set_param("never_ready_prob", &format!("{p}"))?;
+                self.state.never_ready_prob = p;
+            }
+        }
+        Ok(())
+    }
+
+    pub(super) fn advance_multi_timer(&mut self) -> Result<(), TrainError> {
+        let Curriculum::MultiTimer {
+            thresholds,
+            window,
+            warmup,
+        } = &self.cfg.curriculum
+        else {
+            return Ok(());
+        };
+        let n_tds = match &self.envs.config().params {
+            TaskParams::MultiTimer { tds, .. } => tds.len(),
+            _ => return Ok(()),
+        };
+        if *warmup {
+            return self.advance_level(thresholds.clone(), *window, n_tds);
+        }
+        let k = self.state.num_timers;
+        if k >= n_tds || self.state.since_change < *window {
+            return Ok(());
+        }
+        let threshold = thresholds
+            .get(k - 1)
+            .or(thresholds.last())
+            .copied()
+            .unwrap_or(0.9);
+        let recent: Vec<f32> = self
+            .state
+            .recent
+            .iter()
+            .rev()
+            .take(*window)
+            .map(|e| e.ret)
+            .collect();
+        let mean = recent.iter().sum::<f32>() / recent.len() as f32;
+        if mean >= threshold {
+            self.state.num_timers = k + 1;
+            self.state.curriculum_level = k + 1;
+            self.envs.set_num_timers(k + 1)?;
+            self.state.since_change = 0;
+        }
+        Ok(())
+    }
+
+    /// The paper's curriculum with its warm-up level: leave level `L` once the mean reward
+    /// of the last `window` episodes (all finished since the last change) reaches
+    /// `thresholds[L]`; level 0 → 1 switches the warm-up rules off, later levels add a TD.
+    fn advance_level(
+        &mut self,
+        thresholds: Vec<f32>,
+        window: usize,
+        n_tds: usize,
+    ) -> Result<(), TrainError> {
+        let level = self.state.curriculum_level;
+        if level >= n_tds || self.state.since_change < window {
+            return Ok(());
+        }
+        let threshold = thresholds
+            .get(level)
+            .or(thresholds.last())
+            .copied()
+            .unwrap_or(0.9);
+        let recent = self.state.recent.iter().rev().take(window);
+        let mean = recent.map(|e| e.ret).sum::<f32>() / window as f32;
+        if mean < threshold {
+            return Ok(());
+        }
+        if level == 0 {
+            let task = make_config(&self.cfg.task, &self.cfg.env)?;
+            set_warmup(&mut self.envs, &task, false)?;
+        } else {
+            self.envs.set_num_timers(level + 1)?;
+            self.state.num_timers = level + 1;
+        }
+        self.state.curriculum_level = level + 1;
+        self.state.since_change = 0;
+        Ok(())
+    }
+}
+
+/// Switches the multi-timer warm-up rules on (one timer, soup only at `timer ≥ TD`, reduced
+/// reward 0.1, no buffers) or back to the configured `task`.
+pub(super) fn set_warmup(
+    envs: &mut VecEnv,
+    task: &chronocooked_env::TaskConfig,
+    on: bool,
+) -> Result<(), TrainError> {
+    let TaskParams::MultiTimer {
+        mode,
+        under_buffer,
+        over_buffer,
+        reduced_reward,
+        ..
+    } = &task.params
+    else {
+        return Ok(());
+    };
+    let settings = if on {
+        [
+            ("mode", "lower_bounded".to_string()),
+            ("reduced_reward", "0.1".into()),
+            ("under_buffer", "0".into()),
+            ("over_buffer", "0".into()),
+        ]
+    } else {
+        [
+            (
+                "mode",
+                match mode {
+                    chronocooked_env::RewardMode::Exact => "exact",
+                    chronocooked_env::RewardMode::LowerBounded => "lower_bounded",
+                }
+                .to_string(),
+            ),
+            ("reduced_reward", reduced_reward.to_string()),
+            ("under_buffer", under_buffer.to_string()),
+            ("over_buffer", over_buffer.to_string()),
+        ]
+    };
+    for (k, v) in settings {
+        envs.set_param(k, &v)?;
+    }
+    Ok(())
+}

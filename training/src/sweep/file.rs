@@ -1,0 +1,397 @@
+//! The sweep file (TOML): models × sizes × tasks × seeds × override variants, expanded into
+//! [`Job`]s with their ids, families and settings.
+
+use crate::error::TrainError;
+use crate::zoo::{Family, family_of};
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// A sweep file (TOML). Every list is crossed with every other.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SweepFile {
+    /// Name (Slurm job name, report title).
+    #[serde(default = "default_name")]
+    pub name: String,
+    /// Task ids.
+    pub tasks: Vec<String>,
+    /// Zoo names; a bare recurrent kind (`lstm`, `gru`, `rnn`, `ctrnn`, `ctrnn-reservoir`) is
+    /// crossed with `sizes`.
+    pub models: Vec<String>,
+    /// Hidden sizes for bare recurrent kinds (default `[125]`).
+    #[serde(default = "default_sizes")]
+    pub sizes: Vec<usize>,
+    /// Seeds (default `[0]`).
+    #[serde(default = "default_seeds")]
+    pub seeds: Vec<u64>,
+    /// PPO preset (`reference` or `fast`; default `reference`).
+    #[serde(default = "default_preset")]
+    pub preset: String,
+    /// PPO env-step budget (default: the preset's).
+    #[serde(default)]
+    pub steps: Option<u64>,
+    /// Timing-model training episodes (default: the model's).
+    #[serde(default)]
+    pub episodes: Option<usize>,
+    /// `key=value` settings for every PPO run (`env.<param>` settings also reach timing
+    /// models and evaluation).
+    #[serde(default)]
+    pub set: Vec<String>,
+    /// Override variants: each inner list of `key=value` settings is one variant; jobs are
+    /// crossed with them (default: one variant without settings).
+    #[serde(default)]
+    pub variants: Vec<Vec<String>>,
+    /// Variants of one task only, keyed by task id (e.g. FI at several TDs:
+    /// `"FixedInterval-v0" = [["env.td=6"], ["env.td=12"]]`), crossed with `variants`.
+    #[serde(default)]
+    pub task_variants: std::collections::BTreeMap<String, Vec<Vec<String>>>,
+    /// Record neural activity (+ neural summary, heat maps) of trained models (default true).
+    #[serde(default = "yes")]
+    pub record: bool,
+    /// Export activity and records to NPZ/CSV (default true).
+    #[serde(default = "yes")]
+    pub export: bool,
+    /// Uncertainty adaptation (`adapt` stage; default false) of every trained agent of an
+    /// `Uncertainty-v0` job whose oven always readies (`env.never_ready_prob=0`): it keeps
+    /// learning with the task's default never-ready probability.
+    #[serde(default)]
+    pub adapt: bool,
+    /// Adaptation budget of timing agents (episodes; default 3000).
+    #[serde(default)]
+    pub adapt_episodes: Option<usize>,
+    /// Adaptation budget of PPO agents (env steps; default 100k).
+    #[serde(default)]
+    pub adapt_steps: Option<u64>,
+    /// Stochastic evaluation with N episodes per condition instead of the reference protocol.
+    #[serde(default)]
+    pub stochastic: Option<usize>,
+}
+
+fn default_name() -> String {
+    "sweep".into()
+}
+fn default_sizes() -> Vec<usize> {
+    vec![125]
+}
+fn default_seeds() -> Vec<u64> {
+    vec![0]
+}
+fn default_preset() -> String {
+    "reference".into()
+}
+fn yes() -> bool {
+    true
+}
+
+/// One unit of work of a sweep.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Job {
+    /// Stable id, also the job folder relative to the sweep output (`task/model/seedN`).
+    pub id: String,
+    /// Task id.
+    pub task: String,
+    /// Zoo name.
+    pub model: String,
+    /// Model family (decides the training command).
+    pub family: Family,
+    /// Seed.
+    pub seed: u64,
+    /// Training settings (`--set`), variant settings included.
+    pub sets: Vec<String>,
+    /// Task settings (`env.<param>=v` without the prefix) for evaluation.
+    pub env: Vec<String>,
+    /// Leaderboard row: the model plus its variant's non-task settings (runs of one model
+    /// on different task settings, e.g. FI TDs, share a row).
+    pub row: String,
+}
+
+/// Stages of a job, in order.
+pub const STAGES: [&str; 5] = ["train", "eval", "adapt", "record", "export"];
+
+fn bad(field: &str, value: impl ToString, allowed: &str) -> TrainError {
+    TrainError::InvalidParam {
+        field: field.into(),
+        value: value.to_string(),
+        allowed: allowed.into(),
+    }
+}
+
+/// Whether a `key=value` setting applies to `model` (of `family`) on `task`: task settings
+/// (`env.*`) apply to every model; others to the family that knows the key (PPO settings to
+/// deep-RL models, timing settings to timing models, none to baselines).
+pub fn applies(family: Family, task: &str, model: &str, kv: &str) -> bool {
+    if kv.starts_with("env.") {
+        return true;
+    }
+    match family {
+        Family::DeepRl => {
+            let Ok(arch) = model.parse() else {
+                return false;
+            };
+            let (k, v) = kv.split_once('=').unwrap_or((kv, ""));
+            crate::ppo::config::TrainConfig::base(task, arch)
+                .set(k, v)
+                .is_ok()
+        }
+        Family::Timing => crate::timing_run::TimingRunConfig::new(task, model, 0)
+            .set(kv)
+            .is_ok(),
+        Family::Baseline => false,
+    }
+}
+
+/// A folder-safe label of a variant (`learning_rate=1e-3,ent_coef=0.01` →
+/// `learning_rate-1e-3_ent_coef-0.01`).
+pub fn variant_label(sets: &[String]) -> String {
+    sets.iter()
+        .map(|s| {
+            s.chars()
+                .map(|c| match c {
+                    '=' => '-',
+                    c if c.is_ascii_alphanumeric() || matches!(c, '.' | '-' | '_') => c,
+                    _ => '_',
+                })
+                .collect::<String>()
+        })
+        .collect::<Vec<_>>()
+        .join("_")
+}
+
+impl SweepFile {
+    /// Parses a sweep file's text (`source` names it in errors).
+    pub fn parse(text: &str, source: &str) -> Result<Self, TrainError> {
+        let f: SweepFile = toml::from_str(text).map_err(|e| TrainError::PresetFile {
+            file: source.into(),
+            message: e.to_string(),
+        })?;
+        f.validate()?;
+        Ok(f)
+    }
+
+    /// Reads and parses a sweep file.
+    pub fn load(path: &Path) -> Result<Self, TrainError> {
+        let text = std::fs::read_to_string(path).map_err(|e| TrainError::io(path, e))?;
+        Self::parse(&text, &path.display().to_string())
+    }
+
+    /// Checks every list and name (typed errors name the field and allowed values).
+    pub fn validate(&self) -> Result<(), TrainError> {
+        for (field, empty) in [
+            ("tasks", self.tasks.is_empty()),
+            ("models", self.models.is_empty()),
+            ("sizes", self.sizes.is_empty()),
+            ("seeds", self.seeds.is_empty()),
+        ] {
+            if empty {
+                return Err(bad(field, "[]", "a non-empty list"));
+            }
+        }
+        let tasks: Vec<&str> = chronocooked_env::all_tasks().iter().map(|t| t.id).collect();
+        for t in &self.tasks {
+            if !tasks.contains(&t.as_str()) {
+                return Err(bad("tasks", t, &tasks.join(", ")));
+            }
+        }
+        if !crate::ppo::presets::PRESETS.contains(&self.preset.as_str()) {
+            return Err(bad(
+                "preset",
+                &self.preset,
+                &crate::ppo::presets::PRESETS.join(", "),
+            ));
+        }
+        if self.steps == Some(0) {
+            return Err(bad("steps", 0, "a positive env-step budget"));
+        }
+        if self.episodes == Some(0) {
+            return Err(bad("episodes", 0, "a positive number of episodes"));
+        }
+        if self.stochastic == Some(0) {
+            return Err(bad("stochastic", 0, "a positive number of episodes"));
+        }
+        for m in self.expanded_models() {
+            family_of(&m)?;
+        }
+        for t in self.task_variants.keys() {
+            if !self.tasks.contains(t) {
+                return Err(bad("task_variants", t, &self.tasks.join(", ")));
+            }
+        }
+        let task_sets = self.task_variants.values().flatten().flatten();
+        for s in self
+            .set
+            .iter()
+            .chain(self.variants.iter().flatten())
+            .chain(task_sets)
+        {
+            if !s.contains('=') {
+                return Err(TrainError::BadOverride(s.clone()));
+            }
+        }
+        // Every variant setting must apply to some model of the sweep.
+        let models = self.expanded_models();
+        for task in &self.tasks {
+            for s in self.variants_of(task).into_iter().flatten() {
+                let used = models
+                    .iter()
+                    .any(|m| family_of(m).is_ok_and(|f| applies(f, task, m, &s)));
+                if !used {
+                    return Err(bad(
+                        "variants",
+                        &s,
+                        "settings some model of the sweep accepts (PPO or timing-model settings, or env.<task parameter>)",
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Model names after crossing bare recurrent kinds with `sizes`.
+    pub fn expanded_models(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        for m in &self.models {
+            if matches!(
+                m.as_str(),
+                "lstm" | "gru" | "rnn" | "ctrnn" | "ctrnn-reservoir"
+            ) {
+                out.extend(self.sizes.iter().map(|h| format!("{m}{h}")));
+            } else {
+                out.push(m.clone());
+            }
+        }
+        out
+    }
+
+    /// Variants of `task`: its task variants crossed with the global variants (one empty
+    /// variant when there are none).
+    fn variants_of(&self, task: &str) -> Vec<Vec<String>> {
+        self.variant_parts(task)
+            .into_iter()
+            .map(|(l, g)| [l, g].concat())
+            .collect()
+    }
+
+    /// `(task variant, global variant)` pairs of `task`.
+    fn variant_parts(&self, task: &str) -> Vec<(Vec<String>, Vec<String>)> {
+        let global: Vec<Vec<String>> = if self.variants.is_empty() {
+            vec![vec![]]
+        } else {
+            self.variants.clone()
+        };
+        let local: Vec<Vec<String>> = match self.task_variants.get(task) {
+            Some(v) if !v.is_empty() => v.clone(),
+            _ => vec![vec![]],
+        };
+        local
+            .iter()
+            .flat_map(|l| global.iter().map(move |g| (l.clone(), g.clone())))
+            .collect()
+    }
+
+    /// Every job, in a stable order (task, model, variant, seed). Each model takes the
+    /// variant settings that apply to its family ([`applies`]: baselines only the task
+    /// settings); the deterministic oracle runs one seed only.
+    pub fn jobs(&self) -> Result<Vec<Job>, TrainError> {
+        let mut jobs = Vec::new();
+        for task in &self.tasks {
+            let variants = self.variant_parts(task);
+            for model in self.expanded_models() {
+                let family = family_of(&model)?;
+                // Each model takes the variant settings that apply to it; variants that then
+                // coincide are run once.
+                let mut vs: Vec<(Vec<String>, Vec<String>)> = Vec::new();
+                for (l, g) in &variants {
+                    let keep = |v: &[String]| -> Vec<String> {
+                        v.iter()
+                            .filter(|s| applies(family, task, &model, s))
+                            .cloned()
+                            .collect()
+                    };
+                    let kept = (keep(l), keep(g));
+                    if !vs.contains(&kept) {
+                        vs.push(kept);
+                    }
+                }
+                let seeds: &[u64] = if model == "oracle" {
+                    &self.seeds[..1]
+                } else {
+                    &self.seeds
+                };
+                for (local, global) in &vs {
+                    for &seed in seeds {
+                        jobs.push(self.job(task, &model, family, (local, global), seed));
+                    }
+                }
+            }
+        }
+        Ok(jobs)
+    }
+
+    /// The job of `model` on `task` with a task variant and a model variant (both already
+    /// filtered to the settings that apply). The row label carries only the model variant's
+    /// non-task settings: task conditions (e.g. FI TDs) share a leaderboard row.
+    fn job(
+        &self,
+        task: &str,
+        model: &str,
+        family: Family,
+        (local, global): (&[String], &[String]),
+        seed: u64,
+    ) -> Job {
+        let variant: Vec<String> = [local, global].concat();
+        let variant = &variant[..];
+        let mut sets: Vec<String> = Vec::new();
+        let env_only = |v: &[String]| -> Vec<String> {
+            v.iter()
+                .filter(|s| s.starts_with("env."))
+                .cloned()
+                .collect()
+        };
+        match family {
+            Family::DeepRl => {
+                if let Some(s) = self.steps {
+                    sets.push(format!("total_steps={s}"));
+                }
+                sets.extend(self.set.iter().cloned());
+            }
+            Family::Timing => {
+                if let Some(e) = self.episodes {
+                    sets.push(format!("episodes={e}"));
+                }
+                sets.extend(env_only(&self.set));
+            }
+            Family::Baseline => sets.extend(env_only(&self.set)),
+        }
+        sets.extend(variant.iter().cloned());
+        let env: Vec<String> = sets
+            .iter()
+            .filter_map(|s| s.strip_prefix("env.").map(str::to_string))
+            .collect();
+        let label = variant_label(variant);
+        let folder = if label.is_empty() {
+            model.to_string()
+        } else {
+            format!("{model}~{label}")
+        };
+        let model_sets: Vec<String> = global
+            .iter()
+            .filter(|s| !s.starts_with("env."))
+            .cloned()
+            .collect();
+        let row = if model_sets.is_empty() {
+            model.to_string()
+        } else {
+            format!("{model}~{}", variant_label(&model_sets))
+        };
+        Job {
+            id: format!("{task}/{folder}/seed{seed}"),
+            task: task.into(),
+            model: model.into(),
+            family,
+            seed,
+            sets,
+            env,
+            row,
+        }
+    }
+}

@@ -1,0 +1,19 @@
+//! Sweeps: a TOML file naming models × sizes × tasks × seeds × override variants expands into
+//! jobs; each job trains (unless a baseline), evaluates, records activity and exports, in its
+//! own folder `OUT/<task>/<model>[~<variant>]/seed<N>/`.
+//!
+//! * [`file`] — the sweep file and its jobs;
+//! * [`progress`] — finished stages per job folder (`progress.json`), so an interrupted sweep
+//!   rerun redoes nothing that finished;
+//! * [`slurm`] — the same plan as a Slurm job array;
+//! * [`cost`] — measured throughput and the estimated time of a job.
+
+pub mod cost;
+pub mod file;
+pub mod progress;
+pub mod slurm;
+
+pub use cost::{REFERENCE_THROUGHPUT, estimate_seconds};
+pub use file::{Job, STAGES, SweepFile, applies, variant_label};
+pub use progress::{JobProgress, finished_stages, job_dir, job_done, mark_stage};
+pub use slurm::{SlurmFiles, job_command, shell_quote, slurm_script};
