@@ -30,6 +30,7 @@ def test_check_env_passes_with_warnings_as_errors(task, obs_mode):
         warnings.simplefilter("error")
         for render_mode in ["ansi", "rgb_array"]:
             env = gym.make(f"chronocooked/{task}", obs_mode=obs_mode, render_mode=render_mode)
+            check_env(env)  # gym.make returns the env itself (no wrapper)
             check_env(env.unwrapped)
             env.close()
 
@@ -259,3 +260,9 @@ def test_a_rust_panic_is_an_exception_not_an_abort():
     env = gym.make("chronocooked/FixedInterval-v0")  # the interpreter and the module go on
     obs, _ = env.reset(seed=0)
     assert obs.shape == (5, 3, 6)
+
+
+def test_step_before_reset_raises():
+    env = gym.make("chronocooked/FixedInterval-v0")
+    with pytest.raises(gym.error.ResetNeeded):
+        env.step(0)
