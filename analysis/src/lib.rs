@@ -16,6 +16,8 @@
 //! * [`paper`] — the paper's study: compact sweep results, the paper's analyses beside the
 //!   lab's, and the comparison with the paper's numbers.
 
+#![warn(missing_docs)]
+
 pub mod behaviour;
 pub mod evaluation;
 pub mod export;

@@ -12,6 +12,8 @@
 //! * [`oracle`] — optimal scripted policies; [`render`] — ASCII, PNG, GIF;
 //!   [`trace`] — JSON-lines episode traces; [`fs`] — the one atomic file write.
 
+#![warn(missing_docs)]
+
 pub mod action;
 pub mod bench;
 pub mod env;

@@ -7,6 +7,8 @@
 //! * [`agent`] — the one agent interface every model plays through, episodes and the
 //!   deterministic evaluation loop; [`activity`] — recording of neural activity.
 
+#![warn(missing_docs)]
+
 pub mod activity;
 pub mod agent;
 pub mod deep;

@@ -10,6 +10,8 @@
 //!
 //! The gymnasium classes live in Python (`chronocooked/envs.py`) on top of these.
 
+#![warn(missing_docs)]
+
 mod env;
 mod errors;
 mod evaluate;

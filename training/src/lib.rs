@@ -10,6 +10,8 @@
 //! * [`sweep`] — sweep files, job progress, Slurm emission, cost estimates;
 //! * [`error`] — typed training errors.
 
+#![warn(missing_docs)]
+
 pub mod adapt;
 pub mod error;
 pub mod evaluate;
