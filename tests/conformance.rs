@@ -69,20 +69,51 @@ fn every_obs_is_in_its_space_and_info_has_every_key() {
         assert!(env.action_space().contains(5) && !env.action_space().contains(6));
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(3);
         env.reset(Some(3), &ResetOptions::default()).unwrap();
+        let mut timestep = 0;
+        let cols = env.layout().cols();
         for _ in 0..3000 {
             let t = env.step(Action::ALL[rng.random_range(0..6)]).unwrap();
             assert!(codes.contains(env.obs_codes()), "{}", spec.id);
             assert!(onehot.contains(&env.obs_onehot()), "{}", spec.id);
+            // The serialised info has exactly the documented keys ...
             let json = serde_json::to_value(t.info).unwrap();
-            for key in INFO_KEYS {
-                assert!(json.get(key).is_some(), "{}: info lacks {key}", spec.id);
-            }
+            let mut keys: Vec<&str> = json
+                .as_object()
+                .unwrap()
+                .keys()
+                .map(String::as_str)
+                .collect();
+            let mut documented = INFO_KEYS.to_vec();
+            keys.sort_unstable();
+            documented.sort_unstable();
+            assert_eq!(keys, documented, "{}", spec.id);
+            // ... and says what the observation shows: one more step, the agent's cell, what
+            // it carries.
+            timestep += 1;
+            assert_eq!(t.info.timestep, timestep, "{}", spec.id);
+            assert_eq!(json["timestep"], timestep, "{}", spec.id);
+            let obs = env.obs_codes();
+            let cell = obs.chunks_exact(6).position(|c| c[1] == 1).unwrap();
+            assert_eq!(
+                (cell / cols, cell % cols),
+                (t.info.agent.0 as usize, t.info.agent.1 as usize),
+                "{}",
+                spec.id
+            );
+            assert_eq!(json["agent"], serde_json::json!([cell / cols, cell % cols]));
+            let carry = match (obs[cell * 6 + 2], obs[cell * 6 + 3]) {
+                (1, _) => "onion",
+                (_, 1) => "soup",
+                _ => "nothing",
+            };
+            assert_eq!(json["carrying"], carry, "{}", spec.id);
             // The one-hot view has exactly one agent.
             let plane = env.layout().n_cells();
             let agent: f32 = env.obs_onehot()[7 * plane..8 * plane].iter().sum();
             assert_eq!(agent, 1.0);
             if t.done() {
                 env.reset(None, &ResetOptions::default()).unwrap();
+                timestep = 0;
             }
         }
     }

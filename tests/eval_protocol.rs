@@ -2,7 +2,7 @@
 //! failed fits reported as such, and metrics recomputed from saved records are identical.
 
 use chronocooked_analysis::{Mode, compute_metrics, reference_conditions, run_protocol};
-use chronocooked_env::ChronoEnv;
+use chronocooked_env::{ChronoEnv, TaskParams, make_config};
 use chronocooked_models::agent::{OracleAgent, RandomAgent};
 
 #[test]
@@ -96,16 +96,56 @@ fn random_agent_gives_failed_fits_not_crashes_and_metrics_recompute_identically(
 
 #[test]
 fn every_task_has_reference_conditions_the_oracle_plays() {
+    let mut paying = 0;
     for spec in chronocooked_env::all_tasks() {
         let conds = reference_conditions(spec.id, &[]).unwrap();
         assert!(!conds.is_empty(), "{}", spec.id);
         let env = ChronoEnv::from_id(spec.id, &[] as &[&str]).unwrap();
         let mut oracle = OracleAgent::new(&env);
         let recs = run_protocol(&mut oracle, &conds, Mode::Reference, 0).unwrap();
+        // Reference protocol: one greedy episode per free start cell per condition, in
+        // condition order and row-major start order, each played at its condition's TD.
+        let mut k = 0;
+        for c in &conds {
+            let cenv = ChronoEnv::from_id(&c.task, &c.env).unwrap();
+            let layout = cenv.layout();
+            for &cell in layout.free_cells() {
+                let r = &recs[k];
+                assert_eq!(r.condition, *c, "{}", spec.id);
+                assert_eq!(r.episode.start, layout.coords(cell as usize), "{}", spec.id);
+                assert_eq!(r.episode.td, c.td, "{}", spec.id);
+                k += 1;
+            }
+        }
+        assert_eq!(k, recs.len(), "{}: no extra episodes", spec.id);
+        // The oracle earns the full reward in every condition that pays it: the trained
+        // FI interval, the bisection anchors, every trained multi-timer TD, the normal
+        // uncertainty episodes.
         let m = compute_metrics("oracle", &recs, 0);
         assert_eq!(m.episodes, recs.len());
-        assert!(serde_json::to_string(&m).is_ok());
+        let config = make_config(spec.id, &[] as &[&str]).unwrap();
+        for c in &m.conditions {
+            let pays = match c.kind.as_str() {
+                "fi" => true,
+                "bisection" => match config.params {
+                    TaskParams::Bisection { short, long } => c.td == short || c.td == long,
+                    _ => false,
+                },
+                "multi_timer" => match &config.params {
+                    TaskParams::MultiTimer { tds, .. } => tds.contains(&c.td),
+                    _ => false,
+                },
+                "uncertainty" => c.never_ready == Some(false),
+                _ => false,
+            };
+            if pays {
+                assert_eq!(c.success_rate, 1.0, "{}: {:?}", spec.id, c);
+                paying += 1;
+            }
+        }
     }
+    // FI 1, bisection 2 anchors, multi-timer ≥ 1 trained TD, uncertainty 1.
+    assert!(paying >= 5, "{paying} paying conditions checked");
 }
 
 #[test]
