@@ -378,7 +378,7 @@ set = ["checkpoint_every=4000", "eval_every=0"]
 
 #[test]
 fn train_eval_record_export_report_end_to_end() {
-    use chronocooked_analysis::export::npz::read_npz;
+    use chronocooked_analysis::export::npz::{NpyData, read_npz};
     let dir = temp_dir("e2e");
     let p = |rel: &str| dir.join(rel).to_str().unwrap().to_string();
     // A PPO agent (tiny budget) and a timing model, each in the layout `sweep` uses.
@@ -447,20 +447,19 @@ fn train_eval_record_export_report_end_to_end() {
         .unwrap();
         let arrays =
             read_npz(&std::fs::read(dir.join(model).join("export/activity.npz")).unwrap()).unwrap();
-        let (_, _, shape, raw) = arrays.iter().find(|a| a.0 == "activity").unwrap();
+        let a = arrays.iter().find(|a| a.name == "activity").unwrap();
         let total: usize = ds.trials.iter().map(|t| t.steps).sum();
-        assert_eq!(shape, &vec![total, ds.meta.n_units()]);
-        let values: Vec<f32> = raw
-            .chunks_exact(4)
-            .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-            .collect();
+        assert_eq!(a.shape, vec![total, ds.meta.n_units()]);
+        let NpyData::F32(values) = a.data.clone() else {
+            panic!("activity is float32")
+        };
         let expected: Vec<f32> = ds.trials.iter().flat_map(|t| t.activity.clone()).collect();
         assert_eq!(values, expected, "{model}");
         let meta: Value = serde_json::from_str(
             &std::fs::read_to_string(dir.join(model).join("export/activity.meta.json")).unwrap(),
         )
         .unwrap();
-        for (name, ..) in &arrays {
+        for name in arrays.iter().map(|a| &a.name) {
             assert!(
                 meta["arrays"][name]["shape"].is_array(),
                 "{model}: {name} undescribed"

@@ -308,7 +308,7 @@ fn neural_summaries_tell_ramps_sequences_and_oscillations_apart() {
 #[test]
 fn exported_npz_matches_the_dataset_array_by_array() {
     use chronocooked_analysis::export::export_activity;
-    use chronocooked_analysis::export::npz::read_npz;
+    use chronocooked_analysis::export::npz::{NpyData, read_npz};
     let config = make_config("FixedInterval-v0", &["td=6"]).unwrap();
     let env = chronocooked_env::ChronoEnv::new(&config).unwrap();
     let mut agent =
@@ -338,55 +338,48 @@ fn exported_npz_matches_the_dataset_array_by_array() {
     let get = |name: &str| {
         arrays
             .iter()
-            .find(|a| a.0 == name)
+            .find(|a| a.name == name)
             .unwrap_or_else(|| panic!("{name}"))
+    };
+    let f32s = |name: &str| match &get(name).data {
+        NpyData::F32(v) => v.clone(),
+        other => panic!("{name}: not float32: {other:?}"),
+    };
+    let i64s = |name: &str| match &get(name).data {
+        NpyData::I64(v) => v.clone(),
+        other => panic!("{name}: not int64: {other:?}"),
     };
     let n = ds.meta.n_units();
     // Every array is described, with the right shape.
-    for (name, _, shape, _) in &arrays {
+    for a in &arrays {
         let described: Vec<usize> =
-            serde_json::from_value(meta["arrays"][name]["shape"].clone()).unwrap();
-        assert_eq!(&described, shape, "{name}");
+            serde_json::from_value(meta["arrays"][&a.name]["shape"].clone()).unwrap();
+        assert_eq!(described, a.shape, "{}", a.name);
     }
     assert_eq!(meta["units"].as_array().unwrap().len(), n);
-    // activity: trials concatenated, f32 little-endian.
-    let (_, descr, shape, raw) = get("activity");
-    assert_eq!(descr, "<f4");
+    // activity: trials concatenated, float32.
     let total: usize = ds.trials.iter().map(|t| t.steps).sum();
-    assert_eq!(shape, &vec![total, n]);
-    let values: Vec<f32> = raw
-        .chunks_exact(4)
-        .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-        .collect();
+    assert_eq!(get("activity").shape, vec![total, n]);
     let expected: Vec<f32> = ds
         .trials
         .iter()
         .flat_map(|t| t.activity.iter().copied())
         .collect();
-    assert_eq!(values, expected);
-    let i64s = |raw: &Vec<u8>| -> Vec<i64> {
-        raw.chunks_exact(8)
-            .map(|b| i64::from_le_bytes(b.try_into().unwrap()))
-            .collect()
-    };
-    let offsets = i64s(&get("trial_offsets").3);
+    assert_eq!(f32s("activity"), expected);
+    let offsets = i64s("trial_offsets");
     assert_eq!(offsets.len(), ds.trials.len() + 1);
     assert_eq!(*offsets.last().unwrap() as usize, total);
     assert_eq!(
-        i64s(&get("td").3),
+        i64s("td"),
         ds.trials
             .iter()
             .map(|t| i64::from(t.td))
             .collect::<Vec<_>>()
     );
     let events: usize = ds.trials.iter().map(|t| t.events.len()).sum();
-    assert_eq!(i64s(&get("event_step").3).len(), events);
-    let (aligned, used) = ds.aligned(Marker::OvenOn, get("aligned").2[1] - 1);
-    let a: Vec<f32> = get("aligned")
-        .3
-        .chunks_exact(4)
-        .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-        .collect();
+    assert_eq!(i64s("event_step").len(), events);
+    let (aligned, used) = ds.aligned(Marker::OvenOn, get("aligned").shape[1] - 1);
+    let a = f32s("aligned");
     assert_eq!(a.len(), aligned.len());
     assert!(
         a.iter()
@@ -394,7 +387,7 @@ fn exported_npz_matches_the_dataset_array_by_array() {
             .all(|(x, y)| x == y || (x.is_nan() && y.is_nan()))
     );
     assert_eq!(
-        i64s(&get("aligned_trials").3),
+        i64s("aligned_trials"),
         used.iter().map(|&u| u as i64).collect::<Vec<_>>()
     );
     let _ = std::fs::remove_dir_all(&dir);

@@ -7,7 +7,7 @@
 pub mod npz;
 
 use crate::evaluation::protocol::EvalRecord;
-use crate::export::npz::{NpyArray, NpyData, write_npz};
+use crate::export::npz::{NpyArray, NpyData, npz_bytes};
 use chronocooked_models::{ActivityDataset, Marker};
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
@@ -56,8 +56,7 @@ fn describe(arrays: &[NpyArray], docs: &[(&str, &str, &str)]) -> Value {
 
 fn save(dir: &Path, stem: &str, arrays: &[NpyArray], meta: Value) -> Result<Vec<PathBuf>, String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    let mut buf = Vec::new();
-    write_npz(&mut buf, arrays)?;
+    let buf = npz_bytes(arrays)?;
     let npz = dir.join(format!("{stem}.npz"));
     write_atomic(&npz, &buf)?;
     let meta_path = dir.join(format!("{stem}.meta.json"));
