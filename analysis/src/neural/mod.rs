@@ -112,7 +112,7 @@ pub struct RampUnit {
     pub ramping: bool,
 }
 
-/// Ramping units (SPEC §4: OLS of trial-averaged activity vs time, `|r| ≥ 0.9`, `p ≤ 0.05`)
+/// Ramping units (the paper's rule: OLS of trial-averaged activity vs time, `|r| ≥ 0.9`, `p ≤ 0.05`)
 /// of a `[time, units]` average.
 pub fn classify_ramps(avg: &[f64], units: usize, r_min: f64, p_max: f64) -> Vec<RampUnit> {
     (0..units)

@@ -25,7 +25,7 @@ pub enum CoreKind {
     Gru,
     /// Elman RNN: `h ← tanh(W_in x + W_rec h + b)`.
     Rnn,
-    /// Continuous-time RNN (SPEC §2): `h ← (1−α)h + α·tanh(W_in x + W_rec h + b)`, `α = dt/softplus(τ)`.
+    /// Continuous-time RNN (the paper's CTRNN cell): `h ← (1−α)h + α·tanh(W_in x + W_rec h + b)`, `α = dt/softplus(τ)`.
     Ctrnn,
 }
 

@@ -10,7 +10,8 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 /// RNG used for initialisation.
 pub type InitRng = Xoshiro256PlusPlus;
 
-/// One standard-normal draw (Box–Muller; avoids a rand_distr dependency here).
+/// One standard-normal draw (Box–Muller). Kept rather than `rand_distr`'s ziggurat: every
+/// initial weight, and so every learning curve of a given seed, depends on these exact draws.
 fn normal(rng: &mut InitRng) -> f64 {
     let u1: f64 = rng.random::<f64>().max(1e-300);
     let u2: f64 = rng.random::<f64>();

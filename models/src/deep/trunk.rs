@@ -1,5 +1,5 @@
 //! The paper's CNN trunk: Conv1×1 C→8, ReLU, Conv1×1 8→6, flatten, Linear→64, ReLU
-//! (no non-linearity between the second conv and the flatten, as in SPEC §3).
+//! (no non-linearity between the second conv and the flatten, as in the paper's `CustomCNN`).
 //!
 //! A 1×1 convolution is the same linear map applied at every grid cell, so it is
 //! computed as a dense layer over the channel axis of `[B, cells, C]` (identical

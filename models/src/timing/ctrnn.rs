@@ -1,5 +1,5 @@
 //! Stand-alone continuous-time RNN — the same cell as the PPO agent's CTRNN core
-//! (SPEC §2): `h ← (1−α) h + α · tanh(W_in x + W_rec h + b) + σ_rec √α ξ`,
+//! (the paper's CTRNN cell, `ctrnn_policy.py` of its code): `h ← (1−α) h + α · tanh(W_in x + W_rec h + b) + σ_rec √α ξ`,
 //! `α = dt / softplus(τ)` per unit (clamped to ≤ 1), `ξ ~ N(0, 1)` optional recurrent noise.
 
 use rand::Rng;
