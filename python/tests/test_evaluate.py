@@ -49,6 +49,18 @@ def test_an_evaluated_policy_is_a_leaderboard_row(tmp_path, cli):
     assert row, csv
 
 
+def test_model_names_with_commas_stay_one_csv_field(tmp_path, cli):
+    import csv as csvmod
+
+    name = 'agent, "v2"'
+    chronocooked.evaluate(TimingOracle(td=12), "FixedInterval-v0", tmp_path / "a", name=name)
+    subprocess.run([cli, "report", "--eval", str(tmp_path / "a"), "--out", str(tmp_path / "r")],
+                   check=True, capture_output=True)
+    with open(tmp_path / "r" / "report.csv", newline="") as f:
+        rows = list(csvmod.reader(f))
+    assert rows[1][0] == name and len(rows[1]) == len(rows[0])
+
+
 def test_load_eval_returns_episode_and_condition_frames(tmp_path):
     chronocooked.evaluate(TimingOracle(td=6), "FixedInterval-v0", tmp_path, td=6)
     episodes, conditions = chronocooked.load_eval(tmp_path)

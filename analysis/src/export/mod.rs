@@ -28,6 +28,19 @@ fn code(m: Marker) -> i64 {
     EVENT_CODES.iter().position(|(k, _)| *k == m).unwrap_or(0) as i64
 }
 
+/// A CSV table (header + rows) as text through the `csv` crate: fields are quoted when they
+/// hold a comma, quote or newline (model names are user input), lines end in `\n`.
+pub fn csv_text<S: AsRef<str>>(header: &[&str], rows: &[Vec<S>]) -> Result<String, String> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record(header).map_err(|e| e.to_string())?;
+    for r in rows {
+        w.write_record(r.iter().map(AsRef::as_ref))
+            .map_err(|e| e.to_string())?;
+    }
+    let bytes = w.into_inner().map_err(|e| e.to_string())?;
+    String::from_utf8(bytes).map_err(|e| e.to_string())
+}
+
 /// The project's atomic write (temporary file, then rename), with a string error.
 pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
     chronocooked_env::fs::write_atomic(path, bytes).map_err(|e| e.to_string())
@@ -224,23 +237,42 @@ pub fn export_activity(
         "arrays": describe(&arrays, &docs),
     });
     let mut files = save(dir, "activity", &arrays, meta)?;
-    let mut csv = String::from("trial,td,start_row,start_col,steps,reward,success\n");
-    for (i, t) in trials.iter().enumerate() {
-        csv += &format!(
-            "{i},{},{},{},{},{},{}\n",
-            t.td,
-            t.start.0,
-            t.start.1,
-            t.steps,
-            t.reward,
-            u8::from(t.success)
-        );
-    }
+    let rows: Vec<Vec<String>> = trials
+        .iter()
+        .enumerate()
+        .map(|(i, t)| {
+            vec![
+                i.to_string(),
+                t.td.to_string(),
+                t.start.0.to_string(),
+                t.start.1.to_string(),
+                t.steps.to_string(),
+                t.reward.to_string(),
+                u8::from(t.success).to_string(),
+            ]
+        })
+        .collect();
+    let csv = csv_text(
+        &[
+            "trial",
+            "td",
+            "start_row",
+            "start_col",
+            "steps",
+            "reward",
+            "success",
+        ],
+        &rows,
+    )?;
     write_atomic(&dir.join("trials.csv"), csv.as_bytes())?;
-    let mut units = String::from("column,unit\n");
-    for (i, u) in dataset.meta.unit_names().iter().enumerate() {
-        units += &format!("{i},{u}\n");
-    }
+    let rows: Vec<Vec<String>> = dataset
+        .meta
+        .unit_names()
+        .into_iter()
+        .enumerate()
+        .map(|(i, u)| vec![i.to_string(), u])
+        .collect();
+    let units = csv_text(&["column", "unit"], &rows)?;
     write_atomic(&dir.join("units.csv"), units.as_bytes())?;
     files.push(dir.join("trials.csv"));
     files.push(dir.join("units.csv"));
@@ -383,29 +415,47 @@ pub fn export_eval(records: &[EvalRecord], dir: &Path) -> Result<Vec<PathBuf>, S
         "arrays": describe(&arrays, &docs),
     });
     let mut files = save(dir, "episodes", &arrays, meta)?;
-    let mut csv = String::from(
-        "episode,condition,task,td,factor,start_row,start_col,reward,success,steps,foc,counter\n",
-    );
-    for (i, r) in records.iter().enumerate() {
-        csv += &format!(
-            "{i},{},{},{},{},{},{},{},{},{},{},{}\n",
-            r.condition.kind,
-            r.condition.task,
-            r.condition.td,
-            r.condition.factor.map_or(String::new(), |f| f.to_string()),
-            r.episode.start.0,
-            r.episode.start.1,
-            r.episode.reward,
-            u8::from(r.episode.success),
-            r.episode.actions.len(),
-            if foc[i].is_finite() {
-                foc[i].to_string()
-            } else {
-                String::new()
-            },
-            counter[i]
-        );
-    }
+    let rows: Vec<Vec<String>> = records
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            vec![
+                i.to_string(),
+                r.condition.kind.clone(),
+                r.condition.task.clone(),
+                r.condition.td.to_string(),
+                r.condition.factor.map_or(String::new(), |f| f.to_string()),
+                r.episode.start.0.to_string(),
+                r.episode.start.1.to_string(),
+                r.episode.reward.to_string(),
+                u8::from(r.episode.success).to_string(),
+                r.episode.actions.len().to_string(),
+                if foc[i].is_finite() {
+                    foc[i].to_string()
+                } else {
+                    String::new()
+                },
+                counter[i].to_string(),
+            ]
+        })
+        .collect();
+    let csv = csv_text(
+        &[
+            "episode",
+            "condition",
+            "task",
+            "td",
+            "factor",
+            "start_row",
+            "start_col",
+            "reward",
+            "success",
+            "steps",
+            "foc",
+            "counter",
+        ],
+        &rows,
+    )?;
     write_atomic(&dir.join("episodes.csv"), csv.as_bytes())?;
     files.push(dir.join("episodes.csv"));
     Ok(files)

@@ -157,21 +157,26 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     let cols = used_columns(rows);
     // CSV: mean and SD columns.
-    let mut csv = String::from("model,runs");
+    let mut header = vec!["model".to_string(), "runs".to_string()];
     for (k, _) in &cols {
-        csv += &format!(",{k},{k}_sd");
+        header.push(k.to_string());
+        header.push(format!("{k}_sd"));
     }
-    csv.push('\n');
-    for r in rows {
-        csv += &format!("{},{}", r.model, r.runs.len());
-        for (k, _) in &cols {
-            match r.values.get(*k) {
-                Some(s) => csv += &format!(",{},{}", s.mean, s.sd),
-                None => csv += ",,",
+    let table: Vec<Vec<String>> = rows
+        .iter()
+        .map(|r| {
+            let mut line = vec![r.model.clone(), r.runs.len().to_string()];
+            for (k, _) in &cols {
+                match r.values.get(*k) {
+                    Some(s) => line.extend([s.mean.to_string(), s.sd.to_string()]),
+                    None => line.extend([String::new(), String::new()]),
+                }
             }
-        }
-        csv.push('\n');
-    }
+            line
+        })
+        .collect();
+    let header: Vec<&str> = header.iter().map(String::as_str).collect();
+    let csv = crate::export::csv_text(&header, &table)?;
     // Markdown.
     let mut md = String::from("# Chronocooked leaderboard\n\n| model | runs |");
     for (k, _) in &cols {
