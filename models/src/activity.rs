@@ -161,6 +161,19 @@ pub struct ActivityMeta {
 }
 
 impl ActivityMeta {
+    /// Metadata of a recording of `model` on `task` with overrides `env` and `seed`, one env
+    /// step per unit of time (`dt` 1); populations are filled in by the first recorded step.
+    pub fn new(model: &str, task: &str, env: &[String], seed: u64) -> Self {
+        ActivityMeta {
+            model: model.to_string(),
+            task: task.to_string(),
+            env: env.to_vec(),
+            seed,
+            dt: 1.0,
+            populations: Vec::new(),
+        }
+    }
+
     /// Total number of units `N`.
     pub fn n_units(&self) -> usize {
         self.populations.iter().map(|p| p.size).sum()

@@ -185,14 +185,11 @@ class ChronoVectorEnv(VectorEnv):
                                   "next_step" if mode == AutoresetMode.NEXT_STEP else "same_step")
         self.metadata = {"autoreset_mode": mode, "render_modes": []}
         self.render_mode = None
-        self.single_observation_space = _obs_space(self._core_single(obs_mode))
+        self.single_observation_space = _obs_space(self._core)
         self.single_action_space = spaces.Discrete(6)
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = spaces.MultiDiscrete(np.full(self.num_envs, 6))
         self._seeded = False
-
-    def _core_single(self, obs_mode):
-        return _core.Env(self.task, overrides(self.params), obs_mode)
 
     def reset(self, *, seed=None, options: dict | None = None):
         n = self.num_envs

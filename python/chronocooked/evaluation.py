@@ -38,6 +38,29 @@ def evaluate(policy, task: str, out, *, obs_mode: str = "codes", stochastic: int
                           stochastic, int(seed), name)
 
 
+def read_records(path) -> list[dict]:
+    """The per-episode records (``records.jsonl``) of an evaluation folder as dicts with
+    ``condition`` and ``episode``; errors name the file and line."""
+    path = Path(path)
+    records = path / "records.jsonl"
+    if not records.is_file():
+        raise FileNotFoundError(f"{records}: no records.jsonl ({path} is not an eval folder)")
+    out = []
+    with open(records) as f:
+        for line_no, line in enumerate(f, 1):
+            if not line.strip():
+                continue
+            try:
+                r = json.loads(line)
+            except json.JSONDecodeError as err:
+                raise ValueError(f"{records}:{line_no}: not an evaluation record ({err})") from None
+            if not (isinstance(r, dict) and "condition" in r and "episode" in r):
+                raise ValueError(
+                    f"{records}:{line_no}: not an evaluation record (needs condition and episode)")
+            out.append(r)
+    return out
+
+
 def _first(infos, event):
     for info in infos:
         if event in info["events"]:
@@ -56,31 +79,21 @@ def load_eval(path):
     import pandas as pd
 
     path = Path(path)
-    records = path / "records.jsonl"
-    if not records.is_file():
-        raise FileNotFoundError(f"{records}: no records.jsonl ({path} is not an eval folder)")
     rows = []
-    with open(records) as f:
-        for line_no, line in enumerate(f, 1):
-            if not line.strip():
-                continue
-            try:
-                r = json.loads(line)
-                c, e = r["condition"], r["episode"]
-            except (json.JSONDecodeError, KeyError, TypeError) as err:
-                raise ValueError(f"{records}:{line_no}: not an evaluation record ({err})") from None
-            infos = e["infos"]
-            check = _first(infos, "oven_check")
-            last = infos[-1] if infos else {}
-            rows.append({
-                "kind": c["kind"], "task": c["task"], "td": c["td"],
-                "factor": c.get("factor"), "never_ready": c.get("never_ready"),
-                "start_row": e["start"][0], "start_col": e["start"][1], "seed": e["seed"],
-                "reward": e["reward"], "success": e["success"], "steps": len(e["actions"]),
-                "first_check": check["timer_at_action"] if check else -1,
-                "oven_off_time": last.get("oven_off_time", -1),
-                "counter": last.get("counter"),
-            })
+    for r in read_records(path):
+        c, e = r["condition"], r["episode"]
+        infos = e["infos"]
+        check = _first(infos, "oven_check")
+        last = infos[-1] if infos else {}
+        rows.append({
+            "kind": c["kind"], "task": c["task"], "td": c["td"],
+            "factor": c.get("factor"), "never_ready": c.get("never_ready"),
+            "start_row": e["start"][0], "start_col": e["start"][1], "seed": e["seed"],
+            "reward": e["reward"], "success": e["success"], "steps": len(e["actions"]),
+            "first_check": check["timer_at_action"] if check else -1,
+            "oven_off_time": last.get("oven_off_time", -1),
+            "counter": last.get("counter"),
+        })
     episodes = pd.DataFrame(rows)
     metrics_path = path / "metrics.json"
     conditions = pd.DataFrame()

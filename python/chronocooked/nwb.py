@@ -30,22 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .evaluation import load_activity
-
-
-def _records(eval_dir: Path):
-    path = eval_dir / "records.jsonl"
-    if not path.is_file():
-        raise FileNotFoundError(f"{path}: no records.jsonl ({eval_dir} is not an eval folder)")
-    out = []
-    with open(path) as f:
-        for line_no, line in enumerate(f, 1):
-            if line.strip():
-                try:
-                    out.append(json.loads(line))
-                except json.JSONDecodeError as e:
-                    raise ValueError(f"{path}:{line_no}: not an evaluation record ({e})") from None
-    return out
+from .evaluation import load_activity, read_records
 
 
 def to_nwb(activity, eval_dir, path, *, overwrite: bool = False, experimenter=None,
@@ -70,7 +55,7 @@ def to_nwb(activity, eval_dir, path, *, overwrite: bool = False, experimenter=No
     path = Path(path)
     if path.exists() and not overwrite:
         raise FileExistsError(f"{path} exists (pass overwrite=True to replace it)")
-    records = _records(eval_dir)
+    records = read_records(eval_dir)
     info = json.loads((eval_dir / "eval.json").read_text())
     act = np.asarray(arrays["activity"], dtype=np.float32)
     offsets = np.asarray(arrays["trial_offsets"], dtype=np.int64)

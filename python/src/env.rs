@@ -29,18 +29,13 @@ impl ObsMode {
             ))),
         }
     }
-}
 
-/// Reset options from Python (`start` `(row, col)`, `td` steps, `never_ready`).
-pub fn reset_options(
-    start: Option<(usize, usize)>,
-    td: Option<u32>,
-    never_ready: Option<bool>,
-) -> ResetOptions {
-    ResetOptions {
-        start,
-        td,
-        never_ready,
+    /// `"codes"` or `"onehot"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            ObsMode::Codes => "codes",
+            ObsMode::OneHot => "onehot",
+        }
     }
 }
 
@@ -105,7 +100,14 @@ impl Env {
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyDict>)> {
         let info = self
             .env
-            .reset(seed, &reset_options(start, td, never_ready))
+            .reset(
+                seed,
+                &ResetOptions {
+                    start,
+                    td,
+                    never_ready,
+                },
+            )
             .map_err(env_err)?;
         Ok((self.obs(py)?, info_dict(py, &info)?))
     }
@@ -154,10 +156,7 @@ impl Env {
     /// `"codes"` or `"onehot"`.
     #[getter]
     fn obs_mode(&self) -> &'static str {
-        match self.mode {
-            ObsMode::Codes => "codes",
-            ObsMode::OneHot => "onehot",
-        }
+        self.mode.name()
     }
 
     /// Number of actions (6: wait, down, up, right, left, interact).

@@ -8,7 +8,7 @@
 use crate::errors::{env_err, runtime_err, value_err};
 use chronocooked_analysis::evaluation::folder::{EvalInfo, write_eval_folder};
 use chronocooked_analysis::{Mode, run_protocol_recorded};
-use chronocooked_env::{Action, ChronoEnv, OneHotEncoder, make_config};
+use chronocooked_env::{Action, ChronoEnv, OneHotEncoder};
 use chronocooked_models::Agent;
 use chronocooked_models::activity::{ActivityMeta, StepRecorder, TrialRecorder};
 use numpy::{IntoPyArray, PyArray1, PyArrayMethods, PyReadonlyArray1};
@@ -203,9 +203,14 @@ pub fn evaluate<'py>(
     let conditions =
         chronocooked_analysis::reference_conditions(task, &overrides).map_err(env_err)?;
     let mut geometries: Vec<Geometry> = Vec::new();
+    let mut seen: Vec<(&str, &[String])> = Vec::new();
     for c in &conditions {
-        let env =
-            ChronoEnv::new(&make_config(&c.task, &c.env).map_err(env_err)?).map_err(env_err)?;
+        // One env per distinct (task, overrides): conditions mostly differ only in TD.
+        if seen.contains(&(c.task.as_str(), c.env.as_slice())) {
+            continue;
+        }
+        seen.push((c.task.as_str(), c.env.as_slice()));
+        let env = ChronoEnv::from_id(&c.task, &c.env).map_err(env_err)?;
         let shape = env.codes_space().shape;
         let shape = [shape[0], shape[1], shape[2]];
         let len = shape.iter().product();
@@ -236,14 +241,7 @@ pub fn evaluate<'py>(
         units: None,
         error: None,
     };
-    let meta = ActivityMeta {
-        model: name.to_string(),
-        task: task.to_string(),
-        env: overrides.clone(),
-        seed,
-        dt: 1.0,
-        populations: Vec::new(),
-    };
+    let meta = ActivityMeta::new(name, task, &overrides, seed);
     let mut recorder = TrialRecorder::new(meta);
     let records = run_protocol_recorded(&mut agent, &conditions, mode, seed, Some(&mut recorder))
         .map_err(env_err)?;

@@ -4,7 +4,7 @@
 use crate::env::ObsMode;
 use crate::errors::{env_err, value_err};
 use crate::info::info_arrays;
-use chronocooked_env::{Autoreset, ResetOptions, VecEnv as RustVecEnv, make_config};
+use chronocooked_env::{Autoreset, ChronoEnv, ResetOptions, VecEnv as RustVecEnv};
 use numpy::{IntoPyArray, PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -16,6 +16,7 @@ pub struct VecEnv {
     mode: ObsMode,
     autoreset: Autoreset,
     obs_shape: Vec<usize>,
+    obs_high: f64,
     actions: Vec<u8>,
 }
 
@@ -52,41 +53,26 @@ impl VecEnv {
 
     fn read_actions(&mut self, actions: &Bound<'_, PyAny>) -> PyResult<()> {
         let n = self.envs.len();
-        let check = |len: usize| {
-            if len == n {
-                Ok(())
-            } else {
-                Err(value_err(format!(
-                    "invalid value for `actions`: {len} actions (allowed: exactly {n}, one per env)"
-                )))
-            }
-        };
-        let bad = |a: i64| {
-            value_err(format!(
-                "invalid action {a} (allowed: 0 wait, 1 down, 2 up, 3 right, 4 left, 5 interact)"
-            ))
-        };
-        self.actions.clear();
-        if let Ok(a) = actions.extract::<PyReadonlyArray1<'_, i64>>() {
-            let a = a.as_slice()?;
-            check(a.len())?;
-            for &x in a {
-                if !(0..6).contains(&x) {
-                    return Err(bad(x));
-                }
-                self.actions.push(x as u8);
-            }
-        } else {
-            let a: Vec<i64> = actions.extract().map_err(|_| {
+        let codes: Vec<i64> = match actions.extract::<PyReadonlyArray1<'_, i64>>() {
+            Ok(a) => a.as_slice()?.to_vec(),
+            Err(_) => actions.extract().map_err(|_| {
                 value_err("`actions` must be a 1-D array (or sequence) of integers in 0..=5")
-            })?;
-            check(a.len())?;
-            for x in a {
-                if !(0..6).contains(&x) {
-                    return Err(bad(x));
-                }
-                self.actions.push(x as u8);
+            })?,
+        };
+        if codes.len() != n {
+            return Err(value_err(format!(
+                "invalid value for `actions`: {} actions (allowed: exactly {n}, one per env)",
+                codes.len()
+            )));
+        }
+        self.actions.clear();
+        for x in codes {
+            if !(0..6).contains(&x) {
+                return Err(value_err(format!(
+                    "invalid action {x} (allowed: 0 wait, 1 down, 2 up, 3 right, 4 left, 5 interact)"
+                )));
             }
+            self.actions.push(x as u8);
         }
         Ok(())
     }
@@ -106,18 +92,22 @@ impl VecEnv {
     ) -> PyResult<Self> {
         let mode = ObsMode::parse(obs_mode)?;
         let autoreset = parse_autoreset(autoreset_mode)?;
-        let config = make_config(task, &overrides).map_err(env_err)?;
-        let envs = RustVecEnv::new(&config, num_envs, autoreset).map_err(env_err)?;
-        let one = chronocooked_env::ChronoEnv::new(&config).map_err(env_err)?;
-        let obs_shape = match mode {
-            ObsMode::Codes => one.codes_space().shape,
-            ObsMode::OneHot => one.onehot_space().shape,
+        if num_envs == 0 {
+            return Err(value_err(
+                "invalid value for `num_envs`: 0 (allowed: integer >= 1)",
+            ));
+        }
+        let one = ChronoEnv::from_id(task, &overrides).map_err(env_err)?;
+        let (obs_shape, obs_high) = match mode {
+            ObsMode::Codes => (one.codes_space().shape, f64::from(one.codes_space().high)),
+            ObsMode::OneHot => (one.onehot_space().shape, f64::from(one.onehot_space().high)),
         };
         Ok(VecEnv {
-            envs,
+            envs: RustVecEnv::like(&one, num_envs, autoreset),
             mode,
             autoreset,
             obs_shape,
+            obs_high,
             actions: Vec::with_capacity(num_envs),
         })
     }
@@ -126,6 +116,24 @@ impl VecEnv {
     #[getter]
     fn num_envs(&self) -> usize {
         self.envs.len()
+    }
+
+    /// Shape of one env's observation in this env's mode.
+    #[getter]
+    fn obs_shape(&self) -> Vec<usize> {
+        self.obs_shape.clone()
+    }
+
+    /// Upper bound of every observation element (the lower bound is 0).
+    #[getter]
+    fn obs_high(&self) -> f64 {
+        self.obs_high
+    }
+
+    /// `"codes"` or `"onehot"`.
+    #[getter]
+    fn obs_mode(&self) -> &'static str {
+        self.mode.name()
     }
 
     /// Resets the envs whose `mask` entry is true (all when None): env `i` is reseeded

@@ -122,14 +122,7 @@ pub fn run(args: EvalArgs) -> Result<()> {
         None => Mode::Reference,
     };
     let conditions = reference_conditions(&task, &env)?;
-    let meta = ActivityMeta {
-        model: agent.name(),
-        task: task.clone(),
-        env: env.clone(),
-        seed: args.seed,
-        dt: 1.0,
-        populations: Vec::new(),
-    };
+    let meta = ActivityMeta::new(&agent.name(), &task, &env, args.seed);
     let mut recorder = TrialRecorder::new(meta);
     let records = run_protocol_recorded(
         agent.as_mut(),

@@ -172,14 +172,7 @@ pub fn record_dataset(
     repeats: u64,
     seed: u64,
 ) -> Result<chronocooked_models::ActivityDataset> {
-    let meta = ActivityMeta {
-        model: agent.name(),
-        task: task.to_string(),
-        env: env.to_vec(),
-        seed,
-        dt: 1.0,
-        populations: Vec::new(),
-    };
+    let meta = ActivityMeta::new(&agent.name(), task, env, seed);
     let mut rec = TrialRecorder::new(meta);
     for r in 0..repeats.max(1) {
         evaluate_agent(agent, config, tds, seed.wrapping_add(r), Some(&mut rec))?;
