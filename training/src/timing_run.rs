@@ -9,7 +9,7 @@
 use crate::error::TrainError;
 use crate::evaluate::eval_tds;
 use crate::run_dir::write_atomic;
-use chronocooked_env::{ChronoEnv, make_config};
+use chronocooked_env::{ChronoEnv, TaskFamily, make_config};
 use chronocooked_models::timing::agent::TimingAgent;
 use chronocooked_models::timing::zoo::make_timing_agent;
 use chronocooked_models::{TimingCurvePoint, TimingTrainConfig, train_timing_agent};
@@ -36,8 +36,14 @@ pub struct TimingRunConfig {
     pub agent: Vec<String>,
 }
 
-/// Settings accepted by `--set` for timing models.
-pub const TIMING_KEYS: &str = "episodes, epsilon_start, epsilon_end, anneal_fraction, eval_every, stop_at_success, alpha, gamma, lambda, response_cost, probe, noise (ddm), memory_noise (sbf), env.<task parameter>";
+/// Default training episodes on the uncertainty task: the never-ready ovens (20% of the
+/// episodes) are where the time-out response is learned, so the task needs more episodes
+/// than fixed interval (measured: 6,000 leave microstimulus and Laplace agents at 0% on
+/// never-ready ovens, 20,000 bring them to 100%).
+pub const UNCERTAINTY_EPISODES: usize = 20_000;
+
+/// Every `--set` key of a timing run.
+pub const TIMING_KEYS: &str = "episodes, epsilon_start, epsilon_end, anneal_fraction, eval_every, stop_at_success, alpha, gamma, lambda, response_cost, probe, noise (ddm), memory_noise (sbf), clock_noise (timecells-*), env.<task parameter>";
 
 fn parse<T: std::str::FromStr>(key: &str, value: &str, allowed: &str) -> Result<T, TrainError> {
     value.parse().map_err(|_| TrainError::InvalidParam {
@@ -50,13 +56,18 @@ fn parse<T: std::str::FromStr>(key: &str, value: &str, allowed: &str) -> Result<
 impl TimingRunConfig {
     /// Defaults for `model` on `task`.
     pub fn new(task: &str, model: &str, seed: u64) -> Self {
+        let mut train = TimingTrainConfig::default();
+        let family = make_config(task, &[] as &[&str]).map(|c| c.family());
+        if family == Ok(TaskFamily::Uncertainty) {
+            train.episodes = UNCERTAINTY_EPISODES;
+        }
         TimingRunConfig {
             kind: "timing".into(),
             task: task.into(),
             env: Vec::new(),
             model: model.into(),
             seed,
-            train: TimingTrainConfig::default(),
+            train,
             agent: Vec::new(),
         }
     }
@@ -80,8 +91,16 @@ impl TimingRunConfig {
                     v => Some(parse(key, v, "a success rate in (0, 1], or none")?),
                 }
             }
-            "alpha" | "gamma" | "lambda" | "response_cost" | "probe" | "noise" | "memory_noise" => {
-                let _: f64 = parse(key, value, "a number")?;
+            "alpha" | "gamma" | "lambda" | "response_cost" | "probe" | "noise" | "memory_noise"
+            | "clock_noise" => {
+                let v: f64 = parse(key, value, "a number")?;
+                if key.ends_with("noise") && !(v >= 0.0 && v.is_finite()) {
+                    return Err(TrainError::InvalidParam {
+                        field: key.into(),
+                        value: value.into(),
+                        allowed: "a number >= 0 (0 = noise-free)".into(),
+                    });
+                }
                 self.agent.push(format!("{key}={value}"));
             }
             k if k.starts_with("env.") => {
@@ -156,6 +175,16 @@ impl TimingRunConfig {
                 "memory_noise" => match &mut agent.timer {
                     chronocooked_models::timing::timers::Timer::Sbf(s) => s.model.memory_noise = v,
                     _ => return Err(TrainError::UnknownKey("memory_noise (sbf only)".into())),
+                },
+                "clock_noise" => match &mut agent.timer {
+                    chronocooked_models::timing::timers::Timer::TimeCells(tc) => {
+                        tc.cells.speed_noise = v
+                    }
+                    _ => {
+                        return Err(TrainError::UnknownKey(
+                            "clock_noise (timecells-* only)".into(),
+                        ));
+                    }
                 },
                 _ => return Err(TrainError::UnknownKey(k.into())),
             }

@@ -222,7 +222,7 @@ fn timing_parameters(name: &str) -> Vec<ZooParam> {
                 ),
             ]
         }
-        Timer::TimeCells(tc) => match &tc.repr {
+        Timer::TimeCells(tc) => match &tc.cells.repr {
             Representation::Presence => vec![p("units", 1, "one unit while the oven is on")],
             Representation::Csc { units } => {
                 vec![p(

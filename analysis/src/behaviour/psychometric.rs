@@ -276,12 +276,52 @@ pub fn transition_p_value(data: &[ProbeCounts], fit: &LogisticFit) -> f64 {
     statrs::function::erf::erfc((lr / 2.0).sqrt())
 }
 
+/// Largest fall of P(long) from a shorter to a longer probe, each with at least
+/// [`MIN_VALID_FOR_REVERSAL`] valid episodes: `(t_short, p_short, t_long, p_long)`, or
+/// `None` when P(long) never falls. A psychometric curve rises; a large fall (e.g. "long"
+/// at probes far shorter than the short anchor, then "short" at the anchor) is not a
+/// transition a logistic describes.
+pub fn largest_reversal(data: &[ProbeCounts]) -> Option<(f64, f64, f64, f64)> {
+    let mut used: Vec<(f64, f64)> = usable(data)
+        .iter()
+        .filter(|d| d.valid >= MIN_VALID_FOR_REVERSAL)
+        .map(|d| (d.t, d.p_long()))
+        .collect();
+    used.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut best: Option<(f64, f64, f64, f64)> = None;
+    let mut peak: Option<(f64, f64)> = None;
+    for &(t, p) in &used {
+        if let Some((tp, pp)) = peak
+            && pp - p > best.map_or(0.0, |b| b.1 - b.3)
+        {
+            best = Some((tp, pp, t, p));
+        }
+        if peak.is_none_or(|(_, pp)| p > pp) {
+            peak = Some((t, p));
+        }
+    }
+    best
+}
+
+/// Valid episodes a probe needs to count in [`largest_reversal`].
+pub const MIN_VALID_FOR_REVERSAL: u32 = 4;
+
+/// Largest fall of P(long) [`check_transition`] tolerates (binomial noise at a few
+/// episodes per probe).
+pub const MAX_REVERSAL: f64 = 0.5;
+
 /// Whether a fit describes a real psychometric transition: rising (`s > 0`), significant
-/// against a flat P(long) (likelihood ratio, p ≤ 0.05) and with BP inside the probed range.
-/// The error says which condition failed.
+/// against a flat P(long) (likelihood ratio, p ≤ 0.05), with BP inside the probed range,
+/// and P(long) never falling by more than [`MAX_REVERSAL`] from a shorter to a longer probe
+/// (a non-monotone curve is not a transition). The error says which condition failed.
 pub fn check_transition(data: &[ProbeCounts], fit: &LogisticFit) -> Result<(), String> {
     let tmin = data.iter().map(|p| p.t).fold(f64::INFINITY, f64::min);
     let tmax = data.iter().map(|p| p.t).fold(f64::NEG_INFINITY, f64::max);
+    if let Some((ta, pa, tb, pb)) = largest_reversal(data).filter(|r| r.1 - r.3 > MAX_REVERSAL) {
+        return Err(format!(
+            "P(long) is not monotone: {pa:.2} at probe {ta} but {pb:.2} at the longer probe {tb}"
+        ));
+    }
     let p = transition_p_value(data, fit);
     if fit.scale < 0.0 || p > 0.05 || fit.bp < tmin || fit.bp > tmax {
         return Err(format!(
@@ -290,4 +330,51 @@ pub fn check_transition(data: &[ProbeCounts], fit: &LogisticFit) -> Result<(), S
         ));
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn curve(p_long: &[Option<f64>], n: u32) -> Vec<ProbeCounts> {
+        p_long
+            .iter()
+            .enumerate()
+            .map(|(i, p)| ProbeCounts {
+                t: (i + 1) as f64,
+                valid: if p.is_some() { n } else { 0 },
+                long: p.map_or(0, |p| (p * n as f64).round() as u32),
+                failed: if p.is_some() { 0 } else { n },
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_non_monotone_sbf_curve_is_not_a_transition() {
+        // SBF on bisection 4-12 before the criterion readout: "long" at probes 1-2, "short"
+        // at 3-5 (probe 6 failed), "long" from 7 on — the logistic still fits a rising
+        // curve, the reversal test rejects it.
+        let mut p = vec![Some(1.0), Some(1.0), Some(0.0), Some(0.0), Some(0.0), None];
+        p.extend(std::iter::repeat_n(Some(1.0), 10));
+        let data = curve(&p, 8);
+        assert_eq!(largest_reversal(&data), Some((1.0, 1.0, 3.0, 0.0)));
+        let fit = fit_logistic(&data).unwrap();
+        let err = check_transition(&data, &fit).unwrap_err();
+        assert!(err.contains("not monotone"), "{err}");
+    }
+
+    #[test]
+    fn a_monotone_curve_with_binomial_noise_passes() {
+        let p: Vec<Option<f64>> = [0.0, 0.0, 0.0, 0.125, 0.5, 0.25, 0.875, 1.0, 0.875, 1.0]
+            .iter()
+            .map(|&p| Some(p))
+            .collect();
+        let data = curve(&p, 8);
+        let (_, pa, _, pb) = largest_reversal(&data).unwrap();
+        assert!((pa - pb - 0.25).abs() < 1e-12);
+        let fit = fit_logistic(&data).unwrap();
+        check_transition(&data, &fit).unwrap();
+        let rising = curve(&[Some(0.0), Some(0.5), Some(1.0)], 8);
+        assert_eq!(largest_reversal(&rising), None);
+    }
 }

@@ -15,13 +15,20 @@
 //! * native rules at reinforcement — drift-diffusion drift learning and SBF pattern storage
 //!   at the reinforced time: the ready cue when the task shows it; otherwise the pickup time,
 //!   exact when the successful check followed a failed one (the soup became available
-//!   between them), and treated as `(1 − probe) ×` the pickup time when the first check
-//!   succeeded (the soup may have been waiting: aim earlier next time).
+//!   between them), and treated as `(1 − probe) ×` the time the model started responding
+//!   when the first check succeeded (the soup may have been waiting: aim earlier next time).
 //! * the gate: before the timing model responds, interacting with the oven is not among
 //!   the actions (DDM: until `x ≥ z`; SBF: until the output matches the stored pattern).
+//! * bisection: when the interval ends the timing model judges it short or long against
+//!   its anchor memories ([`crate::timing::judgment`]); from then on the TD learner sees
+//!   that judgment (two indicator features) instead of the frozen temporal features, so it
+//!   learns only which counter each judgment goes to. The outcome of the choice tells the
+//!   model the interval's category (the chosen counter if rewarded, the other if not),
+//!   which trains its anchor memories.
 
 use crate::activity::StepRecorder;
 use crate::agent::{Agent, Percept, PerceptParser};
+use crate::timing::judgment::LONG;
 use crate::timing::sarsa::{SarsaConfig, SarsaLambda};
 use crate::timing::timers::Timer;
 use chronocooked_env::{Action, ChronoEnv, ObjectKind};
@@ -31,6 +38,9 @@ use serde::{Deserialize, Serialize};
 
 /// Visible oven values told apart (larger cue values share the last level).
 pub const OVEN_LEVELS: u32 = 32;
+
+/// Judgment indicator features ("judged short", "judged long") after the temporal ones.
+pub const JUDGMENT_FEATURES: usize = 2;
 
 /// Settings of a [`TimingAgent`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -67,6 +77,8 @@ struct EpisodeState {
     last_was_check: bool,
     prev_check_failed: bool,
     interval: Option<u32>,
+    judgment: Option<bool>,
+    pressed_button: bool,
     pending: Option<(u32, usize, Vec<f64>)>,
     reward: f64,
     value: f64,
@@ -92,6 +104,12 @@ pub struct TimingAgent {
     pub shows_ready: bool,
     /// Cells from which a counter is used, with its choice slot (0 short/main, 1 long).
     pub choice_cells: Vec<(usize, u8)>,
+    /// The task asks for short/long judgments (it has a long counter: bisection).
+    #[serde(default)]
+    pub judges: bool,
+    /// Cells from which the manual oven button is pressed (uncertainty task).
+    #[serde(default)]
+    pub button_cells: Vec<usize>,
     /// Settings.
     pub config: TimingAgentConfig,
     #[serde(skip)]
@@ -110,7 +128,7 @@ impl TimingAgent {
     /// An untrained agent with `timer` for the task of `env`.
     pub fn new(name: &str, timer: Timer, env: &ChronoEnv, config: TimingAgentConfig) -> Self {
         let layout = env.layout();
-        let choice_cells = layout
+        let choice_cells: Vec<(usize, u8)> = layout
             .free_cells()
             .iter()
             .filter_map(|&c| match layout.adjacent_object(c as usize) {
@@ -121,7 +139,19 @@ impl TimingAgent {
                 _ => None,
             })
             .collect();
-        let features = timer.n_features() + 1;
+        let button_cells = layout
+            .free_cells()
+            .iter()
+            .filter(|&&c| {
+                matches!(
+                    layout.adjacent_object(c as usize),
+                    Some((ObjectKind::OvenButton, _))
+                )
+            })
+            .map(|&c| c as usize)
+            .collect();
+        let features = timer.n_features() + 1 + JUDGMENT_FEATURES;
+        let judges = choice_cells.iter().any(|&(_, slot)| slot == LONG);
         TimingAgent {
             name: name.to_string(),
             learner: SarsaLambda::new(config.sarsa.clone(), Action::COUNT, features),
@@ -129,6 +159,8 @@ impl TimingAgent {
             parser: PerceptParser::new(layout),
             shows_ready: env.family().shows_ready(),
             choice_cells,
+            judges,
+            button_cells,
             config,
             training: false,
             ep: EpisodeState::default(),
@@ -146,6 +178,8 @@ impl TimingAgent {
         self.parser = fresh.parser;
         self.shows_ready = fresh.shows_ready;
         self.choice_cells = fresh.choice_cells;
+        self.judges = fresh.judges;
+        self.button_cells = fresh.button_cells;
     }
 
     /// Sets the exploration rate (training schedule).
@@ -181,13 +215,17 @@ impl TimingAgent {
             // The soup came out on the last action, taken at `clock`.
             self.ep.running = false;
             self.ep.interval = Some(self.ep.clock);
+            self.judge();
             if !self.shows_ready && self.training {
                 let exact = self.ep.prev_check_failed;
-                let t = self.ep.clock as f64;
                 let t = if exact {
-                    t
+                    self.ep.clock as f64
                 } else {
-                    t * (1.0 - self.config.probe)
+                    // The soup may have been waiting since before the model responded:
+                    // aim earlier than the response time (not the pickup, which comes a
+                    // walk later; that lag would hold the timer above short intervals).
+                    let responded = self.ep.started.unwrap_or(self.ep.clock);
+                    responded as f64 * (1.0 - self.config.probe)
                 };
                 self.timer.reinforce(self.ep.ctx, t, exact, &mut self.rng);
             }
@@ -199,10 +237,23 @@ impl TimingAgent {
         if self.shows_ready && p.oven == 2 {
             self.ep.running = false;
             self.ep.interval = Some(self.ep.clock);
-            if self.training {
+            self.judge();
+            // A ready the agent made itself (manual button) is not the oven's interval:
+            // drift-diffusion (one drift per context) learns only from the oven's own
+            // ready; SBF stores every reinforced time, so the button time joins its
+            // reference memory as a second, later remembered time (its time-out).
+            let own_ready = !self.ep.pressed_button || !matches!(self.timer, Timer::Ddm(_));
+            if self.training && own_ready {
                 let t = self.ep.clock as f64;
                 self.timer.reinforce(self.ep.ctx, t, true, &mut self.rng);
             }
+        }
+    }
+
+    /// The interval just ended: the timing model's short/long judgment (bisection only).
+    fn judge(&mut self) {
+        if self.judges {
+            self.ep.judgment = self.timer.judge();
         }
     }
 
@@ -246,6 +297,11 @@ impl Agent for TimingAgent {
                 .is_some();
         let mut features = std::mem::take(&mut self.phi);
         self.timer.features_into(self.ep.responding, &mut features);
+        if self.judges && self.ep.interval.is_some() {
+            features.iter_mut().for_each(|v| *v = 0.0);
+        }
+        features.push(f64::from(self.ep.judgment == Some(false)));
+        features.push(f64::from(self.ep.judgment == Some(true)));
         features.insert(0, 1.0);
         let s = self.state_index(&p);
         let mut q = std::mem::take(&mut self.q);
@@ -270,6 +326,9 @@ impl Agent for TimingAgent {
             self.learner.visit(s, a, &features);
         }
         let action = Action::ALL[a];
+        self.ep.pressed_button |= self.ep.running
+            && action == Action::Interact
+            && self.button_cells.contains(&p.cell);
         self.ep.last_was_check = self.ep.running
             && action == Action::Interact
             && p.carry == 0
@@ -293,13 +352,16 @@ impl Agent for TimingAgent {
             } else {
                 0.0
             };
-        if terminated && reward > 0.0 && self.training {
+        if terminated && self.judges && self.training {
             let cell = self.ep.last.map_or(usize::MAX, |p| p.cell);
-            if let (Some(&(_, slot)), Some(t)) = (
+            if let (Some(&(_, chosen)), Some(t)) = (
                 self.choice_cells.iter().find(|(c, _)| *c == cell),
                 self.ep.interval,
             ) {
-                self.timer.reinforce_choice(slot, t as f64, &mut self.rng);
+                // Rewarded: the chosen counter was right; not rewarded: the other one.
+                let category = if reward > 0.0 { chosen } else { LONG - chosen };
+                self.timer
+                    .reinforce_choice(category, t as f64, &mut self.rng);
             }
         }
         if terminated {

@@ -6,6 +6,7 @@
 //!   TD(λ); [`ctrnn`] — a stand-alone CTRNN;
 //! * [`timers`] — a timing model as the clock of an agent (onset, tick, gate, features,
 //!   learning at reinforcement);
+//! * [`judgment`] — bisection judgments from each model's anchor memories;
 //! * [`sarsa`] — linear SARSA(λ) over state × temporal features;
 //! * [`agent`] — the timing-model agent ([`TimingAgent`]); [`train`] — its training loop;
 //! * [`zoo`] — the registry of timing models (names, descriptions, construction).
@@ -13,6 +14,7 @@
 pub mod agent;
 pub mod ctrnn;
 pub mod ddm;
+pub mod judgment;
 pub mod sarsa;
 pub mod sbf;
 pub mod td;

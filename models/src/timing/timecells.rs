@@ -144,6 +144,17 @@ pub struct TimeCells {
     pub repr: Representation,
     /// Steps since onset (`None` before the stimulus).
     pub elapsed: Option<u32>,
+    /// Clock-speed noise: SD of the log of a per-trial factor `r` that scales the
+    /// representation's time (`y = d^{r t}`, delay-line index `r t`, Laplace decay rates
+    /// `r s`); 0 = deterministic. Trial-to-trial variance of the internal clock's speed is
+    /// the scalar-variability source of scalar expectancy theory (Gibbon 1977; Gibbon,
+    /// Church & Meck 1984); applied to a trace it makes every time cell's peak time vary
+    /// in proportion to itself.
+    #[serde(default)]
+    pub speed_noise: f64,
+    /// This trial's clock-speed factor `r` (1 without noise).
+    #[serde(skip, default = "unit_speed")]
+    speed: f64,
     /// Laplace: `G[j][n] = ∂ⁿF/∂sⁿ` of cell `j`.
     derivatives: Vec<Vec<f64>>,
     /// Laplace: one-step propagators `P[j][n][m] = e^{−s_j} C(n,m) (−1)^{n−m}` (cached).
@@ -152,6 +163,10 @@ pub struct TimeCells {
     /// Peak height of every unit (cached; normalises the units to a maximum of ~1).
     #[serde(skip)]
     peaks: Vec<f64>,
+}
+
+fn unit_speed() -> f64 {
+    1.0
 }
 
 impl TimeCells {
@@ -164,6 +179,8 @@ impl TimeCells {
         TimeCells {
             repr,
             elapsed: None,
+            speed_noise: 0.0,
+            speed: 1.0,
             derivatives,
             propagators: Vec::new(),
             peaks: Vec::new(),
@@ -219,8 +236,17 @@ impl TimeCells {
         }
     }
 
-    /// Stimulus onset (time 0): an impulse into the Laplace integrators.
+    /// Stimulus onset (time 0) at clock speed 1: an impulse into the Laplace integrators.
     pub fn onset(&mut self) {
+        self.onset_with_speed(1.0);
+    }
+
+    /// Stimulus onset with this trial's clock-speed factor `speed` (> 0).
+    pub fn onset_with_speed(&mut self, speed: f64) {
+        if speed != self.speed {
+            self.propagators.clear();
+            self.speed = speed;
+        }
         self.clear();
         if self.peaks.len() != self.repr.size() {
             self.peaks = self.peak_heights();
@@ -249,7 +275,7 @@ impl TimeCells {
                 self.propagators = laplace_peak_times(*cells, *tau_min, *tau_max)
                     .into_iter()
                     .map(|tau| {
-                        let decay = (-(*order as f64) / tau).exp();
+                        let decay = (-(*order as f64) * self.speed / tau).exp();
                         let mut p = vec![0.0; k1 * k1];
                         for n in 0..k1 {
                             for m in 0..=n {
@@ -283,14 +309,14 @@ impl TimeCells {
             Representation::Presence => out.push(1.0),
             Representation::Csc { units } => {
                 out.resize(*units, 0.0);
-                out[(t as usize).min(units - 1)] = 1.0;
+                out[self.csc_index(t).min(units - 1)] = 1.0;
             }
             Representation::Microstimulus {
                 decay,
                 sigma,
                 count,
             } => {
-                let y = decay.powi(t as i32);
+                let y = self.trace(*decay, t);
                 out.extend((1..=*count).map(|i| microstimulus(y, i, *count, *sigma)));
             }
             Representation::Laplace {
@@ -309,6 +335,74 @@ impl TimeCells {
                     out.push(norm * s.powi(k as i32 + 1) * g[k]);
                     tau *= ratio;
                 }
+            }
+        }
+    }
+
+    /// Delay-line unit active `t` steps after onset (`r t` rounded with clock noise).
+    fn csc_index(&self, t: u32) -> usize {
+        if self.speed == 1.0 {
+            t as usize
+        } else {
+            (t as f64 * self.speed).round() as usize
+        }
+    }
+
+    /// Trace height `d^{r t}` `t` steps after onset.
+    fn trace(&self, decay: f64, t: u32) -> f64 {
+        if self.speed == 1.0 {
+            decay.powi(t as i32)
+        } else {
+            decay.powf(t as f64 * self.speed)
+        }
+    }
+
+    /// The population's estimate of the elapsed time (steps): the centre of mass of the
+    /// active units' preferred times — delay line: the active unit; microstimuli: the
+    /// trace height `ŷ = Σ xᵢ (i/m) / Σ xᵢ` read as `ln ŷ / ln d`; Laplace: `exp` of the
+    /// activity-weighted mean `ln τ*` over the peak-normalised cells (each a function of
+    /// `t/τ*` only, so the estimate moves with `ln t`). `None` for presence (no time) and
+    /// before onset.
+    pub fn decoded_time(&self) -> Option<f64> {
+        let t = self.elapsed?;
+        match &self.repr {
+            Representation::Presence => None,
+            Representation::Csc { units } => {
+                Some((self.csc_index(t).min(units - 1) as f64).max(0.5))
+            }
+            Representation::Microstimulus {
+                decay,
+                sigma,
+                count,
+            } => {
+                let y = self.trace(*decay, t);
+                let (mut num, mut den) = (0.0, 0.0);
+                for i in 1..=*count {
+                    let x = microstimulus(y, i, *count, *sigma);
+                    num += x * i as f64 / *count as f64;
+                    den += x;
+                }
+                let y_hat = (den > 1e-300).then(|| (num / den).clamp(1e-12, 1.0 - 1e-12))?;
+                Some(y_hat.ln() / decay.ln())
+            }
+            Representation::Laplace {
+                cells,
+                tau_min,
+                tau_max,
+                ..
+            } => {
+                let mut units = Vec::new();
+                self.normalised_units_into(&mut units);
+                let (mut num, mut den) = (0.0, 0.0);
+                for (a, tau) in units
+                    .iter()
+                    .zip(laplace_peak_times(*cells, *tau_min, *tau_max))
+                {
+                    let a = a.max(0.0);
+                    num += a * tau.ln();
+                    den += a;
+                }
+                (den > 1e-300).then(|| (num / den).exp())
             }
         }
     }

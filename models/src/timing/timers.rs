@@ -3,11 +3,15 @@
 //! native "respond now" gate, and trained by their own rule at reinforcement.
 //!
 //! Time unit: one env step. Memories are kept per visible context (the oven cue value),
-//! so a multi-timer agent stores one interval per coloured light.
+//! so a multi-timer agent stores one interval per coloured light. In bisection each model
+//! also keeps memories of the two anchors and judges every interval by comparing with them
+//! ([`crate::timing::judgment`]).
 
 use crate::activity::StepRecorder;
+use crate::timing::judgment::{CategoryMemory, LONG, SHORT, ddm_ratio_rule};
 use crate::timing::{BeatFrequency, DriftDiffusion, FrequencyLayout, Representation, TimeCells};
 use rand::Rng;
+use rand_distr::StandardNormal;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -26,6 +30,13 @@ pub struct DdmTimer {
     pub start: f64,
     /// … until `x ≥ stop · z` (`None`: never stop; peak-interval behaviour when set).
     pub stop: Option<f64>,
+    /// Drifts learned per bisection choice slot (`z/S`, `z/L`) from that anchor's rewarded
+    /// intervals.
+    #[serde(default)]
+    pub choice_drifts: BTreeMap<u8, f64>,
+    /// This trial's short- and long-anchor accumulators (empty until both drifts exist).
+    #[serde(skip)]
+    choice_acc: Vec<DriftDiffusion>,
 }
 
 /// Striatal beat-frequency timer of an agent. Reference memory: the last
@@ -48,13 +59,13 @@ pub struct SbfTimer {
     pub stop: Option<f64>,
     #[serde(skip)]
     rt: SbfRuntime,
-    /// Choice-slot detectors, rebuilt when a choice memory changes.
-    #[serde(skip)]
-    choice_detectors: Option<Vec<(Vec<f64>, Vec<f64>)>>,
 }
 
+/// Envelope above which the bisection criterion's coincidence counts as reached.
+pub const SBF_CRITERION_THRESHOLD: f64 = 0.5;
+
 /// Per-trial state of an SBF timer: oscillator phases and the complex detector weights
-/// `[this trial's memory sample, choice slot 0, choice slot 1]` (empty = nothing stored).
+/// `[this trial's memory sample, bisection criterion]` (empty = nothing stored).
 #[derive(Debug, Clone, PartialEq, Default)]
 struct SbfRuntime {
     now: f64,
@@ -63,8 +74,14 @@ struct SbfRuntime {
     sin: Vec<f64>,
     rot: Vec<(f64, f64)>,
     detectors: Vec<(Vec<f64>, Vec<f64>)>,
-    readouts: [f64; 1 + CHOICE_SLOTS],
+    readouts: [f64; 2],
     template: Option<f64>,
+    /// Criterion time `√(T_S·T_L)` (s) of this trial, when both anchors are stored.
+    criterion: Option<f64>,
+    /// The criterion detector's envelope has reached [`SBF_CRITERION_THRESHOLD`].
+    criterion_reached: bool,
+    /// … and has since peaked: the criterion time has passed.
+    criterion_passed: bool,
 }
 
 /// Stored times kept per SBF memory.
@@ -97,27 +114,30 @@ impl SbfTimer {
             .unzip()
     }
 
-    fn onset<R: Rng + ?Sized>(&mut self, ctx: u8, rng: &mut R) {
-        let template = self
-            .memories
-            .get(&ctx)
+    fn sample<R: Rng + ?Sized>(memory: Option<&Vec<f64>>, rng: &mut R) -> Option<f64> {
+        memory
             .filter(|m| !m.is_empty())
-            .map(|m| m[rng.random_range(0..m.len())]);
-        if self.choice_detectors.is_none() {
-            let slots = (0..CHOICE_SLOTS as u8)
-                .map(|slot| {
-                    let times = self.choice_memories.get(&slot).cloned().unwrap_or_default();
-                    self.detector(&times)
-                })
-                .collect();
-            self.choice_detectors = Some(slots);
-        }
-        let mut detectors = vec![self.detector(template.as_slice())];
-        detectors.extend(self.choice_detectors.iter().flatten().cloned());
+            .map(|m| m[rng.random_range(0..m.len())])
+    }
+
+    fn onset<R: Rng + ?Sized>(&mut self, ctx: u8, rng: &mut R) {
+        let template = Self::sample(self.memories.get(&ctx), rng);
+        let criterion = if self.choice_memories.len() == 2 {
+            let short = Self::sample(self.choice_memories.get(&SHORT), rng);
+            let long = Self::sample(self.choice_memories.get(&LONG), rng);
+            short.zip(long).map(|(s, l)| (s * l).sqrt())
+        } else {
+            None
+        };
+        let detectors = vec![
+            self.detector(template.as_slice()),
+            self.detector(criterion.as_slice()),
+        ];
         let w = 2.0 * std::f64::consts::PI * self.model.clock_speed * self.seconds_per_step;
         let rot = self.model.freqs.iter().map(|f| (w * f).sin_cos()).collect();
         self.rt = SbfRuntime {
             template,
+            criterion,
             detectors,
             rot,
             ..SbfRuntime::default()
@@ -147,19 +167,50 @@ impl SbfTimer {
         }
         rt.step = Some(t);
         let n = self.model.freqs.len().max(1) as f64;
+        let two_pi_k = 2.0 * std::f64::consts::PI * self.model.clock_speed;
         for (k, (c, s)) in rt.detectors.iter().enumerate() {
-            rt.readouts[k] = if c.is_empty() {
-                0.0
-            } else {
-                let (mut re, mut im) = (0.0, 0.0);
-                for i in 0..c.len() {
-                    re += rt.cos[i] * c[i] + rt.sin[i] * s[i];
-                    im += rt.sin[i] * c[i] - rt.cos[i] * s[i];
+            if c.is_empty() {
+                rt.readouts[k] = 0.0;
+                continue;
+            }
+            // z = Σ e^{iφᵢ} conj(Wᵢ) / N and, for the criterion, dz/dt = Σ iωᵢ e^{iφᵢ} conj(Wᵢ) / N.
+            let (mut re, mut im, mut dre, mut dim) = (0.0, 0.0, 0.0, 0.0);
+            for i in 0..c.len() {
+                let (a, b) = (
+                    rt.cos[i] * c[i] + rt.sin[i] * s[i],
+                    rt.sin[i] * c[i] - rt.cos[i] * s[i],
+                );
+                re += a;
+                im += b;
+                if k == 1 {
+                    let w = two_pi_k * self.model.freqs[i];
+                    dre -= w * b;
+                    dim += w * a;
                 }
-                (re * re + im * im).sqrt() / n
-            };
+            }
+            rt.readouts[k] = (re * re + im * im).sqrt() / n;
+            if k == 1 {
+                // d|z|²/dt = 2 Re(conj(z) dz/dt): the envelope is falling after its peak.
+                let falling = re * dre + im * dim <= 0.0;
+                if rt.readouts[1] >= SBF_CRITERION_THRESHOLD {
+                    rt.criterion_reached = true;
+                    rt.criterion_passed |= falling;
+                } else if rt.criterion_reached {
+                    rt.criterion_passed = true;
+                }
+            }
         }
     }
+}
+
+/// Time cells as an agent's timer: the population and its bisection memories.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TimeCellTimer {
+    /// The population.
+    pub cells: TimeCells,
+    /// Decoded log durations of the rewarded short and long trials.
+    #[serde(default)]
+    pub anchors: CategoryMemory,
 }
 
 /// Which timing model an agent uses.
@@ -171,11 +222,8 @@ pub enum Timer {
     /// Striatal beat frequency.
     Sbf(SbfTimer),
     /// Time cells / microstimuli / CSC / presence (timing learned by TD alone).
-    TimeCells(TimeCells),
+    TimeCells(TimeCellTimer),
 }
-
-/// Number of choice slots read out by the SBF (short and long counter).
-pub const CHOICE_SLOTS: usize = 2;
 
 impl Timer {
     /// Drift-diffusion timer: `z` 1, noise `m`, initial interval 8 steps, rate 0.2.
@@ -187,6 +235,8 @@ impl Timer {
             rate: 0.2,
             start: 1.0,
             stop: None,
+            choice_drifts: BTreeMap::new(),
+            choice_acc: Vec::new(),
         })
     }
 
@@ -208,21 +258,23 @@ impl Timer {
             choice_memories: BTreeMap::new(),
             stop: None,
             rt: SbfRuntime::default(),
-            choice_detectors: None,
         })
     }
 
     /// Time-cell representation.
     pub fn time_cells(repr: Representation) -> Self {
-        Timer::TimeCells(TimeCells::new(repr))
+        Timer::TimeCells(TimeCellTimer {
+            cells: TimeCells::new(repr),
+            anchors: CategoryMemory::default(),
+        })
     }
 
     /// Number of temporal features handed to the TD learner (bias excluded).
     pub fn n_features(&self) -> usize {
         match self {
             Timer::Ddm(_) => 2,
-            Timer::Sbf(_) => 2 + CHOICE_SLOTS,
-            Timer::TimeCells(tc) => tc.repr.size(),
+            Timer::Sbf(_) => 2,
+            Timer::TimeCells(tc) => tc.cells.repr.size(),
         }
     }
 
@@ -234,9 +286,12 @@ impl Timer {
     /// Clears the clock (episode start).
     pub fn clear(&mut self) {
         match self {
-            Timer::Ddm(d) => d.acc.reset(),
+            Timer::Ddm(d) => {
+                d.acc.reset();
+                d.choice_acc.clear();
+            }
             Timer::Sbf(s) => s.rt = SbfRuntime::default(),
-            Timer::TimeCells(tc) => tc.clear(),
+            Timer::TimeCells(tc) => tc.cells.clear(),
         }
     }
 
@@ -250,9 +305,27 @@ impl Timer {
                     .drifts
                     .get(&ctx)
                     .unwrap_or(&(d.acc.threshold / d.initial_interval));
+                d.choice_acc.clear();
+                if let (Some(&a_s), Some(&a_l)) =
+                    (d.choice_drifts.get(&SHORT), d.choice_drifts.get(&LONG))
+                {
+                    for drift in [a_s, a_l] {
+                        let mut acc = d.acc.clone();
+                        acc.drift = drift;
+                        d.choice_acc.push(acc);
+                    }
+                }
             }
             Timer::Sbf(s) => s.onset(ctx, rng),
-            Timer::TimeCells(tc) => tc.onset(),
+            Timer::TimeCells(tc) => {
+                let noise = tc.cells.speed_noise;
+                let speed = if noise > 0.0 {
+                    (noise * rng.sample::<f64, _>(StandardNormal)).exp()
+                } else {
+                    1.0
+                };
+                tc.cells.onset_with_speed(speed);
+            }
         }
     }
 
@@ -261,9 +334,12 @@ impl Timer {
         match self {
             Timer::Ddm(d) => {
                 d.acc.step(1.0, rng);
+                for acc in &mut d.choice_acc {
+                    acc.step(1.0, rng);
+                }
             }
             Timer::Sbf(s) => s.advance(t),
-            Timer::TimeCells(tc) => tc.tick(),
+            Timer::TimeCells(tc) => tc.cells.tick(),
         }
     }
 
@@ -305,10 +381,9 @@ impl Timer {
             Timer::Sbf(s) => {
                 out.push(s.rt.readouts[0]);
                 out.push(f64::from(responding));
-                out.extend_from_slice(&s.rt.readouts[1..]);
             }
             Timer::TimeCells(tc) => {
-                tc.normalised_units_into(out);
+                tc.cells.normalised_units_into(out);
             }
         }
     }
@@ -333,13 +408,46 @@ impl Timer {
         }
     }
 
-    /// A choice in slot `slot` (0 short, 1 long counter) was rewarded after an interval of
-    /// `interval` steps (SBF stores the pattern; other models learn it by TD alone).
+    /// Bisection feedback: the interval that just ended (`interval` steps) belonged to
+    /// category `slot` ([`SHORT`] or [`LONG`]). Drift-diffusion learns that slot's drift,
+    /// SBF stores the pattern (with memory noise), time cells store the decoded duration.
     pub fn reinforce_choice<R: Rng + ?Sized>(&mut self, slot: u8, interval: f64, rng: &mut R) {
-        if let Timer::Sbf(s) = self {
-            let stored = s.model.stored_time(interval * s.seconds_per_step, rng);
-            SbfTimer::store(s.choice_memories.entry(slot).or_default(), stored);
-            s.choice_detectors = None;
+        match self {
+            Timer::Ddm(d) => {
+                let z = d.acc.threshold;
+                let mut acc = DriftDiffusion::new(
+                    *d.choice_drifts
+                        .get(&slot)
+                        .unwrap_or(&(z / d.initial_interval)),
+                    z,
+                    0.0,
+                );
+                acc.learn_interval(interval, d.rate);
+                d.choice_drifts.insert(slot, acc.drift);
+            }
+            Timer::Sbf(s) => {
+                let stored = s.model.stored_time(interval * s.seconds_per_step, rng);
+                SbfTimer::store(s.choice_memories.entry(slot).or_default(), stored);
+            }
+            Timer::TimeCells(tc) => {
+                if let Some(t_hat) = tc.cells.decoded_time() {
+                    tc.anchors.store(slot, t_hat.ln());
+                }
+            }
+        }
+    }
+
+    /// The bisection judgment at the end of the interval: `Some(true)` "long",
+    /// `Some(false)` "short", `None` while the anchors are not both remembered (or the
+    /// representation has no time, presence).
+    pub fn judge(&self) -> Option<bool> {
+        match self {
+            Timer::Ddm(d) => match d.choice_acc.as_slice() {
+                [s, l] => Some(ddm_ratio_rule(s.x, l.x, d.acc.threshold)),
+                _ => None,
+            },
+            Timer::Sbf(s) => s.rt.criterion.map(|_| s.rt.criterion_passed),
+            Timer::TimeCells(tc) => tc.anchors.judge(tc.cells.decoded_time()?.ln()),
         }
     }
 
@@ -362,11 +470,16 @@ impl Timer {
             }
             Timer::TimeCells(tc) => {
                 let mut units = Vec::new();
-                tc.units_into(&mut units);
+                tc.cells.units_into(&mut units);
                 let v: Vec<f32> = units.iter().map(|&x| x as f32).collect();
                 rec.record("time_cells", &v);
-                if matches!(tc.repr, Representation::Laplace { .. }) {
-                    let f: Vec<f32> = tc.laplace_integrators().iter().map(|&x| x as f32).collect();
+                if matches!(tc.cells.repr, Representation::Laplace { .. }) {
+                    let f: Vec<f32> = tc
+                        .cells
+                        .laplace_integrators()
+                        .iter()
+                        .map(|&x| x as f32)
+                        .collect();
                     rec.record("laplace", &f);
                 }
             }
