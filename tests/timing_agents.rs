@@ -448,3 +448,34 @@ fn exported_npz_matches_the_dataset_array_by_array() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn zoo_says_which_tasks_each_mechanism_cannot_do() {
+    use chronocooked_models::timing::zoo::task_limit;
+    // Presence has no elapsed time: no bisection; every model with a clock may do it.
+    assert!(task_limit("timecells-presence", "Bisection-v0", false).is_some());
+    for model in MODELS {
+        assert_eq!(task_limit(model, "Bisection-v0", false), None, "{model}");
+        assert_eq!(
+            task_limit(model, "FixedInterval-v0", false),
+            None,
+            "{model}"
+        );
+        // One-step reward windows: each model names its limit (noise, resolution, exploration).
+        assert!(
+            task_limit(model, "MultiTimer-v0", true).is_some(),
+            "{model}"
+        );
+    }
+    let entry = chronocooked_training::zoo::zoo()
+        .into_iter()
+        .find(|e| e.name == "ddm")
+        .unwrap();
+    assert_eq!(entry.tasks.len(), 7);
+    assert!(
+        entry
+            .tasks
+            .iter()
+            .any(|t| t.task.contains("exact") && t.limit.is_some())
+    );
+}

@@ -101,6 +101,16 @@ pub fn run_zoo(cmd: ZooCommand) -> Result<()> {
                 }
                 println!();
             }
+            if !entry.tasks.is_empty() {
+                println!("tasks (measured success: RESULTS.md, \"Timing models\"):");
+                for t in &entry.tasks {
+                    match &t.limit {
+                        None => println!("  {:<34} no mechanistic limit", t.task),
+                        Some(why) => println!("  {:<34} cannot: {why}", t.task),
+                    }
+                }
+                println!();
+            }
             println!("usage: {}", entry.usage);
             if let Some((pairs, cfg)) = settings {
                 println!("\n# {preset} preset on {task}: settings applied in order");

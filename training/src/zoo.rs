@@ -60,6 +60,39 @@ pub struct ZooEntry {
     pub presets: Vec<String>,
     /// How to get a trained instance.
     pub usage: String,
+    /// Timing models: per task (and multi-timer reward mode), `None` when nothing in the
+    /// mechanism stops it, or the mechanistic reason it cannot reach the reference success.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub tasks: Vec<TaskAbility>,
+}
+
+/// What a timing model's mechanism allows on one task.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TaskAbility {
+    /// Task id, with the multi-timer reward mode when it matters.
+    pub task: String,
+    /// Why the model cannot do it (`None`: no mechanistic limit).
+    pub limit: Option<String>,
+}
+
+/// The task list of timing model `name`.
+fn timing_tasks(name: &str) -> Vec<TaskAbility> {
+    use chronocooked_models::timing::zoo::task_limit;
+    [
+        ("FixedInterval-v0", "FixedInterval-v0", false),
+        ("PeakInterval-v0", "PeakInterval-v0 (probe trials)", false),
+        ("Bisection-v0", "Bisection-v0", false),
+        ("MultiTimer-v0", "MultiTimer-v0 mode=lower_bounded", false),
+        ("MultiTimer-v0", "MultiTimer-v0 mode=exact", true),
+        ("DualTask-v0", "DualTask-v0", true),
+        ("Uncertainty-v0", "Uncertainty-v0", false),
+    ]
+    .iter()
+    .map(|&(id, label, exact)| TaskAbility {
+        task: label.into(),
+        limit: task_limit(name, id, exact).map(str::to_string),
+    })
+    .collect()
 }
 
 fn p(name: &str, value: impl ToString, meaning: &str) -> ZooParam {
@@ -154,6 +187,7 @@ fn deep_entry(arch: Architecture) -> ZooEntry {
             "chronocooked train --model {} --task ID [--preset reference|fast] [--steps N] [--set key=value]",
             arch.name()
         ),
+        tasks: vec![],
     }
 }
 
@@ -295,6 +329,7 @@ pub fn zoo() -> Vec<ZooEntry> {
                     "chronocooked train --model {} --task ID [--set episodes=N] [--set alpha=0.05]",
                     m.name
                 ),
+                tasks: timing_tasks(m.name),
             }),
     );
     v.extend(BASELINES.iter().map(|(name, what)| ZooEntry {
@@ -304,6 +339,7 @@ pub fn zoo() -> Vec<ZooEntry> {
         parameters: vec![],
         presets: vec![],
         usage: format!("chronocooked eval --agent {name} --task ID --out DIR"),
+        tasks: vec![],
     }));
     v
 }

@@ -326,9 +326,8 @@ impl Agent for TimingAgent {
             self.learner.visit(s, a, &features);
         }
         let action = Action::ALL[a];
-        self.ep.pressed_button |= self.ep.running
-            && action == Action::Interact
-            && self.button_cells.contains(&p.cell);
+        self.ep.pressed_button |=
+            self.ep.running && action == Action::Interact && self.button_cells.contains(&p.cell);
         self.ep.last_was_check = self.ep.running
             && action == Action::Interact
             && p.carry == 0

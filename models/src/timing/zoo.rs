@@ -93,3 +93,52 @@ pub fn make_timing_agent(name: &str, env: &ChronoEnv, seed: u64) -> Result<Timin
         TimingAgentConfig::default(),
     ))
 }
+
+/// Why a timing model cannot meet a task's reference success (≥ 90%), by mechanism, or
+/// `None` where it learns the task (or the limit is not a mechanism: see the notes).
+/// `task` is a registered task id; `exact_window` says whether the full reward needs the
+/// soup taken inside a window of one step (multi-timer `mode=exact`, the dual task with
+/// zero buffers — the defaults).
+pub fn task_limit(model: &str, task: &str, exact_window: bool) -> Option<&'static str> {
+    let timed = !matches!(task, "FixedInterval-v0" | "PeakInterval-v0");
+    if model == "timecells-presence" && timed && task != "MultiTimer-v0" {
+        return Some(PRESENCE_LIMIT);
+    }
+    if !exact_window {
+        return None;
+    }
+    match model {
+        "timecells-presence" => Some(PRESENCE_LIMIT),
+        "ddm" => Some(
+            "scalar variability: the response time has SD = CV x TD (default CV = m/sqrt(z) = 0.06), \
+             so a tuned timer lands in a one-step window with probability 2*Phi(0.5/(0.06 TD)) - 1 \
+             = 0.84 at TD 6, 0.65 at TD 9, 0.42 at TD 15 (>= 90% only up to TD 5)",
+        ),
+        "sbf" | "sbf-even" => Some(
+            "temporal resolution: the coincidence envelope |sinc(pi df (t - T))| of 5-15 Hz \
+             oscillators is ~4 steps wide at 25 ms/step (first zero at 100 ms) and memory noise \
+             scales with T, so the response cannot be confined to one step",
+        ),
+        "timecells-ms" => Some(
+            "temporal resolution: microstimuli are Gaussian in trace height (sigma 0.08); at TD 9-15 \
+             one step moves the trace by 0.011-0.013 (0.15 sigma), so a linear readout of \
+             neighbouring steps' features cannot respond at one step only",
+        ),
+        "timecells-laplace" => Some(
+            "scale invariance: a Laplace time cell's width grows with its peak time (CV \
+             1/sqrt(k+1) = 0.33), ~3-5 steps at TD 9-15, so a linear readout cannot respond at \
+             one step only",
+        ),
+        "timecells-csc" => Some(
+            "exploration, not representation: one delay-line unit per step could time the window, \
+             but soup taken early pays the reduced reward at once, and epsilon-greedy SARSA must skip \
+             interacting at the oven for TD-3 consecutive steps where its greedy action interacts \
+             to discover the full reward (probability ~(5 eps/6)^(TD-3)); measured: TD 3 and 6 \
+             learned, 9-15 not",
+        ),
+        _ => None,
+    }
+}
+
+/// Why the presence representation cannot do the timed tasks.
+const PRESENCE_LIMIT: &str = "no elapsed-time information: the single presence unit is constant while the oven is on, so no readout can tell one elapsed time from another (it solves fixed interval and the lower-bounded multi-timer only by checking repeatedly)";
