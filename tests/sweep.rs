@@ -478,6 +478,8 @@ fn train_eval_record_export_report_end_to_end() {
         "decode_error",
         "learning_curve",
         "foc_over_td",
+        // Signature panel of a one-unit population: the accumulator's trace per TD.
+        "accumulator/by_td",
     ] {
         assert!(html.contains(needle), "{needle} missing from the report");
     }

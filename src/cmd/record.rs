@@ -100,7 +100,8 @@ pub fn record(args: RecordArgs) -> Result<()> {
     Ok(())
 }
 
-/// Heat maps of every population (≥ 2 units) of `dataset`, aligned to oven-on.
+/// Heat maps and population figures of every population (≥ 2 units) of `dataset`, and
+/// the per-TD trace of every one-unit population, aligned to oven-on.
 fn write_heatmaps(dataset: &chronocooked_models::ActivityDataset, dir: &Path) -> Result<()> {
     use chronocooked_analysis::neural::Cube;
     use chronocooked_models::Marker;
@@ -122,10 +123,22 @@ fn write_heatmaps(dataset: &chronocooked_models::ActivityDataset, dir: &Path) ->
     let cube = Cube::from_f32(&aligned, used.len(), window, n);
     let avg = cube.average();
     for p in &dataset.meta.populations {
+        let r = dataset.meta.range(&p.name).expect("population exists");
         if p.size < 2 {
+            // One unit (an accumulator, a value): its trace per TD is the signature.
+            let title = format!(
+                "{}: {} per TD (trial average, aligned to oven on)",
+                dataset.meta.model, p.name
+            );
+            chronocooked_analysis::report::figures::unit_by_td(
+                &dir.join(&p.name),
+                &title,
+                dataset,
+                r.start,
+                window,
+            )?;
             continue;
         }
-        let r = dataset.meta.range(&p.name).expect("population exists");
         let sub: Vec<f64> = avg
             .chunks_exact(n)
             .flat_map(|row| row[r.clone()].to_vec())

@@ -269,14 +269,43 @@ pub fn run_figures(folder: &Path) -> Vec<PathBuf> {
         dirs.push(parent.join("neural_figures"));
         dirs.push(parent.join("run").join("figures"));
     }
-    let mut all = Vec::new();
-    for d in dirs {
-        let mut svgs: Vec<PathBuf> = std::fs::read_dir(&d)
+    let list = |d: &Path| -> Vec<PathBuf> {
+        let mut v: Vec<PathBuf> = std::fs::read_dir(d)
             .map(|d| d.filter_map(|e| e.ok().map(|e| e.path())).collect())
             .unwrap_or_default();
-        svgs.retain(|p| p.extension().is_some_and(|e| e == "svg"));
-        svgs.sort();
-        all.extend(svgs);
+        v.sort();
+        v
+    };
+    let mut all = Vec::new();
+    for d in dirs {
+        for p in list(&d) {
+            if p.is_dir() {
+                // Per-population signature figures (`neural_figures/<population>/*.svg`).
+                all.extend(
+                    list(&p)
+                        .into_iter()
+                        .filter(|q| q.extension().is_some_and(|e| e == "svg")),
+                );
+            } else if p.extension().is_some_and(|e| e == "svg") {
+                all.push(p);
+            }
+        }
     }
     all
+}
+
+/// Caption of a figure file: its name, prefixed by its population folder when it sits in
+/// one (`accumulator/by_td`, `lstm/decoding`).
+pub fn figure_caption(svg: &Path) -> String {
+    let stem = svg.file_stem().unwrap_or_default().to_string_lossy();
+    let parent = svg
+        .parent()
+        .and_then(|p| p.file_name())
+        .map(|n| n.to_string_lossy().to_string())
+        .unwrap_or_default();
+    if parent.is_empty() || parent == "figures" || parent == "neural_figures" {
+        stem.to_string()
+    } else {
+        format!("{parent}/{stem}")
+    }
 }

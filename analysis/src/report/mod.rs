@@ -267,7 +267,7 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
                 html += &format!(
                     "<figure>{}<figcaption>{}</figcaption></figure>\n",
                     inline_svg(&svg)?,
-                    escape(&svg.file_stem().unwrap_or_default().to_string_lossy())
+                    escape(&crate::report::leaderboard::figure_caption(&svg))
                 );
             }
         }

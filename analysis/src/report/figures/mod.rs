@@ -326,6 +326,67 @@ pub fn population_figures(
     Ok(out)
 }
 
+/// Single-unit signature: the trial-averaged activity of unit `unit` of `dataset` for each
+/// recorded TD, aligned to oven on (`window` steps: oven time 0 … window − 1), with a
+/// marker at every TD — a drift-diffusion accumulator ramps to its threshold at each TD,
+/// so its slope scales as 1/TD. Steps past a trial's end are left out of the averages.
+pub fn unit_by_td(
+    dir: &Path,
+    title: &str,
+    dataset: &chronocooked_models::ActivityDataset,
+    unit: usize,
+    window: usize,
+) -> Result<Vec<PathBuf>, FigureError> {
+    let (aligned, used) = dataset.aligned(chronocooked_models::Marker::OvenOn, window - 1);
+    let n = dataset.meta.n_units();
+    let mut tds: Vec<u32> = used.iter().map(|&i| dataset.trials[i].td).collect();
+    tds.sort_unstable();
+    tds.dedup();
+    let series = tds
+        .iter()
+        .enumerate()
+        .map(|(k, &td)| {
+            let mut sum = vec![0.0f64; window];
+            let mut count = vec![0usize; window];
+            for (j, &i) in used.iter().enumerate() {
+                if dataset.trials[i].td != td {
+                    continue;
+                }
+                for t in 0..window {
+                    let v = aligned[(j * window + t) * n + unit];
+                    if v.is_finite() {
+                        sum[t] += f64::from(v);
+                        count[t] += 1;
+                    }
+                }
+            }
+            Series {
+                label: format!("TD {td}"),
+                points: (0..window)
+                    .filter(|&t| count[t] > 0)
+                    .map(|t| (t as f64, sum[t] / count[t] as f64))
+                    .collect(),
+                line: true,
+                color: k,
+            }
+        })
+        .collect();
+    write_chart(
+        &dir.join("by_td"),
+        &Chart {
+            title: title.to_string(),
+            x_label: "time since oven on (steps)".into(),
+            y_label: "trial-averaged activity".into(),
+            series,
+            markers: tds
+                .iter()
+                .map(|&td| (f64::from(td), format!("TD {td}")))
+                .collect(),
+            ..Chart::default()
+        },
+    )
+}
+
 /// Learning curve of a run folder's `curves.csv` (PPO: training success and evaluation
 /// success vs env steps; timing agents: the same vs env steps).
 pub fn learning_curve(run_dir: &Path) -> Result<Vec<PathBuf>, FigureError> {
