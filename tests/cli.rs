@@ -669,3 +669,29 @@ fn report_is_self_contained_and_has_every_model() {
     let err = run_err(&["report"]);
     assert!(err.contains("--eval"), "{err}");
 }
+
+#[test]
+fn a_folder_that_is_not_a_run_and_a_file_that_is_not_a_sweep_say_so() {
+    let dir = temp_dir("not-a-run");
+    std::fs::create_dir_all(&dir).unwrap();
+    let folder = dir.to_str().unwrap();
+    for args in [
+        vec!["eval", "--run", folder],
+        vec!["record", "--run", folder],
+        vec!["train", "--resume", folder],
+    ] {
+        let err = run_err(&args);
+        assert!(err.contains("is not a run folder"), "{args:?}: {err}");
+        assert!(!err.contains("cannot resume"), "{args:?}: {err}");
+    }
+    let file = dir.join("sweep.toml");
+    std::fs::write(&file, "name = \"x\"\nmodels = [ddm\n").unwrap();
+    let err = run_err(&["sweep", file.to_str().unwrap(), "--dry-run"]);
+    assert!(
+        err.contains("sweep file")
+            && err.contains(file.to_str().unwrap())
+            && err.contains("line 2"),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -1,7 +1,9 @@
 //! Evaluation protocols end to end: the oracle gives the ideal answers, a random agent gives
 //! failed fits reported as such, and metrics recomputed from saved records are identical.
 
-use chronocooked_analysis::{Mode, compute_metrics, reference_conditions, run_protocol};
+use chronocooked_analysis::{
+    ConditionKind, Mode, compute_metrics, reference_conditions, run_protocol,
+};
 use chronocooked_env::{ChronoEnv, TaskParams, make_config};
 use chronocooked_models::agent::{OracleAgent, RandomAgent};
 
@@ -31,7 +33,10 @@ fn oracle_gives_the_ideal_bisection_and_fi_answers() {
     // FI: the oracle's first oven check is exactly the TD.
     let env = ChronoEnv::from_id("FixedInterval-v0", &["td=9"]).unwrap();
     let conds = reference_conditions("FixedInterval-v0", &["td=9".into()]).unwrap();
-    assert_eq!(conds.iter().filter(|c| c.kind == "pi").count(), 2);
+    assert_eq!(
+        conds.iter().filter(|c| c.kind == ConditionKind::Pi).count(),
+        2
+    );
     let mut oracle = OracleAgent::new(&env);
     let recs = run_protocol(&mut oracle, &conds, Mode::Reference, 0).unwrap();
     let m = compute_metrics("oracle", &recs, 0);
@@ -249,7 +254,7 @@ fn recorded_play_goes_through_the_same_metrics() {
     assert_eq!(recs.len(), 2);
     assert!(
         recs.iter()
-            .all(|r| r.episode.success && r.condition.kind == "fi")
+            .all(|r| r.episode.success && r.condition.kind == ConditionKind::Fi)
     );
     assert_eq!(recs[1].episode.start, (4, 2));
     let m = compute_metrics("human", &recs, 0);

@@ -330,3 +330,64 @@ fn native_empty_batch_gives_empty_outputs_and_zero_gradient() {
     native.backward(&theta, &mut cache, &[], &[], &mut g);
     assert!(g.iter().all(|&v| v == 0.0));
 }
+
+#[test]
+fn burn_ctrnn_leak_equals_the_one_scalar_definition() {
+    use chronocooked_models::deep::cores::{CoreConfig, ctrnn_alpha};
+    // burn's tensor form of α = min(dt/softplus(τ_raw), 1) against `ctrnn_alpha`, which the
+    // native engine and the stand-alone CTRNN use: below and on the clamp, and past the
+    // softplus linear branch (τ_raw > 20).
+    for (tau, dt) in [
+        (-3.0f32, 0.1f32),
+        (-3.0, 2.0),
+        (0.0, 0.1),
+        (1.0, 0.1),
+        (5.0, 0.5),
+        (25.0, 0.1),
+    ] {
+        let mut cfg = CoreConfig::new(CoreKind::Ctrnn, 3, 4);
+        cfg.tau_init = tau;
+        cfg.dt = dt;
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(0);
+        let core = cfg.init(&mut rng, &chronocooked_models::cpu());
+        let burn_alpha = to_vec(&core.alpha().unwrap());
+        let (want, _) = ctrnn_alpha(f64::from(tau), f64::from(dt));
+        for a in burn_alpha {
+            assert!(
+                (f64::from(a) - want).abs() <= 1e-6 * want.max(1e-3),
+                "tau_raw {tau}, dt {dt}: burn {a} vs {want}"
+            );
+        }
+    }
+    // The derivative matches a central difference.
+    for tau in [-2.0, 0.5, 3.0] {
+        let h = 1e-6;
+        let num = (ctrnn_alpha(tau + h, 0.1).0 - ctrnn_alpha(tau - h, 0.1).0) / (2.0 * h);
+        assert!((ctrnn_alpha(tau, 0.1).1 - num).abs() < 1e-6, "tau {tau}");
+    }
+}
+
+#[test]
+fn every_architecture_matches_the_one_parameter_spec_shape_by_shape() {
+    use chronocooked_models::deep::native::Layout;
+    use chronocooked_models::deep::spec::{check_shapes, param_spec};
+    use chronocooked_training::ppo::params::param_shapes;
+    for arch in Architecture::all() {
+        let pc = PolicyConfig::new(arch, 15, 6, 6);
+        let spec = param_spec(&pc);
+        let module = pc.init(0, &chronocooked_models::cpu());
+        check_shapes(&spec, &param_shapes(&module)).unwrap_or_else(|e| panic!("{arch:?}: {e}"));
+        let total: usize = spec.iter().map(|p| p.len()).sum();
+        assert_eq!(Layout::new(&pc).total, total);
+        assert_eq!(flat_params(&module).len(), total);
+    }
+    // A mismatch is named, not counted.
+    let pc = PolicyConfig::new(Architecture::recurrent(CoreKind::Lstm, 8), 15, 6, 6);
+    let other = PolicyConfig::new(Architecture::recurrent(CoreKind::Gru, 8), 15, 6, 6);
+    let err = check_shapes(
+        &param_spec(&pc),
+        &param_shapes(&other.init(0, &chronocooked_models::cpu())),
+    )
+    .unwrap_err();
+    assert!(err.contains("core.input.weight"), "{err}");
+}

@@ -71,7 +71,7 @@ fn job(task: &str, model: &str, seed: u64, env: &[&str], ep_len: f64) -> JobSumm
 
 fn ep(kind: &str, td: u32, cell: (usize, usize), foc: Option<i32>, counter: i8) -> EpisodeRow {
     EpisodeRow {
-        kind: kind.into(),
+        kind: kind.parse().unwrap(),
         td,
         factor: None,
         env: String::new(),

@@ -479,3 +479,99 @@ fn zoo_says_which_tasks_each_mechanism_cannot_do() {
             .any(|t| t.task.contains("exact") && t.limit.is_some())
     );
 }
+
+/// Trial-averaged activity `[window, units]` of `population` of `model` trained on fixed
+/// interval at `td` (greedy episodes from every start cell, three seeds), aligned to oven on.
+fn trained_average(model: &str, td: u32, population: &str, window: usize) -> (Vec<f64>, usize) {
+    use chronocooked_analysis::neural::Cube;
+    let mut cfg = TimingRunConfig::new("FixedInterval-v0", model, 0);
+    cfg.set(&format!("env.td={td}")).unwrap();
+    let dir = temp_dir(&format!("signature-{model}-{td}"));
+    run_timing_training(&cfg, &dir, "test", |_| {}).unwrap();
+    let mut agent = load_agent(&dir, None).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    let config = make_config("FixedInterval-v0", &cfg.env).unwrap();
+    let mut rec = TrialRecorder::new(ActivityMeta::new(model, "FixedInterval-v0", &cfg.env, 0));
+    for seed in 0..3 {
+        evaluate_agent(agent.as_mut(), &config, &[td], seed, Some(&mut rec)).unwrap();
+    }
+    let ds = rec.finish();
+    let (aligned, used) = ds.aligned(Marker::OvenOn, window - 1);
+    let n = ds.meta.n_units();
+    let avg = Cube::from_f32(&aligned, used.len(), window, n).average();
+    let r = ds.meta.range(population).unwrap();
+    let sub = avg
+        .chunks_exact(n)
+        .flat_map(|row| row[r.clone()].to_vec())
+        .collect();
+    (sub, r.len())
+}
+
+#[test]
+fn recorded_populations_show_each_models_signature() {
+    use chronocooked_analysis::neural::oscillation::welch;
+    use chronocooked_analysis::neural::scaling_factor;
+    // Drift-diffusion: the accumulator ramps to threshold at TD, so its trace at TD 12 is
+    // the TD-6 trace stretched by 2 (slope ∝ 1/TD).
+    let (a, _) = trained_average("ddm", 6, "accumulator", 6);
+    let (b, _) = trained_average("ddm", 12, "accumulator", 12);
+    let (s, r2) = scaling_factor(&a, &b);
+    assert!((s - 2.0).abs() < 0.3 && r2 > 0.9, "scaling {s}, R² {r2}");
+
+    // SBF: every oscillator's spectrum peaks at its own frequency (Hz × 25 ms per step).
+    let config = make_config("FixedInterval-v0", &["td=18"]).unwrap();
+    let env = chronocooked_env::ChronoEnv::new(&config).unwrap();
+    let sbf = chronocooked_models::timing::zoo::make_timing_agent("sbf", &env, 0).unwrap();
+    let chronocooked_models::timing::timers::Timer::Sbf(timer) = &sbf.timer else {
+        panic!("sbf")
+    };
+    let window = 18;
+    let (osc, units) = trained_average("sbf", 18, "oscillators", window);
+    for (i, f) in timer.model.freqs.iter().enumerate().take(100) {
+        let x: Vec<f64> = (0..window).map(|t| osc[t * units + i]).collect();
+        let peak = welch(&x, window, 1.0).peak;
+        let want = f * timer.seconds_per_step;
+        assert!(
+            (peak - want).abs() <= 1.0 / window as f64,
+            "oscillator {i}: {f} Hz, peak {peak} vs {want} cycles/step"
+        );
+    }
+
+    // Laplace time cells: each cell's width grows in proportion to its peak time.
+    let window = 30;
+    let (cells, units) = trained_average("timecells-laplace", 24, "time_cells", window);
+    let mut points = Vec::new();
+    for i in 0..units {
+        let x: Vec<f64> = (0..window).map(|t| cells[t * units + i]).collect();
+        let (peak_t, peak) = x
+            .iter()
+            .enumerate()
+            .fold((0, f64::MIN), |b, (t, &v)| if v > b.1 { (t, v) } else { b });
+        if !(3..=10).contains(&peak_t) {
+            continue;
+        }
+        let cross = |range: Box<dyn Iterator<Item = usize>>| {
+            let mut prev = peak_t;
+            for t in range {
+                if x[t] < peak / 2.0 {
+                    let (a, b) = (x[t], x[prev]);
+                    return Some(t as f64 + (prev as f64 - t as f64) * (peak / 2.0 - a) / (b - a));
+                }
+                prev = t;
+            }
+            None
+        };
+        let (Some(lo), Some(hi)) = (
+            cross(Box::new((0..peak_t).rev())),
+            cross(Box::new(peak_t + 1..window)),
+        ) else {
+            continue;
+        };
+        points.push((peak_t as f64, hi - lo));
+    }
+    assert!(points.len() >= 4, "{points:?}");
+    let ratios: Vec<f64> = points.iter().map(|(p, w)| w / p).collect();
+    let mean = ratios.iter().sum::<f64>() / ratios.len() as f64;
+    let sd = (ratios.iter().map(|r| (r - mean).powi(2)).sum::<f64>() / ratios.len() as f64).sqrt();
+    assert!(sd / mean < 0.2, "width/peak {ratios:?}");
+}

@@ -32,7 +32,8 @@ pub use behaviour::foc::{
 pub use behaviour::metrics::{Metrics, compute_metrics};
 pub use behaviour::psychometric::{FitError, LogisticFit, ProbeCounts, fit_logistic, fit_with_ci};
 pub use evaluation::protocol::{
-    Condition, EvalRecord, Mode, reference_conditions, run_protocol, run_protocol_recorded,
+    Condition, ConditionKind, EvalRecord, Mode, reference_conditions, run_protocol,
+    run_protocol_recorded,
 };
 pub use neural::decode::{DecodeResult, Decoder, decode_time};
 pub use neural::{Cube, classify_ramps, sequentiality_index, temporal_information, time_cells};

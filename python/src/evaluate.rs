@@ -286,7 +286,7 @@ pub fn reference_conditions<'py>(
     let out = PyList::empty(py);
     for c in conditions {
         let d = PyDict::new(py);
-        d.set_item("kind", c.kind)?;
+        d.set_item("kind", c.kind.as_str())?;
         d.set_item("task", c.task)?;
         d.set_item("env", c.env)?;
         d.set_item("td", c.td)?;

@@ -2,7 +2,7 @@
 //! task (default `Uncertainty-v0`) and the episodes it needs to adapt are counted.
 
 use anyhow::Result;
-use chronocooked_training::adapt::{AdaptConfig, run_adaptation};
+use chronocooked_training::adapt::{self, AdaptConfig, run_adaptation};
 use clap::Args;
 use std::path::PathBuf;
 
@@ -20,20 +20,20 @@ pub struct AdaptArgs {
     #[arg(long = "env", value_name = "KEY=VALUE")]
     pub env: Vec<String>,
     /// Episodes played by a timing agent.
-    #[arg(long, default_value_t = 3000)]
+    #[arg(long, default_value_t = adapt::DEFAULT_EPISODES)]
     pub episodes: usize,
     /// Env steps of PPO fine-tuning.
-    #[arg(long, default_value_t = 100_000)]
+    #[arg(long, default_value_t = adapt::DEFAULT_STEPS)]
     pub steps: u64,
     /// Window (episodes of every kind) of the success rates.
-    #[arg(long, default_value_t = 100)]
+    #[arg(long, default_value_t = adapt::DEFAULT_WINDOW)]
     pub window: usize,
     /// Success on both the never-ready and the normal ovens of the window that counts as
     /// adapted.
-    #[arg(long, default_value_t = 0.8)]
+    #[arg(long, default_value_t = adapt::DEFAULT_THRESHOLD)]
     pub threshold: f64,
     /// Exploration of a timing agent while adapting.
-    #[arg(long, default_value_t = 0.05)]
+    #[arg(long, default_value_t = adapt::DEFAULT_EPSILON)]
     pub epsilon: f64,
     /// Seed.
     #[arg(long, default_value_t = 0)]

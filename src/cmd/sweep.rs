@@ -3,9 +3,10 @@
 //! `sweep-job`: run one job's stages in this process (what workers and Slurm tasks call).
 
 use anyhow::{Context, Result, bail};
+use chronocooked_training::adapt;
 use chronocooked_training::run_dir::write_atomic;
 use chronocooked_training::sweep::{
-    Job, STAGES, SweepFile, finished_stages, job_dir, job_done, mark_stage, slurm_script,
+    Job, Stage, SweepFile, finished_stages, job_dir, job_done, mark_stage, slurm_script,
 };
 use chronocooked_training::zoo::Family;
 use clap::Args;
@@ -234,7 +235,8 @@ pub fn run_sweep(
             match child.try_wait()? {
                 None => {
                     let stages = finished_stages(&job_dir(out, &job.id));
-                    bar.set_message(format!("{}  [{}]", job.id, stages.join(" ")));
+                    let names: Vec<&str> = stages.iter().map(|s| s.name()).collect();
+                    bar.set_message(format!("{}  [{}]", job.id, names.join(" ")));
                     bar.tick();
                     i += 1;
                 }
@@ -324,34 +326,17 @@ pub fn run_job(sweep: &SweepFile, job: &Job, out: &Path) -> Result<()> {
     )?;
     let done = finished_stages(&dir);
     let trained = job.family != Family::Baseline;
-    let wanted: Vec<&str> = STAGES
-        .iter()
-        .copied()
-        .filter(|s| match *s {
-            "train" | "record" => trained && (*s == "train" || sweep.record),
-            "adapt" => {
-                trained
-                    && sweep.adapt
-                    && job.task == "Uncertainty-v0"
-                    && job
-                        .env
-                        .iter()
-                        .any(|e| e.replace(' ', "") == "never_ready_prob=0")
-            }
-            "export" => sweep.export,
-            _ => true,
-        })
-        .collect();
+    let wanted = Stage::for_job(sweep, job);
     let run = dir.join("run");
     for (k, stage) in wanted.iter().enumerate() {
-        if done.iter().any(|d| d == stage) {
+        if done.contains(stage) {
             continue;
         }
         let t0 = Instant::now();
         eprintln!("[{}] {stage}", job.id);
         match *stage {
-            "train" => train_stage(sweep, job, &run)?,
-            "eval" => crate::cmd::eval::run(crate::cmd::eval::EvalArgs {
+            Stage::Train => train_stage(sweep, job, &run)?,
+            Stage::Eval => crate::cmd::eval::run(crate::cmd::eval::EvalArgs {
                 run: trained.then(|| run.clone()),
                 agent: (!trained).then(|| job.model.clone()),
                 task: (!trained).then(|| job.task.clone()),
@@ -363,7 +348,7 @@ pub fn run_job(sweep: &SweepFile, job: &Job, out: &Path) -> Result<()> {
                 out: dir.join("eval"),
                 activity: false,
             })?,
-            "adapt" => crate::cmd::adapt::run(crate::cmd::adapt::AdaptArgs {
+            Stage::Adapt => crate::cmd::adapt::run(crate::cmd::adapt::AdaptArgs {
                 run: run.clone(),
                 task: "Uncertainty-v0".into(),
                 env: job
@@ -372,15 +357,15 @@ pub fn run_job(sweep: &SweepFile, job: &Job, out: &Path) -> Result<()> {
                     .filter(|e| !e.starts_with("never_ready_prob"))
                     .cloned()
                     .collect(),
-                episodes: sweep.adapt_episodes.unwrap_or(3000),
-                steps: sweep.adapt_steps.unwrap_or(100_000),
-                window: 100,
-                threshold: 0.8,
-                epsilon: 0.05,
+                episodes: sweep.adapt_episodes.unwrap_or(adapt::DEFAULT_EPISODES),
+                steps: sweep.adapt_steps.unwrap_or(adapt::DEFAULT_STEPS),
+                window: adapt::DEFAULT_WINDOW,
+                threshold: adapt::DEFAULT_THRESHOLD,
+                epsilon: adapt::DEFAULT_EPSILON,
                 seed: job.seed,
                 out: dir.join("adapt"),
             })?,
-            "record" => crate::cmd::record::record(crate::cmd::record::RecordArgs {
+            Stage::Record => crate::cmd::record::record(crate::cmd::record::RecordArgs {
                 run: run.clone(),
                 task: None,
                 env: vec![],
@@ -391,7 +376,7 @@ pub fn run_job(sweep: &SweepFile, job: &Job, out: &Path) -> Result<()> {
                 summary: true,
                 figures: Some(dir.join("neural_figures")),
             })?,
-            "export" => crate::cmd::export::run(crate::cmd::export::ExportArgs {
+            Stage::Export => crate::cmd::export::run(crate::cmd::export::ExportArgs {
                 activity: (trained && sweep.record).then(|| dir.join("activity.json")),
                 eval: Some(dir.join("eval")),
                 window: 200,
@@ -399,12 +384,11 @@ pub fn run_job(sweep: &SweepFile, job: &Job, out: &Path) -> Result<()> {
                 format: "npz".into(),
                 python: None,
             })?,
-            _ => unreachable!("stages are fixed"),
         }
         mark_stage(
             &dir,
             &job.id,
-            stage,
+            *stage,
             t0.elapsed().as_secs_f64(),
             k + 1 == wanted.len(),
         )?;

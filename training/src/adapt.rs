@@ -48,16 +48,27 @@ pub struct AdaptConfig {
     pub seed: u64,
 }
 
+/// Default episodes of a timing agent's adaptation.
+pub const DEFAULT_EPISODES: usize = 3000;
+/// Default env steps of PPO fine-tuning.
+pub const DEFAULT_STEPS: u64 = 100_000;
+/// Default rolling window (episodes) of the success rates.
+pub const DEFAULT_WINDOW: usize = 100;
+/// Default success rate (never-ready and normal ovens) that counts as adapted.
+pub const DEFAULT_THRESHOLD: f64 = 0.8;
+/// Default exploration of timing agents while adapting.
+pub const DEFAULT_EPSILON: f64 = 0.05;
+
 impl Default for AdaptConfig {
     fn default() -> Self {
         AdaptConfig {
             task: "Uncertainty-v0".into(),
             env: Vec::new(),
-            episodes: 3000,
-            steps: 100_000,
-            window: 100,
-            threshold: 0.8,
-            epsilon: 0.05,
+            episodes: DEFAULT_EPISODES,
+            steps: DEFAULT_STEPS,
+            window: DEFAULT_WINDOW,
+            threshold: DEFAULT_THRESHOLD,
+            epsilon: DEFAULT_EPSILON,
             seed: 0,
         }
     }

@@ -39,6 +39,10 @@ pub enum TrainError {
         /// What is wrong.
         message: String,
     },
+    /// The burn module and the native engine's parameter specification disagree (a bug,
+    /// reported instead of training on misread parameters).
+    #[error("model definition mismatch: {0}")]
+    SpecMismatch(String),
     /// The environment rejected the task or its overrides.
     #[error(transparent)]
     Env(#[from] chronocooked_env::EnvError),
@@ -61,6 +65,22 @@ pub enum TrainError {
         path: String,
         /// Underlying error.
         source: std::io::Error,
+    },
+    /// A sweep file is not valid TOML or does not describe a sweep.
+    #[error("sweep file {file}: {message}")]
+    SweepFile {
+        /// File name.
+        file: String,
+        /// What is wrong (with the line and column for TOML errors).
+        message: String,
+    },
+    /// A folder given as a run folder holds no run.
+    #[error(
+        "{path} is not a run folder (no config.json): give a folder written by `chronocooked train --out`"
+    )]
+    NotARun {
+        /// Folder.
+        path: String,
     },
     /// A run folder or checkpoint is incomplete or does not match.
     #[error("cannot resume from {path}: {reason}")]

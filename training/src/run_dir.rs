@@ -131,9 +131,8 @@ impl RunDir {
     /// Opens an existing run folder (must hold `config.json`).
     pub fn open(path: &Path) -> Result<Self, TrainError> {
         if !path.join("config.json").is_file() {
-            return Err(TrainError::Resume {
+            return Err(TrainError::NotARun {
                 path: path.display().to_string(),
-                reason: "no config.json: not a run folder".into(),
             });
         }
         Ok(RunDir {

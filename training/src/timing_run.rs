@@ -272,9 +272,8 @@ pub fn run_timing_training(
 /// `config.json`.
 pub fn run_task(dir: &Path) -> Result<(String, Vec<String>), TrainError> {
     let p = dir.join("config.json");
-    let text = std::fs::read_to_string(&p).map_err(|_| TrainError::Resume {
+    let text = std::fs::read_to_string(&p).map_err(|_| TrainError::NotARun {
         path: dir.display().to_string(),
-        reason: "not a run folder (no config.json)".into(),
     })?;
     let v: serde_json::Value = serde_json::from_str(&text).map_err(|e| TrainError::Resume {
         path: p.display().to_string(),

@@ -2,6 +2,7 @@
 //! the adaptation measure of the uncertainty experiment.
 
 use crate::behaviour::metrics::Metrics;
+use crate::evaluation::protocol::ConditionKind;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -39,7 +40,10 @@ impl Spread {
 pub fn headline(m: &Metrics) -> BTreeMap<String, f64> {
     let mut h = BTreeMap::new();
     // Success of the trained condition only (probes and OOD conditions are not meant to pay).
-    for (kind, key) in [("fi", "fi_success"), ("dual", "dual_success")] {
+    for (kind, key) in [
+        (ConditionKind::Fi, "fi_success"),
+        (ConditionKind::Dual, "dual_success"),
+    ] {
         let c: Vec<f64> = m
             .conditions
             .iter()

@@ -1,7 +1,7 @@
 //! Recorded human play (`env play` JSON lines, the replay trace shape) as evaluation
 //! records, so people and agents go through the same metrics.
 
-use crate::evaluation::protocol::{Condition, EvalRecord};
+use crate::evaluation::protocol::{Condition, ConditionKind, EvalRecord};
 use chronocooked_env::trace::TraceLine;
 use chronocooked_env::{TaskConfig, TaskParams};
 use chronocooked_models::EpisodeRecord;
@@ -10,23 +10,25 @@ use chronocooked_models::agent::is_success;
 /// Condition kind and task overrides for an episode played on `config` with target `td`.
 fn condition_of(config: &TaskConfig, td: u32) -> Condition {
     let (kind, env, factor) = match &config.params {
-        TaskParams::FixedInterval { td } => ("fi", vec![format!("td={td}")], None),
+        TaskParams::FixedInterval { td } => (ConditionKind::Fi, vec![format!("td={td}")], None),
         TaskParams::PeakInterval { td, probe_factor } => (
-            "pi",
+            ConditionKind::Pi,
             vec![format!("td={td}"), format!("probe_factor={probe_factor}")],
             Some(f64::from(*probe_factor)),
         ),
         TaskParams::Bisection { short, long } => (
-            "bisection",
+            ConditionKind::Bisection,
             vec![format!("short={short}"), format!("long={long}")],
             None,
         ),
-        TaskParams::MultiTimer { .. } => ("multi_timer", Vec::new(), None),
-        TaskParams::Dual { td, .. } => ("dual", vec![format!("td={td}")], None),
-        TaskParams::Uncertainty { td, .. } => ("uncertainty", vec![format!("td={td}")], None),
+        TaskParams::MultiTimer { .. } => (ConditionKind::MultiTimer, Vec::new(), None),
+        TaskParams::Dual { td, .. } => (ConditionKind::Dual, vec![format!("td={td}")], None),
+        TaskParams::Uncertainty { td, .. } => {
+            (ConditionKind::Uncertainty, vec![format!("td={td}")], None)
+        }
     };
     Condition {
-        kind: kind.into(),
+        kind,
         task: config.id.clone(),
         env,
         td,

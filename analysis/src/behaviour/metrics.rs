@@ -5,7 +5,7 @@ use crate::behaviour::foc::{FocStats, ScalarProperty, episode_foc, foc_stats, sc
 use crate::behaviour::psychometric::{
     LogisticFit, ProbeCounts, bp_relative, check_transition, fit_with_ci,
 };
-use crate::evaluation::protocol::EvalRecord;
+use crate::evaluation::protocol::{ConditionKind, EvalRecord};
 use chronocooked_env::{Counter, Events, TaskParams, make_config};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -14,7 +14,7 @@ use std::collections::BTreeMap;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ConditionSummary {
     /// Condition kind.
-    pub kind: String,
+    pub kind: ConditionKind,
     /// Task id played.
     pub task: String,
     /// TD (steps).
@@ -180,7 +180,7 @@ pub fn compute_metrics(model: &str, records: &[EvalRecord], seed: u64) -> Metric
         .map(|(_, v)| {
             let c = &v[0].condition;
             ConditionSummary {
-                kind: c.kind.clone(),
+                kind: c.kind,
                 task: c.task.clone(),
                 td: c.td,
                 factor: c.factor,
@@ -210,7 +210,7 @@ pub fn compute_metrics(model: &str, records: &[EvalRecord], seed: u64) -> Metric
     }
 }
 
-fn of_kind<'a>(records: &'a [EvalRecord], kind: &str) -> Vec<&'a EvalRecord> {
+fn of_kind(records: &[EvalRecord], kind: ConditionKind) -> Vec<&EvalRecord> {
     records
         .iter()
         .filter(|r| r.condition.kind == kind)
@@ -240,8 +240,8 @@ pub fn count_plateaus(points: &[(u32, f64)], trained: &[u32]) -> usize {
 }
 
 fn multi_timer_metrics(records: &[EvalRecord]) -> Option<MultiTimerMetrics> {
-    let mt = of_kind(records, "multi_timer");
-    let buf = of_kind(records, "buffer");
+    let mt = of_kind(records, ConditionKind::MultiTimer);
+    let buf = of_kind(records, ConditionKind::Buffer);
     if mt.is_empty() && buf.is_empty() {
         return None;
     }
@@ -277,7 +277,7 @@ fn last_info(r: &EvalRecord) -> Option<&chronocooked_env::Info> {
 }
 
 fn dual_metrics(records: &[EvalRecord]) -> Option<DualMetrics> {
-    let d = of_kind(records, "dual");
+    let d = of_kind(records, ConditionKind::Dual);
     if d.is_empty() {
         return None;
     }
@@ -305,7 +305,7 @@ fn dual_metrics(records: &[EvalRecord]) -> Option<DualMetrics> {
 }
 
 fn uncertainty_metrics(records: &[EvalRecord]) -> Option<UncertaintyMetrics> {
-    let u = of_kind(records, "uncertainty");
+    let u = of_kind(records, ConditionKind::Uncertainty);
     if u.is_empty() {
         return None;
     }
@@ -342,7 +342,10 @@ fn uncertainty_metrics(records: &[EvalRecord]) -> Option<UncertaintyMetrics> {
 
 fn fi_metrics(records: &[EvalRecord]) -> Option<FiMetrics> {
     let mut by_td: BTreeMap<u32, Vec<f64>> = BTreeMap::new();
-    for r in records.iter().filter(|r| r.condition.kind == "fi") {
+    for r in records
+        .iter()
+        .filter(|r| r.condition.kind == ConditionKind::Fi)
+    {
         let v = by_td.entry(r.condition.td).or_default();
         if let Some(f) = episode_foc(&r.episode) {
             v.push(f64::from(f));
@@ -360,7 +363,7 @@ fn fi_metrics(records: &[EvalRecord]) -> Option<FiMetrics> {
 fn bisection_metrics(records: &[EvalRecord], seed: u64) -> Option<BisectionMetrics> {
     let bis: Vec<&EvalRecord> = records
         .iter()
-        .filter(|r| r.condition.kind == "bisection")
+        .filter(|r| r.condition.kind == ConditionKind::Bisection)
         .collect();
     let first = bis.first()?;
     let (short, long) = match make_config(&first.condition.task, &first.condition.env)
@@ -439,7 +442,10 @@ fn pi_curves(records: &[EvalRecord]) -> Vec<PiCurve> {
     let mut out: Vec<PiCurve> = Vec::new();
     let mut denom: Vec<Vec<f64>> = Vec::new();
     let mut trials: Vec<Vec<Vec<f64>>> = Vec::new();
-    for r in records.iter().filter(|r| r.condition.kind == "pi") {
+    for r in records
+        .iter()
+        .filter(|r| r.condition.kind == ConditionKind::Pi)
+    {
         let factor = r.condition.factor.unwrap_or(0.0);
         let idx = match out
             .iter()

@@ -19,12 +19,82 @@ use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use serde::{Deserialize, Serialize};
 
+/// What an evaluation condition measures (serialised in snake case: `fi`, `pi`,
+/// `bisection`, `multi_timer`, `buffer`, `dual`, `uncertainty`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ConditionKind {
+    /// Fixed interval at the trained TD.
+    Fi,
+    /// Peak-interval probe (soup released late or never).
+    Pi,
+    /// Bisection probe duration.
+    Bisection,
+    /// Multi-timer TD (trained or out of distribution).
+    MultiTimer,
+    /// Multi-timer exact-window buffer probe.
+    Buffer,
+    /// Dual task at the trained TD.
+    Dual,
+    /// Uncertainty task (normal or never-ready ovens).
+    Uncertainty,
+}
+
+impl ConditionKind {
+    /// Every kind, in the order of the NPZ export's `condition` codes.
+    pub const ALL: [ConditionKind; 7] = [
+        ConditionKind::Fi,
+        ConditionKind::Pi,
+        ConditionKind::Bisection,
+        ConditionKind::MultiTimer,
+        ConditionKind::Buffer,
+        ConditionKind::Dual,
+        ConditionKind::Uncertainty,
+    ];
+
+    /// The serialised name (`fi`, `multi_timer`, …).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            ConditionKind::Fi => "fi",
+            ConditionKind::Pi => "pi",
+            ConditionKind::Bisection => "bisection",
+            ConditionKind::MultiTimer => "multi_timer",
+            ConditionKind::Buffer => "buffer",
+            ConditionKind::Dual => "dual",
+            ConditionKind::Uncertainty => "uncertainty",
+        }
+    }
+}
+
+impl std::fmt::Display for ConditionKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+impl std::str::FromStr for ConditionKind {
+    type Err = String;
+
+    /// Parses a serialised name; the error lists the allowed ones.
+    fn from_str(s: &str) -> Result<Self, String> {
+        ConditionKind::ALL
+            .into_iter()
+            .find(|k| k.as_str() == s)
+            .ok_or_else(|| {
+                let names: Vec<&str> = ConditionKind::ALL.iter().map(|k| k.as_str()).collect();
+                format!(
+                    "unknown condition kind `{s}` (allowed: {})",
+                    names.join(", ")
+                )
+            })
+    }
+}
+
 /// One evaluation condition.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Condition {
-    /// What this condition measures: `fi`, `pi`, `bisection`, `multi_timer`, `buffer`,
-    /// `dual`, `uncertainty`.
-    pub kind: String,
+    /// What this condition measures.
+    pub kind: ConditionKind,
     /// Task id played.
     pub task: String,
     /// Task overrides.
@@ -46,9 +116,9 @@ pub struct EvalRecord {
     pub episode: EpisodeRecord,
 }
 
-fn cond(kind: &str, task: &str, env: Vec<String>, td: u32) -> Condition {
+fn cond(kind: ConditionKind, task: &str, env: Vec<String>, td: u32) -> Condition {
     Condition {
-        kind: kind.into(),
+        kind,
         task: task.into(),
         env,
         td,
@@ -77,10 +147,10 @@ pub fn reference_conditions(task: &str, env: &[String]) -> Result<Vec<Condition>
     let mut out = Vec::new();
     match &config.params {
         TaskParams::FixedInterval { td } => {
-            out.push(cond("fi", task, env.clone(), *td));
+            out.push(cond(ConditionKind::Fi, task, env.clone(), *td));
             for k in [2u32, 5] {
                 let mut c = cond(
-                    "pi",
+                    ConditionKind::Pi,
                     "PeakInterval-v0",
                     vec![format!("td={td}"), format!("probe_factor={k}")],
                     *td,
@@ -90,13 +160,13 @@ pub fn reference_conditions(task: &str, env: &[String]) -> Result<Vec<Condition>
             }
         }
         TaskParams::PeakInterval { td, probe_factor } => {
-            let mut c = cond("pi", task, env.clone(), *td);
+            let mut c = cond(ConditionKind::Pi, task, env.clone(), *td);
             c.factor = Some(f64::from(*probe_factor));
             out.push(c);
         }
         TaskParams::Bisection { long, .. } => {
             for t in 1..=long + 4 {
-                out.push(cond("bisection", task, env.clone(), t));
+                out.push(cond(ConditionKind::Bisection, task, env.clone(), t));
             }
         }
         TaskParams::MultiTimer {
@@ -113,7 +183,7 @@ pub fn reference_conditions(task: &str, env: &[String]) -> Result<Vec<Condition>
                 chronocooked_env::CueMode::Categorical => active.to_vec(),
             };
             for t in probe {
-                out.push(cond("multi_timer", task, env.clone(), t));
+                out.push(cond(ConditionKind::MultiTimer, task, env.clone(), t));
             }
             for &t in active {
                 for f in [0.0, 0.25, 0.5, 0.75] {
@@ -122,16 +192,16 @@ pub fn reference_conditions(task: &str, env: &[String]) -> Result<Vec<Condition>
                     e.push("mode=exact".into());
                     e.push(format!("under_buffer={b}"));
                     e.push(format!("over_buffer={b}"));
-                    let mut c = cond("buffer", task, e, t);
+                    let mut c = cond(ConditionKind::Buffer, task, e, t);
                     c.factor = Some(f);
                     out.push(c);
                 }
             }
         }
-        TaskParams::Dual { td, .. } => out.push(cond("dual", task, env.clone(), *td)),
+        TaskParams::Dual { td, .. } => out.push(cond(ConditionKind::Dual, task, env.clone(), *td)),
         TaskParams::Uncertainty { td, .. } => {
             for nr in [false, true] {
-                let mut c = cond("uncertainty", task, env.clone(), *td);
+                let mut c = cond(ConditionKind::Uncertainty, task, env.clone(), *td);
                 c.never_ready = Some(nr);
                 out.push(c);
             }

@@ -6,7 +6,7 @@
 
 pub mod npz;
 
-use crate::evaluation::protocol::EvalRecord;
+use crate::evaluation::protocol::{ConditionKind, EvalRecord};
 use crate::export::npz::{NpyArray, NpyData, npz_bytes};
 use chronocooked_models::{ActivityDataset, Marker};
 use serde_json::{Value, json};
@@ -282,16 +282,12 @@ pub fn export_activity(
 /// Exports evaluation records into `dir`: `episodes.npz`, `episodes.meta.json`,
 /// `episodes.csv` (one row per episode: condition, TD, start, reward, success, FOC, steps).
 pub fn export_eval(records: &[EvalRecord], dir: &Path) -> Result<Vec<PathBuf>, String> {
-    let kinds = [
-        "fi",
-        "pi",
-        "bisection",
-        "multi_timer",
-        "buffer",
-        "dual",
-        "uncertainty",
-    ];
-    let kind_code = |k: &str| kinds.iter().position(|x| *x == k).map_or(-1, |i| i as i64);
+    let kind_code = |k: ConditionKind| {
+        ConditionKind::ALL
+            .iter()
+            .position(|x| *x == k)
+            .map_or(-1, |i| i as i64)
+    };
     let foc: Vec<f64> = records
         .iter()
         .map(|r| crate::behaviour::foc::episode_foc(&r.episode).map_or(f64::NAN, f64::from))
@@ -318,7 +314,7 @@ pub fn export_eval(records: &[EvalRecord], dir: &Path) -> Result<Vec<PathBuf>, S
             data: NpyData::I64(
                 records
                     .iter()
-                    .map(|r| kind_code(&r.condition.kind))
+                    .map(|r| kind_code(r.condition.kind))
                     .collect(),
             ),
         },
@@ -411,7 +407,7 @@ pub fn export_eval(records: &[EvalRecord], dir: &Path) -> Result<Vec<PathBuf>, S
         ),
     ];
     let meta = json!({
-        "condition_codes": kinds,
+        "condition_codes": ConditionKind::ALL.map(ConditionKind::as_str),
         "arrays": describe(&arrays, &docs),
     });
     let mut files = save(dir, "episodes", &arrays, meta)?;
@@ -421,7 +417,7 @@ pub fn export_eval(records: &[EvalRecord], dir: &Path) -> Result<Vec<PathBuf>, S
         .map(|(i, r)| {
             vec![
                 i.to_string(),
-                r.condition.kind.clone(),
+                r.condition.kind.to_string(),
                 r.condition.task.clone(),
                 r.condition.td.to_string(),
                 r.condition.factor.map_or(String::new(), |f| f.to_string()),

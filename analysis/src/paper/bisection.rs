@@ -8,6 +8,7 @@ use super::collect::CompactJob;
 use super::lsq::{LsqFit, fit_paper};
 use crate::behaviour::aggregate::Spread;
 use crate::behaviour::psychometric::{LogisticFit, ProbeCounts, fit_logistic};
+use crate::evaluation::protocol::ConditionKind;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -116,7 +117,7 @@ fn run_of(job: &CompactJob, short: u32, long: u32) -> (BisectionRun, Vec<ProbeCo
         let eps: Vec<_> = job
             .episodes
             .iter()
-            .filter(|e| e.kind == "bisection" && e.td == d)
+            .filter(|e| e.kind == ConditionKind::Bisection && e.td == d)
             .collect();
         let valid = eps
             .iter()
@@ -139,7 +140,7 @@ fn run_of(job: &CompactJob, short: u32, long: u32) -> (BisectionRun, Vec<ProbeCo
     let anchors: Vec<_> = job
         .episodes
         .iter()
-        .filter(|e| e.kind == "bisection" && (e.td == short || e.td == long))
+        .filter(|e| e.kind == ConditionKind::Bisection && (e.td == short || e.td == long))
         .collect();
     let right = anchors
         .iter()

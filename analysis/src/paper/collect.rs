@@ -5,7 +5,7 @@
 //! (`metrics.json`).
 
 use crate::behaviour::foc::{FocConvention, first_oven_check_with};
-use crate::evaluation::protocol::{EvalRecord, read_records};
+use crate::evaluation::protocol::{ConditionKind, EvalRecord, read_records};
 use chronocooked_env::Counter;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -45,8 +45,8 @@ pub struct JobSummary {
 /// One evaluation episode (a line of `episodes.csv`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct EpisodeRow {
-    /// Condition kind (`fi`, `pi`, `bisection`, `multi_timer`, `buffer`, …).
-    pub kind: String,
+    /// Condition kind.
+    pub kind: ConditionKind,
     /// Target / probe duration (steps).
     pub td: u32,
     /// PI release factor or multi-timer buffer fraction.
@@ -85,7 +85,7 @@ impl EpisodeRow {
             None => -1,
         };
         EpisodeRow {
-            kind: r.condition.kind.clone(),
+            kind: r.condition.kind,
             td: r.condition.td,
             factor: r.condition.factor,
             env: r.condition.env.join(" "),

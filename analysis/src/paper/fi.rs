@@ -5,6 +5,7 @@
 use super::collect::CompactJob;
 use crate::behaviour::aggregate::Spread;
 use crate::behaviour::foc::{FocStats, ScalarProperty, foc_stats, scalar_property};
+use crate::evaluation::protocol::ConditionKind;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -50,7 +51,11 @@ pub struct FiModel {
 /// FOCs of one run's FI episodes in start-cell order; with `notebook_break` the list stops
 /// at the first episode without a FOC (the notebook's "did not converge" rule).
 pub fn run_focs(job: &CompactJob, notebook_break: bool) -> Vec<f64> {
-    let mut eps: Vec<_> = job.episodes.iter().filter(|e| e.kind == "fi").collect();
+    let mut eps: Vec<_> = job
+        .episodes
+        .iter()
+        .filter(|e| e.kind == ConditionKind::Fi)
+        .collect();
     eps.sort_by_key(|e| (e.row, e.col));
     let mut out = Vec::new();
     for e in eps {

@@ -4,6 +4,7 @@
 
 use super::collect::CompactJob;
 use crate::behaviour::aggregate::Spread;
+use crate::evaluation::protocol::ConditionKind;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -71,7 +72,7 @@ pub fn analyse_multitimer(jobs: &[CompactJob]) -> Vec<MtCell> {
                     let mut tds: Vec<u32> = j
                         .episodes
                         .iter()
-                        .filter(|e| e.kind == "multi_timer")
+                        .filter(|e| e.kind == ConditionKind::MultiTimer)
                         .map(|e| e.td)
                         .collect();
                     tds.sort_unstable();
@@ -87,7 +88,7 @@ pub fn analyse_multitimer(jobs: &[CompactJob]) -> Vec<MtCell> {
                             let eps: Vec<_> = j
                                 .episodes
                                 .iter()
-                                .filter(|e| e.kind == "multi_timer" && e.td == td)
+                                .filter(|e| e.kind == ConditionKind::MultiTimer && e.td == td)
                                 .collect();
                             let n = eps.len().max(1) as f64;
                             (

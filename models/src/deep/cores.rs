@@ -15,6 +15,26 @@ use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::str::FromStr;
 
+/// CTRNN leak of one unit: `α = min(dt / softplus(τ_raw), 1)` and `dα/dτ_raw`
+/// (`−α σ(τ_raw) / softplus(τ_raw)` below the clamp, 0 on it), in `f64`. The one scalar
+/// definition: the native engine and the stand-alone CTRNN
+/// ([`crate::timing::ctrnn::Ctrnn`]) call it, and burn's tensor form
+/// ([`Core::alpha`]) is tested equal to it (`softplus(x) = x` above 20, as in PyTorch).
+pub fn ctrnn_alpha(tau_raw: f64, dt: f64) -> (f64, f64) {
+    let softplus = if tau_raw > 20.0 {
+        tau_raw
+    } else {
+        tau_raw.exp().ln_1p()
+    };
+    let a = dt / softplus;
+    if a < 1.0 {
+        let sig = 1.0 / (1.0 + (-tau_raw).exp());
+        (a, -a / softplus * sig)
+    } else {
+        (1.0, 0.0)
+    }
+}
+
 /// Which recurrence a core implements.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]

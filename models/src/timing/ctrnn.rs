@@ -25,10 +25,6 @@ pub struct Ctrnn {
     pub inputs: usize,
 }
 
-fn softplus(x: f32) -> f32 {
-    if x > 20.0 { x } else { x.exp().ln_1p() }
-}
-
 impl Ctrnn {
     /// A CTRNN with zero weights, `τ_raw` = 1 (softplus = 1.31) and `dt` = 0.1.
     pub fn zeros(n: usize, inputs: usize) -> Self {
@@ -52,7 +48,7 @@ impl Ctrnn {
     pub fn alpha(&self) -> Vec<f32> {
         self.tau_raw
             .iter()
-            .map(|&t| (self.dt / softplus(t)).min(1.0))
+            .map(|&t| crate::deep::cores::ctrnn_alpha(f64::from(t), f64::from(self.dt)).0 as f32)
             .collect()
     }
 

@@ -38,6 +38,21 @@ pub fn flat_params<M: Module>(module: &M) -> Vec<f32> {
     c.out
 }
 
+struct Shapes(Vec<Vec<usize>>);
+
+impl ModuleVisitor for Shapes {
+    fn visit_float<const D: usize>(&mut self, param: &Param<Tensor<D>>) {
+        self.0.push(param.val().dims().to_vec());
+    }
+}
+
+/// The shape of every float parameter of `module`, in the order of [`flat_params`].
+pub fn param_shapes<M: Module>(module: &M) -> Vec<Vec<usize>> {
+    let mut s = Shapes(Vec::new());
+    module.visit(&mut s);
+    s.0
+}
+
 /// The gradients of all float parameters of `module` (zeros where a parameter got none),
 /// in the same order as [`flat_params`].
 pub fn flat_grads<M: Module>(module: &M, grads: &Gradients) -> Vec<f32> {

@@ -105,9 +105,6 @@ pub struct Job {
     pub row: String,
 }
 
-/// Stages of a job, in order.
-pub const STAGES: [&str; 5] = ["train", "eval", "adapt", "record", "export"];
-
 fn bad(field: &str, value: impl ToString, allowed: &str) -> TrainError {
     TrainError::InvalidParam {
         field: field.into(),
@@ -160,7 +157,7 @@ pub fn variant_label(sets: &[String]) -> String {
 impl SweepFile {
     /// Parses a sweep file's text (`source` names it in errors).
     pub fn parse(text: &str, source: &str) -> Result<Self, TrainError> {
-        let f: SweepFile = toml::from_str(text).map_err(|e| TrainError::PresetFile {
+        let f: SweepFile = toml::from_str(text).map_err(|e| TrainError::SweepFile {
             file: source.into(),
             message: e.to_string(),
         })?;

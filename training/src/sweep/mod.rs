@@ -3,6 +3,7 @@
 //! own folder `OUT/<task>/<model>[~<variant>]/seed<N>/`.
 //!
 //! * [`file`] — the sweep file and its jobs;
+//! * [`stage`] — the typed stages of a job and which ones it needs;
 //! * [`progress`] — finished stages per job folder (`progress.json`), so an interrupted sweep
 //!   rerun redoes nothing that finished;
 //! * [`slurm`] — the same plan as a Slurm job array;
@@ -12,8 +13,10 @@ pub mod cost;
 pub mod file;
 pub mod progress;
 pub mod slurm;
+pub mod stage;
 
 pub use cost::{REFERENCE_THROUGHPUT, estimate_seconds};
-pub use file::{Job, STAGES, SweepFile, applies, variant_label};
+pub use file::{Job, SweepFile, applies, variant_label};
 pub use progress::{JobProgress, finished_stages, job_dir, job_done, mark_stage};
 pub use slurm::{SlurmFiles, job_command, shell_quote, slurm_script};
+pub use stage::Stage;

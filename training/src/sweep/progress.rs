@@ -2,12 +2,13 @@
 //! atomically after each stage), so a rerun redoes nothing that finished.
 
 use crate::error::TrainError;
+use crate::sweep::stage::Stage;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
 /// Stages a job folder has finished (from its `progress.json`; empty when absent or
 /// unreadable, so a damaged file only causes work to be redone).
-pub fn finished_stages(job_dir: &Path) -> Vec<String> {
+pub fn finished_stages(job_dir: &Path) -> Vec<Stage> {
     std::fs::read_to_string(job_dir.join("progress.json"))
         .ok()
         .and_then(|t| serde_json::from_str::<JobProgress>(&t).ok())
@@ -21,7 +22,7 @@ pub struct JobProgress {
     /// Job id.
     pub id: String,
     /// Finished stages, in order.
-    pub finished: Vec<String>,
+    pub finished: Vec<Stage>,
     /// Wall seconds of each finished stage.
     pub seconds: Vec<f64>,
     /// Whether every stage the job needs is finished.
@@ -32,7 +33,7 @@ pub struct JobProgress {
 pub fn mark_stage(
     job_dir: &Path,
     id: &str,
-    stage: &str,
+    stage: Stage,
     seconds: f64,
     done: bool,
 ) -> Result<(), TrainError> {
@@ -41,8 +42,8 @@ pub fn mark_stage(
         .and_then(|t| serde_json::from_str(&t).ok())
         .unwrap_or_default();
     p.id = id.into();
-    if !p.finished.iter().any(|s| s == stage) {
-        p.finished.push(stage.into());
+    if !p.finished.contains(&stage) {
+        p.finished.push(stage);
         p.seconds.push(seconds);
     }
     p.done = done;

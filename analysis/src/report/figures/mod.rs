@@ -6,6 +6,7 @@
 mod draw;
 pub mod grid;
 
+use crate::evaluation::protocol::ConditionKind;
 use draw::err;
 pub use draw::{Chart, FigureError, Series, write_chart, write_heatmap};
 pub use grid::{psychometric_grid, write_panels};
@@ -71,7 +72,7 @@ pub fn eval_figures(
     }
     let focs: Vec<(f64, f64)> = records
         .iter()
-        .filter(|r| r.condition.kind == "fi")
+        .filter(|r| r.condition.kind == ConditionKind::Fi)
         .filter_map(|r| {
             crate::behaviour::foc::episode_foc(&r.episode)
                 .map(|f| (f64::from(r.condition.td), f64::from(f)))
@@ -188,7 +189,7 @@ pub fn eval_figures(
     let mt: Vec<&crate::behaviour::metrics::ConditionSummary> = metrics
         .conditions
         .iter()
-        .filter(|c| c.kind == "multi_timer")
+        .filter(|c| c.kind == ConditionKind::MultiTimer)
         .collect();
     if !mt.is_empty() {
         let chart = Chart {

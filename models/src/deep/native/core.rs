@@ -30,15 +30,8 @@ impl CoreParams<'_> {
         let tau = self.tau.unwrap_or(&[]);
         tau.iter()
             .map(|&t| {
-                let t = t as f64;
-                let sp = if t > 20.0 { t } else { t.exp().ln_1p() };
-                let a = self.dt as f64 / sp;
-                if a < 1.0 {
-                    let sig = 1.0 / (1.0 + (-t).exp());
-                    (a as f32, (-a / sp * sig) as f32)
-                } else {
-                    (1.0, 0.0)
-                }
+                let (a, da) = crate::deep::cores::ctrnn_alpha(t as f64, self.dt as f64);
+                (a as f32, da as f32)
             })
             .unzip()
     }

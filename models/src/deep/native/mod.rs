@@ -17,7 +17,7 @@ mod net;
 
 pub use net::{Cache, NativePolicy, SeqBatch};
 
-use crate::{CoreKind, PolicyConfig};
+use crate::PolicyConfig;
 
 /// A parameter block: offset and length in the flat vector.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -40,11 +40,8 @@ impl Block {
     }
 }
 
-/// Where each parameter lives in the flat vector (burn's visiting order: trunk conv1
-/// weight `[C, 8]` and bias, conv2 `[8, 6]`, dense `[cells·6, 64]`; core input `[64, G·H]`
-/// and bias, recurrent `[H, G·H]` (GRU: and bias), CTRNN `τ_raw [H]`; fused head hidden
-/// layer `[L, 2·64]`, policy output `[64, A]`, value output `[64, 1]`; each weight
-/// followed by its bias).
+/// Where each parameter lives in the flat vector, in the order and shapes of
+/// [`crate::deep::spec::param_spec`] (burn's visiting order).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Layout {
     /// Conv1 weight and bias.
@@ -78,42 +75,39 @@ impl Layout {
         Some(w_in.offset..end)
     }
 
-    /// The layout of the policy `cfg` builds.
+    /// The layout of the policy `cfg` builds, derived from its parameter specification
+    /// ([`crate::deep::spec::param_spec`]): each block starts where the previous ends.
     pub fn new(cfg: &PolicyConfig) -> Self {
+        let spec = crate::deep::spec::param_spec(cfg);
         let mut at = 0;
-        let mut take = |len: usize| {
-            let b = Block { offset: at, len };
-            at += len;
-            b
+        let blocks: Vec<(&str, Block)> = spec
+            .iter()
+            .map(|p| {
+                let b = Block {
+                    offset: at,
+                    len: p.len(),
+                };
+                at += p.len();
+                (p.name, b)
+            })
+            .collect();
+        let get = |name: &str| blocks.iter().find(|(n, _)| *n == name).map(|(_, b)| *b);
+        let pair = |w: &str, b: &str| {
+            (
+                get(w).expect("spec has the weight"),
+                get(b).expect("spec has the bias"),
+            )
         };
-        let t = &cfg.trunk;
-        let conv1 = (take(t.channels * t.conv1), take(t.conv1));
-        let conv2 = (take(t.conv1 * t.conv2), take(t.conv2));
-        let dense = (take(t.cells * t.conv2 * t.features), take(t.features));
-        let (mut core_in, mut core_rec, mut tau) = (None, None, None);
-        let mut latent = t.features;
-        if let Some(kind) = cfg.arch.core {
-            let (h, g) = (cfg.arch.hidden, kind.gates());
-            core_in = Some((take(t.features * g * h), take(g * h)));
-            let w = take(h * g * h);
-            core_rec = Some((w, (kind == CoreKind::Gru).then(|| take(g * h))));
-            tau = (kind == CoreKind::Ctrnn).then(|| take(h));
-            latent = h;
-        }
-        let hh = cfg.head_hidden;
-        let hidden = (take(latent * 2 * hh), take(2 * hh));
-        let pi = (take(hh * cfg.actions), take(cfg.actions));
-        let vf = (take(hh), take(1));
         Layout {
-            conv1,
-            conv2,
-            dense,
-            core_in,
-            core_rec,
-            tau,
-            hidden,
-            pi,
-            vf,
+            conv1: pair("trunk.conv1.weight", "trunk.conv1.bias"),
+            conv2: pair("trunk.conv2.weight", "trunk.conv2.bias"),
+            dense: pair("trunk.dense.weight", "trunk.dense.bias"),
+            core_in: get("core.input.weight").map(|_| pair("core.input.weight", "core.input.bias")),
+            core_rec: get("core.recurrent.weight").map(|w| (w, get("core.recurrent.bias"))),
+            tau: get("core.tau"),
+            hidden: pair("head.hidden.weight", "head.hidden.bias"),
+            pi: pair("head.pi.weight", "head.pi.bias"),
+            vf: pair("head.vf.weight", "head.vf.bias"),
             total: at,
         }
     }

@@ -9,13 +9,14 @@ use crate::ppo::gae::{compute_gae, explained_variance};
 use crate::ppo::loss::LossCoefs;
 use crate::ppo::minibatch::{Minibatch, burn_gradient};
 use crate::ppo::obs::ObsEncoder;
-use crate::ppo::params::{flat_params, write_params};
+use crate::ppo::params::{flat_params, param_shapes, write_params};
 use crate::ppo::rollout::{Chunk, Rollout, chunks, sequence_batches};
 pub use crate::ppo::state::{EpisodeStat, TrainerState, UpdateLog};
 use burn::module::Module;
 use burn::tensor::Device;
 use chronocooked_env::{Action, Autoreset, TaskParams, VecEnv, make_config};
 use chronocooked_models::deep::native::{Cache, NativePolicy};
+use chronocooked_models::deep::spec::check_shapes;
 use chronocooked_models::{ActorCritic, CoreKind, PolicyConfig};
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
@@ -59,30 +60,22 @@ impl Trainer {
         policy_cfg.core_init = cfg.core_init;
         let device = chronocooked_models::cpu_autodiff();
         let mut model = policy_cfg.init(cfg.seed, &device);
+        let spec = chronocooked_models::deep::spec::param_spec(&policy_cfg);
         if let Some(dir) = &cfg.init_from {
             let (source, ..) = crate::run_dir::load_policy(std::path::Path::new(dir))?;
-            let theta = flat_params(&source);
-            let want = flat_params(&model).len();
-            if theta.len() != want {
-                return Err(TrainError::InvalidParam {
+            check_shapes(&spec, &param_shapes(&source)).map_err(|why| {
+                TrainError::InvalidParam {
                     field: "init_from".into(),
                     value: dir.clone(),
-                    allowed: format!(
-                        "a run of the same architecture ({} parameters; that run has {})",
-                        want,
-                        theta.len()
-                    ),
-                });
-            }
-            model = write_params(model, &theta);
+                    allowed: format!("a run of the same architecture ({why})"),
+                }
+            })?;
+            model = write_params(model, &flat_params(&source));
         }
+        // The native engine reads the module's parameters through the same specification.
+        check_shapes(&spec, &param_shapes(&model)).map_err(TrainError::SpecMismatch)?;
         let theta = flat_params(&model);
         let native = NativePolicy::new(&policy_cfg).with_detached_critic(p.detach_critic);
-        assert_eq!(
-            native.num_params(),
-            theta.len(),
-            "native layout matches the module"
-        );
         let adam = Adam::new(
             theta.len(),
             AdamParams {
