@@ -480,6 +480,9 @@ fn train_eval_record_export_report_end_to_end() {
         "foc_over_td",
         // Signature panel of a one-unit population: the accumulator's trace per TD.
         "accumulator/by_td",
+        // One headline table per theme (readable in a 1366 px window).
+        "<h2 class=\"group\">Fixed interval</h2>",
+        "<h2 class=\"group\">Neural activity</h2>",
     ] {
         assert!(html.contains(needle), "{needle} missing from the report");
     }

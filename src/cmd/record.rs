@@ -100,8 +100,12 @@ pub fn record(args: RecordArgs) -> Result<()> {
     Ok(())
 }
 
-/// Heat maps and population figures of every population (≥ 2 units) of `dataset`, and
-/// the per-TD trace of every one-unit population, aligned to oven-on.
+/// Scalars every learner records (value estimate, reward-prediction error): not a timing
+/// mechanism's signature.
+const LEARNER_SIGNALS: [&str; 2] = ["value", "rpe"];
+
+/// Heat maps and population figures of every population (≥ 2 units) of `dataset`, and —
+/// for a model with only one-unit populations — their per-TD traces, aligned to oven-on.
 fn write_heatmaps(dataset: &chronocooked_models::ActivityDataset, dir: &Path) -> Result<()> {
     use chronocooked_analysis::neural::Cube;
     use chronocooked_models::Marker;
@@ -122,10 +126,16 @@ fn write_heatmaps(dataset: &chronocooked_models::ActivityDataset, dir: &Path) ->
     }
     let cube = Cube::from_f32(&aligned, used.len(), window, n);
     let avg = cube.average();
+    // A model without a multi-unit population (drift-diffusion) is shown by the per-TD
+    // traces of its own one-unit populations (not the learner's `value` / `rpe`).
+    let only_scalars = dataset.meta.populations.iter().all(|p| p.size < 2);
     for p in &dataset.meta.populations {
         let r = dataset.meta.range(&p.name).expect("population exists");
         if p.size < 2 {
-            // One unit (an accumulator, a value): its trace per TD is the signature.
+            if !only_scalars || LEARNER_SIGNALS.contains(&p.name.as_str()) {
+                continue;
+            }
+            // One unit (an accumulator): its trace per TD is the signature.
             let title = format!(
                 "{}: {} per TD (trial average, aligned to oven on)",
                 dataset.meta.model, p.name

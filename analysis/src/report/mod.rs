@@ -152,6 +152,34 @@ fn used_columns(rows: &[Row]) -> Vec<(&'static str, &'static str)> {
         .collect()
 }
 
+/// The theme a headline column belongs to (the HTML report shows one table per theme).
+pub fn column_group(key: &str) -> &'static str {
+    match key {
+        k if k == "fi_success" || k.starts_with("foc_") || k.starts_with("r2_") => "Fixed interval",
+        k if k.starts_with("pi_") => "Peak interval",
+        k if k.starts_with("bisection") || k.starts_with("bp") || k.starts_with("wf") => {
+            "Bisection"
+        }
+        k if k.starts_with("mt_") => "Multi-timer",
+        k if k.starts_with("dual_") => "Dual task",
+        k if k.starts_with("unc_") => "Uncertainty",
+        _ => "Neural activity",
+    }
+}
+
+/// The used columns grouped by [`column_group`], groups in first-appearance order.
+fn column_groups<'a>(cols: &[(&'a str, &str)]) -> Vec<(&'static str, Vec<&'a str>)> {
+    let mut groups: Vec<(&'static str, Vec<&'a str>)> = Vec::new();
+    for (k, _) in cols {
+        let g = column_group(k);
+        match groups.iter_mut().find(|(name, _)| *name == g) {
+            Some((_, keys)) => keys.push(k),
+            None => groups.push((g, vec![k])),
+        }
+    }
+    groups
+}
+
 /// Writes `report.html`, `report.md` and `report.csv` into `out`.
 pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
@@ -197,22 +225,31 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
     for (k, what) in &cols {
         md += &format!("* `{k}`: {what}\n");
     }
-    // HTML with inline SVG figures.
+    // HTML with inline SVG figures; the headline metrics as one table per theme, each
+    // narrow enough for a 1366 px window.
     let mut html = String::from(
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>Chronocooked leaderboard</title>\n<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}td,th{border:1px solid #bbb;padding:4px 8px;text-align:right}th{background:#eee}td:first-child{text-align:left}figure{display:inline-block;margin:0.5em;width:46%}figure.wide{width:96%}figure svg{width:100%;height:auto}</style></head><body>\n<h1>Chronocooked leaderboard</h1>\n<table>\n<tr><th>model</th><th>runs</th>",
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>Chronocooked leaderboard</title>\n<style>body{font-family:sans-serif;margin:1.5em;max-width:1600px}table{border-collapse:collapse;margin-bottom:1em}td,th{border:1px solid #bbb;padding:3px 7px;text-align:right;white-space:nowrap;font-size:14px}th{background:#eee}td:first-child{text-align:left}h2.group{font-size:1.1em;margin:0.8em 0 0.3em}figure{display:inline-block;margin:0.5em;width:46%}figure.wide{width:96%}figure svg{width:100%;height:auto}</style></head><body>\n<h1>Chronocooked leaderboard</h1>\n",
     );
-    for (k, _) in &cols {
-        html += &format!("<th>{k}</th>");
-    }
-    html += "</tr>\n";
-    for r in rows {
-        html += &format!("<tr><td>{}</td><td>{}</td>", escape(&r.model), r.runs.len());
-        for (k, _) in &cols {
-            html += &format!("<td>{}</td>", cell(r.values.get(*k)));
+    for (group, keys) in column_groups(&cols) {
+        html +=
+            &format!("<h2 class=\"group\">{group}</h2>\n<table>\n<tr><th>model</th><th>runs</th>");
+        for k in &keys {
+            html += &format!("<th>{k}</th>");
         }
         html += "</tr>\n";
+        for r in rows {
+            if !keys.iter().any(|k| r.values.contains_key(*k)) {
+                continue;
+            }
+            html += &format!("<tr><td>{}</td><td>{}</td>", escape(&r.model), r.runs.len());
+            for k in &keys {
+                html += &format!("<td>{}</td>", cell(r.values.get(*k)));
+            }
+            html += "</tr>\n";
+        }
+        html += "</table>\n";
     }
-    html += "</table>\n<h2>Columns</h2>\n<dl>\n";
+    html += "<h2>Columns</h2>\n<dl>\n";
     html += &format!(
         "<dt><code>runs</code></dt><dd>{}</dd>\n",
         escape(RUNS_LEGEND)
