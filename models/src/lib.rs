@@ -1,7 +1,8 @@
 //! Chronocooked Lab models, by family:
 //!
 //! * [`deep`] — the paper's deep-RL networks: CNN trunk, recurrent cores (LSTM, GRU, RNN,
-//!   CTRNN), actor–critic policies as burn modules, and their native twin (`deep::native`);
+//!   CTRNN), actor–critic policies as burn modules, the one parameter specification
+//!   (`deep::spec`) and their native twin (`deep::native`);
 //! * [`timing`] — the biologically plausible timing models (drift-diffusion, striatal beat
 //!   frequency, time cells, TD), the agents that play the tasks with them and their zoo;
 //! * [`agent`] — the one agent interface every model plays through, episodes and the

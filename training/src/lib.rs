@@ -7,7 +7,7 @@
 //!   timing models; [`evaluate`] — the deterministic evaluation used during training;
 //! * [`adapt`] — adaptation to the uncertainty task; [`zoo`] — every model the lab can
 //!   train, evaluate or record;
-//! * [`sweep`] — sweep files, job progress, Slurm emission, cost estimates;
+//! * [`sweep`] — sweep files, typed job stages, job progress, Slurm emission, cost estimates;
 //! * [`error`] — typed training errors.
 
 #![warn(missing_docs)]
