@@ -695,3 +695,38 @@ fn a_folder_that_is_not_a_run_and_a_file_that_is_not_a_sweep_say_so() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_hand_edited_run_config_is_checked_like_a_set_override() {
+    let dir = temp_dir("edited-config");
+    let run = dir.join("run");
+    run_ok(&[
+        "train",
+        "--model",
+        "cnn-mlp",
+        "--preset",
+        "fast",
+        "--steps",
+        "1000",
+        "--quiet",
+        "--out",
+        run.to_str().unwrap(),
+    ]);
+    let path = run.join("config.json");
+    let mut cfg: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    cfg["ppo"]["n_epochs"] = serde_json::json!(0);
+    std::fs::write(&path, serde_json::to_string(&cfg).unwrap()).unwrap();
+    let err = run_err(&[
+        "eval",
+        "--run",
+        run.to_str().unwrap(),
+        "--out",
+        dir.join("e").to_str().unwrap(),
+    ]);
+    assert!(
+        err.contains("config.json") && err.contains("n_epochs") && err.contains("1..=1000"),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -417,3 +417,41 @@ fn cnn_mlp_and_lstm_learn_fixed_interval_td4() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn every_preset_survives_its_own_validation_and_settings_replay_exactly() {
+    // `validate` replays every setting through `set`; a resolved preset must pass and the
+    // replay must reproduce it exactly (floats print and parse back to the same value).
+    for task in [
+        "FixedInterval-v0",
+        "Bisection-v0",
+        "MultiTimer-v0",
+        "Uncertainty-v0",
+    ] {
+        for arch in Architecture::all() {
+            for preset in ["reference", "fast"] {
+                let cfg = resolve(task, arch, preset, 3, &[] as &[&str]).unwrap();
+                cfg.validate()
+                    .unwrap_or_else(|e| panic!("{task} {arch:?} {preset}: {e}"));
+                let mut replay = chronocooked_training::TrainConfig::base(task, arch);
+                replay.preset = cfg.preset.clone();
+                replay.env = cfg.env.clone();
+                for (k, v) in cfg.settings() {
+                    replay.set(k, &v).unwrap();
+                }
+                assert_eq!(replay, cfg, "{task} {arch:?} {preset}");
+            }
+        }
+    }
+    let mut bad = resolve(
+        "FixedInterval-v0",
+        Architecture::all()[0],
+        "fast",
+        0,
+        &[] as &[&str],
+    )
+    .unwrap();
+    bad.ppo.gamma = 1.5;
+    let err = bad.validate().unwrap_err().to_string();
+    assert!(err.contains("gamma") && err.contains("[0, 1]"), "{err}");
+}

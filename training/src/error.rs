@@ -74,6 +74,14 @@ pub enum TrainError {
         /// What is wrong (with the line and column for TOML errors).
         message: String,
     },
+    /// A run's `config.json` is unreadable or fails the configuration's checks.
+    #[error("{file}: {message}")]
+    ConfigFile {
+        /// The file.
+        file: String,
+        /// What is wrong (the field and its allowed values for a range error).
+        message: String,
+    },
     /// A folder given as a run folder holds no run.
     #[error(
         "{path} is not a run folder (no config.json): give a folder written by `chronocooked train --out`"

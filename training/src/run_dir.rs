@@ -140,14 +140,18 @@ impl RunDir {
         })
     }
 
-    /// Reads the resolved config.
+    /// Reads the resolved config and checks it like any other ([`TrainConfig::validate`]:
+    /// a hand-edited `config.json` gets the same range checks as `--set`).
     pub fn config(&self) -> Result<TrainConfig, TrainError> {
         let p = self.path.join("config.json");
         let text = fs::read_to_string(&p).map_err(|e| TrainError::io(&p, e))?;
-        serde_json::from_str(&text).map_err(|e| TrainError::Resume {
-            path: p.display().to_string(),
-            reason: e.to_string(),
-        })
+        let bad = |message: String| TrainError::ConfigFile {
+            file: p.display().to_string(),
+            message,
+        };
+        let cfg: TrainConfig = serde_json::from_str(&text).map_err(|e| bad(e.to_string()))?;
+        cfg.validate().map_err(|e| bad(e.to_string()))?;
+        Ok(cfg)
     }
 
     /// Checkpoint files, oldest first.

@@ -425,8 +425,120 @@ impl TrainConfig {
         Ok(())
     }
 
-    /// Checks cross-field constraints and that the task and overrides make a valid env.
+    /// Every setting as the `key=value` pair [`TrainConfig::set`] takes (the resolved
+    /// configuration in the CLI's own terms; curriculum parameters after the curriculum).
+    pub fn settings(&self) -> Vec<(&'static str, String)> {
+        let p = &self.ppo;
+        let opt = |o: Option<f64>| o.map_or_else(|| "none".to_string(), |x| x.to_string());
+        let opt32 = |o: Option<f32>| o.map_or_else(|| "none".to_string(), |x| x.to_string());
+        let mut v = vec![
+            ("seed", self.seed.to_string()),
+            ("total_steps", self.total_steps.to_string()),
+            (
+                "obs",
+                match self.obs {
+                    ObsEncoding::Codes => "codes",
+                    ObsEncoding::Onehot => "onehot",
+                }
+                .into(),
+            ),
+            ("checkpoint_every", self.checkpoint_every.to_string()),
+            ("eval_every", self.eval_every.to_string()),
+            ("stats_window", self.stats_window.to_string()),
+            (
+                "core_init",
+                match self.core_init {
+                    chronocooked_models::CoreInit::Lab => "lab",
+                    chronocooked_models::CoreInit::Torch => "torch",
+                }
+                .into(),
+            ),
+            (
+                "init_from",
+                self.init_from.clone().unwrap_or_else(|| "none".into()),
+            ),
+            ("stop_at_success", opt(self.stop_at_success)),
+            ("n_envs", p.n_envs.to_string()),
+            ("n_steps", p.n_steps.to_string()),
+            ("batch_size", p.batch_size.to_string()),
+            ("n_epochs", p.n_epochs.to_string()),
+            ("bptt_len", p.bptt_len.to_string()),
+            (
+                "engine",
+                match p.engine {
+                    Engine::Native => "native",
+                    Engine::Burn => "burn",
+                }
+                .into(),
+            ),
+            ("recurrent_batches", p.recurrent_batches.name().into()),
+            ("detach_critic", p.detach_critic.to_string()),
+            (
+                "reservoir_grad_in_norm",
+                p.reservoir_grad_in_norm.to_string(),
+            ),
+            ("gamma", p.gamma.to_string()),
+            ("gae_lambda", p.gae_lambda.to_string()),
+            ("clip_range", p.clip_range.to_string()),
+            ("clip_range_vf", opt32(p.clip_range_vf)),
+            ("ent_coef", p.ent_coef.to_string()),
+            ("vf_coef", p.vf_coef.to_string()),
+            ("max_grad_norm", p.max_grad_norm.to_string()),
+            ("learning_rate", p.learning_rate.to_string()),
+            (
+                "lr_schedule",
+                match p.lr_schedule {
+                    LrSchedule::Constant => "constant",
+                    LrSchedule::Linear => "linear",
+                }
+                .into(),
+            ),
+            ("adam_eps", p.adam_eps.to_string()),
+            ("target_kl", opt32(p.target_kl)),
+            ("normalize_advantage", p.normalize_advantage.to_string()),
+        ];
+        match &self.curriculum {
+            Curriculum::None => v.push(("curriculum", "none".into())),
+            Curriculum::MultiTimer {
+                thresholds,
+                window,
+                warmup,
+            } => v.extend([
+                ("curriculum", "multi_timer".into()),
+                (
+                    "curriculum_thresholds",
+                    thresholds
+                        .iter()
+                        .map(|t| t.to_string())
+                        .collect::<Vec<_>>()
+                        .join(","),
+                ),
+                ("curriculum_window", window.to_string()),
+                ("curriculum_warmup", warmup.to_string()),
+            ]),
+            Curriculum::Uncertainty {
+                start,
+                end,
+                ramp_fraction,
+            } => v.extend([
+                ("curriculum", "uncertainty".into()),
+                ("never_ready_start", start.to_string()),
+                ("never_ready_end", end.to_string()),
+                ("never_ready_ramp", ramp_fraction.to_string()),
+            ]),
+        }
+        v
+    }
+
+    /// The one check of a configuration, however it was made (presets, `--set`, a
+    /// hand-edited or resumed `config.json`): every setting's value is replayed through
+    /// [`TrainConfig::set`] (so each field has one range rule, the CLI's), then the
+    /// cross-field constraints and the task and overrides (a valid env).
     pub fn validate(&self) -> Result<(), TrainError> {
+        let mut replay = self.clone();
+        for (k, v) in self.settings() {
+            replay.set(k, &v)?;
+        }
         chronocooked_env::make_config(&self.task, &self.env)?;
         if self.ppo.n_envs * self.ppo.n_steps < 2 {
             return Err(TrainError::param(
