@@ -248,6 +248,26 @@ pub fn run_episode(
     Ok(rec)
 }
 
+/// Records `repeats` × (every start cell × `tds`) greedy episodes of `agent` on `config`
+/// into an activity dataset (`task` and `env` name the task in its metadata; repetition
+/// `r` is seeded `seed + r`, so noisy models give different trials).
+pub fn record_dataset(
+    agent: &mut dyn Agent,
+    config: &TaskConfig,
+    task: &str,
+    env: &[String],
+    tds: &[u32],
+    repeats: u64,
+    seed: u64,
+) -> Result<crate::ActivityDataset, EnvError> {
+    let meta = crate::activity::ActivityMeta::new(&agent.name(), task, env, seed);
+    let mut rec = TrialRecorder::new(meta);
+    for r in 0..repeats.max(1) {
+        evaluate_agent(agent, config, tds, seed.wrapping_add(r), Some(&mut rec))?;
+    }
+    Ok(rec.finish())
+}
+
 /// Deterministic evaluation: one greedy episode per free start cell per TD in `tds`.
 /// Returns the records (start cells in row-major order, TDs in the given order).
 pub fn evaluate_agent(

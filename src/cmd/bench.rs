@@ -1,8 +1,8 @@
 //! `bench`: env steps/s, PPO training env-steps/s and timing-model trials/s.
 
-use crate::cmd::record::record_dataset;
 use anyhow::{Result, bail};
 use chronocooked_env::{bench, find_task, make_config};
+use chronocooked_models::agent::record_dataset;
 use chronocooked_models::timing::zoo::{TIMING_MODELS, make_timing_agent};
 use chronocooked_models::{Architecture, evaluate_agent};
 use chronocooked_training::resolve;

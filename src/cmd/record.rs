@@ -3,13 +3,12 @@
 
 use anyhow::Result;
 use chronocooked_env::{TaskConfig, make_config};
-use chronocooked_models::activity::{ActivityMeta, TrialRecorder};
-use chronocooked_models::{Agent, evaluate_agent};
+use chronocooked_models::agent::record_dataset;
 use chronocooked_training::eval_tds;
 use chronocooked_training::run_dir::write_atomic;
 use chronocooked_training::timing_run::load_agent;
 use clap::Args;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Arguments of `record`.
 #[derive(Args, Debug)]
@@ -69,7 +68,7 @@ pub fn record(args: RecordArgs) -> Result<()> {
     )?;
     write_atomic(&args.out, &serde_json::to_vec(&dataset)?)?;
     if let Some(dir) = &args.figures {
-        write_heatmaps(&dataset, dir)?;
+        chronocooked_analysis::report::figures::neural_figures(&dataset, dir)?;
     }
     if args.summary {
         let summaries: Vec<_> = dataset
@@ -98,107 +97,4 @@ pub fn record(args: RecordArgs) -> Result<()> {
         args.out.display()
     );
     Ok(())
-}
-
-/// Scalars every learner records (value estimate, reward-prediction error): not a timing
-/// mechanism's signature.
-const LEARNER_SIGNALS: [&str; 2] = ["value", "rpe"];
-
-/// Heat maps and population figures of every population (≥ 2 units) of `dataset`, and —
-/// for a model with only one-unit populations — their per-TD traces, aligned to oven-on.
-fn write_heatmaps(dataset: &chronocooked_models::ActivityDataset, dir: &Path) -> Result<()> {
-    use chronocooked_analysis::neural::Cube;
-    use chronocooked_models::Marker;
-    let window = dataset
-        .trials
-        .iter()
-        .filter_map(|t| {
-            t.first(Marker::OvenOn)
-                .map(|on| t.steps.saturating_sub(on as usize + 1))
-        })
-        .max()
-        .unwrap_or(0)
-        .clamp(1, 60);
-    let (aligned, used) = dataset.aligned(Marker::OvenOn, window - 1);
-    let n = dataset.meta.n_units();
-    if used.is_empty() {
-        return Ok(());
-    }
-    let cube = Cube::from_f32(&aligned, used.len(), window, n);
-    let avg = cube.average();
-    // A model without a multi-unit population (drift-diffusion) is shown by the per-TD
-    // traces of its own one-unit populations (not the learner's `value` / `rpe`).
-    let only_scalars = dataset.meta.populations.iter().all(|p| p.size < 2);
-    for p in &dataset.meta.populations {
-        let r = dataset.meta.range(&p.name).expect("population exists");
-        if p.size < 2 {
-            if !only_scalars || LEARNER_SIGNALS.contains(&p.name.as_str()) {
-                continue;
-            }
-            // One unit (an accumulator): its trace per TD is the signature.
-            let title = format!(
-                "{}: {} per TD (trial average, aligned to oven on)",
-                dataset.meta.model, p.name
-            );
-            chronocooked_analysis::report::figures::unit_by_td(
-                &dir.join(&p.name),
-                &title,
-                dataset,
-                r.start,
-                window,
-            )?;
-            continue;
-        }
-        let sub: Vec<f64> = avg
-            .chunks_exact(n)
-            .flat_map(|row| row[r.clone()].to_vec())
-            .collect();
-        let title = format!(
-            "{}: {} (trial average, aligned to oven on)",
-            dataset.meta.model, p.name
-        );
-        chronocooked_analysis::report::figures::write_heatmap(
-            &dir.join(&p.name),
-            &title,
-            &sub,
-            p.size,
-        )?;
-        let mut data = Vec::with_capacity(cube.trials * window * p.size);
-        for k in 0..cube.trials {
-            for t in 0..window {
-                data.extend(r.clone().map(|i| cube.at(k, t, i)));
-            }
-        }
-        let pop = Cube {
-            trials: cube.trials,
-            time: window,
-            units: p.size,
-            data,
-        };
-        let title = format!("{} {}", dataset.meta.model, p.name);
-        chronocooked_analysis::report::figures::population_figures(
-            &dir.join(&p.name),
-            &title,
-            &pop,
-        )?;
-    }
-    Ok(())
-}
-
-/// Records `repeats` × (every start cell × `tds`) greedy episodes of `agent`.
-pub fn record_dataset(
-    agent: &mut dyn Agent,
-    config: &TaskConfig,
-    task: &str,
-    env: &[String],
-    tds: &[u32],
-    repeats: u64,
-    seed: u64,
-) -> Result<chronocooked_models::ActivityDataset> {
-    let meta = ActivityMeta::new(&agent.name(), task, env, seed);
-    let mut rec = TrialRecorder::new(meta);
-    for r in 0..repeats.max(1) {
-        evaluate_agent(agent, config, tds, seed.wrapping_add(r), Some(&mut rec))?;
-    }
-    Ok(rec.finish())
 }

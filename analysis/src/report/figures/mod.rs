@@ -327,6 +327,79 @@ pub fn population_figures(
     Ok(out)
 }
 
+/// Scalars every learner records (value estimate, reward-prediction error): not a timing
+/// mechanism's signature.
+const LEARNER_SIGNALS: [&str; 2] = ["value", "rpe"];
+
+/// Heat maps and population figures of every population (≥ 2 units) of `dataset`, and —
+/// for a model with only one-unit populations — their per-TD traces, aligned to oven-on.
+pub fn neural_figures(
+    dataset: &chronocooked_models::ActivityDataset,
+    dir: &Path,
+) -> Result<(), FigureError> {
+    use crate::neural::Cube;
+    use chronocooked_models::Marker;
+    let window = dataset
+        .trials
+        .iter()
+        .filter_map(|t| {
+            t.first(Marker::OvenOn)
+                .map(|on| t.steps.saturating_sub(on as usize + 1))
+        })
+        .max()
+        .unwrap_or(0)
+        .clamp(1, 60);
+    let (aligned, used) = dataset.aligned(Marker::OvenOn, window - 1);
+    let n = dataset.meta.n_units();
+    if used.is_empty() {
+        return Ok(());
+    }
+    let cube = Cube::from_f32(&aligned, used.len(), window, n);
+    let avg = cube.average();
+    // A model without a multi-unit population (drift-diffusion) is shown by the per-TD
+    // traces of its own one-unit populations (not the learner's `value` / `rpe`).
+    let only_scalars = dataset.meta.populations.iter().all(|p| p.size < 2);
+    for p in &dataset.meta.populations {
+        let r = dataset.meta.range(&p.name).expect("population exists");
+        if p.size < 2 {
+            if !only_scalars || LEARNER_SIGNALS.contains(&p.name.as_str()) {
+                continue;
+            }
+            // One unit (an accumulator): its trace per TD is the signature.
+            let title = format!(
+                "{}: {} per TD (trial average, aligned to oven on)",
+                dataset.meta.model, p.name
+            );
+            unit_by_td(&dir.join(&p.name), &title, dataset, r.start, window)?;
+            continue;
+        }
+        let sub: Vec<f64> = avg
+            .chunks_exact(n)
+            .flat_map(|row| row[r.clone()].to_vec())
+            .collect();
+        let title = format!(
+            "{}: {} (trial average, aligned to oven on)",
+            dataset.meta.model, p.name
+        );
+        write_heatmap(&dir.join(&p.name), &title, &sub, p.size)?;
+        let mut data = Vec::with_capacity(cube.trials * window * p.size);
+        for k in 0..cube.trials {
+            for t in 0..window {
+                data.extend(r.clone().map(|i| cube.at(k, t, i)));
+            }
+        }
+        let pop = Cube {
+            trials: cube.trials,
+            time: window,
+            units: p.size,
+            data,
+        };
+        let title = format!("{} {}", dataset.meta.model, p.name);
+        population_figures(&dir.join(&p.name), &title, &pop)?;
+    }
+    Ok(())
+}
+
 /// Single-unit signature: the trial-averaged activity of unit `unit` of `dataset` for each
 /// recorded TD, aligned to oven on (`window` steps: oven time 0 … window − 1), with a
 /// marker at every TD — a drift-diffusion accumulator ramps to its threshold at each TD,
