@@ -119,7 +119,8 @@ impl TimingRunConfig {
         self.validate()
     }
 
-    /// Checks ranges.
+    /// Checks ranges and the task with its overrides (also applied to a loaded
+    /// `config.json`).
     pub fn validate(&self) -> Result<(), TrainError> {
         let t = &self.train;
         let bad = |field: &str, value: String, allowed: &str| {
@@ -147,6 +148,7 @@ impl TimingRunConfig {
                 "a number in (0, 1]",
             );
         }
+        make_config(&self.task, &self.env)?;
         Ok(())
     }
 
@@ -315,7 +317,13 @@ pub fn load_timing_agent(dir: &Path) -> Result<(TimingRunConfig, TimingAgent), T
         path: dir.join(name).display().to_string(),
         reason: e.to_string(),
     };
-    let cfg = serde_json::from_str(&read("config.json")?).map_err(|e| bad("config.json", e))?;
+    let cfg: TimingRunConfig =
+        serde_json::from_str(&read("config.json")?).map_err(|e| bad("config.json", e))?;
+    // A hand-edited config gets the same checks as `--set`.
+    cfg.validate().map_err(|e| TrainError::ConfigFile {
+        file: dir.join("config.json").display().to_string(),
+        message: e.to_string(),
+    })?;
     let agent = serde_json::from_str(&read("agent.json")?).map_err(|e| bad("agent.json", e))?;
     Ok((cfg, agent))
 }
