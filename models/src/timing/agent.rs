@@ -28,7 +28,7 @@
 
 use crate::activity::StepRecorder;
 use crate::agent::{Agent, Percept, PerceptParser};
-use crate::timing::judgment::LONG;
+use crate::timing::judgment::{LONG, SHORT};
 use crate::timing::sarsa::{SarsaConfig, SarsaLambda};
 use crate::timing::timers::Timer;
 use chronocooked_env::{Action, ChronoEnv, ObjectKind};
@@ -128,27 +128,25 @@ impl TimingAgent {
     /// An untrained agent with `timer` for the task of `env`.
     pub fn new(name: &str, timer: Timer, env: &ChronoEnv, config: TimingAgentConfig) -> Self {
         let layout = env.layout();
-        let choice_cells: Vec<(usize, u8)> = layout
-            .free_cells()
-            .iter()
-            .filter_map(|&c| match layout.adjacent_object(c as usize) {
-                Some((ObjectKind::LongCounter, _)) => Some((c as usize, 1)),
-                Some((ObjectKind::ShortCounter | ObjectKind::DeliveryCounter, _)) => {
-                    Some((c as usize, 0))
-                }
-                _ => None,
-            })
-            .collect();
-        let button_cells = layout
-            .free_cells()
-            .iter()
-            .filter(|&&c| {
-                matches!(
-                    layout.adjacent_object(c as usize),
-                    Some((ObjectKind::OvenButton, _))
-                )
-            })
-            .map(|&c| c as usize)
+        // Free cells next to an object, with what `f` makes of the object.
+        let next_to = |f: &dyn Fn(ObjectKind) -> Option<u8>| -> Vec<(usize, u8)> {
+            layout
+                .free_cells()
+                .iter()
+                .filter_map(|&c| {
+                    let (kind, _) = layout.adjacent_object(c as usize)?;
+                    f(kind).map(|v| (c as usize, v))
+                })
+                .collect()
+        };
+        let choice_cells = next_to(&|k| match k {
+            ObjectKind::LongCounter => Some(LONG),
+            ObjectKind::ShortCounter | ObjectKind::DeliveryCounter => Some(SHORT),
+            _ => None,
+        });
+        let button_cells = next_to(&|k| (k == ObjectKind::OvenButton).then_some(0))
+            .into_iter()
+            .map(|(c, _)| c)
             .collect();
         let features = timer.n_features() + 1 + JUDGMENT_FEATURES;
         let judges = choice_cells.iter().any(|&(_, slot)| slot == LONG);
