@@ -48,15 +48,22 @@ fn timing_agents_solve_fi12_and_bisection_4_12() {
     }
 }
 
+/// Trains the timing run `cfg` through the project's training path (in a temporary run
+/// folder named after `label`) and loads the saved agent.
+fn trained_agent(cfg: &TimingRunConfig, label: &str) -> Box<dyn chronocooked_models::Agent> {
+    let dir = temp_dir(label);
+    run_timing_training(cfg, &dir, "test", |_| {}).unwrap();
+    let agent = load_agent(&dir, None).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    agent
+}
+
 /// Anchors, largest fall of P(long) between consecutive valid probes, BP/GM, P(long).
 fn judged_curve(model: &str, short: u32, long: u32, seed: u64) -> (f64, f64, f64, Vec<f64>) {
     let mut cfg = TimingRunConfig::new("Bisection-v0", model, seed);
     cfg.set(&format!("env.short={short}")).unwrap();
     cfg.set(&format!("env.long={long}")).unwrap();
-    let dir = temp_dir(&format!("judge-{model}-{short}-{long}-{seed}"));
-    run_timing_training(&cfg, &dir, "test", |_| {}).unwrap();
-    let mut agent = load_agent(&dir, None).unwrap();
-    let _ = std::fs::remove_dir_all(&dir);
+    let mut agent = trained_agent(&cfg, &format!("judge-{model}-{short}-{long}-{seed}"));
     let conds = reference_conditions("Bisection-v0", &cfg.env).unwrap();
     let records = run_protocol(agent.as_mut(), &conds, Mode::Reference, 7).unwrap();
     let b = compute_metrics(model, &records, 0).bisection.unwrap();
@@ -486,10 +493,7 @@ fn trained_average(model: &str, td: u32, population: &str, window: usize) -> (Ve
     use chronocooked_analysis::neural::Cube;
     let mut cfg = TimingRunConfig::new("FixedInterval-v0", model, 0);
     cfg.set(&format!("env.td={td}")).unwrap();
-    let dir = temp_dir(&format!("signature-{model}-{td}"));
-    run_timing_training(&cfg, &dir, "test", |_| {}).unwrap();
-    let mut agent = load_agent(&dir, None).unwrap();
-    let _ = std::fs::remove_dir_all(&dir);
+    let mut agent = trained_agent(&cfg, &format!("signature-{model}-{td}"));
     let config = make_config("FixedInterval-v0", &cfg.env).unwrap();
     let mut rec = TrialRecorder::new(ActivityMeta::new(model, "FixedInterval-v0", &cfg.env, 0));
     for seed in 0..3 {

@@ -370,16 +370,12 @@ impl TimeCells {
             Representation::Csc { units } => {
                 Some((self.csc_index(t).min(units - 1) as f64).max(0.5))
             }
-            Representation::Microstimulus {
-                decay,
-                sigma,
-                count,
-            } => {
-                let y = self.trace(*decay, t);
+            Representation::Microstimulus { decay, count, .. } => {
+                let mut units = Vec::new();
+                self.units_into(&mut units);
                 let (mut num, mut den) = (0.0, 0.0);
-                for i in 1..=*count {
-                    let x = microstimulus(y, i, *count, *sigma);
-                    num += x * i as f64 / *count as f64;
+                for (i, x) in units.iter().enumerate() {
+                    num += x * (i + 1) as f64 / *count as f64;
                     den += x;
                 }
                 let y_hat = (den > 1e-300).then(|| (num / den).clamp(1e-12, 1.0 - 1e-12))?;
