@@ -423,5 +423,47 @@ fn a_hand_edited_run_config_is_checked_like_a_set_override() {
         err.contains("config.json") && err.contains("n_epochs") && err.contains("1..=1000"),
         "{err}"
     );
+    // A misspelt setting is an error naming the file and the field, not silently dropped.
+    cfg["ppo"]["n_epochs"] = serde_json::json!(4);
+    cfg["ppo"]["learning_rte"] = serde_json::json!(0.001);
+    std::fs::write(&path, serde_json::to_string(&cfg).unwrap()).unwrap();
+    let err = run_err(&["train", "--resume", run.to_str().unwrap(), "--quiet"]);
+    assert!(
+        err.contains("config.json") && err.contains("unknown field `learning_rte`"),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_timing_run_config_with_an_unknown_field_names_it() {
+    let dir = temp_dir("edited-timing-config");
+    let run = dir.join("run");
+    run_ok(&[
+        "train",
+        "--model",
+        "ddm",
+        "--set",
+        "episodes=50",
+        "--quiet",
+        "--out",
+        run.to_str().unwrap(),
+    ]);
+    let path = run.join("config.json");
+    let mut cfg: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    cfg["train"]["episdoes"] = serde_json::json!(10);
+    std::fs::write(&path, serde_json::to_string(&cfg).unwrap()).unwrap();
+    let err = run_err(&[
+        "eval",
+        "--run",
+        run.to_str().unwrap(),
+        "--out",
+        dir.join("e").to_str().unwrap(),
+    ]);
+    assert!(
+        err.contains("config.json") && err.contains("unknown field `episdoes`"),
+        "{err}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

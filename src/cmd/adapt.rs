@@ -2,7 +2,8 @@
 //! task (default `Uncertainty-v0`) and the episodes it needs to adapt are counted.
 
 use anyhow::Result;
-use chronocooked_training::adapt::{self, AdaptConfig, run_adaptation};
+use chronocooked_pipeline::stages::AdaptRequest;
+use chronocooked_training::adapt::{self, AdaptConfig};
 use clap::Args;
 use std::path::PathBuf;
 
@@ -45,23 +46,9 @@ pub struct AdaptArgs {
 
 /// Runs `adapt`.
 pub fn run(args: AdaptArgs) -> Result<()> {
-    let env = if args.env.is_empty() {
-        let (task, own) = chronocooked_training::timing_run::run_task(&args.run)?;
-        own.into_iter()
-            .filter(|s| {
-                if task == args.task {
-                    !s.starts_with("never_ready_prob")
-                } else {
-                    s.starts_with("td=")
-                }
-            })
-            .collect()
-    } else {
-        args.env.clone()
-    };
-    let cfg = AdaptConfig {
+    let config = AdaptConfig {
         task: args.task.clone(),
-        env,
+        env: args.env.clone(),
         episodes: args.episodes,
         steps: args.steps,
         window: args.window,
@@ -69,7 +56,11 @@ pub fn run(args: AdaptArgs) -> Result<()> {
         epsilon: args.epsilon,
         seed: args.seed,
     };
-    let r = run_adaptation(&args.run, &cfg, &args.out)?;
+    let r = chronocooked_pipeline::stages::adapt(&AdaptRequest {
+        run: args.run.clone(),
+        config,
+        out: args.out.clone(),
+    })?;
     println!(
         "{} ({} → {}): {} episodes; never-ready success {:.2} → {:.2} (normal ovens {:.2}); adapted {} → {}",
         r.model,

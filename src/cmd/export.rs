@@ -94,35 +94,12 @@ fn export_nwb(args: &ExportArgs) -> Result<PathBuf> {
 
 /// Runs `export`.
 pub fn run(args: ExportArgs) -> Result<()> {
-    if args.activity.is_none() && args.eval.is_none() {
-        bail!(
-            "say what to export: --activity FILE.json (from `record`) and/or --eval DIR (from `eval`)"
-        );
-    }
-    let mut files = Vec::new();
-    if let Some(path) = &args.activity {
-        let text =
-            std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
-        let ds: chronocooked_models::ActivityDataset =
-            serde_json::from_str(&text).with_context(|| {
-                format!(
-                    "{} is not an activity dataset (from `record`)",
-                    path.display()
-                )
-            })?;
-        files.extend(
-            chronocooked_analysis::export::export_activity(&ds, &args.out, args.window)
-                .map_err(anyhow::Error::msg)?,
-        );
-    }
-    if let Some(dir) = &args.eval {
-        let records = chronocooked_analysis::evaluation::protocol::read_records(dir)
-            .map_err(|e| anyhow::anyhow!("{e} (not an eval folder)"))?;
-        files.extend(
-            chronocooked_analysis::export::export_eval(&records, &args.out)
-                .map_err(anyhow::Error::msg)?,
-        );
-    }
+    let mut files = chronocooked_pipeline::stages::export(
+        args.activity.as_deref(),
+        args.eval.as_deref(),
+        args.window,
+        &args.out,
+    )?;
     if args.format == "nwb" {
         files.push(export_nwb(&args)?);
     }

@@ -2,11 +2,7 @@
 //! heat maps and the neural summary.
 
 use anyhow::Result;
-use chronocooked_env::{TaskConfig, make_config};
-use chronocooked_models::agent::record_dataset;
-use chronocooked_training::eval_tds;
-use chronocooked_training::run_dir::write_atomic;
-use chronocooked_training::timing_run::load_agent;
+use chronocooked_pipeline::stages::RecordRequest;
 use clap::Args;
 use std::path::PathBuf;
 
@@ -46,54 +42,23 @@ pub struct RecordArgs {
 
 /// Runs `record`.
 pub fn record(args: RecordArgs) -> Result<()> {
-    let (task, env) = match &args.task {
-        Some(t) => (t.clone(), args.env.clone()),
-        None => chronocooked_training::timing_run::run_task(&args.run)?,
-    };
-    let config: TaskConfig = make_config(&task, &env)?;
-    let mut agent = load_agent(&args.run, Some(&config))?;
-    let tds = if args.tds.is_empty() {
-        eval_tds(&config)
-    } else {
-        args.tds.clone()
-    };
-    let dataset = record_dataset(
-        agent.as_mut(),
-        &config,
-        &task,
-        &env,
-        &tds,
-        args.repeats,
-        args.seed,
-    )?;
-    write_atomic(&args.out, &serde_json::to_vec(&dataset)?)?;
-    if let Some(dir) = &args.figures {
-        chronocooked_analysis::report::figures::neural_figures(&dataset, dir)?;
-    }
-    if args.summary {
-        let summaries: Vec<_> = dataset
-            .meta
-            .populations
-            .iter()
-            .filter_map(|p| {
-                chronocooked_analysis::neural::summary::neural_summary(
-                    &dataset,
-                    Some(&p.name),
-                    None,
-                    args.seed,
-                )
-            })
-            .collect();
-        write_atomic(
-            &args.out.with_extension("summary.json"),
-            serde_json::to_string_pretty(&summaries)?.as_bytes(),
-        )?;
-    }
+    let r = chronocooked_pipeline::stages::record(&RecordRequest {
+        run: args.run.clone(),
+        task: args.task.clone(),
+        env: args.env.clone(),
+        tds: args.tds.clone(),
+        repeats: args.repeats,
+        seed: args.seed,
+        out: args.out.clone(),
+        summary: args.summary,
+        figures: args.figures.clone(),
+    })?;
     println!(
-        "{} trials × {} units of {} on {task} → {}",
-        dataset.trials.len(),
-        dataset.meta.n_units(),
-        dataset.meta.model,
+        "{} trials × {} units of {} on {} → {}",
+        r.trials,
+        r.units,
+        r.model,
+        r.task,
         args.out.display()
     );
     Ok(())

@@ -3,17 +3,17 @@
 //! `sweep-job`: run one job's stages in this process (what workers and Slurm tasks call).
 
 use anyhow::{Context, Result, bail};
-use chronocooked_training::adapt;
+use chronocooked_pipeline::LogObserver;
 use chronocooked_training::run_dir::write_atomic;
 use chronocooked_training::sweep::{
-    Job, Stage, SweepFile, finished_stages, job_dir, job_done, mark_stage, slurm_script,
+    Job, SweepFile, finished_stages, job_dir, job_done, slurm_script,
 };
 use chronocooked_training::zoo::Family;
 use clap::Args;
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// Arguments of `sweep`.
 #[derive(Args, Debug)]
@@ -280,136 +280,10 @@ pub fn run_sweep(
     Ok(())
 }
 
-/// Runs `sweep-job`.
+/// Runs `sweep-job`: one job's unfinished stages, in this process, logged to stderr.
 pub fn run_job_cmd(args: SweepJobArgs) -> Result<()> {
     let sweep = SweepFile::load(&args.file)?;
-    let jobs = sweep.jobs()?;
-    let Some(job) = jobs.iter().find(|j| j.id == args.id) else {
-        bail!(
-            "no job `{}` in {} (list them with `sweep {} --dry-run`)",
-            args.id,
-            args.file.display(),
-            args.file.display()
-        );
-    };
-    run_job(&sweep, job, &args.out)
-}
-
-/// Removes temporary files a killed writer left behind (`*.tmp<pid>`).
-fn remove_stale_temps(dir: &Path) {
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return;
-    };
-    for e in entries.flatten() {
-        let p = e.path();
-        if p.is_dir() {
-            remove_stale_temps(&p);
-        } else if p
-            .extension()
-            .and_then(|x| x.to_str())
-            .is_some_and(|x| x.contains("tmp"))
-        {
-            let _ = std::fs::remove_file(&p);
-        }
-    }
-}
-
-/// Runs the unfinished stages of `job` (train → eval → adapt → record → export) in this
-/// process.
-pub fn run_job(sweep: &SweepFile, job: &Job, out: &Path) -> Result<()> {
-    let dir = job_dir(out, &job.id);
-    std::fs::create_dir_all(&dir)?;
-    remove_stale_temps(&dir);
-    write_atomic(
-        &dir.join("job.json"),
-        serde_json::to_string_pretty(job)?.as_bytes(),
-    )?;
-    let done = finished_stages(&dir);
-    let trained = job.family != Family::Baseline;
-    let wanted = Stage::for_job(sweep, job);
-    let run = dir.join("run");
-    for (k, stage) in wanted.iter().enumerate() {
-        if done.contains(stage) {
-            continue;
-        }
-        let t0 = Instant::now();
-        eprintln!("[{}] {stage}", job.id);
-        match *stage {
-            Stage::Train => train_stage(sweep, job, &run)?,
-            Stage::Eval => crate::cmd::eval::run(crate::cmd::eval::EvalArgs {
-                run: trained.then(|| run.clone()),
-                agent: (!trained).then(|| job.model.clone()),
-                task: (!trained).then(|| job.task.clone()),
-                env: if trained { vec![] } else { job.env.clone() },
-                stochastic: sweep.stochastic,
-                seed: job.seed,
-                human: None,
-                from: None,
-                out: dir.join("eval"),
-                activity: false,
-            })?,
-            Stage::Adapt => crate::cmd::adapt::run(crate::cmd::adapt::AdaptArgs {
-                run: run.clone(),
-                task: "Uncertainty-v0".into(),
-                env: job
-                    .env
-                    .iter()
-                    .filter(|e| !e.starts_with("never_ready_prob"))
-                    .cloned()
-                    .collect(),
-                episodes: sweep.adapt_episodes.unwrap_or(adapt::DEFAULT_EPISODES),
-                steps: sweep.adapt_steps.unwrap_or(adapt::DEFAULT_STEPS),
-                window: adapt::DEFAULT_WINDOW,
-                threshold: adapt::DEFAULT_THRESHOLD,
-                epsilon: adapt::DEFAULT_EPSILON,
-                seed: job.seed,
-                out: dir.join("adapt"),
-            })?,
-            Stage::Record => crate::cmd::record::record(crate::cmd::record::RecordArgs {
-                run: run.clone(),
-                task: None,
-                env: vec![],
-                tds: vec![],
-                repeats: 1,
-                seed: job.seed,
-                out: dir.join("activity.json"),
-                summary: true,
-                figures: Some(dir.join("neural_figures")),
-            })?,
-            Stage::Export => crate::cmd::export::run(crate::cmd::export::ExportArgs {
-                activity: (trained && sweep.record).then(|| dir.join("activity.json")),
-                eval: Some(dir.join("eval")),
-                window: 200,
-                out: dir.join("export"),
-                format: "npz".into(),
-                python: None,
-            })?,
-        }
-        mark_stage(
-            &dir,
-            &job.id,
-            *stage,
-            t0.elapsed().as_secs_f64(),
-            k + 1 == wanted.len(),
-        )?;
-    }
+    let job = chronocooked_pipeline::find_job(&sweep, &args.file, &args.id)?;
+    chronocooked_pipeline::run_job(&sweep, &job, &args.out, &mut LogObserver)?;
     Ok(())
-}
-
-fn train_stage(sweep: &SweepFile, job: &Job, run: &Path) -> Result<()> {
-    if run.join("summary.json").is_file() {
-        return Ok(());
-    }
-    let resume = job.family == Family::DeepRl && run.join("config.json").is_file();
-    crate::cmd::train::run(crate::cmd::train::TrainArgs {
-        task: job.task.clone(),
-        model: job.model.clone(),
-        preset: sweep.preset.clone(),
-        seed: job.seed,
-        steps: None,
-        sets: if resume { vec![] } else { job.sets.clone() },
-        out: (!resume).then(|| run.to_path_buf()),
-        resume: resume.then(|| run.to_path_buf()),
-        quiet: true,
-    })
 }

@@ -30,5 +30,5 @@ pub use ppo::trainer::{Trainer, TrainerState, UpdateLog};
 pub use run_dir::{Progress, RunDir, RunSummary, Silent, load_policy, run_training};
 pub use timing_run::{
     TimingRunConfig, TimingRunSummary, is_timing_run, is_timing_run_config, load_timing_agent,
-    run_timing_training,
+    load_timing_config, run_timing_training,
 };

@@ -18,6 +18,7 @@ use std::path::{Path, PathBuf};
 
 /// Everything that defines a timing-agent run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct TimingRunConfig {
     /// Always `"timing"` (tells run folders apart from PPO ones).
     pub kind: String,
@@ -307,24 +308,36 @@ pub fn is_timing_run(dir: &Path) -> bool {
     dir.join("agent.json").is_file()
 }
 
-/// Loads the config and trained agent of a timing run folder.
-pub fn load_timing_agent(dir: &Path) -> Result<(TimingRunConfig, TimingAgent), TrainError> {
-    let read = |name: &str| {
-        let p = dir.join(name);
-        std::fs::read_to_string(&p).map_err(|e| TrainError::io(&p, e))
-    };
-    let bad = |name: &str, e: serde_json::Error| TrainError::Resume {
+fn bad_file(dir: &Path, name: &str, e: serde_json::Error) -> TrainError {
+    TrainError::Resume {
         path: dir.join(name).display().to_string(),
         reason: e.to_string(),
-    };
+    }
+}
+
+/// Loads and checks the config of a timing run folder (finished or not): a folder without
+/// `config.json` is "not a run folder"; a hand-edited config gets the same checks as
+/// `--set`, and errors name the file and the field.
+pub fn load_timing_config(dir: &Path) -> Result<TimingRunConfig, TrainError> {
+    let p = dir.join("config.json");
+    let text = std::fs::read_to_string(&p).map_err(|_| TrainError::NotARun {
+        path: dir.display().to_string(),
+    })?;
     let cfg: TimingRunConfig =
-        serde_json::from_str(&read("config.json")?).map_err(|e| bad("config.json", e))?;
-    // A hand-edited config gets the same checks as `--set`.
+        serde_json::from_str(&text).map_err(|e| bad_file(dir, "config.json", e))?;
     cfg.validate().map_err(|e| TrainError::ConfigFile {
-        file: dir.join("config.json").display().to_string(),
+        file: p.display().to_string(),
         message: e.to_string(),
     })?;
-    let agent = serde_json::from_str(&read("agent.json")?).map_err(|e| bad("agent.json", e))?;
+    Ok(cfg)
+}
+
+/// Loads the config and trained agent of a timing run folder.
+pub fn load_timing_agent(dir: &Path) -> Result<(TimingRunConfig, TimingAgent), TrainError> {
+    let cfg = load_timing_config(dir)?;
+    let p = dir.join("agent.json");
+    let text = std::fs::read_to_string(&p).map_err(|e| TrainError::io(&p, e))?;
+    let agent = serde_json::from_str(&text).map_err(|e| bad_file(dir, "agent.json", e))?;
     Ok((cfg, agent))
 }
 

@@ -114,7 +114,7 @@ mod tests {
             let t = t as f64;
             assert_eq!(
                 ddm_ratio_rule(z * t / s, z * t / l, z),
-                t >= (s * l as f64).sqrt(),
+                t >= (s * l).sqrt(),
                 "t {t}"
             );
         }

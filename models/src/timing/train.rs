@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 
 /// Settings of a timing-agent training run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct TimingTrainConfig {
     /// Training episodes.
     pub episodes: usize,

@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 
 /// PPO hyperparameters (names and defaults follow Stable-Baselines3).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct PpoConfig {
     /// Parallel environments `N`.
     pub n_envs: usize,
@@ -183,6 +184,7 @@ pub enum Curriculum {
 
 /// A complete, resolved training configuration (saved in every run folder).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct TrainConfig {
     /// Task id (`FixedInterval-v0`, …).
     pub task: String,

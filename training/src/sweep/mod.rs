@@ -8,6 +8,9 @@
 //!   rerun redoes nothing that finished;
 //! * [`slurm`] — the same plan as a Slurm job array;
 //! * [`cost`] — measured throughput and the estimated time of a job.
+//!
+//! The stages themselves run in the `chronocooked-pipeline` crate (`run_job`), one level up:
+//! evaluation, recording and export need the analysis crate, a sibling of this one.
 
 pub mod cost;
 pub mod file;

@@ -1,0 +1,214 @@
+//! One sweep job, run in this process: its unfinished stages in order (train → eval →
+//! adapt → record → export), each marked finished in `progress.json` when it ends, so an
+//! interrupted job reruns only what did not finish (a PPO run continues from its newest
+//! checkpoint).
+
+use crate::PipelineError;
+use crate::stages::{self, AdaptRequest, EvalRequest, EvalSubject, RecordRequest, TrainRequest};
+use chronocooked_analysis::Mode;
+use chronocooked_training::adapt::{self, AdaptConfig};
+use chronocooked_training::sweep::{Job, Stage, SweepFile, finished_stages, job_dir, mark_stage};
+use chronocooked_training::zoo::Family;
+use std::path::Path;
+use std::time::Instant;
+
+/// Longest window (steps after oven-on) of the aligned activity arrays a job exports.
+pub const EXPORT_WINDOW: usize = 200;
+
+/// Sees a job's stages start and end (logs, progress bars); does nothing by default.
+pub trait JobObserver {
+    /// `stage` of `job` starts.
+    fn stage_started(&mut self, _job: &Job, _stage: Stage) {}
+    /// `stage` of `job` finished after `seconds`; `summary` is one line saying what it made.
+    fn stage_finished(&mut self, _job: &Job, _stage: Stage, _seconds: f64, _summary: &str) {}
+}
+
+/// A [`JobObserver`] that logs to stderr: `[<job id>] <stage>` when a stage starts and its
+/// one-line summary when it ends (what sweep workers write to their job's `log.txt`).
+pub struct LogObserver;
+
+impl JobObserver for LogObserver {
+    fn stage_started(&mut self, job: &Job, stage: Stage) {
+        eprintln!("[{}] {stage}", job.id);
+    }
+    fn stage_finished(&mut self, job: &Job, stage: Stage, seconds: f64, summary: &str) {
+        eprintln!("[{}] {stage} done in {seconds:.1} s: {summary}", job.id);
+    }
+}
+
+/// The job of `sweep` (loaded from `file`) with id `id`.
+pub fn find_job(sweep: &SweepFile, file: &Path, id: &str) -> Result<Job, PipelineError> {
+    sweep
+        .jobs()?
+        .into_iter()
+        .find(|j| j.id == id)
+        .ok_or_else(|| PipelineError::UnknownJob {
+            id: id.to_string(),
+            file: file.display().to_string(),
+        })
+}
+
+/// Removes temporary files a killed writer left behind (`*.tmp*`).
+fn remove_stale_temps(dir: &Path) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let p = e.path();
+        if p.is_dir() {
+            remove_stale_temps(&p);
+        } else if p
+            .extension()
+            .and_then(|x| x.to_str())
+            .is_some_and(|x| x.contains("tmp"))
+        {
+            let _ = std::fs::remove_file(&p);
+        }
+    }
+}
+
+/// Runs the unfinished stages of `job` of `sweep` in its folder `out/<job id>/`:
+/// `job.json`, `run/` (train), `eval/`, `adapt/`, `activity.json` + `neural_figures/`
+/// (record), `export/`, and `progress.json` after every stage.
+pub fn run_job(
+    sweep: &SweepFile,
+    job: &Job,
+    out: &Path,
+    observer: &mut dyn JobObserver,
+) -> Result<(), PipelineError> {
+    let dir = job_dir(out, &job.id);
+    std::fs::create_dir_all(&dir).map_err(|e| PipelineError::write(&dir, e))?;
+    remove_stale_temps(&dir);
+    let job_json = serde_json::to_string_pretty(job)
+        .map_err(|e| PipelineError::Analysis(format!("serialising job {}: {e}", job.id)))?;
+    let job_file = dir.join("job.json");
+    chronocooked_env::fs::write_atomic(&job_file, job_json.as_bytes())
+        .map_err(|e| PipelineError::write(&job_file, e))?;
+    let done = finished_stages(&dir);
+    let wanted = Stage::for_job(sweep, job);
+    for (k, &stage) in wanted.iter().enumerate() {
+        if done.contains(&stage) {
+            continue;
+        }
+        let t0 = Instant::now();
+        observer.stage_started(job, stage);
+        let summary = run_stage(sweep, job, &dir, stage)?;
+        let seconds = t0.elapsed().as_secs_f64();
+        mark_stage(&dir, &job.id, stage, seconds, k + 1 == wanted.len())?;
+        observer.stage_finished(job, stage, seconds, &summary);
+    }
+    Ok(())
+}
+
+/// Runs one stage of `job` in its folder `dir`; returns a one-line summary.
+fn run_stage(
+    sweep: &SweepFile,
+    job: &Job,
+    dir: &Path,
+    stage: Stage,
+) -> Result<String, PipelineError> {
+    let trained = job.family != Family::Baseline;
+    let run = dir.join("run");
+    Ok(match stage {
+        Stage::Train => {
+            if run.join("summary.json").is_file() {
+                return Ok("already trained".into());
+            }
+            let resume = job.family == Family::DeepRl && run.join("config.json").is_file();
+            let req = TrainRequest {
+                task: job.task.clone(),
+                model: job.model.clone(),
+                preset: sweep.preset.clone(),
+                seed: job.seed,
+                steps: None,
+                sets: if resume { vec![] } else { job.sets.clone() },
+                out: (!resume).then(|| run.clone()),
+                resume: resume.then(|| run.clone()),
+                command: format!("sweep job {}", job.id),
+            };
+            let (outcome, figure_error) = stages::train(&req, &mut stages::train::Quiet)?;
+            let mut line = format!("trained → {}", outcome.dir().display());
+            if let Some(e) = figure_error {
+                line += &format!(" (learning-curve figure not written: {e})");
+            }
+            line
+        }
+        Stage::Eval => {
+            let req = EvalRequest {
+                subject: if trained {
+                    EvalSubject::Run(run)
+                } else {
+                    EvalSubject::Reference(job.model.clone())
+                },
+                task: (!trained).then(|| job.task.clone()),
+                env: if trained { vec![] } else { job.env.clone() },
+                mode: match sweep.stochastic {
+                    Some(n) => Mode::Stochastic { episodes: n },
+                    None => Mode::Reference,
+                },
+                seed: job.seed,
+                out: dir.join("eval"),
+                activity: false,
+            };
+            let m = stages::evaluate(&req)?.metrics;
+            format!(
+                "{}: {} episodes, success {:.1}%",
+                m.model,
+                m.episodes,
+                m.success_rate * 100.0
+            )
+        }
+        Stage::Adapt => {
+            let config = AdaptConfig {
+                task: "Uncertainty-v0".into(),
+                env: job
+                    .env
+                    .iter()
+                    .filter(|e| !e.starts_with("never_ready_prob"))
+                    .cloned()
+                    .collect(),
+                episodes: sweep.adapt_episodes.unwrap_or(adapt::DEFAULT_EPISODES),
+                steps: sweep.adapt_steps.unwrap_or(adapt::DEFAULT_STEPS),
+                window: adapt::DEFAULT_WINDOW,
+                threshold: adapt::DEFAULT_THRESHOLD,
+                epsilon: adapt::DEFAULT_EPSILON,
+                seed: job.seed,
+            };
+            let r = stages::adapt(&AdaptRequest {
+                run,
+                config,
+                out: dir.join("adapt"),
+            })?;
+            format!(
+                "{} episodes; adapted {}",
+                r.episodes,
+                r.episodes_to_adapt
+                    .map_or("never".to_string(), |n| format!("after {n} episodes"))
+            )
+        }
+        Stage::Record => {
+            let r = stages::record(&RecordRequest {
+                run,
+                task: None,
+                env: vec![],
+                tds: vec![],
+                repeats: 1,
+                seed: job.seed,
+                out: dir.join("activity.json"),
+                summary: true,
+                figures: Some(dir.join("neural_figures")),
+            })?;
+            format!("{} trials × {} units", r.trials, r.units)
+        }
+        Stage::Export => {
+            let activity = dir.join("activity.json");
+            let files = stages::export(
+                (trained && sweep.record).then_some(activity.as_path()),
+                Some(&dir.join("eval")),
+                EXPORT_WINDOW,
+                &dir.join("export"),
+            )?;
+            format!("{} files", files.len())
+        }
+    })
+}

@@ -1,0 +1,176 @@
+//! The eval stage: the task's evaluation protocol with a trained run or a reference agent,
+//! written as an evaluation folder (`records.jsonl`, `eval.json`, `metrics.json`,
+//! `figures/`, and with activity `activity.json` + `activity/`).
+
+use crate::PipelineError;
+use chronocooked_analysis::evaluation::folder::{self as eval_folder, EvalInfo};
+use chronocooked_analysis::{
+    EvalRecord, Metrics, Mode, reference_conditions, run_protocol_recorded,
+};
+use chronocooked_env::ChronoEnv;
+use chronocooked_models::Agent;
+use chronocooked_models::activity::{ActivityMeta, TrialRecorder};
+use chronocooked_models::agent::{OracleAgent, RandomAgent};
+use chronocooked_training::timing_run::{load_agent, run_task};
+use std::path::{Path, PathBuf};
+
+/// Who plays the protocol.
+#[derive(Debug, Clone, PartialEq)]
+pub enum EvalSubject {
+    /// The trained agent of a run folder (PPO or timing model).
+    Run(PathBuf),
+    /// A reference agent by name: `oracle` or `random`.
+    Reference(String),
+}
+
+/// What to evaluate and where to write it (the arguments of `chronocooked eval`).
+#[derive(Debug, Clone)]
+pub struct EvalRequest {
+    /// Who plays.
+    pub subject: EvalSubject,
+    /// Task (default: the run's own task; `FixedInterval-v0` for a reference agent).
+    pub task: Option<String>,
+    /// Task overrides `key=value` (with `task`, or for a reference agent).
+    pub env: Vec<String>,
+    /// Reference protocol (greedy, every start cell) or stochastic episodes per condition.
+    pub mode: Mode,
+    /// Seed of the evaluation.
+    pub seed: u64,
+    /// Output folder.
+    pub out: PathBuf,
+    /// Also record the model's activity, one trial per evaluated episode.
+    pub activity: bool,
+}
+
+/// What an evaluation wrote.
+#[derive(Debug, Clone)]
+pub struct EvalOutcome {
+    /// The metrics (also in `metrics.json`).
+    pub metrics: Metrics,
+    /// Figure files written.
+    pub figures: Vec<PathBuf>,
+    /// With activity: (trials, units, the dataset file).
+    pub activity: Option<(usize, usize, PathBuf)>,
+}
+
+fn analysis(e: String) -> PipelineError {
+    PipelineError::Analysis(e)
+}
+
+/// Plays the protocol of `req` and writes its evaluation folder.
+pub fn evaluate(req: &EvalRequest) -> Result<EvalOutcome, PipelineError> {
+    if req.mode == (Mode::Stochastic { episodes: 0 }) {
+        return Err(PipelineError::Invalid(
+            "--stochastic needs a positive number of episodes per condition".into(),
+        ));
+    }
+    let (task, env) = match (&req.task, &req.subject) {
+        (Some(t), _) => (t.clone(), req.env.clone()),
+        (None, EvalSubject::Run(run)) => run_task(run)?,
+        (None, EvalSubject::Reference(_)) => ("FixedInterval-v0".to_string(), req.env.clone()),
+    };
+    let config = chronocooked_env::make_config(&task, &env)?;
+    let mut agent: Box<dyn Agent> = match &req.subject {
+        EvalSubject::Run(run) => load_agent(run, Some(&config))?,
+        EvalSubject::Reference(name) if name == "oracle" => {
+            Box::new(OracleAgent::new(&ChronoEnv::new(&config)?))
+        }
+        EvalSubject::Reference(name) if name == "random" => Box::new(RandomAgent::default()),
+        EvalSubject::Reference(other) => {
+            return Err(PipelineError::Invalid(format!(
+                "unknown --agent `{other}` (allowed: oracle, random; trained models via --run DIR)"
+            )));
+        }
+    };
+    let conditions = reference_conditions(&task, &env)?;
+    let meta = ActivityMeta::new(&agent.name(), &task, &env, req.seed);
+    let mut recorder = TrialRecorder::new(meta);
+    let records = run_protocol_recorded(
+        agent.as_mut(),
+        &conditions,
+        req.mode,
+        req.seed,
+        req.activity.then_some(&mut recorder),
+    )?;
+    let info = EvalInfo {
+        model: agent.name(),
+        task,
+        env,
+        mode: req.mode,
+        seed: req.seed,
+    };
+    let (metrics, figures) =
+        eval_folder::write_eval_folder(&req.out, &info, &records).map_err(analysis)?;
+    let activity = if req.activity {
+        let dataset = recorder.finish();
+        if dataset.meta.n_units() == 0 {
+            return Err(PipelineError::Invalid(format!(
+                "{} records no activity (reference agents have no units); drop --activity",
+                info.model
+            )));
+        }
+        let files = eval_folder::write_activity(&req.out, &dataset).map_err(analysis)?;
+        Some((
+            dataset.trials.len(),
+            dataset.meta.n_units(),
+            files[0].clone(),
+        ))
+    } else {
+        None
+    };
+    Ok(EvalOutcome {
+        metrics,
+        figures,
+        activity,
+    })
+}
+
+/// Writes the evaluation folder of recorded human play (`env play --record FILE`, JSON
+/// lines) into `out`.
+pub fn evaluate_human(file: &Path, seed: u64, out: &Path) -> Result<EvalOutcome, PipelineError> {
+    let text = std::fs::read_to_string(file).map_err(|e| PipelineError::read(file, e))?;
+    let records =
+        chronocooked_analysis::behaviour::human::records_from_trace(&text).map_err(|e| {
+            PipelineError::NotA {
+                path: file.to_path_buf(),
+                what: "a recording of human play (`env play --record`)",
+                message: e.to_string(),
+            }
+        })?;
+    let Some(first) = records.first() else {
+        return Err(PipelineError::Invalid(format!(
+            "{} holds no episodes (record some with `env play --record`)",
+            file.display()
+        )));
+    };
+    let info = EvalInfo {
+        model: "human".into(),
+        task: first.condition.task.clone(),
+        env: first.condition.env.clone(),
+        mode: Mode::Stochastic {
+            episodes: records.len(),
+        },
+        seed,
+    };
+    let (metrics, figures) =
+        eval_folder::write_eval_folder(out, &info, &records).map_err(analysis)?;
+    Ok(EvalOutcome {
+        metrics,
+        figures,
+        activity: None,
+    })
+}
+
+/// Recomputes `metrics.json` and the figures into `out` from the records of the earlier
+/// evaluation folder `from`.
+pub fn rescore_eval_folder(from: &Path, out: &Path) -> Result<EvalOutcome, PipelineError> {
+    let info = eval_folder::read_eval_info(from).map_err(analysis)?;
+    let records: Vec<EvalRecord> = chronocooked_analysis::evaluation::protocol::read_records(from)
+        .map_err(|e| PipelineError::Analysis(format!("{e} (not an eval folder)")))?;
+    let (metrics, figures) = eval_folder::write_metrics(out, &info, &records).map_err(analysis)?;
+    Ok(EvalOutcome {
+        metrics,
+        figures,
+        activity: None,
+    })
+}

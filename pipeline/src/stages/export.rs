@@ -1,0 +1,45 @@
+//! The export stage: activity datasets and evaluation records as NPZ (numpy) + CSV + JSON
+//! metadata describing every array.
+
+use crate::PipelineError;
+use std::path::{Path, PathBuf};
+
+/// Exports the activity dataset `activity` (JSON, from `record` or `eval --activity`) and/or
+/// the records of the evaluation folder `eval` into `out`; aligned activity arrays span up
+/// to `window` steps after oven-on. Returns the files written.
+pub fn export(
+    activity: Option<&Path>,
+    eval: Option<&Path>,
+    window: usize,
+    out: &Path,
+) -> Result<Vec<PathBuf>, PipelineError> {
+    if activity.is_none() && eval.is_none() {
+        return Err(PipelineError::Invalid(
+            "say what to export: --activity FILE.json (from `record`) and/or --eval DIR (from `eval`)"
+                .into(),
+        ));
+    }
+    let mut files = Vec::new();
+    if let Some(path) = activity {
+        let text = std::fs::read_to_string(path).map_err(|e| PipelineError::read(path, e))?;
+        let ds: chronocooked_models::ActivityDataset =
+            serde_json::from_str(&text).map_err(|e| PipelineError::NotA {
+                path: path.to_path_buf(),
+                what: "an activity dataset (from `record`)",
+                message: e.to_string(),
+            })?;
+        files.extend(
+            chronocooked_analysis::export::export_activity(&ds, out, window)
+                .map_err(PipelineError::Analysis)?,
+        );
+    }
+    if let Some(dir) = eval {
+        let records = chronocooked_analysis::evaluation::protocol::read_records(dir)
+            .map_err(|e| PipelineError::Analysis(format!("{e} (not an eval folder)")))?;
+        files.extend(
+            chronocooked_analysis::export::export_eval(&records, out)
+                .map_err(PipelineError::Analysis)?,
+        );
+    }
+    Ok(files)
+}

@@ -1,0 +1,24 @@
+//! One function per stage of a study job; each reads and writes its own folder, so the CLI
+//! commands (`train`, `eval`, `adapt`, `record`, `export`) and the sweep pipeline
+//! ([`crate::run_job`]) run the same code.
+//!
+//! * [`train`] — a PPO agent or a timing model into a run folder (new or resumed);
+//! * [`evaluate`] — the task's reference (or stochastic) protocol with a trained run or a
+//!   reference agent, recorded play of a human, or metrics recomputed from saved records;
+//! * [`adapt`] — uncertainty adaptation of a trained run;
+//! * [`record`] — the neural activity of a trained run, its summary and figures;
+//! * [`export`] — activity datasets and evaluation records as NPZ + CSV + JSON metadata.
+
+pub mod adapt;
+pub mod evaluate;
+pub mod export;
+pub mod record;
+pub mod train;
+
+pub use adapt::{AdaptRequest, adapt};
+pub use evaluate::{
+    EvalOutcome, EvalRequest, EvalSubject, evaluate, evaluate_human, rescore_eval_folder,
+};
+pub use export::export;
+pub use record::{RecordOutcome, RecordRequest, record};
+pub use train::{Quiet, TrainObserver, TrainOutcome, TrainRequest, train};

@@ -1,0 +1,155 @@
+//! The train stage: a PPO agent or a timing model into a run folder, new or resumed.
+
+use crate::PipelineError;
+use chronocooked_models::{Architecture, TimingCurvePoint};
+use chronocooked_training::{
+    Progress, RunSummary, TimingRunConfig, TimingRunSummary, UpdateLog, is_timing_run_config,
+    load_timing_config, resolve, run_timing_training, run_training,
+};
+use serde::Serialize;
+use std::path::PathBuf;
+
+/// What to train (the arguments of `chronocooked train`).
+#[derive(Debug, Clone)]
+pub struct TrainRequest {
+    /// Task id (`FixedInterval-v0`, …).
+    pub task: String,
+    /// Model name (`cnn-mlp`, `lstm125`, `ctrnn-reservoir125`, `ddm`, `timecells-ms`, …).
+    pub model: String,
+    /// PPO hyperparameter preset (`reference`, `fast`, or a preset file); unused by timing
+    /// models.
+    pub preset: String,
+    /// Seed of everything random in the run.
+    pub seed: u64,
+    /// PPO env-step budget (`steps`) overriding the preset's; timing models train by
+    /// episodes (`--set episodes=N`).
+    pub steps: Option<u64>,
+    /// Setting overrides `key=value` (`env.<param>=v` for task parameters).
+    pub sets: Vec<String>,
+    /// Run folder of a new run (default `runs/<task>/<model>/seed<N>`).
+    pub out: Option<PathBuf>,
+    /// Continue the run in this folder with its saved (and re-checked) config instead.
+    pub resume: Option<PathBuf>,
+    /// The command line recorded in the run folder.
+    pub command: String,
+}
+
+/// What a train stage produced.
+#[derive(Debug, Clone, Serialize)]
+#[serde(untagged)]
+pub enum TrainOutcome {
+    /// A PPO run.
+    Ppo(RunSummary),
+    /// A timing-model run.
+    Timing(TimingRunSummary),
+}
+
+impl TrainOutcome {
+    /// The run folder.
+    pub fn dir(&self) -> &std::path::Path {
+        match self {
+            TrainOutcome::Ppo(s) => &s.dir,
+            TrainOutcome::Timing(s) => &s.dir,
+        }
+    }
+}
+
+/// Sees the progress of a training run (progress bars, logs); every method does nothing by
+/// default.
+pub trait TrainObserver {
+    /// After every PPO update (`total_steps`: the run's env-step budget).
+    fn ppo_update(&mut self, _row: &UpdateLog, _total_steps: u64) {}
+    /// At every learning-curve point of a timing model (`total_episodes`: its budget).
+    fn timing_point(&mut self, _point: &TimingCurvePoint, _total_episodes: usize) {}
+}
+
+/// A [`TrainObserver`] that reports nothing.
+pub struct Quiet;
+impl TrainObserver for Quiet {}
+
+struct PpoBridge<'a>(&'a mut dyn TrainObserver);
+impl Progress for PpoBridge<'_> {
+    fn update(&mut self, row: &UpdateLog, total_steps: u64) {
+        self.0.ppo_update(row, total_steps);
+    }
+}
+
+/// Trains (or resumes) the run of `req`, then draws its learning curve
+/// (`figures/learning_curve.svg`; a figure that cannot be drawn is reported in
+/// `figure_error`, the run is kept). Returns the run's summary.
+pub fn train(
+    req: &TrainRequest,
+    observer: &mut dyn TrainObserver,
+) -> Result<(TrainOutcome, Option<String>), PipelineError> {
+    let timing_resume = req.resume.as_deref().is_some_and(is_timing_run_config);
+    let outcome = if timing_resume || chronocooked_models::timing::zoo::is_timing_model(&req.model)
+    {
+        TrainOutcome::Timing(train_timing(req, observer)?)
+    } else {
+        TrainOutcome::Ppo(train_ppo(req, observer)?)
+    };
+    let figure_error = chronocooked_analysis::report::figures::learning_curve(outcome.dir())
+        .err()
+        .map(|e| e.to_string());
+    Ok((outcome, figure_error))
+}
+
+fn default_dir(task: &str, model: &str, seed: u64) -> PathBuf {
+    PathBuf::from(format!("runs/{task}/{model}/seed{seed}"))
+}
+
+fn train_ppo(
+    req: &TrainRequest,
+    observer: &mut dyn TrainObserver,
+) -> Result<RunSummary, PipelineError> {
+    let mut progress = PpoBridge(observer);
+    if let Some(dir) = &req.resume {
+        if req.steps.is_some() || !req.sets.is_empty() {
+            return Err(PipelineError::Invalid(
+                "--resume continues a run with its saved config; --steps/--set cannot be combined with it"
+                    .into(),
+            ));
+        }
+        return Ok(run_training(None, dir, &req.command, &mut progress)?);
+    }
+    let model: Architecture = req.model.parse().map_err(PipelineError::Invalid)?;
+    let mut sets = req.sets.clone();
+    if let Some(s) = req.steps {
+        sets.push(format!("total_steps={s}"));
+    }
+    let cfg = resolve(&req.task, model, &req.preset, req.seed, &sets)?;
+    let dir = req
+        .out
+        .clone()
+        .unwrap_or_else(|| default_dir(&cfg.task, &model.name(), req.seed));
+    Ok(run_training(Some(cfg), &dir, &req.command, &mut progress)?)
+}
+
+fn train_timing(
+    req: &TrainRequest,
+    observer: &mut dyn TrainObserver,
+) -> Result<TimingRunSummary, PipelineError> {
+    if req.steps.is_some() {
+        return Err(PipelineError::Invalid(
+            "timing models train by episodes: use --set episodes=N instead of --steps".into(),
+        ));
+    }
+    let (cfg, dir) = match &req.resume {
+        Some(dir) => (load_timing_config(dir)?, dir.clone()),
+        None => {
+            let mut cfg = TimingRunConfig::new(&req.task, &req.model, req.seed);
+            for kv in &req.sets {
+                cfg.set(kv)?;
+            }
+            let dir = req
+                .out
+                .clone()
+                .unwrap_or_else(|| default_dir(&req.task, &req.model, req.seed));
+            (cfg, dir)
+        }
+    };
+    let total = cfg.train.episodes;
+    Ok(run_timing_training(&cfg, &dir, &req.command, |p| {
+        observer.timing_point(p, total)
+    })?)
+}
