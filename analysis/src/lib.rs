@@ -1,6 +1,7 @@
 //! Chronocooked Lab analysis: behavioural and neural metrics of recorded episodes and
 //! activity, the evaluation protocol, reports, exports and the paper's study.
 //!
+//! * [`stats`] — small statistics shared by the analyses (`Spread`: mean, SD, n across runs);
 //! * [`behaviour`] — behavioural metrics: first oven check and the scalar property (`foc`),
 //!   psychometric fits (`psychometric`), peak-interval fits (`peak`), per-evaluation metrics
 //!   (`metrics`), headline aggregates across seeds (`aggregate`), human play (`human`);
@@ -24,6 +25,7 @@ pub mod export;
 pub mod neural;
 pub mod paper;
 pub mod report;
+pub mod stats;
 
 pub use behaviour::foc::{
     FocConvention, FocStats, ScalarProperty, episode_foc, first_oven_check, first_oven_check_with,

@@ -13,16 +13,13 @@ use crate::action::Action;
 use crate::error::EnvError;
 use crate::info::{Carry, Counter, Events, Info};
 use crate::layout::ObjectKind;
-pub use crate::spec::derive_seed;
+pub use crate::spec::{CODE_CHANNELS, derive_seed};
 pub(crate) use crate::spec::{Rules, Spec};
 use crate::task::{CueMode, RewardMode, TaskFamily, TaskParams};
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
-
-/// Number of channels of the "codes" observation.
-pub const CODE_CHANNELS: usize = 6;
 
 /// Options of [`Kitchen::reset`]: fix what the task would otherwise draw at random.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]

@@ -2,10 +2,13 @@
 //! rules for the hot loop, and the static part of the codes observation.
 
 use crate::error::EnvError;
-use crate::kitchen::CODE_CHANNELS;
 use crate::layout::{Layout, ObjectKind};
 use crate::task::{CueMode, RewardMode, TaskConfig, TaskFamily, TaskParams};
 use std::sync::Arc;
+
+/// Number of channels of the "codes" observation (`u8`, `[R, C, 6]`, channel-last; the
+/// channels are described in `obs`).
+pub const CODE_CHANNELS: usize = 6;
 
 /// Task rules, flattened to a small `Copy` value for the hot loop.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -116,6 +116,7 @@ fn the_eval_stage_equals_a_rerun_of_itself_and_checks_its_request() {
     let b = stages::evaluate(&req("b")).unwrap();
     let read = |d: &str| std::fs::read(tmp.path().join(d).join("records.jsonl")).unwrap();
     assert_eq!(read("a"), read("b"), "same request, same records");
+    assert_eq!(a.metrics.episodes, b.metrics.episodes);
     assert_eq!(a.metrics.success_rate, 1.0);
     // Recomputing from the saved records gives the same metrics.
     let c = stages::rescore_eval_folder(&tmp.path().join("a"), &tmp.path().join("c")).unwrap();

@@ -20,7 +20,8 @@
 
 use crate::error::TrainError;
 use crate::ppo::config::Curriculum;
-use crate::run_dir::{RunDir, Silent, run_training, write_atomic};
+use crate::ppo::run::{Silent, run_training};
+use crate::run_dir::{RunDir, write_atomic};
 use crate::timing_run::{is_timing_run, load_timing_agent};
 use chronocooked_env::make_config;
 use serde::{Deserialize, Serialize};

@@ -26,8 +26,9 @@ pub use evaluate::{EvalEpisode, eval_tds, evaluate_policy, success_rate};
 pub use ppo::agent::PpoAgent;
 pub use ppo::config::{Curriculum, Engine, LrSchedule, ObsEncoding, PpoConfig, TrainConfig};
 pub use ppo::presets::{PRESETS, preset_settings, resolve};
+pub use ppo::run::{Progress, Silent, run_training};
 pub use ppo::trainer::{Trainer, TrainerState, UpdateLog};
-pub use run_dir::{Progress, RunDir, RunSummary, Silent, load_policy, run_training};
+pub use run_dir::{RunDir, RunSummary, load_policy};
 pub use timing_run::{
     TimingRunConfig, TimingRunSummary, is_timing_run, is_timing_run_config, load_timing_agent,
     load_timing_config, run_timing_training,

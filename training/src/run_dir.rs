@@ -10,11 +10,9 @@
 //! ```
 
 use crate::error::TrainError;
-use crate::evaluate::{eval_tds, evaluate_policy, success_rate};
 use crate::ppo::config::TrainConfig;
-use crate::ppo::trainer::{Trainer, TrainerState, UpdateLog};
+use crate::ppo::state::{TrainerState, UpdateLog};
 use burn::module::Module;
-use chronocooked_env::make_config;
 use chronocooked_models::{ActorCritic, PolicyConfig};
 use serde::{Deserialize, Serialize};
 use std::fs;
@@ -89,7 +87,7 @@ fn curve_line(r: &UpdateLog) -> String {
     )
 }
 
-fn curve_header() -> String {
+pub(crate) fn curve_header() -> String {
     format!("{}\n", CURVE_COLUMNS.join(","))
 }
 
@@ -183,7 +181,7 @@ impl RunDir {
         Ok(None)
     }
 
-    fn write_checkpoint(&self, state: &TrainerState) -> Result<(), TrainError> {
+    pub(crate) fn write_checkpoint(&self, state: &TrainerState) -> Result<(), TrainError> {
         let p = self
             .path
             .join("checkpoints")
@@ -195,13 +193,13 @@ impl RunDir {
         write_atomic(&p, &json)
     }
 
-    fn write_curves(&self, rows: &[UpdateLog]) -> Result<(), TrainError> {
+    pub(crate) fn write_curves(&self, rows: &[UpdateLog]) -> Result<(), TrainError> {
         let mut s = curve_header();
         rows.iter().for_each(|r| s.push_str(&curve_line(r)));
         write_atomic(&self.path.join("curves.csv"), s.as_bytes())
     }
 
-    fn append_curve(&self, row: &UpdateLog) -> Result<(), TrainError> {
+    pub(crate) fn append_curve(&self, row: &UpdateLog) -> Result<(), TrainError> {
         let p = self.path.join("curves.csv");
         let mut f = fs::OpenOptions::new()
             .append(true)
@@ -212,7 +210,7 @@ impl RunDir {
             .map_err(|e| TrainError::io(&p, e))
     }
 
-    fn append_command(&self, command: &str) -> Result<(), TrainError> {
+    pub(crate) fn append_command(&self, command: &str) -> Result<(), TrainError> {
         let p = self.path.join("command.txt");
         let mut f = fs::OpenOptions::new()
             .append(true)
@@ -263,99 +261,4 @@ pub fn load_policy(dir: &Path) -> Result<(ActorCritic, PolicyConfig, TrainConfig
             reason: "neither model.bpk nor a checkpoint".into(),
         }),
     }
-}
-
-/// Callbacks of a training run (progress display).
-pub trait Progress {
-    /// Called after every update.
-    fn update(&mut self, _row: &UpdateLog, _total_steps: u64) {}
-}
-
-/// No progress output.
-pub struct Silent;
-impl Progress for Silent {}
-
-/// Trains `cfg` into a new run folder `dir`, or continues it when `resume` is set.
-pub fn run_training(
-    cfg: Option<TrainConfig>,
-    dir: &Path,
-    command: &str,
-    progress: &mut dyn Progress,
-) -> Result<RunSummary, TrainError> {
-    let (run, mut trainer) = match cfg {
-        Some(cfg) => {
-            let run = RunDir::create(dir)?;
-            if run.path.join("config.json").exists() && !run.checkpoints().is_empty() {
-                return Err(TrainError::Resume {
-                    path: dir.display().to_string(),
-                    reason: "the folder already holds a run; use `train --resume` or a new --out"
-                        .into(),
-                });
-            }
-            let trainer = Trainer::new(cfg.clone())?;
-            let json = serde_json::to_string_pretty(&cfg).unwrap_or_default();
-            write_atomic(&run.path.join("config.json"), json.as_bytes())?;
-            let pj = serde_json::to_string_pretty(trainer.policy_config()).unwrap_or_default();
-            write_atomic(&run.path.join("policy.json"), pj.as_bytes())?;
-            write_atomic(&run.path.join("curves.csv"), curve_header().as_bytes())?;
-            (run, trainer)
-        }
-        None => {
-            let run = RunDir::open(dir)?;
-            let cfg = run.config()?;
-            let trainer = match run.latest_state()? {
-                Some(state) => Trainer::restore(cfg, state)?,
-                None => Trainer::new(cfg)?,
-            };
-            run.write_curves(&trainer.state().curve)?;
-            (run, trainer)
-        }
-    };
-    run.append_command(command)?;
-    let cfg = trainer.config().clone();
-    let task = make_config(&cfg.task, &cfg.env)?;
-    let batch = (cfg.ppo.n_envs * cfg.ppo.n_steps) as u64;
-    let every = |k: u64, steps: u64| {
-        k > 0 && steps.is_multiple_of(k.div_ceil(batch).max(1).saturating_mul(batch))
-    };
-    let mut solved_at = None;
-    while !trainer.finished() {
-        let row = trainer.update()?;
-        let steps = row.env_steps;
-        if every(cfg.eval_every, steps) || (cfg.stop_at_success.is_some() && cfg.eval_every == 0) {
-            let eps = evaluate_policy(&trainer.policy(), &task, cfg.obs, &eval_tds(&task))?;
-            let s = success_rate(&eps);
-            trainer.set_last_eval(s);
-            if let Some(target) = cfg.stop_at_success
-                && s >= target
-            {
-                solved_at = Some(steps);
-            }
-        }
-        let row = trainer.state().curve.last().cloned().unwrap_or(row);
-        run.append_curve(&row)?;
-        progress.update(&row, cfg.total_steps);
-        if every(cfg.checkpoint_every, steps) {
-            run.write_checkpoint(trainer.state())?;
-        }
-        if solved_at.is_some() {
-            break;
-        }
-    }
-    run.write_checkpoint(trainer.state())?;
-    run.save_model(trainer.policy(), "model.bpk")?;
-    let eps = evaluate_policy(&trainer.policy(), &task, cfg.obs, &eval_tds(&task))?;
-    let st = trainer.state();
-    let summary = RunSummary {
-        dir: run.path.clone(),
-        env_steps: st.steps,
-        updates: st.updates,
-        wall_s: st.wall_s,
-        eval_success: success_rate(&eps),
-        solved_at,
-        train_success: st.curve.last().map(|r| r.success_rate).unwrap_or(f64::NAN),
-    };
-    let json = serde_json::to_string_pretty(&summary).unwrap_or_default();
-    write_atomic(&run.path.join("summary.json"), json.as_bytes())?;
-    Ok(summary)
 }

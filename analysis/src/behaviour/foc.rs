@@ -108,7 +108,7 @@ pub fn foc_stats(groups: &[(u32, Vec<f64>)]) -> Vec<FocStats> {
     groups
         .iter()
         .map(|(td, v)| {
-            let s = crate::behaviour::aggregate::Spread::of(v.iter().copied());
+            let s = crate::stats::Spread::of(v.iter().copied());
             FocStats {
                 td: *td,
                 n: v.len(),

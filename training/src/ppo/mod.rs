@@ -9,6 +9,8 @@
 //!   entropy terms; [`minibatch`] — loss and gradient of one minibatch on either engine;
 //!   [`adam`] — Adam with SB3's settings; [`params`] — flat parameter vectors;
 //! * [`trainer`] — the update loop, curricula and its checkpointable state ([`state`]);
+//! * [`run`] — a run folder trained to its budget (new or resumed), with evaluation,
+//!   checkpoints and the final model;
 //! * [`agent`] — a trained policy as an [`chronocooked_models::Agent`].
 
 pub mod act;
@@ -22,5 +24,6 @@ pub mod obs;
 pub mod params;
 pub mod presets;
 pub mod rollout;
+pub mod run;
 pub mod state;
 pub mod trainer;

@@ -1,0 +1,107 @@
+//! A PPO run folder trained to its budget: a new run (config, policy description, curve
+//! header written first) or a stopped one continued from its newest checkpoint; periodic
+//! evaluation, early stop at a success target, checkpoints, the final model and summary.
+
+use crate::error::TrainError;
+use crate::evaluate::{eval_tds, evaluate_policy, success_rate};
+use crate::ppo::config::TrainConfig;
+use crate::ppo::state::UpdateLog;
+use crate::ppo::trainer::Trainer;
+use crate::run_dir::{RunDir, RunSummary, curve_header, write_atomic};
+use chronocooked_env::make_config;
+use std::path::Path;
+
+/// Callbacks of a training run (progress display).
+pub trait Progress {
+    /// Called after every update.
+    fn update(&mut self, _row: &UpdateLog, _total_steps: u64) {}
+}
+
+/// No progress output.
+pub struct Silent;
+impl Progress for Silent {}
+
+/// Trains `cfg` into a new run folder `dir`, or continues it when `resume` is set.
+pub fn run_training(
+    cfg: Option<TrainConfig>,
+    dir: &Path,
+    command: &str,
+    progress: &mut dyn Progress,
+) -> Result<RunSummary, TrainError> {
+    let (run, mut trainer) = match cfg {
+        Some(cfg) => {
+            let run = RunDir::create(dir)?;
+            if run.path.join("config.json").exists() && !run.checkpoints().is_empty() {
+                return Err(TrainError::Resume {
+                    path: dir.display().to_string(),
+                    reason: "the folder already holds a run; use `train --resume` or a new --out"
+                        .into(),
+                });
+            }
+            let trainer = Trainer::new(cfg.clone())?;
+            let json = serde_json::to_string_pretty(&cfg).unwrap_or_default();
+            write_atomic(&run.path.join("config.json"), json.as_bytes())?;
+            let pj = serde_json::to_string_pretty(trainer.policy_config()).unwrap_or_default();
+            write_atomic(&run.path.join("policy.json"), pj.as_bytes())?;
+            write_atomic(&run.path.join("curves.csv"), curve_header().as_bytes())?;
+            (run, trainer)
+        }
+        None => {
+            let run = RunDir::open(dir)?;
+            let cfg = run.config()?;
+            let trainer = match run.latest_state()? {
+                Some(state) => Trainer::restore(cfg, state)?,
+                None => Trainer::new(cfg)?,
+            };
+            run.write_curves(&trainer.state().curve)?;
+            (run, trainer)
+        }
+    };
+    run.append_command(command)?;
+    let cfg = trainer.config().clone();
+    let task = make_config(&cfg.task, &cfg.env)?;
+    let batch = (cfg.ppo.n_envs * cfg.ppo.n_steps) as u64;
+    let every = |k: u64, steps: u64| {
+        k > 0 && steps.is_multiple_of(k.div_ceil(batch).max(1).saturating_mul(batch))
+    };
+    let mut solved_at = None;
+    while !trainer.finished() {
+        let row = trainer.update()?;
+        let steps = row.env_steps;
+        if every(cfg.eval_every, steps) || (cfg.stop_at_success.is_some() && cfg.eval_every == 0) {
+            let eps = evaluate_policy(&trainer.policy(), &task, cfg.obs, &eval_tds(&task))?;
+            let s = success_rate(&eps);
+            trainer.set_last_eval(s);
+            if let Some(target) = cfg.stop_at_success
+                && s >= target
+            {
+                solved_at = Some(steps);
+            }
+        }
+        let row = trainer.state().curve.last().cloned().unwrap_or(row);
+        run.append_curve(&row)?;
+        progress.update(&row, cfg.total_steps);
+        if every(cfg.checkpoint_every, steps) {
+            run.write_checkpoint(trainer.state())?;
+        }
+        if solved_at.is_some() {
+            break;
+        }
+    }
+    run.write_checkpoint(trainer.state())?;
+    run.save_model(trainer.policy(), "model.bpk")?;
+    let eps = evaluate_policy(&trainer.policy(), &task, cfg.obs, &eval_tds(&task))?;
+    let st = trainer.state();
+    let summary = RunSummary {
+        dir: run.path.clone(),
+        env_steps: st.steps,
+        updates: st.updates,
+        wall_s: st.wall_s,
+        eval_success: success_rate(&eps),
+        solved_at,
+        train_success: st.curve.last().map(|r| r.success_rate).unwrap_or(f64::NAN),
+    };
+    let json = serde_json::to_string_pretty(&summary).unwrap_or_default();
+    write_atomic(&run.path.join("summary.json"), json.as_bytes())?;
+    Ok(summary)
+}
