@@ -2,12 +2,15 @@
 //!
 //! * [`ppo`] — PPO equivalent to Stable-Baselines3's (feed-forward and recurrent with BPTT):
 //!   settings and presets, rollouts, GAE, the clipped loss, minibatches, Adam, the trainer
-//!   with its curricula, and the trained policy as an agent;
-//! * [`run_dir`] — run folders with exact resume; [`timing_run`] — training runs of the
+//!   with its curricula, a run trained to its budget (`ppo::run`), and the trained policy
+//!   as an agent;
+//! * [`run_dir`] — run folders (config, curves, checkpoints, model) with exact resume; [`timing_run`] — training runs of the
 //!   timing models; [`evaluate`] — the deterministic evaluation used during training;
 //! * [`adapt`] — adaptation to the uncertainty task; [`zoo`] — every model the lab can
 //!   train, evaluate or record;
-//! * [`sweep`] — sweep files, typed job stages, job progress, Slurm emission, cost estimates;
+//! * [`sweep`] — sweep files, typed job stages, job progress, Slurm emission, cost estimates
+//!   (the stages themselves run in the `chronocooked-pipeline` crate, above this one and
+//!   the analysis crate);
 //! * [`error`] — typed training errors.
 
 #![warn(missing_docs)]
