@@ -44,9 +44,11 @@ def main():
                 bp = (b.get("fit") or {}).get("bp", float("nan"))
                 wf = (b.get("fit") or {}).get("wf", float("nan"))
                 ratio = bp / math.sqrt(s * l)
-                ok = ok_probes and b["anchor_accuracy"] >= 0.95 and drop <= 0.25 and 0.8 <= ratio <= 1.3
+                acc = b["anchor_accuracy"]
+                acc = float("nan") if acc is None else acc
+                ok = ok_probes and acc >= 0.95 and drop <= 0.25 and 0.8 <= ratio <= 1.3
                 bad += not ok
-                print(f"{model:18} {pair:5} {seed:>4} {b['anchor_accuracy']:7.3f} {drop:8.3f} {ratio:6.2f} {wf:5.3f} "
+                print(f"{model:18} {pair:5} {seed:>4} {acc:7.3f} {drop:8.3f} {ratio:6.2f} {wf:5.3f} "
                       f"{'yes' if ok else 'NO':>3}  {' '.join('--' if x is None else f'{x:.2f}' for x in p)}")
     print(f"{bad} failing")
 

@@ -579,3 +579,47 @@ fn recorded_populations_show_each_models_signature() {
     let sd = (ratios.iter().map(|r| (r - mean).powi(2)).sum::<f64>() / ratios.len() as f64).sqrt();
     assert!(sd / mean < 0.2, "width/peak {ratios:?}");
 }
+
+/// Never-ready success of a trained uncertainty agent in the reference evaluation.
+fn never_ready_success(agent: &mut dyn chronocooked_models::Agent) -> f64 {
+    let conditions = reference_conditions("Uncertainty-v0", &[]).unwrap();
+    let records = run_protocol(agent, &conditions, Mode::Reference, 0).unwrap();
+    let never: Vec<_> = records
+        .iter()
+        .filter(|r| r.condition.never_ready == Some(true))
+        .collect();
+    assert!(!never.is_empty());
+    never.iter().filter(|r| r.episode.success).count() as f64 / never.len() as f64
+}
+
+#[test]
+fn an_opportunity_cost_of_time_lets_drift_diffusion_learn_the_time_out() {
+    // Seeds on which plain discounted SARSA leaves drift-diffusion waiting at never-ready
+    // ovens (measured: 0.55 and 0.64 never-ready success); charging the learned reward rate
+    // on every step (average-reward TD, Niv et al. 2007) makes waiting there costly.
+    for seed in [1, 2] {
+        let mut plain = TimingRunConfig::new("Uncertainty-v0", "ddm", seed);
+        plain.set("episodes=40000").unwrap();
+        let mut costly = plain.clone();
+        costly.set("opportunity_cost=0.001").unwrap();
+        let before = never_ready_success(trained_agent(&plain, &format!("unc-{seed}")).as_mut());
+        let after = never_ready_success(trained_agent(&costly, &format!("unc-oc-{seed}")).as_mut());
+        assert!(before < 0.9, "seed {seed}: plain SARSA already {before}");
+        assert!(
+            after >= 0.9,
+            "seed {seed}: with the opportunity cost {after}"
+        );
+    }
+    // The rate is learned only when asked for, and it is the reward per step.
+    let mut cfg = TimingRunConfig::new("FixedInterval-v0", "ddm", 0);
+    cfg.set("episodes=1500").unwrap();
+    cfg.set("opportunity_cost=0.001").unwrap();
+    let dir = temp_dir("fi-oc");
+    run_timing_training(&cfg, &dir, "test", |_| {}).unwrap();
+    let saved: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("agent.json")).unwrap()).unwrap();
+    let rho = saved["reward_rate"].as_f64().unwrap();
+    // FI TD 12: one soup (reward 1) per episode of ≥ 12 + walking steps.
+    assert!(rho > 0.01 && rho < 1.0 / 12.0, "reward rate {rho}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

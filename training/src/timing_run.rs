@@ -45,7 +45,7 @@ pub struct TimingRunConfig {
 pub const UNCERTAINTY_EPISODES: usize = 40_000;
 
 /// Every `--set` key of a timing run.
-pub const TIMING_KEYS: &str = "episodes, epsilon_start, epsilon_end, anneal_fraction, eval_every, stop_at_success, alpha, gamma, lambda, response_cost, probe, noise (ddm), memory_noise (sbf), clock_noise (timecells-*), env.<task parameter>";
+pub const TIMING_KEYS: &str = "episodes, epsilon_start, epsilon_end, anneal_fraction, eval_every, stop_at_success, alpha, gamma, lambda, response_cost, probe, opportunity_cost, noise (ddm), memory_noise (sbf), clock_noise (timecells-*), env.<task parameter>";
 
 fn parse<T: std::str::FromStr>(key: &str, value: &str, allowed: &str) -> Result<T, TrainError> {
     value.parse().map_err(|_| TrainError::InvalidParam {
@@ -93,9 +93,16 @@ impl TimingRunConfig {
                     v => Some(parse(key, v, "a success rate in (0, 1], or none")?),
                 }
             }
-            "alpha" | "gamma" | "lambda" | "response_cost" | "probe" | "noise" | "memory_noise"
-            | "clock_noise" => {
+            "alpha" | "gamma" | "lambda" | "response_cost" | "probe" | "opportunity_cost"
+            | "noise" | "memory_noise" | "clock_noise" => {
                 let v: f64 = parse(key, value, "a number")?;
+                if key == "opportunity_cost" && !(0.0..1.0).contains(&v) {
+                    return Err(TrainError::InvalidParam {
+                        field: key.into(),
+                        value: value.into(),
+                        allowed: "a step size in [0, 1) (0 = off)".into(),
+                    });
+                }
                 if key.ends_with("noise") && !(v >= 0.0 && v.is_finite()) {
                     return Err(TrainError::InvalidParam {
                         field: key.into(),
@@ -172,6 +179,7 @@ impl TimingRunConfig {
                 "lambda" => agent.learner.config.lambda = v,
                 "response_cost" => agent.config.response_cost = v,
                 "probe" => agent.config.probe = v,
+                "opportunity_cost" => agent.config.opportunity_cost = v,
                 "noise" => match &mut agent.timer {
                     chronocooked_models::timing::timers::Timer::Ddm(d) => d.acc.noise = v,
                     _ => return Err(TrainError::UnknownKey("noise (ddm only)".into())),

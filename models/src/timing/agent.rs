@@ -53,6 +53,12 @@ pub struct TimingAgentConfig {
     pub response_cost: f64,
     /// Fraction by which a first-check success shortens the reinforced interval.
     pub probe: f64,
+    /// Step size `β` of the learned reward rate `ρ` (reward per step) charged on every step
+    /// as the opportunity cost of time — average-reward TD, the tonic-dopamine account of
+    /// Niv, Daw, Joel & Dayan (2007): `δ = r − ρ + γ Q' − Q`, `ρ ← ρ + β (r − ρ)`. With it,
+    /// wandering away from a task is never free. 0 = off (plain discounted SARSA(λ)).
+    #[serde(default)]
+    pub opportunity_cost: f64,
 }
 
 impl Default for TimingAgentConfig {
@@ -62,6 +68,7 @@ impl Default for TimingAgentConfig {
             epsilon: 0.1,
             response_cost: 0.01,
             probe: 0.15,
+            opportunity_cost: 0.0,
         }
     }
 }
@@ -112,6 +119,9 @@ pub struct TimingAgent {
     pub button_cells: Vec<usize>,
     /// Settings.
     pub config: TimingAgentConfig,
+    /// Learned reward rate `ρ` (reward per step; with `config.opportunity_cost` > 0).
+    #[serde(default)]
+    pub reward_rate: f64,
     #[serde(skip)]
     training: bool,
     #[serde(skip)]
@@ -160,6 +170,7 @@ impl TimingAgent {
             judges,
             button_cells,
             config,
+            reward_rate: 0.0,
             training: false,
             ep: EpisodeState::default(),
             rng: default_rng(),
@@ -258,12 +269,18 @@ impl TimingAgent {
     fn learn(&mut self, next_q: Option<f64>) {
         if let Some((s, a, phi)) = self.ep.pending.take() {
             let q_old = self.learner.q(s, a, &phi);
-            let target = self.ep.reward + next_q.map_or(0.0, |q| self.learner.config.gamma * q);
+            let beta = self.config.opportunity_cost;
+            let cost = if beta > 0.0 { self.reward_rate } else { 0.0 };
+            let target =
+                self.ep.reward - cost + next_q.map_or(0.0, |q| self.learner.config.gamma * q);
             let delta = target - q_old;
             self.ep.rpe = delta;
             if self.training {
                 let norm2: f64 = phi.iter().map(|v| v * v).sum();
                 self.learner.apply(delta, norm2);
+                if beta > 0.0 {
+                    self.reward_rate += beta * (self.ep.reward - self.reward_rate);
+                }
             }
         }
     }
