@@ -15,6 +15,7 @@ MODELS = ["ddm", "sbf", "timecells-csc", "timecells-ms", "timecells-laplace", "t
 TASKS = {
     "fi": ("FixedInterval-v0", []),
     "bisection": ("Bisection-v0", []),
+    "mt-default": ("MultiTimer-v0", []),
     "mt-lower": ("MultiTimer-v0", ["env.mode=lower_bounded", "env.num_timers=5"]),
     "mt-exact": ("MultiTimer-v0", ["env.mode=exact", "env.num_timers=5"]),
     "mt-exact-cat": ("MultiTimer-v0", ["env.mode=exact", "env.num_timers=5", "env.cue=categorical"]),
