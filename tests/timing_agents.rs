@@ -468,9 +468,12 @@ fn zoo_says_which_tasks_each_mechanism_cannot_do() {
             None,
             "{model}"
         );
-        // One-step reward windows: each model names its limit (noise, resolution, exploration).
-        assert!(
+        // One-step reward windows: each model names its mechanistic limit (noise,
+        // resolution) — except the complete serial compound, one unit per step, which learns
+        // them (next test).
+        assert_eq!(
             task_limit(model, "MultiTimer-v0", true).is_some(),
+            model != "timecells-csc",
             "{model}"
         );
     }
@@ -622,4 +625,28 @@ fn an_opportunity_cost_of_time_lets_drift_diffusion_learn_the_time_out() {
     // FI TD 12: one soup (reward 1) per episode of ≥ 12 + walking steps.
     assert!(rho > 0.01 && rho < 1.0 / 12.0, "reward rate {rho}");
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn the_complete_serial_compound_learns_the_one_step_window_of_the_dual_task() {
+    // One unit per step and optimistic initial values (`CSC_Q_INIT`): the agent takes the
+    // soup exactly at TD 12 instead of the early reduced reward. Without optimism ε-greedy
+    // SARSA never finds the window (measured: 0% on four seeds).
+    for seed in [0, 1] {
+        let cfg = TimingRunConfig::new("DualTask-v0", "timecells-csc", seed);
+        let mut agent = trained_agent(&cfg, &format!("dual-csc-{seed}"));
+        let conditions = reference_conditions("DualTask-v0", &[]).unwrap();
+        let records = run_protocol(agent.as_mut(), &conditions, Mode::Reference, 0).unwrap();
+        let rate =
+            records.iter().filter(|r| r.episode.success).count() as f64 / records.len() as f64;
+        assert!(rate >= 0.9, "seed {seed}: dual success {rate}");
+        let mut plain = cfg.clone();
+        plain.set("q_init=0").unwrap();
+        let mut agent = trained_agent(&plain, &format!("dual-csc-plain-{seed}"));
+        let records = run_protocol(agent.as_mut(), &conditions, Mode::Reference, 0).unwrap();
+        assert!(
+            records.iter().all(|r| !r.episode.success),
+            "seed {seed}: plain SARSA found the window"
+        );
+    }
 }

@@ -45,7 +45,7 @@ pub struct TimingRunConfig {
 pub const UNCERTAINTY_EPISODES: usize = 40_000;
 
 /// Every `--set` key of a timing run.
-pub const TIMING_KEYS: &str = "episodes, epsilon_start, epsilon_end, anneal_fraction, eval_every, stop_at_success, alpha, gamma, lambda, response_cost, probe, opportunity_cost, noise (ddm), memory_noise (sbf), clock_noise (timecells-*), env.<task parameter>";
+pub const TIMING_KEYS: &str = "episodes, epsilon_start, epsilon_end, anneal_fraction, eval_every, stop_at_success, alpha, gamma, lambda, response_cost, probe, opportunity_cost, q_init, noise (ddm), memory_noise (sbf), clock_noise (timecells-*), env.<task parameter>";
 
 fn parse<T: std::str::FromStr>(key: &str, value: &str, allowed: &str) -> Result<T, TrainError> {
     value.parse().map_err(|_| TrainError::InvalidParam {
@@ -94,8 +94,15 @@ impl TimingRunConfig {
                 }
             }
             "alpha" | "gamma" | "lambda" | "response_cost" | "probe" | "opportunity_cost"
-            | "noise" | "memory_noise" | "clock_noise" => {
+            | "q_init" | "noise" | "memory_noise" | "clock_noise" => {
                 let v: f64 = parse(key, value, "a number")?;
+                if key == "q_init" && !v.is_finite() {
+                    return Err(TrainError::InvalidParam {
+                        field: key.into(),
+                        value: value.into(),
+                        allowed: "a finite number (initial Q of unvisited pairs)".into(),
+                    });
+                }
                 if key == "opportunity_cost" && !(0.0..1.0).contains(&v) {
                     return Err(TrainError::InvalidParam {
                         field: key.into(),
@@ -180,6 +187,7 @@ impl TimingRunConfig {
                 "response_cost" => agent.config.response_cost = v,
                 "probe" => agent.config.probe = v,
                 "opportunity_cost" => agent.config.opportunity_cost = v,
+                "q_init" => agent.learner.q_init = v,
                 "noise" => match &mut agent.timer {
                     chronocooked_models::timing::timers::Timer::Ddm(d) => d.acc.noise = v,
                     _ => return Err(TrainError::UnknownKey("noise (ddm only)".into())),

@@ -44,6 +44,11 @@ pub struct SarsaLambda {
     pub features: usize,
     /// `θ` blocks keyed by `s · actions + a`.
     pub weights: BTreeMap<u32, Vec<f64>>,
+    /// Initial bias weight of a pair not visited before (its `Q` before any update, with
+    /// the bias feature first): 0, or optimistic (> 0) for systematic exploration —
+    /// optimistic initial values, Sutton & Barto (2018) §2.6.
+    #[serde(default)]
+    pub q_init: f64,
     #[serde(skip)]
     traces: Vec<(u32, Vec<f64>)>,
 }
@@ -56,6 +61,7 @@ impl SarsaLambda {
             actions,
             features,
             weights: BTreeMap::new(),
+            q_init: 0.0,
             traces: Vec::new(),
         }
     }
@@ -69,7 +75,7 @@ impl SarsaLambda {
         self.weights
             .get(&self.key(state, action))
             .map(|w| w.iter().zip(phi).map(|(a, b)| a * b).sum())
-            .unwrap_or(0.0)
+            .unwrap_or_else(|| self.q_init * phi.first().copied().unwrap_or(0.0))
     }
 
     /// `Q(s, ·)` into `out`.
@@ -127,9 +133,13 @@ impl SarsaLambda {
     /// features `phi` of the updated pair), then decays the traces by `γλ`.
     pub fn apply(&mut self, delta: f64, phi_norm2: f64) {
         let step = self.config.alpha / phi_norm2.max(1.0) * delta;
-        let n = self.features;
+        let (n, q0) = (self.features, self.q_init);
         for (key, e) in &self.traces {
-            let w = self.weights.entry(*key).or_insert_with(|| vec![0.0; n]);
+            let w = self.weights.entry(*key).or_insert_with(|| {
+                let mut w = vec![0.0; n];
+                w[0] = q0;
+                w
+            });
             for (wi, ei) in w.iter_mut().zip(e) {
                 *wi += step * ei;
             }
