@@ -124,7 +124,12 @@ fn run_stage(
                 sets: if resume { vec![] } else { job.sets.clone() },
                 out: (!resume).then(|| run.clone()),
                 resume: resume.then(|| run.clone()),
-                command: format!("sweep job {}", job.id),
+                command: format!(
+                    "sweep {}: job {} ({})",
+                    sweep.name,
+                    job.id,
+                    if resume { "resumed" } else { "started" }
+                ),
             };
             let (outcome, figure_error) = stages::train(&req, &mut stages::train::Quiet)?;
             let mut line = format!("trained → {}", outcome.dir().display());
