@@ -152,3 +152,27 @@ impl SarsaLambda {
             .retain(|(_, e)| e.iter().any(|v| v.abs() > 1e-4));
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn unvisited_pairs_are_worth_q_init_and_updates_start_from_it() {
+        let mut l = SarsaLambda::new(SarsaConfig::default(), 2, 3);
+        let phi = [1.0, 0.0, 1.0]; // bias, two features
+        assert_eq!(l.q(7, 1, &phi), 0.0);
+        l.q_init = 1.0;
+        assert_eq!(l.q(7, 1, &phi), 1.0, "optimistic before any visit");
+        // One TD error δ on (7, 1): the new block starts at bias q_init, then moves by
+        // α/|φ|² δ along the trace φ (normalised LMS).
+        l.visit(7, 1, &phi);
+        let delta = -0.5;
+        l.apply(delta, 2.0);
+        let step = 0.05 / 2.0 * delta;
+        assert_eq!(l.weights[&(7 * 2 + 1)], vec![1.0 + step, 0.0, step]);
+        assert!((l.q(7, 1, &phi) - (1.0 + 2.0 * step)).abs() < 1e-12);
+        // Other pairs keep their optimism.
+        assert_eq!(l.q(7, 0, &phi), 1.0);
+    }
+}
