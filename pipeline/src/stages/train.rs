@@ -74,9 +74,8 @@ impl Progress for PpoBridge<'_> {
     }
 }
 
-/// Trains (or resumes) the run of `req`, then draws its learning curve
-/// (`figures/learning_curve.svg`; a figure that cannot be drawn is reported in
-/// `figure_error`, the run is kept). Returns the run's summary.
+/// Trains (or resumes) the run of `req`, then draws its learning curve. Returns the run's
+/// summary and, when the figure could not be drawn, why (the run is kept either way).
 pub fn train(
     req: &TrainRequest,
     observer: &mut dyn TrainObserver,
