@@ -349,6 +349,10 @@ set = ["checkpoint_every=4000", "eval_every=0"]
     // reached the full budget.
     let commands = std::fs::read_to_string(lstm.join("run/command.txt")).unwrap();
     assert!(commands.lines().count() >= 2, "{commands}");
+    assert!(
+        commands.lines().last().unwrap().ends_with("(resumed)"),
+        "{commands}"
+    );
     let summary: Value =
         serde_json::from_str(&std::fs::read_to_string(lstm.join("run/summary.json")).unwrap())
             .unwrap();

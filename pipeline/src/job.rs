@@ -48,7 +48,16 @@ pub fn find_job(sweep: &SweepFile, file: &Path, id: &str) -> Result<Job, Pipelin
         })
 }
 
-/// Removes temporary files a killed writer left behind (`*.tmp*`).
+/// Whether `name` is a temporary file of an atomic write (`.tmpXXXXXX` from `tempfile`, or
+/// a `*.tmp*` extension).
+fn is_temp_name(name: &str) -> bool {
+    name.starts_with(".tmp")
+        || name
+            .rsplit_once('.')
+            .is_some_and(|(_, ext)| ext.contains("tmp"))
+}
+
+/// Removes temporary files a killed writer left behind (see [`is_temp_name`]).
 fn remove_stale_temps(dir: &Path) {
     let Ok(entries) = std::fs::read_dir(dir) else {
         return;
@@ -58,9 +67,9 @@ fn remove_stale_temps(dir: &Path) {
         if p.is_dir() {
             remove_stale_temps(&p);
         } else if p
-            .extension()
+            .file_name()
             .and_then(|x| x.to_str())
-            .is_some_and(|x| x.contains("tmp"))
+            .is_some_and(is_temp_name)
         {
             let _ = std::fs::remove_file(&p);
         }
@@ -216,4 +225,32 @@ fn run_stage(
             format!("{} files", files.len())
         }
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn temporary_files_of_atomic_writes_are_recognised_and_removed() {
+        for t in [".tmpAb12Cd", ".tmp-x1y2", "metrics.json.tmp123", "a.tmp"] {
+            assert!(is_temp_name(t), "{t}");
+        }
+        for keep in [
+            "metrics.json",
+            "records.jsonl",
+            "tmp_notes.txt",
+            "activity.npz",
+        ] {
+            assert!(!is_temp_name(keep), "{keep}");
+        }
+        let dir = std::env::temp_dir().join(format!("cc-temps-{}", std::process::id()));
+        std::fs::create_dir_all(dir.join("eval")).unwrap();
+        std::fs::write(dir.join("eval/.tmpXYZ123"), b"half").unwrap();
+        std::fs::write(dir.join("eval/metrics.json"), b"{}").unwrap();
+        remove_stale_temps(&dir);
+        assert!(!dir.join("eval/.tmpXYZ123").exists());
+        assert!(dir.join("eval/metrics.json").exists());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }

@@ -1,6 +1,7 @@
 //! The sweep pipeline as a library: a job's stages run in order through `run_job`, each is
-//! marked finished, a rerun redoes nothing, and the stage functions write what the CLI
-//! commands write.
+//! marked finished, a rerun redoes nothing, and the stage functions are deterministic and
+//! check their requests. (The CLI end to end, including a PPO job resumed from its
+//! checkpoint, is `tests/sweep.rs`.)
 
 use chronocooked_pipeline::stages::{self, EvalRequest, EvalSubject};
 use chronocooked_pipeline::{JobObserver, PipelineError, find_job, run_job};
@@ -42,7 +43,7 @@ set = ["env.td=6"]
 }
 
 #[test]
-fn run_job_runs_each_stage_once_in_order_and_resumes() {
+fn run_job_runs_each_stage_once_in_order_and_skips_finished_stages() {
     let tmp = tempfile::tempdir().unwrap();
     let (sweep, path) = sweep_file(tmp.path());
     let out = tmp.path().join("out");
@@ -131,7 +132,8 @@ fn the_eval_stage_equals_a_rerun_of_itself_and_checks_its_request() {
     assert!(e.contains("allowed: oracle, random"), "{e}");
     let mut none = req("e");
     none.mode = chronocooked_analysis::Mode::Stochastic { episodes: 0 };
-    assert!(stages::evaluate(&none).is_err());
+    let e = stages::evaluate(&none).unwrap_err().to_string();
+    assert!(e.contains("positive number of episodes"), "{e}");
     let e = stages::export(None, None, 200, tmp.path())
         .unwrap_err()
         .to_string();
