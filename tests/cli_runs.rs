@@ -391,6 +391,26 @@ fn a_folder_that_is_not_a_run_and_a_file_that_is_not_a_sweep_say_so() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Rewrites `run/config.json` through `edit` (a hand edit of a run's settings).
+fn edit_run_config(run: &std::path::Path, edit: impl FnOnce(&mut serde_json::Value)) {
+    let path = run.join("config.json");
+    let mut cfg: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    edit(&mut cfg);
+    std::fs::write(&path, serde_json::to_string(&cfg).unwrap()).unwrap();
+}
+
+/// The error of `eval --run RUN` (output into `dir/e`).
+fn eval_err(run: &std::path::Path, dir: &std::path::Path) -> String {
+    run_err(&[
+        "eval",
+        "--run",
+        run.to_str().unwrap(),
+        "--out",
+        dir.join("e").to_str().unwrap(),
+    ])
+}
+
 #[test]
 fn a_hand_edited_run_config_is_checked_like_a_set_override() {
     let dir = temp_dir("edited-config");
@@ -407,26 +427,17 @@ fn a_hand_edited_run_config_is_checked_like_a_set_override() {
         "--out",
         run.to_str().unwrap(),
     ]);
-    let path = run.join("config.json");
-    let mut cfg: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
-    cfg["ppo"]["n_epochs"] = serde_json::json!(0);
-    std::fs::write(&path, serde_json::to_string(&cfg).unwrap()).unwrap();
-    let err = run_err(&[
-        "eval",
-        "--run",
-        run.to_str().unwrap(),
-        "--out",
-        dir.join("e").to_str().unwrap(),
-    ]);
+    edit_run_config(&run, |cfg| cfg["ppo"]["n_epochs"] = serde_json::json!(0));
+    let err = eval_err(&run, &dir);
     assert!(
         err.contains("config.json") && err.contains("n_epochs") && err.contains("1..=1000"),
         "{err}"
     );
     // A misspelt setting is an error naming the file and the field, not silently dropped.
-    cfg["ppo"]["n_epochs"] = serde_json::json!(4);
-    cfg["ppo"]["learning_rte"] = serde_json::json!(0.001);
-    std::fs::write(&path, serde_json::to_string(&cfg).unwrap()).unwrap();
+    edit_run_config(&run, |cfg| {
+        cfg["ppo"]["n_epochs"] = serde_json::json!(4);
+        cfg["ppo"]["learning_rte"] = serde_json::json!(0.001);
+    });
     let err = run_err(&["train", "--resume", run.to_str().unwrap(), "--quiet"]);
     assert!(
         err.contains("config.json") && err.contains("unknown field `learning_rte`"),
@@ -449,18 +460,8 @@ fn a_timing_run_config_with_an_unknown_field_names_it() {
         "--out",
         run.to_str().unwrap(),
     ]);
-    let path = run.join("config.json");
-    let mut cfg: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
-    cfg["train"]["episdoes"] = serde_json::json!(10);
-    std::fs::write(&path, serde_json::to_string(&cfg).unwrap()).unwrap();
-    let err = run_err(&[
-        "eval",
-        "--run",
-        run.to_str().unwrap(),
-        "--out",
-        dir.join("e").to_str().unwrap(),
-    ]);
+    edit_run_config(&run, |cfg| cfg["train"]["episdoes"] = serde_json::json!(10));
+    let err = eval_err(&run, &dir);
     assert!(
         err.contains("config.json") && err.contains("unknown field `episdoes`"),
         "{err}"

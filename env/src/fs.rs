@@ -5,6 +5,19 @@
 use std::io::Write;
 use std::path::Path;
 
+/// Name prefix of the temporary files [`write_atomic`] creates.
+pub const TEMP_PREFIX: &str = ".tmp-";
+
+/// Whether a file name is a temporary file of an interrupted atomic write: one of
+/// [`write_atomic`] (`.tmp-XXXXXX`, or `tempfile`'s default `.tmpXXXXXX`), or a
+/// `NAME.tmpPID` of a writer that renames into place (the model save of a run folder).
+pub fn is_temp_name(name: &str) -> bool {
+    name.starts_with(".tmp")
+        || name
+            .rsplit_once('.')
+            .is_some_and(|(_, ext)| ext.contains("tmp"))
+}
+
 /// Writes `bytes` to `path` atomically: into a temporary file in the same folder (created
 /// if missing), flushed to disk, then renamed over `path`. On error the temporary file is
 /// removed and `path` keeps its previous content.
@@ -14,7 +27,9 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
         _ => Path::new("."),
     };
     std::fs::create_dir_all(dir)?;
-    let mut tmp = tempfile::Builder::new().prefix(".tmp-").tempfile_in(dir)?;
+    let mut tmp = tempfile::Builder::new()
+        .prefix(TEMP_PREFIX)
+        .tempfile_in(dir)?;
     tmp.write_all(bytes)?;
     tmp.as_file().sync_all()?;
     tmp.persist(path).map_err(|e| e.error)?;

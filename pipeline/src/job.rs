@@ -48,16 +48,8 @@ pub fn find_job(sweep: &SweepFile, file: &Path, id: &str) -> Result<Job, Pipelin
         })
 }
 
-/// Whether `name` is a temporary file of an atomic write (`.tmpXXXXXX` from `tempfile`, or
-/// a `*.tmp*` extension).
-fn is_temp_name(name: &str) -> bool {
-    name.starts_with(".tmp")
-        || name
-            .rsplit_once('.')
-            .is_some_and(|(_, ext)| ext.contains("tmp"))
-}
-
-/// Removes temporary files a killed writer left behind (see [`is_temp_name`]).
+/// Removes temporary files a killed writer left behind
+/// ([`chronocooked_env::fs::is_temp_name`]).
 fn remove_stale_temps(dir: &Path) {
     let Ok(entries) = std::fs::read_dir(dir) else {
         return;
@@ -69,7 +61,7 @@ fn remove_stale_temps(dir: &Path) {
         } else if p
             .file_name()
             .and_then(|x| x.to_str())
-            .is_some_and(is_temp_name)
+            .is_some_and(chronocooked_env::fs::is_temp_name)
         {
             let _ = std::fs::remove_file(&p);
         }
@@ -233,6 +225,7 @@ mod tests {
 
     #[test]
     fn temporary_files_of_atomic_writes_are_recognised_and_removed() {
+        use chronocooked_env::fs::is_temp_name;
         for t in [".tmpAb12Cd", ".tmp-x1y2", "metrics.json.tmp123", "a.tmp"] {
             assert!(is_temp_name(t), "{t}");
         }
@@ -246,10 +239,10 @@ mod tests {
         }
         let dir = std::env::temp_dir().join(format!("cc-temps-{}", std::process::id()));
         std::fs::create_dir_all(dir.join("eval")).unwrap();
-        std::fs::write(dir.join("eval/.tmpXYZ123"), b"half").unwrap();
+        std::fs::write(dir.join("eval/.tmp-XYZ123"), b"half").unwrap();
         std::fs::write(dir.join("eval/metrics.json"), b"{}").unwrap();
         remove_stale_temps(&dir);
-        assert!(!dir.join("eval/.tmpXYZ123").exists());
+        assert!(!dir.join("eval/.tmp-XYZ123").exists());
         assert!(dir.join("eval/metrics.json").exists());
         let _ = std::fs::remove_dir_all(&dir);
     }

@@ -47,6 +47,18 @@ pub const UNCERTAINTY_EPISODES: usize = 40_000;
 /// Every `--set` key of a timing run.
 pub const TIMING_KEYS: &str = "episodes, epsilon_start, epsilon_end, anneal_fraction, eval_every, stop_at_success, alpha, gamma, lambda, response_cost, probe, opportunity_cost, q_init, noise (ddm), memory_noise (sbf), clock_noise (timecells-*), env.<task parameter>";
 
+/// The allowed range of an agent override `key` when `v` lies outside it.
+fn agent_value_range(key: &str, v: f64) -> Option<&'static str> {
+    match key {
+        "q_init" if !v.is_finite() => Some("a finite number (initial Q of unvisited pairs)"),
+        "opportunity_cost" if !(0.0..1.0).contains(&v) => Some("a step size in [0, 1) (0 = off)"),
+        k if k.ends_with("noise") && !(v >= 0.0 && v.is_finite()) => {
+            Some("a number >= 0 (0 = noise-free)")
+        }
+        _ => None,
+    }
+}
+
 fn parse<T: std::str::FromStr>(key: &str, value: &str, allowed: &str) -> Result<T, TrainError> {
     value.parse().map_err(|_| TrainError::InvalidParam {
         field: key.into(),
@@ -96,25 +108,11 @@ impl TimingRunConfig {
             "alpha" | "gamma" | "lambda" | "response_cost" | "probe" | "opportunity_cost"
             | "q_init" | "noise" | "memory_noise" | "clock_noise" => {
                 let v: f64 = parse(key, value, "a number")?;
-                if key == "q_init" && !v.is_finite() {
+                if let Some(allowed) = agent_value_range(key, v) {
                     return Err(TrainError::InvalidParam {
                         field: key.into(),
                         value: value.into(),
-                        allowed: "a finite number (initial Q of unvisited pairs)".into(),
-                    });
-                }
-                if key == "opportunity_cost" && !(0.0..1.0).contains(&v) {
-                    return Err(TrainError::InvalidParam {
-                        field: key.into(),
-                        value: value.into(),
-                        allowed: "a step size in [0, 1) (0 = off)".into(),
-                    });
-                }
-                if key.ends_with("noise") && !(v >= 0.0 && v.is_finite()) {
-                    return Err(TrainError::InvalidParam {
-                        field: key.into(),
-                        value: value.into(),
-                        allowed: "a number >= 0 (0 = noise-free)".into(),
+                        allowed: allowed.into(),
                     });
                 }
                 self.agent.push(format!("{key}={value}"));

@@ -269,15 +269,15 @@ impl TimingAgent {
     fn learn(&mut self, next_q: Option<f64>) {
         if let Some((s, a, phi)) = self.ep.pending.take() {
             let q_old = self.learner.q(s, a, &phi);
-            let beta = self.config.opportunity_cost;
-            let cost = if beta > 0.0 { self.reward_rate } else { 0.0 };
-            let target =
-                self.ep.reward - cost + next_q.map_or(0.0, |q| self.learner.config.gamma * q);
+            // `reward_rate` stays 0 unless the opportunity cost is on.
+            let target = self.ep.reward - self.reward_rate
+                + next_q.map_or(0.0, |q| self.learner.config.gamma * q);
             let delta = target - q_old;
             self.ep.rpe = delta;
             if self.training {
                 let norm2: f64 = phi.iter().map(|v| v * v).sum();
                 self.learner.apply(delta, norm2);
+                let beta = self.config.opportunity_cost;
                 if beta > 0.0 {
                     self.reward_rate += beta * (self.ep.reward - self.reward_rate);
                 }
