@@ -583,36 +583,59 @@ fn recorded_populations_show_each_models_signature() {
     assert!(sd / mean < 0.2, "width/peak {ratios:?}");
 }
 
-/// Never-ready success of a trained uncertainty agent in the reference evaluation.
-fn never_ready_success(agent: &mut dyn chronocooked_models::Agent) -> f64 {
+/// (normal, never-ready) success of a trained uncertainty agent in the reference evaluation.
+fn uncertainty_success(agent: &mut dyn chronocooked_models::Agent) -> (f64, f64) {
     let conditions = reference_conditions("Uncertainty-v0", &[]).unwrap();
     let records = run_protocol(agent, &conditions, Mode::Reference, 0).unwrap();
-    let never: Vec<_> = records
-        .iter()
-        .filter(|r| r.condition.never_ready == Some(true))
-        .collect();
-    assert!(!never.is_empty());
-    never.iter().filter(|r| r.episode.success).count() as f64 / never.len() as f64
+    let rate = |never: bool| {
+        let kind: Vec<_> = records
+            .iter()
+            .filter(|r| r.condition.never_ready == Some(never))
+            .collect();
+        assert!(!kind.is_empty());
+        kind.iter().filter(|r| r.episode.success).count() as f64 / kind.len() as f64
+    };
+    (rate(false), rate(true))
 }
 
 #[test]
-fn an_opportunity_cost_of_time_lets_drift_diffusion_learn_the_time_out() {
-    // Seeds on which plain discounted SARSA leaves drift-diffusion waiting at never-ready
-    // ovens (measured: 0.55 and 0.64 never-ready success); charging the learned reward rate
-    // on every step (average-reward TD, Niv et al. 2007) makes waiting there costly.
-    for seed in [1, 2] {
-        let mut plain = TimingRunConfig::new("Uncertainty-v0", "ddm", seed);
-        plain.set("episodes=40000").unwrap();
-        let mut costly = plain.clone();
-        costly.set("opportunity_cost=0.001").unwrap();
-        let before = never_ready_success(trained_agent(&plain, &format!("unc-{seed}")).as_mut());
-        let after = never_ready_success(trained_agent(&costly, &format!("unc-oc-{seed}")).as_mut());
-        assert!(before < 0.9, "seed {seed}: plain SARSA already {before}");
+fn the_time_out_category_lets_ramping_and_oscillator_clocks_learn_the_time_out() {
+    // Past 1.5 × its expected time without the ready cue the model is "overdue", and the
+    // TD learner sees that category instead of the ramp (whose linear readout would carry
+    // the rising value of waiting past the expected time). Measured, seeds 0–15: drift-
+    // diffusion 1.00 / 1.00 (normal / never-ready) on all 16; without the category it waits
+    // at the never-ready oven on seeds 3 and 5 (0.00).
+    for seed in [3, 5] {
+        let cfg = TimingRunConfig::new("Uncertainty-v0", "ddm", seed);
+        let (normal, never) =
+            uncertainty_success(trained_agent(&cfg, &format!("unc-{seed}")).as_mut());
         assert!(
-            after >= 0.9,
-            "seed {seed}: with the opportunity cost {after}"
+            normal >= 0.9 && never >= 0.9,
+            "seed {seed}: {normal} / {never}"
+        );
+        let mut off = cfg.clone();
+        // A factor below 1 would call the interval overdue before its expected time.
+        let err = off.set("overdue_factor=0.5").unwrap_err().to_string();
+        assert!(
+            err.contains("overdue_factor") && err.contains(">= 1"),
+            "{err}"
+        );
+        off.set("overdue_factor=0").unwrap();
+        let (_, never_off) =
+            uncertainty_success(trained_agent(&off, &format!("unc-off-{seed}")).as_mut());
+        assert!(
+            never_off < 0.9,
+            "seed {seed}: without the category {never_off}"
         );
     }
+    // SBF (its remembered time) learns it too.
+    let cfg = TimingRunConfig::new("Uncertainty-v0", "sbf", 0);
+    let (normal, never) = uncertainty_success(trained_agent(&cfg, "unc-sbf-0").as_mut());
+    assert!(normal >= 0.9 && never >= 0.9, "sbf: {normal} / {never}");
+}
+
+#[test]
+fn the_opportunity_cost_of_time_learns_the_reward_rate() {
     // The rate is learned only when asked for, and it is the reward per step.
     let mut cfg = TimingRunConfig::new("FixedInterval-v0", "ddm", 0);
     cfg.set("episodes=1500").unwrap();
@@ -624,6 +647,14 @@ fn an_opportunity_cost_of_time_lets_drift_diffusion_learn_the_time_out() {
     let rho = saved["reward_rate"].as_f64().unwrap();
     // FI TD 12: one soup (reward 1) per episode of ≥ 12 + walking steps.
     assert!(rho > 0.01 && rho < 1.0 / 12.0, "reward rate {rho}");
+    let _ = std::fs::remove_dir_all(&dir);
+    let mut plain = TimingRunConfig::new("FixedInterval-v0", "ddm", 0);
+    plain.set("episodes=300").unwrap();
+    let dir = temp_dir("fi-no-oc");
+    run_timing_training(&plain, &dir, "test", |_| {}).unwrap();
+    let saved: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("agent.json")).unwrap()).unwrap();
+    assert_eq!(saved["reward_rate"].as_f64(), Some(0.0));
     let _ = std::fs::remove_dir_all(&dir);
 }
 

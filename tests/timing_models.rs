@@ -1,6 +1,7 @@
 //! Oracle tests of the timing models: analytic results, not examples.
 
 use chronocooked_models::timing::timecells::laplace_peak_times;
+use chronocooked_models::timing::timers::Timer;
 use chronocooked_models::timing::{
     BeatFrequency, Ctrnn, DriftDiffusion, FrequencyLayout, LinearTd, Representation, TimeCells,
     microstimulus, microstimulus_peak,
@@ -369,4 +370,26 @@ fn standalone_ctrnn_with_zero_weights_follows_exact_euler_decay() {
     };
     assert_eq!(run(4), run(4));
     assert_ne!(run(4), run(5));
+}
+
+#[test]
+fn a_noise_free_ramp_is_overdue_from_k_times_its_expected_time() {
+    // Untrained drift-diffusion timer: drift z / 8 steps, no noise, so x/z = t / 8 and the
+    // interval is overdue (k = 1.5) from step 12 on; a time-cell clock never is.
+    let mut timer = Timer::ddm(0.0);
+    let mut r = rng(0);
+    timer.onset(1, &mut r);
+    let first = (1..=30u32)
+        .find(|&t| {
+            timer.tick(t, &mut r);
+            timer.overdue(1.5)
+        })
+        .unwrap();
+    assert_eq!(first, 12);
+    let mut cells = Timer::time_cells(Representation::csc());
+    cells.onset(1, &mut r);
+    for t in 1..=100 {
+        cells.tick(t, &mut r);
+        assert!(!cells.overdue(1.5));
+    }
 }

@@ -45,13 +45,16 @@ pub struct TimingRunConfig {
 pub const UNCERTAINTY_EPISODES: usize = 40_000;
 
 /// Every `--set` key of a timing run.
-pub const TIMING_KEYS: &str = "episodes, epsilon_start, epsilon_end, anneal_fraction, eval_every, stop_at_success, alpha, gamma, lambda, response_cost, probe, opportunity_cost, q_init, noise (ddm), memory_noise (sbf), clock_noise (timecells-*), env.<task parameter>";
+pub const TIMING_KEYS: &str = "episodes, epsilon_start, epsilon_end, anneal_fraction, eval_every, stop_at_success, alpha, gamma, lambda, response_cost, probe, opportunity_cost, overdue_factor, q_init, noise (ddm), memory_noise (sbf), clock_noise (timecells-*), env.<task parameter>";
 
 /// The allowed range of an agent override `key` when `v` lies outside it.
 fn agent_value_range(key: &str, v: f64) -> Option<&'static str> {
     match key {
         "q_init" if !v.is_finite() => Some("a finite number (initial Q of unvisited pairs)"),
         "opportunity_cost" if !(0.0..1.0).contains(&v) => Some("a step size in [0, 1) (0 = off)"),
+        "overdue_factor" if !(v == 0.0 || (v >= 1.0 && v.is_finite())) => {
+            Some("a number >= 1 (a multiple of the expected time), or 0 = off")
+        }
         k if k.ends_with("noise") && !(v >= 0.0 && v.is_finite()) => {
             Some("a number >= 0 (0 = noise-free)")
         }
@@ -106,7 +109,7 @@ impl TimingRunConfig {
                 }
             }
             "alpha" | "gamma" | "lambda" | "response_cost" | "probe" | "opportunity_cost"
-            | "q_init" | "noise" | "memory_noise" | "clock_noise" => {
+            | "overdue_factor" | "q_init" | "noise" | "memory_noise" | "clock_noise" => {
                 let v: f64 = parse(key, value, "a number")?;
                 if let Some(allowed) = agent_value_range(key, v) {
                     return Err(TrainError::InvalidParam {
@@ -185,6 +188,7 @@ impl TimingRunConfig {
                 "response_cost" => agent.config.response_cost = v,
                 "probe" => agent.config.probe = v,
                 "opportunity_cost" => agent.config.opportunity_cost = v,
+                "overdue_factor" => agent.config.overdue_factor = v,
                 "q_init" => agent.learner.q_init = v,
                 "noise" => match &mut agent.timer {
                     chronocooked_models::timing::timers::Timer::Ddm(d) => d.acc.noise = v,

@@ -310,6 +310,14 @@ fn timing_parameters(name: &str) -> Vec<ZooParam> {
             "training episodes (--set episodes=N)",
         ),
     ]);
+    if agent.timer.has_gate() {
+        // Only a clock with one expected time (drift-diffusion, SBF) can be overdue.
+        ps.push(p(
+            "overdue_factor",
+            agent.config.overdue_factor,
+            "time-out: past this multiple of the expected time a missing ready cue is a category",
+        ));
+    }
     ps
 }
 

@@ -5,9 +5,24 @@
 //! What the agent knows: the codes observation only — its cell, what it carries, the
 //! visible oven value (off / on / ready / cue) — and the layout. It never sees the hidden
 //! oven timer. Its clock starts when it sees the oven turn on; the elapsed time it holds is
-//! the timing model's state. The temporal features freeze when the interval ends (oven
-//! shows ready, or the soup is taken out), which is the model's memory of the interval used
-//! for later choices (bisection counters).
+//! the timing model's state. The temporal features freeze when the interval ends (the
+//! soup is taken out), the model's memory of the interval. In tasks whose oven shows a
+//! ready cue (bisection, uncertainty) the TD learner reads the temporal features only while
+//! the interval runs and is not overdue; afterwards it sees the model's categorical outputs:
+//! * the interval has ended (the cue came, or the button readied the oven): what later
+//!   choices need is the model's judgment of it (bisection counters), not a frozen clock —
+//!   frozen features let values learned at the usual end time leak, by linear
+//!   generalisation, into trials that ended at other times (a button-readied oven);
+//! * the interval is overdue — past `overdue_factor ×` the model's expected time without
+//!   the cue (drift-diffusion, SBF): the expected cue has been omitted. That is the
+//!   time-out state of the uncertainty task, where the button is the way out; without it
+//!   the linear readout of a ramp extrapolates the rising value of waiting past the
+//!   expected time.
+//!
+//! Tasks without a cue (fixed interval, peak interval, multi-timer) keep the temporal
+//! features throughout: the model's own checks are the only events there, and the peak
+//! procedure's stop comes from the readout (both categorical replacements were measured
+//! there and made the multi-timer and the peak-interval stop worse: RESULTS.md).
 //!
 //! Learning signals:
 //! * TD: the env reward minus a small response cost per interact (effort), so checking
@@ -42,6 +57,9 @@ pub const OVEN_LEVELS: u32 = 32;
 /// Judgment indicator features ("judged short", "judged long") after the temporal ones.
 pub const JUDGMENT_FEATURES: usize = 2;
 
+/// The time-out indicator ("overdue") after the judgment features.
+pub const OVERDUE_FEATURES: usize = 1;
+
 /// Settings of a [`TimingAgent`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct TimingAgentConfig {
@@ -59,7 +77,23 @@ pub struct TimingAgentConfig {
     /// wandering away from a task is never free. 0 = off (plain discounted SARSA(λ)).
     #[serde(default)]
     pub opportunity_cost: f64,
+    /// The time-out category: once the running interval is this many times the model's
+    /// expected time without the task's ready cue ([`Timer::overdue`]: drift-diffusion
+    /// `x ≥ k z`, SBF past `k ×` its remembered time; tasks that show a ready cue only), the
+    /// TD learner sees the model's categorical "overdue" output (the expected cue was
+    /// omitted) instead of its temporal features. The default 1.5 is where the peak
+    /// procedure's responding stops, about 1.5–2 × the expected time (Church, Meck & Gibbon
+    /// 1994), and the subject turns to other behaviour. 0 = off.
+    #[serde(default = "default_overdue_factor")]
+    pub overdue_factor: f64,
 }
+
+fn default_overdue_factor() -> f64 {
+    OVERDUE_FACTOR
+}
+
+/// Default [`TimingAgentConfig::overdue_factor`].
+pub const OVERDUE_FACTOR: f64 = 1.5;
 
 impl Default for TimingAgentConfig {
     fn default() -> Self {
@@ -69,6 +103,7 @@ impl Default for TimingAgentConfig {
             response_cost: 0.01,
             probe: 0.15,
             opportunity_cost: 0.0,
+            overdue_factor: OVERDUE_FACTOR,
         }
     }
 }
@@ -158,7 +193,7 @@ impl TimingAgent {
             .into_iter()
             .map(|(c, _)| c)
             .collect();
-        let features = timer.n_features() + 1 + JUDGMENT_FEATURES;
+        let features = timer.n_features() + 1 + JUDGMENT_FEATURES + OVERDUE_FEATURES;
         let judges = choice_cells.iter().any(|&(_, slot)| slot == LONG);
         TimingAgent {
             name: name.to_string(),
@@ -312,11 +347,16 @@ impl Agent for TimingAgent {
                 .is_some();
         let mut features = std::mem::take(&mut self.phi);
         self.timer.features_into(self.ep.responding, &mut features);
-        if self.judges && self.ep.interval.is_some() {
+        // Categorical states replace the temporal features: the interval has ended (its
+        // judgment, in bisection, is what later choices need) or is overdue (time-out).
+        let k = self.config.overdue_factor;
+        let overdue = k > 0.0 && self.shows_ready && self.ep.running && self.timer.overdue(k);
+        if (self.ep.interval.is_some() && (self.shows_ready || self.judges)) || overdue {
             features.iter_mut().for_each(|v| *v = 0.0);
         }
         features.push(f64::from(self.ep.judgment == Some(false)));
         features.push(f64::from(self.ep.judgment == Some(true)));
+        features.push(f64::from(overdue));
         features.insert(0, 1.0);
         let s = self.state_index(&p);
         let mut q = std::mem::take(&mut self.q);

@@ -370,6 +370,20 @@ impl Timer {
         }
     }
 
+    /// The model's expected time has clearly passed (by the factor `k`) in the running
+    /// interval: drift-diffusion `x ≥ k z`; SBF: the clock is past `k ×` its remembered
+    /// time. Time cells hold no single expected time (false).
+    pub fn overdue(&self, k: f64) -> bool {
+        match self {
+            Timer::Ddm(d) => d.acc.x >= k * d.acc.threshold,
+            Timer::Sbf(s) => {
+                s.rt.template
+                    .is_some_and(|stored| s.rt.now >= k * stored / s.model.clock_speed)
+            }
+            Timer::TimeCells(_) => false,
+        }
+    }
+
     /// Temporal features for TD learning into `out` (bias excluded), each within ~[0, 1].
     pub fn features_into(&self, responding: bool, out: &mut Vec<f64>) {
         out.clear();
