@@ -14,6 +14,7 @@ MODELS = ["ddm", "sbf", "timecells-csc", "timecells-ms", "timecells-laplace", "t
 # name -> (task id, settings)
 TASKS = {
     "fi": ("FixedInterval-v0", []),
+    "pi": ("PeakInterval-v0", []),
     "bisection": ("Bisection-v0", []),
     "mt-default": ("MultiTimer-v0", []),
     "mt-lower": ("MultiTimer-v0", ["env.mode=lower_bounded", "env.num_timers=5"]),
@@ -37,7 +38,7 @@ def summary(task, m):
         return f"{rate(False):.2f} / {rate(True):.2f}", ""
     by_td = {}
     for c in conds:
-        if c["kind"] in ("fi", "multi_timer", "dual", "train"):
+        if c["kind"] in ("fi", "pi", "multi_timer", "dual", "train"):
             by_td.setdefault(c["td"], []).append((c["success_rate"], c["episodes"]))
     per = " ".join(f"TD{td}:{sum(r * n for r, n in v) / sum(n for _, n in v):.2f}"
                    for td, v in sorted(by_td.items()))
