@@ -83,13 +83,11 @@ pub struct TimingAgentConfig {
     /// TD learner sees the model's categorical "overdue" output (the expected cue was
     /// omitted) instead of its temporal features. The default 1.5 is where the peak
     /// procedure's responding stops, about 1.5–2 × the expected time (Church, Meck & Gibbon
-    /// 1994), and the subject turns to other behaviour. 0 = off.
-    #[serde(default = "default_overdue_factor")]
+    /// 1994), and the subject turns to other behaviour. 0 = off, and then the temporal
+    /// features also stay on (frozen) after the uncertainty task's interval ends: the agent
+    /// as it was before the category (agents saved then load with 0).
+    #[serde(default)]
     pub overdue_factor: f64,
-}
-
-fn default_overdue_factor() -> f64 {
-    OVERDUE_FACTOR
 }
 
 /// Default [`TimingAgentConfig::overdue_factor`].
@@ -351,7 +349,8 @@ impl Agent for TimingAgent {
         // judgment, in bisection, is what later choices need) or is overdue (time-out).
         let k = self.config.overdue_factor;
         let overdue = k > 0.0 && self.shows_ready && self.ep.running && self.timer.overdue(k);
-        if (self.ep.interval.is_some() && (self.shows_ready || self.judges)) || overdue {
+        let ended_category = self.judges || (self.shows_ready && k > 0.0);
+        if (self.ep.interval.is_some() && ended_category) || overdue {
             features.iter_mut().for_each(|v| *v = 0.0);
         }
         features.push(f64::from(self.ep.judgment == Some(false)));
