@@ -466,5 +466,15 @@ fn a_timing_run_config_with_an_unknown_field_names_it() {
         err.contains("config.json") && err.contains("unknown field `episdoes`"),
         "{err}"
     );
+    // An agent override out of range is refused as `--set` refuses it.
+    edit_run_config(&run, |cfg| {
+        cfg["train"].as_object_mut().unwrap().remove("episdoes");
+        cfg["agent"] = serde_json::json!(["overdue_factor=0.5"]);
+    });
+    let err = eval_err(&run, &dir);
+    assert!(
+        err.contains("config.json") && err.contains("overdue_factor") && err.contains(">= 1"),
+        "{err}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -393,3 +393,26 @@ fn a_noise_free_ramp_is_overdue_from_k_times_its_expected_time() {
         assert!(!cells.overdue(1.5));
     }
 }
+
+#[test]
+fn an_sbf_clock_is_overdue_from_k_times_its_remembered_time() {
+    // One noise-free memory of a 10-step interval (0.25 s at 25 ms per step): overdue
+    // (k = 1.5) from step 15; with the clock running twice as fast the remembered time is
+    // reached at half the steps, so from step 8 (0.2 s ≥ 1.5 × 0.25 s / 2).
+    for (speed, expected) in [(1.0, 15u32), (2.0, 8)] {
+        let mut r = rng(1);
+        let mut timer = Timer::sbf(200, FrequencyLayout::Even, 0.0, &mut r);
+        timer.reinforce(1, 10.0, true, &mut r);
+        if let Timer::Sbf(s) = &mut timer {
+            s.model.clock_speed = speed;
+        }
+        timer.onset(1, &mut r);
+        let first = (1..=60u32)
+            .find(|&t| {
+                timer.tick(t, &mut r);
+                timer.overdue(1.5)
+            })
+            .unwrap();
+        assert_eq!(first, expected, "clock speed {speed}");
+    }
+}

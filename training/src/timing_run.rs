@@ -32,8 +32,9 @@ pub struct TimingRunConfig {
     pub seed: u64,
     /// Training schedule.
     pub train: TimingTrainConfig,
-    /// Agent overrides applied after construction (`alpha`, `gamma`, `lambda`,
-    /// `response_cost`, `probe`, `noise`).
+    /// Agent overrides applied after construction (`key=value`: `alpha`, `gamma`,
+    /// `lambda`, `response_cost`, `probe`, `opportunity_cost`, `overdue_factor`, `q_init`,
+    /// `noise`, `memory_noise`, `clock_noise`).
     pub agent: Vec<String>,
 }
 
@@ -163,6 +164,13 @@ impl TimingRunConfig {
                 t.anneal_fraction.to_string(),
                 "a number in (0, 1]",
             );
+        }
+        for kv in &self.agent {
+            let (key, value) = kv.split_once('=').unwrap_or((kv, ""));
+            let v: f64 = parse(key, value, "a number")?;
+            if let Some(allowed) = agent_value_range(key, v) {
+                return bad(key, value.to_string(), allowed);
+            }
         }
         make_config(&self.task, &self.env)?;
         Ok(())

@@ -310,14 +310,17 @@ fn timing_parameters(name: &str) -> Vec<ZooParam> {
             "training episodes (--set episodes=N)",
         ),
     ]);
-    if agent.timer.has_gate() {
-        // Only a clock with one expected time (drift-diffusion, SBF) can be overdue.
-        ps.push(p(
-            "overdue_factor",
-            agent.config.overdue_factor,
-            "time-out: past this multiple of the expected time a missing ready cue is a category",
-        ));
-    }
+    ps.push(p(
+        "overdue_factor",
+        agent.config.overdue_factor,
+        if agent.timer.has_gate() {
+            "cue tasks: past this multiple of the expected time a missing ready cue is a \
+             category; after the cue the clock is off (0: both off)"
+        } else {
+            "cue tasks: after the ready cue the clock is off (0: kept frozen; no single \
+             expected time, so never overdue)"
+        },
+    ));
     ps
 }
 

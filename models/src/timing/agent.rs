@@ -6,7 +6,8 @@
 //! visible oven value (off / on / ready / cue) — and the layout. It never sees the hidden
 //! oven timer. Its clock starts when it sees the oven turn on; the elapsed time it holds is
 //! the timing model's state. The temporal features freeze when the interval ends (the
-//! soup is taken out), the model's memory of the interval. In tasks whose oven shows a
+//! oven shows ready, or the soup is taken out), the model's memory of the interval. In
+//! tasks whose oven shows a
 //! ready cue (bisection, uncertainty) the TD learner reads the temporal features only while
 //! the interval runs and is not overdue; afterwards it sees the model's categorical outputs:
 //! * the interval has ended (the cue came, or the button readied the oven): what later
@@ -118,6 +119,7 @@ struct EpisodeState {
     prev_check_failed: bool,
     interval: Option<u32>,
     judgment: Option<bool>,
+    overdue: bool,
     pressed_button: bool,
     pending: Option<(u32, usize, Vec<f64>)>,
     reward: f64,
@@ -246,6 +248,7 @@ impl TimingAgent {
             self.ep.clock = 1;
             self.ep.started = None;
             self.ep.interval = None;
+            self.ep.overdue = false;
             self.ep.prev_check_failed = false;
             self.timer.tick(1, &mut self.rng);
             return;
@@ -348,7 +351,10 @@ impl Agent for TimingAgent {
         // Categorical states replace the temporal features: the interval has ended (its
         // judgment, in bisection, is what later choices need) or is overdue (time-out).
         let k = self.config.overdue_factor;
-        let overdue = k > 0.0 && self.shows_ready && self.ep.running && self.timer.overdue(k);
+        // A category, once reached, holds for the rest of the interval (a noisy ramp may dip
+        // back below k z).
+        self.ep.overdue |= k > 0.0 && self.shows_ready && self.ep.running && self.timer.overdue(k);
+        let overdue = self.ep.overdue && self.ep.running;
         let ended_category = self.judges || (self.shows_ready && k > 0.0);
         if (self.ep.interval.is_some() && ended_category) || overdue {
             features.iter_mut().for_each(|v| *v = 0.0);
