@@ -56,6 +56,7 @@ fn job(task: &str, model: &str, seed: u64, env: &[&str], ep_len: f64) -> JobSumm
         id: format!("{task}/{model}/seed{seed}"),
         task: task.into(),
         model: model.into(),
+        row: None,
         seed,
         env: env.iter().map(|s| s.to_string()).collect(),
         preset: "reference".into(),
@@ -164,6 +165,29 @@ fn bisection_excludes_long_runs_and_marks_invalid_probes() {
     assert!(cell.fit.is_some());
     let mle = cell.mle.as_ref().unwrap();
     assert!(mle.bp > 7.0 && mle.bp < 9.0, "MLE BP {}", mle.bp);
+}
+
+#[test]
+fn a_faithfulness_switch_is_analysed_as_its_own_group() {
+    // Two runs of the reference model and one with a switch (its sweep row): three runs of
+    // one model, two groups; a summary collected before rows existed falls back to the model.
+    let mut switched = bisection_job(3, 30.0, 9);
+    switched.job.row = Some("m~recurrent_batches-chunks".into());
+    let mut reference = bisection_job(2, 30.0, 8);
+    reference.job.row = Some("m".into());
+    let jobs = vec![bisection_job(1, 30.0, 7), reference, switched];
+    let b = analyse_bisection(&jobs);
+    let groups: Vec<(&str, usize)> = b
+        .iter()
+        .map(|m| (m.model.as_str(), m.cells[0].runs.len()))
+        .collect();
+    assert_eq!(groups, vec![("m", 2), ("m~recurrent_batches-chunks", 1)]);
+    // Old compact summaries (no `row` field) still load.
+    let old = r#"{"id":"a/m/seed1","task":"Bisection-v0","model":"m","seed":1,"env":[],
+        "preset":"reference","total_steps":1,"steps_done":1,"wall_s":1.0,
+        "final_ep_len_mean":1.0,"final_ep_return_mean":1.0,"level_steps":[0],"ppo":null}"#;
+    let job: JobSummary = serde_json::from_str(old).unwrap();
+    assert_eq!(job.label(), "m");
 }
 
 #[test]

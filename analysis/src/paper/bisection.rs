@@ -170,7 +170,7 @@ pub fn analyse_bisection(jobs: &[CompactJob]) -> Vec<BisectionModel> {
             continue;
         };
         by_model
-            .entry(&j.job.model)
+            .entry(j.job.label())
             .or_default()
             .entry((s, l))
             .or_default()

@@ -19,6 +19,11 @@ pub struct JobSummary {
     pub task: String,
     /// Zoo model name.
     pub model: String,
+    /// The sweep's row label: the model plus its variant's non-task settings
+    /// (`lstm125~recurrent_batches-chunks`); absent in results collected before it existed
+    /// (then the model name). Analyses group runs by it ([`JobSummary::label`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub row: Option<String>,
     /// Training seed.
     pub seed: u64,
     /// Task settings of the job (`key=value`, e.g. `td=12`).
@@ -40,6 +45,14 @@ pub struct JobSummary {
     pub level_steps: Vec<u64>,
     /// The run's PPO settings (`config.json`'s `ppo`).
     pub ppo: serde_json::Value,
+}
+
+impl JobSummary {
+    /// The group this run belongs to in the analysis: the sweep row (model plus non-task
+    /// settings, so a faithfulness switch is its own group), else the model.
+    pub fn label(&self) -> &str {
+        self.row.as_deref().unwrap_or(&self.model)
+    }
 }
 
 /// One evaluation episode (a line of `episodes.csv`).
@@ -228,6 +241,7 @@ pub fn summarise_job(dir: &Path) -> Result<Option<CompactJob>, CollectError> {
         id: s(&job, "id"),
         task: s(&job, "task"),
         model: s(&job, "model"),
+        row: job["row"].as_str().map(String::from),
         seed: job["seed"].as_u64().unwrap_or(0),
         env: job["env"]
             .as_array()

@@ -76,7 +76,7 @@ pub fn analyse_fi(jobs: &[CompactJob]) -> Vec<FiModel> {
             continue;
         };
         by_model
-            .entry(&j.job.model)
+            .entry(j.job.label())
             .or_default()
             .entry(td)
             .or_default()

@@ -59,7 +59,7 @@ pub fn analyse_multitimer(jobs: &[CompactJob]) -> Vec<MtCell> {
     let mut groups: BTreeMap<(&str, &str), Vec<&CompactJob>> = BTreeMap::new();
     for j in jobs.iter().filter(|j| j.job.task == "MultiTimer-v0") {
         groups
-            .entry((&j.job.model, curriculum_of(j)))
+            .entry((j.job.label(), curriculum_of(j)))
             .or_default()
             .push(j);
     }
