@@ -372,26 +372,26 @@ fn standalone_ctrnn_with_zero_weights_follows_exact_euler_decay() {
     assert_ne!(run(4), run(5));
 }
 
+/// The first step (1 … `max`) after onset at which `timer` is overdue by 1.5.
+fn first_overdue_step(timer: &mut Timer, r: &mut Xoshiro256PlusPlus, max: u32) -> Option<u32> {
+    timer.onset(1, r);
+    (1..=max).find(|&t| {
+        timer.tick(t, r);
+        timer.overdue(1.5)
+    })
+}
+
 #[test]
 fn a_noise_free_ramp_is_overdue_from_k_times_its_expected_time() {
     // Untrained drift-diffusion timer: drift z / 8 steps, no noise, so x/z = t / 8 and the
     // interval is overdue (k = 1.5) from step 12 on; a time-cell clock never is.
-    let mut timer = Timer::ddm(0.0);
     let mut r = rng(0);
-    timer.onset(1, &mut r);
-    let first = (1..=30u32)
-        .find(|&t| {
-            timer.tick(t, &mut r);
-            timer.overdue(1.5)
-        })
-        .unwrap();
-    assert_eq!(first, 12);
+    assert_eq!(
+        first_overdue_step(&mut Timer::ddm(0.0), &mut r, 30),
+        Some(12)
+    );
     let mut cells = Timer::time_cells(Representation::csc());
-    cells.onset(1, &mut r);
-    for t in 1..=100 {
-        cells.tick(t, &mut r);
-        assert!(!cells.overdue(1.5));
-    }
+    assert_eq!(first_overdue_step(&mut cells, &mut r, 100), None);
 }
 
 #[test]
@@ -406,13 +406,7 @@ fn an_sbf_clock_is_overdue_from_k_times_its_remembered_time() {
         if let Timer::Sbf(s) = &mut timer {
             s.model.clock_speed = speed;
         }
-        timer.onset(1, &mut r);
-        let first = (1..=60u32)
-            .find(|&t| {
-                timer.tick(t, &mut r);
-                timer.overdue(1.5)
-            })
-            .unwrap();
-        assert_eq!(first, expected, "clock speed {speed}");
+        let first = first_overdue_step(&mut timer, &mut r, 60);
+        assert_eq!(first, Some(expected), "clock speed {speed}");
     }
 }

@@ -63,6 +63,19 @@ fn agent_value_range(key: &str, v: f64) -> Option<&'static str> {
     }
 }
 
+/// Parses an agent override's value and checks its range (typed error naming the key).
+fn check_agent_value(key: &str, value: &str) -> Result<(), TrainError> {
+    let v: f64 = parse(key, value, "a number")?;
+    match agent_value_range(key, v) {
+        Some(allowed) => Err(TrainError::InvalidParam {
+            field: key.into(),
+            value: value.into(),
+            allowed: allowed.into(),
+        }),
+        None => Ok(()),
+    }
+}
+
 fn parse<T: std::str::FromStr>(key: &str, value: &str, allowed: &str) -> Result<T, TrainError> {
     value.parse().map_err(|_| TrainError::InvalidParam {
         field: key.into(),
@@ -111,14 +124,7 @@ impl TimingRunConfig {
             }
             "alpha" | "gamma" | "lambda" | "response_cost" | "probe" | "opportunity_cost"
             | "overdue_factor" | "q_init" | "noise" | "memory_noise" | "clock_noise" => {
-                let v: f64 = parse(key, value, "a number")?;
-                if let Some(allowed) = agent_value_range(key, v) {
-                    return Err(TrainError::InvalidParam {
-                        field: key.into(),
-                        value: value.into(),
-                        allowed: allowed.into(),
-                    });
-                }
+                check_agent_value(key, value)?;
                 self.agent.push(format!("{key}={value}"));
             }
             k if k.starts_with("env.") => {
@@ -167,10 +173,7 @@ impl TimingRunConfig {
         }
         for kv in &self.agent {
             let (key, value) = kv.split_once('=').unwrap_or((kv, ""));
-            let v: f64 = parse(key, value, "a number")?;
-            if let Some(allowed) = agent_value_range(key, v) {
-                return bad(key, value.to_string(), allowed);
-            }
+            check_agent_value(key, value)?;
         }
         make_config(&self.task, &self.env)?;
         Ok(())

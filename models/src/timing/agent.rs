@@ -7,9 +7,9 @@
 //! oven timer. Its clock starts when it sees the oven turn on; the elapsed time it holds is
 //! the timing model's state. The temporal features freeze when the interval ends (the
 //! oven shows ready, or the soup is taken out), the model's memory of the interval. In
-//! tasks whose oven shows a
-//! ready cue (bisection, uncertainty) the TD learner reads the temporal features only while
-//! the interval runs and is not overdue; afterwards it sees the model's categorical outputs:
+//! tasks whose oven shows a ready cue (bisection, uncertainty) the TD learner reads the
+//! temporal features only while the interval runs and is not overdue; afterwards it sees
+//! the model's categorical outputs:
 //! * the interval has ended (the cue came, or the button readied the oven): what later
 //!   choices need is the model's judgment of it (bisection counters), not a frozen clock —
 //!   frozen features let values learned at the usual end time leak, by linear
