@@ -297,3 +297,134 @@ fn study_figures_and_comparison_come_out_of_constructed_jobs() {
     assert!(grid.contains("least squares") && grid.contains("max. likelihood"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+fn mt_ep(td: u32, reward: f32, off: i32) -> EpisodeRow {
+    EpisodeRow {
+        reward,
+        success: reward > 0.0,
+        oven_off_time: off,
+        foc: None,
+        foc_checks: None,
+        ..ep("multi_timer", td, (0, 0), None, 0)
+    }
+}
+
+fn curve_at(level: usize, ret: f64) -> chronocooked_analysis::paper::collect::CurveRow {
+    chronocooked_analysis::paper::collect::CurveRow {
+        env_steps: 1000,
+        wall_s: 1.0,
+        ep_return_mean: ret,
+        ep_len_mean: 20.0,
+        success_rate: ret,
+        curriculum_level: level,
+    }
+}
+
+#[test]
+fn multitimer_analysis_reads_levels_rewards_and_oven_off_times() {
+    use chronocooked_analysis::paper::figures::{multitimer_panels, write_figures};
+    use chronocooked_analysis::paper::multitimer::analyse_multitimer;
+    use chronocooked_analysis::paper::report::write_paper_report;
+    use chronocooked_analysis::paper::study::{PaperStudy, tables_markdown};
+    let cat = ["mode=exact", "under_buffer=3"];
+    // Run A reaches all five timers; TD 4 is evaluated but not trained (out of distribution).
+    let mut a = job("MultiTimer-v0", "m", 1, &cat, 20.0);
+    a.level_steps = vec![0, 100, 150, 300, 400, 500];
+    let a = CompactJob {
+        job: a,
+        episodes: vec![
+            mt_ep(3, 1.0, 3),
+            mt_ep(6, 1.0, 6),
+            mt_ep(6, 0.0, -1),
+            mt_ep(4, 0.0, 2),
+        ],
+        curve: vec![
+            curve_at(0, 0.2),
+            curve_at(0, 0.4),
+            curve_at(1, 0.9),
+            curve_at(5, 1.0),
+        ],
+    };
+    // Run B stays at one timer and never takes the soup.
+    let mut b = job("MultiTimer-v0", "m", 2, &cat, 200.0);
+    b.level_steps = vec![0, 200];
+    let b = CompactJob {
+        job: b,
+        episodes: vec![mt_ep(3, 0.0, -1)],
+        curve: vec![curve_at(0, 0.5), curve_at(1, 0.1)],
+    };
+    // An exact-curriculum run still in the warm-up.
+    let c = CompactJob {
+        job: job("MultiTimer-v0", "m", 1, &["mode=exact"], 200.0),
+        episodes: vec![mt_ep(3, 0.0, -1)],
+        curve: vec![curve_at(0, 0.0)],
+    };
+    let mt = analyse_multitimer(&[a, b, c]);
+    assert_eq!(mt.len(), 2);
+    let cat = mt.iter().find(|c| c.curriculum == "categorical").unwrap();
+    let exact = mt.iter().find(|c| c.curriculum == "exact").unwrap();
+    assert_eq!((exact.runs.len(), exact.level.mean), (1, 0.0));
+    assert!((cat.level.mean - 3.0).abs() < 1e-12);
+    assert_eq!(cat.reached_last, 1);
+    // Steps in level 0: 100 and 200; level 1: only run A left it (50 steps).
+    assert!((cat.steps_in_level[0].mean - 150.0).abs() < 1e-12);
+    assert_eq!(
+        (cat.steps_in_level[1].mean, cat.steps_in_level[1].n),
+        (50.0, 1)
+    );
+    // Trained TDs only in per_td; the out-of-distribution TD 4 in `tested`.
+    let ra = cat.runs.iter().find(|r| r.seed == 1).unwrap();
+    assert_eq!(ra.per_td, vec![(3, 1.0, 3.0), (6, 0.5, 2.5)]);
+    assert_eq!(ra.tested, vec![(3, 1.0, 3.0), (4, 0.0, 2.0), (6, 0.5, 2.5)]);
+    // Across runs at TD 3: rewards 1 and 0, oven-off times 3 and −1 (never taken).
+    let (td, r, o) = &cat.per_td[0];
+    assert_eq!((*td, r.n), (3, 2));
+    assert!((r.mean - 0.5).abs() < 1e-12 && (o.mean - 1.0).abs() < 1e-12);
+    // Training reward per level: run A 0.3 / 0.9 / – / – / – / 1.0; run B 0.5 / 0.1.
+    assert_eq!(
+        ra.level_reward,
+        vec![
+            Some(0.30000000000000004),
+            Some(0.9),
+            None,
+            None,
+            None,
+            Some(1.0)
+        ]
+    );
+    assert!((cat.level_reward[0].mean - 0.4).abs() < 1e-12);
+    assert!((cat.level_reward[1].mean - 0.5).abs() < 1e-12);
+    assert_eq!((cat.level_reward[5].n, cat.level_reward[2].n), (1, 0));
+    let study = PaperStudy {
+        jobs: 3,
+        cost: vec![],
+        fi: vec![],
+        bisection: vec![],
+        multitimer: mt,
+        comparison: vec![],
+    };
+    let (grid, panels) = multitimer_panels(&study);
+    assert_eq!(grid, (3, 1));
+    assert_eq!(panels.len(), 3);
+    let md = tables_markdown(&study);
+    assert!(md.contains("| model | curriculum | TD 3 | TD 6 |"), "{md}");
+    assert!(
+        md.contains("| m | categorical | 0.50 / 1.0 | 0.50 / 2.5 |"),
+        "{md}"
+    );
+    assert!(md.contains("| m | exact | 0.00 / -1.0 | – |"), "{md}");
+    assert!(
+        md.contains("| m | categorical | 0.40 ± 0.14 | 0.50 ± 0.57 | – | – | – | 1.00 |"),
+        "{md}"
+    );
+    let dir = std::env::temp_dir().join(format!("cc-paper-mt-{}", std::process::id()));
+    let files = write_figures(&dir.join("figures"), &study).unwrap();
+    assert!(files.iter().any(|p| p.ends_with("multitimer.svg")));
+    let svg = std::fs::read_to_string(dir.join("figures/multitimer.svg")).unwrap();
+    assert!(svg.contains("training reward per level") && svg.contains("oven-off time"));
+    let report = write_paper_report(&dir, &study, &dir.join("figures")).unwrap();
+    let html = std::fs::read_to_string(report).unwrap();
+    assert!(html.contains("<svg") && html.contains("Agreement: 0 of 0"));
+    assert!(!html.contains("http://"), "the page must hold no URL");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -13,7 +13,8 @@ pub enum PaperCommand {
     /// thinned learning curve, metrics; no checkpoints) into a results folder.
     Collect(CollectArgs),
     /// Analyse a results folder as the paper does (and as the lab does), compare with the
-    /// paper's numbers: writes analysis.json, comparison.csv and tables.md there.
+    /// paper's numbers: writes analysis.json, comparison.csv, tables.md, report.html and
+    /// figures/ there.
     Analyse(AnalyseArgs),
 }
 
@@ -53,14 +54,20 @@ pub fn run(cmd: PaperCommand) -> Result<()> {
                 &a.results.join("figures"),
                 &s,
             )?;
+            let report = chronocooked_analysis::paper::report::write_paper_report(
+                &a.results,
+                &s,
+                &a.results.join("figures"),
+            )?;
             let agree = s.comparison.iter().filter(|r| r.agree == "yes").count();
             println!(
-                "{} jobs analysed; {} of {} paper numbers within the lab's interval; wrote {} \
-                 and {} figure files",
+                "{} jobs analysed; {} of {} paper numbers within the lab's interval; wrote {}, \
+                 {} and {} figure files",
                 s.jobs,
                 agree,
                 s.comparison.len(),
                 a.results.join("tables.md").display(),
+                report.display(),
                 figures.len()
             );
             Ok(())

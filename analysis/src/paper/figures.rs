@@ -19,8 +19,13 @@ fn series(label: &str, points: Vec<(f64, f64)>, line: bool, color: usize) -> Ser
     }
 }
 
+/// Least-squares line through `pts` (three or more finite points), labelled with its R².
 fn regression_line(label: &str, pts: &[(f64, f64)], color: usize) -> Option<Series> {
     let (x, y): (Vec<f64>, Vec<f64>) = pts.iter().copied().filter(|p| p.1.is_finite()).unzip();
+    // A line through two points says nothing (R² 1 by construction).
+    if x.len() < 3 {
+        return None;
+    }
     let (slope, icpt, r2) = linear_fit(&x, &y);
     if !slope.is_finite() {
         return None;
@@ -28,7 +33,7 @@ fn regression_line(label: &str, pts: &[(f64, f64)], color: usize) -> Option<Seri
     let lo = x.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = x.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     Some(series(
-        &format!("{label} fit (R² {r2:.2})"),
+        &format!("{label} (R² {r2:.2})"),
         vec![(lo, slope * lo + icpt), (hi, slope * hi + icpt)],
         true,
         color,
@@ -87,10 +92,13 @@ pub fn scalar_panels(fi: &[FiModel]) -> Vec<Option<Chart>> {
             .iter()
             .map(|c| (c.pooled.mean, c.pooled.sd))
             .collect();
-        mean_vs_td.push(series(&m.model, a.clone(), false, k));
-        mean_vs_td.extend(regression_line(&m.model, &a, k));
-        sd_vs_mean.push(series(&m.model, b.clone(), false, k));
-        sd_vs_mean.extend(regression_line(&m.model, &b, k));
+        // One legend entry per model: its fit line, or its dots when it has no fit.
+        for (pts, out) in [(a, &mut mean_vs_td), (b, &mut sd_vs_mean)] {
+            let fit = regression_line(&m.model, &pts, k);
+            let label = if fit.is_some() { "" } else { m.model.as_str() };
+            out.push(series(label, pts, false, k));
+            out.extend(fit);
+        }
     }
     vec![
         Some(Chart {
@@ -197,8 +205,10 @@ pub fn wf_chart(bis: &[BisectionModel]) -> Chart {
         if pts.is_empty() {
             continue;
         }
-        ser.push(series(&m.model, pts.clone(), false, k));
-        ser.extend(regression_line(&m.model, &pts, k));
+        let fit = regression_line(&m.model, &pts, k);
+        let label = if fit.is_some() { "" } else { m.model.as_str() };
+        ser.push(series(label, pts, false, k));
+        ser.extend(fit);
     }
     Chart {
         title: "Weber fraction vs anchor ratio".into(),
@@ -210,32 +220,118 @@ pub fn wf_chart(bis: &[BisectionModel]) -> Chart {
     }
 }
 
-/// Multi-timer: the final policy's mean reward per TD, one line per model and curriculum.
-pub fn multitimer_chart(s: &PaperStudy) -> Chart {
-    let ser = s
-        .multitimer
-        .iter()
-        .enumerate()
-        .map(|(k, c)| {
-            series(
-                &format!("{} {} (level {:.1})", c.model, c.curriculum, c.level.mean),
-                c.per_td
+/// Palette index of a curriculum (exact red, categorical blue).
+fn curriculum_color(curriculum: &str) -> usize {
+    if curriculum == "exact" { 3 } else { 0 }
+}
+
+/// Multi-timer small multiples, one column per model: the training reward at each
+/// curriculum level (run means as dots, their mean as a line), the final policy's reward at
+/// every evaluated TD (trained TDs marked; the others are out of distribution, as in the
+/// paper's figure) and its oven-off time against TD (−1: never taken); exact red,
+/// categorical blue, the legend in the top row. Returns the grid
+/// shape (3 rows × models) and its panels.
+pub fn multitimer_panels(s: &PaperStudy) -> ((usize, usize), Vec<Option<Chart>>) {
+    let mut models: Vec<&str> = Vec::new();
+    for c in &s.multitimer {
+        if !models.contains(&c.model.as_str()) {
+            models.push(&c.model);
+        }
+    }
+    let mut levels = Vec::new();
+    let mut rewards = Vec::new();
+    let mut offs = Vec::new();
+    for &model in &models {
+        let mut lv = Vec::new();
+        let mut rw = Vec::new();
+        let mut of = Vec::new();
+        let mut trained: Vec<u32> = Vec::new();
+        let mut hi = 1.0_f64;
+        for c in s.multitimer.iter().filter(|c| c.model == model) {
+            let k = curriculum_color(&c.curriculum);
+            let label = format!("{} ({} runs)", c.curriculum, c.runs.len());
+            let dots: Vec<(f64, f64)> = c
+                .runs
+                .iter()
+                .flat_map(|r| {
+                    r.level_reward
+                        .iter()
+                        .enumerate()
+                        .filter_map(|(l, x)| Some((l as f64, (*x)?)))
+                })
+                .collect();
+            lv.push(series("", dots, false, k));
+            lv.push(series(
+                &label,
+                c.level_reward
+                    .iter()
+                    .enumerate()
+                    .map(|(l, x)| (l as f64, x.mean))
+                    .collect(),
+                true,
+                k,
+            ));
+            // One legend per column (top row): the curricula keep their colours below.
+            rw.push(series(
+                "",
+                c.tested
                     .iter()
                     .map(|(td, r, _)| (f64::from(*td), r.mean))
                     .collect(),
                 true,
                 k,
-            )
-        })
-        .collect();
-    Chart {
-        title: "multi-timer: reward per TD (final policy)".into(),
-        x_label: "TD (steps)".into(),
-        y_label: "mean reward".into(),
-        series: ser,
-        markers: vec![],
-        y_range: Some((-0.05, 1.05)),
+            ));
+            of.push(series(
+                "",
+                c.tested
+                    .iter()
+                    .map(|(td, _, o)| (f64::from(*td), o.mean))
+                    .collect(),
+                true,
+                k,
+            ));
+            for (td, _, _) in &c.per_td {
+                if !trained.contains(td) {
+                    trained.push(*td);
+                }
+            }
+            if let Some((td, _, _)) = c.tested.last() {
+                hi = hi.max(f64::from(*td));
+            }
+        }
+        of.insert(0, series("off = TD", vec![(1.0, 1.0), (hi, hi)], true, 7));
+        let marks: Vec<(f64, String)> = trained
+            .iter()
+            .map(|td| (f64::from(*td), String::new()))
+            .collect();
+        levels.push(Some(Chart {
+            title: format!("{model}: training reward per level"),
+            x_label: "curriculum level (0 warm-up, then timers)".into(),
+            y_label: "mean training reward".into(),
+            series: lv,
+            markers: vec![],
+            y_range: Some((-0.05, 1.05)),
+        }));
+        rewards.push(Some(Chart {
+            title: format!("{model}: final reward per TD"),
+            x_label: "tested TD (steps; lines: trained TDs)".into(),
+            y_label: "mean reward".into(),
+            series: rw,
+            markers: marks.clone(),
+            y_range: Some((-0.05, 1.05)),
+        }));
+        offs.push(Some(Chart {
+            title: format!("{model}: oven-off time"),
+            x_label: "tested TD (steps; lines: trained TDs)".into(),
+            y_label: "oven-off time (steps; −1 never)".into(),
+            series: of,
+            markers: marks,
+            y_range: None,
+        }));
     }
+    let cols = models.len();
+    let panels = levels.into_iter().chain(rewards).chain(offs).collect();
+    ((3, cols), panels)
 }
 
 /// Writes every figure into `dir`; returns the files written.
@@ -261,7 +357,8 @@ pub fn write_figures(dir: &Path, s: &PaperStudy) -> Result<Vec<PathBuf>, FigureE
         )?);
     }
     if !s.multitimer.is_empty() {
-        out.extend(write_chart(&dir.join("multitimer"), &multitimer_chart(s))?);
+        let (grid, panels) = multitimer_panels(s);
+        out.extend(write_panels(&dir.join("multitimer"), grid, &panels)?);
     }
     Ok(out)
 }

@@ -6,11 +6,13 @@
 //! * [`fi`] — FOC pooled over runs × start cells per TD, CV, scalar-property R²;
 //! * [`bisection`] — per-run P(long), run exclusion, averaged curve, per-run BP/DL/WF,
 //!   WF vs log2(L/S);
-//! * [`multitimer`] — curriculum levels reached, steps per level, reward per TD;
+//! * [`multitimer`] — curriculum levels reached, steps and training reward per level, the
+//!   final policy's reward and oven-off time per TD;
 //! * [`reference`] — the paper's published numbers;
 //! * [`compare`] — `comparison.csv` rows and the agreement rule;
 //! * [`figures`] — the study's figures in the paper's form;
-//! * [`study`] — the whole analysis of a results folder, written as JSON, CSV and Markdown.
+//! * [`study`] — the whole analysis of a results folder, written as JSON, CSV and Markdown;
+//! * [`report`] — the study's `report.html`: agreement per table, figures, every row.
 
 pub mod bisection;
 pub mod collect;
@@ -20,4 +22,5 @@ pub mod figures;
 pub mod lsq;
 pub mod multitimer;
 pub mod reference;
+pub mod report;
 pub mod study;

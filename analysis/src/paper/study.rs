@@ -212,22 +212,68 @@ pub fn tables_markdown(s: &PaperStudy) -> String {
     let _ = writeln!(m, "\n## Multi-timer\n");
     let _ = writeln!(
         m,
-        "| model | curriculum | runs | level reached | runs at level 5 | steps in level 0 | 1 | 2 | 3 | 4 | reward per TD (3/6/9/12/15) |"
+        "Curriculum: level 0 warm-up, then 1 … 5 timers (TDs 3, 6, 9, 12, 15). Steps per level: env steps spent in a level by the runs that left it.\n"
     );
-    let _ = writeln!(m, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|");
+    let _ = writeln!(
+        m,
+        "| model | curriculum | runs | level reached | runs at level 5 | steps in level 0 | 1 | 2 | 3 | 4 |"
+    );
+    let _ = writeln!(m, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|");
     for c in &s.multitimer {
         let steps: Vec<String> = c.steps_in_level.iter().map(|s| pm(s, 0)).collect();
-        let rewards: Vec<String> = c.per_td.iter().map(|(_, r, _)| f(r.mean, 2)).collect();
         let _ = writeln!(
             m,
-            "| {} | {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {} |",
             c.model,
             c.curriculum,
             c.runs.len(),
             pm(&c.level, 1),
             c.reached_last,
             steps.join(" | "),
-            rewards.join(" / ")
+        );
+    }
+    let _ = writeln!(
+        m,
+        "\nTraining reward per curriculum level (mean of the learning curve's samples at that level, then mean ± SD over the runs with samples there):\n"
+    );
+    let _ = writeln!(m, "| model | curriculum | level 0 | 1 | 2 | 3 | 4 | 5 |");
+    let _ = writeln!(m, "|---|---|---:|---:|---:|---:|---:|---:|");
+    for c in &s.multitimer {
+        let r: Vec<String> = c.level_reward.iter().map(|s| pm(s, 2)).collect();
+        let _ = writeln!(m, "| {} | {} | {} |", c.model, c.curriculum, r.join(" | "));
+    }
+    let _ = writeln!(
+        m,
+        "\nFinal policy per trained TD, mean over runs of the 12-start-cell means: reward / oven-off time (steps since the onion went in; a soup never taken counts −1, as in the notebook):\n"
+    );
+    let mut tds: Vec<u32> = s
+        .multitimer
+        .iter()
+        .flat_map(|c| c.per_td.iter().map(|x| x.0))
+        .collect();
+    tds.sort_unstable();
+    tds.dedup();
+    let head: Vec<String> = tds.iter().map(|td| format!("TD {td}")).collect();
+    let _ = writeln!(m, "| model | curriculum | {} |", head.join(" | "));
+    let _ = writeln!(m, "|---|---|{}", "---:|".repeat(tds.len()));
+    for c in &s.multitimer {
+        let cells: Vec<String> = tds
+            .iter()
+            .map(|td| {
+                c.per_td
+                    .iter()
+                    .find(|x| x.0 == *td)
+                    .map_or("–".into(), |(_, r, o)| {
+                        format!("{} / {}", f(r.mean, 2), f(o.mean, 1))
+                    })
+            })
+            .collect();
+        let _ = writeln!(
+            m,
+            "| {} | {} | {} |",
+            c.model,
+            c.curriculum,
+            cells.join(" | ")
         );
     }
     let _ = writeln!(m, "\n## Cost per job kind (one core per job)\n");

@@ -90,7 +90,7 @@ pub const COLUMNS: [(&str, &str); 26] = [
     ),
     (
         "frac_oscillating",
-        "neural: fraction of units with a spectral peak ≥ 4× the median power",
+        "neural: fraction of oscillating units (autocorrelation trough ≤ −0.25, then a peak ≥ 0.4 within half the window)",
     ),
     (
         "sequentiality",
@@ -102,6 +102,39 @@ pub const COLUMNS: [(&str, &str); 26] = [
     ),
 ];
 
+/// Short, readable header of a headline column (units in parentheses); [`COLUMNS`] holds
+/// the full description, shown as the header's tooltip and in the legend.
+pub fn column_title(key: &str) -> &'static str {
+    match key {
+        "fi_success" | "dual_success" => "success",
+        "bisection_accuracy" => "anchor accuracy",
+        "bp" => "BP (steps)",
+        "bp_over_gm" => "BP / GM",
+        "bp_over_am" => "BP / AM",
+        "wf" => "Weber fraction",
+        "wf_cv_anchors" => "WF CV across pairs",
+        "foc_over_td" => "first check / TD",
+        "foc_cv" => "first-check CV",
+        "r2_mean_vs_td" => "R² mean~TD",
+        "r2_sd_vs_mean" => "R² SD~mean",
+        "pi_peak_over_td" => "peak / TD",
+        "pi_cv" => "spread / peak",
+        "mt_reward" => "mean reward",
+        "mt_plateaus" => "timers stored",
+        "dual_reward" => "mean reward",
+        "unc_success" => "success (normal oven)",
+        "unc_button_use" => "button use (never ready)",
+        "unc_episodes_to_adapt" => "episodes to adapt",
+        "unc_adapted" => "runs adapted",
+        "frac_ramping" => "ramping units",
+        "frac_time_cells" => "time cells",
+        "frac_oscillating" => "oscillating units",
+        "sequentiality" => "sequentiality",
+        "decode_error" => "decoding error (steps)",
+        _ => "other",
+    }
+}
+
 fn cell(s: Option<&Spread>) -> String {
     match s {
         Some(s) if s.n > 1 && s.sd.is_finite() => format!("{:.3} ± {:.3}", s.mean, s.sd),
@@ -110,15 +143,20 @@ fn cell(s: Option<&Spread>) -> String {
     }
 }
 
-fn escape(s: &str) -> String {
+pub(crate) fn escape(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
+        .replace('"', "&quot;")
 }
+
+/// The reports' style sheet: compact tables that fit a 1366 px window, figures as small
+/// multiples two to a row (`figure.wide`: full width).
+pub(crate) const STYLE: &str = "body{font-family:sans-serif;margin:1.5em;max-width:1600px}table{border-collapse:collapse;margin-bottom:1em}td,th{border:1px solid #bbb;padding:3px 7px;text-align:right;white-space:nowrap;font-size:14px}th{background:#eee}td:first-child{text-align:left}h2.group{font-size:1.1em;margin:0.8em 0 0.3em}figure{display:inline-block;margin:0.5em;width:46%}figure.wide{width:96%}figure svg{width:100%;height:auto}";
 
 /// An SVG file as inline markup: the XML prolog and namespace URIs dropped (inline SVG in
 /// HTML needs neither, and the page then holds no URL at all).
-fn inline_svg(svg: &Path) -> Result<String, String> {
+pub(crate) fn inline_svg(svg: &Path) -> Result<String, String> {
     let text = std::fs::read_to_string(svg).map_err(|e| format!("{}: {e}", svg.display()))?;
     let body = text.find("<svg").map_or(text.as_str(), |i| &text[i..]);
     Ok(body
@@ -228,13 +266,19 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
     // HTML with inline SVG figures; the headline metrics as one table per theme, each
     // narrow enough for a 1366 px window.
     let mut html = String::from(
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>Chronocooked leaderboard</title>\n<style>body{font-family:sans-serif;margin:1.5em;max-width:1600px}table{border-collapse:collapse;margin-bottom:1em}td,th{border:1px solid #bbb;padding:3px 7px;text-align:right;white-space:nowrap;font-size:14px}th{background:#eee}td:first-child{text-align:left}h2.group{font-size:1.1em;margin:0.8em 0 0.3em}figure{display:inline-block;margin:0.5em;width:46%}figure.wide{width:96%}figure svg{width:100%;height:auto}</style></head><body>\n<h1>Chronocooked leaderboard</h1>\n",
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>Chronocooked leaderboard</title>\n",
     );
+    html += &format!("<style>{STYLE}</style></head><body>\n<h1>Chronocooked leaderboard</h1>\n");
     for (group, keys) in column_groups(&cols) {
         html +=
             &format!("<h2 class=\"group\">{group}</h2>\n<table>\n<tr><th>model</th><th>runs</th>");
         for k in &keys {
-            html += &format!("<th>{k}</th>");
+            let what = cols.iter().find(|(c, _)| c == k).map_or("", |(_, w)| *w);
+            html += &format!(
+                "<th title=\"{}\">{}</th>",
+                escape(what),
+                escape(column_title(k))
+            );
         }
         html += "</tr>\n";
         for r in rows {
@@ -255,7 +299,11 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
         escape(RUNS_LEGEND)
     );
     for (k, what) in &cols {
-        html += &format!("<dt><code>{k}</code></dt><dd>{}</dd>\n", escape(what));
+        html += &format!(
+            "<dt>{} (<code>{k}</code>)</dt><dd>{}</dd>\n",
+            escape(column_title(k)),
+            escape(what)
+        );
     }
     html += "</dl>\n";
     let grid_rows: Vec<(String, Vec<crate::behaviour::metrics::BisectionMetrics>)> = rows
@@ -328,4 +376,32 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
     }
     files.extend(grid);
     Ok(files)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_headline_column_has_a_short_distinct_title_within_its_theme() {
+        for (k, _) in COLUMNS {
+            let t = column_title(k);
+            assert_ne!(t, "other", "{k} has no title");
+            assert!(
+                t.chars().count() <= 24,
+                "{k}: title {t:?} too long for the table"
+            );
+            let clash = COLUMNS
+                .iter()
+                .filter(|(o, _)| column_group(o) == column_group(k) && column_title(o) == t)
+                .count();
+            assert_eq!(
+                clash,
+                1,
+                "{k}: title {t:?} repeats within {}",
+                column_group(k)
+            );
+        }
+        assert_eq!(escape("a \"b\" <c>"), "a &quot;b&quot; &lt;c&gt;");
+    }
 }

@@ -92,6 +92,58 @@ pub(super) fn err<E: std::fmt::Debug>(path: &Path) -> impl Fn(E) -> FigureError 
     }
 }
 
+/// The corner of the plot area the data crowds least, for the legend: every point and
+/// points along each line segment are counted in a box of 40% × 35% of the axes at each
+/// corner; ties go to the upper left, then upper right, lower left, lower right.
+pub(super) fn legend_corner(chart: &Chart, x: (f64, f64), y: (f64, f64)) -> SeriesLabelPosition {
+    let (w, h) = (x.1 - x.0, y.1 - y.0);
+    if !(w > 0.0 && h > 0.0) {
+        return SeriesLabelPosition::UpperLeft;
+    }
+    // (left?, top?) of each candidate corner, in order of preference.
+    let corners = [(true, true), (false, true), (true, false), (false, false)];
+    let mut counts = [0usize; 4];
+    let mut count = |px: f64, py: f64| {
+        let (u, v) = ((px - x.0) / w, (py - y.0) / h);
+        for (k, (left, top)) in corners.iter().enumerate() {
+            let in_x = if *left { u <= 0.4 } else { u >= 0.6 };
+            let in_y = if *top { v >= 0.65 } else { v <= 0.35 };
+            if in_x && in_y {
+                counts[k] += 1;
+            }
+        }
+    };
+    for s in &chart.series {
+        let pts: Vec<(f64, f64)> = s
+            .points
+            .iter()
+            .copied()
+            .filter(|p| p.0.is_finite() && p.1.is_finite())
+            .collect();
+        for p in &pts {
+            count(p.0, p.1);
+        }
+        if s.line {
+            for seg in pts.windows(2) {
+                for i in 1..10 {
+                    let t = f64::from(i) / 10.0;
+                    count(
+                        seg[0].0 + t * (seg[1].0 - seg[0].0),
+                        seg[0].1 + t * (seg[1].1 - seg[0].1),
+                    );
+                }
+            }
+        }
+    }
+    let best = (0..4).min_by_key(|&k| (counts[k], k)).unwrap_or(0);
+    match corners[best] {
+        (true, true) => SeriesLabelPosition::UpperLeft,
+        (false, true) => SeriesLabelPosition::UpperRight,
+        (true, false) => SeriesLabelPosition::LowerLeft,
+        (false, false) => SeriesLabelPosition::LowerRight,
+    }
+}
+
 /// Draws `chart` on `root` (the caller presents the area).
 pub(super) fn draw_chart<DB: DrawingBackend>(
     root: DrawingArea<DB, Shift>,
@@ -187,7 +239,7 @@ where
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK.mix(0.3))
             .label_font(("sans-serif", 13))
-            .position(SeriesLabelPosition::UpperLeft)
+            .position(legend_corner(chart, (x0, x1), (y0, y1)))
             .draw()
             .map_err(err(path))?;
     }
@@ -320,4 +372,38 @@ pub fn write_heatmap(
         &png,
     )?;
     Ok(vec![svg, png])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn line(points: Vec<(f64, f64)>, line: bool) -> Series {
+        Series {
+            label: "s".into(),
+            points,
+            line,
+            color: 0,
+        }
+    }
+
+    #[test]
+    fn the_legend_goes_to_the_emptiest_corner() {
+        let axes = ((0.0, 10.0), (0.0, 10.0));
+        let chart = |series| Chart {
+            series,
+            ..Chart::default()
+        };
+        let pos = |c: &Chart| format!("{:?}", legend_corner(c, axes.0, axes.1));
+        // A rising line leaves the upper left free (the default).
+        let rising = chart(vec![line(vec![(0.0, 0.0), (10.0, 10.0)], true)]);
+        assert_eq!(pos(&rising), "UpperLeft");
+        // A falling line crosses the upper left and the lower right.
+        let falling = chart(vec![line(vec![(0.0, 10.0), (10.0, 0.0)], true)]);
+        assert_eq!(pos(&falling), "UpperRight");
+        // …and dots in the upper right leave the lower left.
+        let mut both = falling.clone();
+        both.series.push(line(vec![(9.0, 9.0), (8.0, 9.5)], false));
+        assert_eq!(pos(&both), "LowerLeft");
+    }
 }

@@ -1,0 +1,137 @@
+//! `report.html` of a paper study: one self-contained page (inline SVG, no external
+//! resources) with how many of the paper's numbers the lab reproduces per table, every
+//! comparison row, and the study's figures in the paper's form.
+
+use super::collect::CollectError;
+use super::compare::ComparisonRow;
+use super::study::PaperStudy;
+use crate::report::{STYLE, escape, inline_svg};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// The figures the page shows, in order: (file stem, caption, full width).
+const FIGURES: [(&str, &str, bool); 5] = [
+    (
+        "fi_foc",
+        "Fixed interval: every first oven check per TD (dots, pooled over runs × start cells), the per-TD mean and FOC = TD",
+        true,
+    ),
+    (
+        "fi_scalar",
+        "Mean FOC vs TD and SD vs mean FOC (scalar property), with each model's regression line",
+        true,
+    ),
+    (
+        "bisection_grid",
+        "Bisection: run-averaged P(long) per probe for every model × anchor pair, the paper's least-squares fit and the lab's binomial maximum-likelihood fit; AM/GM = arithmetic/geometric mean of the anchors",
+        true,
+    ),
+    (
+        "wf_vs_ratio",
+        "Weber fraction of the averaged curve against log2(L/S), per model with its regression line",
+        false,
+    ),
+    (
+        "multitimer",
+        "Multi-timer: training reward per curriculum level, the final policy's reward and oven-off time at every tested TD (vertical lines: trained TDs; the rest are out of distribution)",
+        true,
+    ),
+];
+
+fn number(x: f64) -> String {
+    if x.is_finite() {
+        format!("{x:.3}")
+    } else {
+        "NaN".into()
+    }
+}
+
+/// Per comparison table: (table, rows, agree, disagree, n/a or both NaN).
+fn agreement_by_table(rows: &[ComparisonRow]) -> Vec<(String, usize, usize, usize, usize)> {
+    let mut out: Vec<(String, usize, usize, usize, usize)> = Vec::new();
+    for r in rows {
+        let i = match out.iter().position(|t| t.0 == r.table) {
+            Some(i) => i,
+            None => {
+                out.push((r.table.clone(), 0, 0, 0, 0));
+                out.len() - 1
+            }
+        };
+        let t = &mut out[i];
+        t.1 += 1;
+        match r.agree.as_str() {
+            "yes" => t.2 += 1,
+            "no" => t.3 += 1,
+            _ => t.4 += 1,
+        }
+    }
+    out
+}
+
+/// Writes `report.html` into `root`, inlining the figures found in `figures`; returns its path.
+pub fn write_paper_report(
+    root: &Path,
+    s: &PaperStudy,
+    figures: &Path,
+) -> Result<PathBuf, CollectError> {
+    let name = root
+        .file_name()
+        .map_or("study".into(), |n| n.to_string_lossy().to_string());
+    let mut h = format!(
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{0}: the paper reproduced</title>\n<style>{STYLE}</style></head><body>\n<h1>{0}: the paper reproduced</h1>\n<p>{1} finished jobs. A paper number agrees when it lies in the lab's 95% interval (RESULTS.md, \"Agreement rule\"); the full tables are in <code>tables.md</code>, the rows below in <code>comparison.csv</code>.</p>\n",
+        escape(&name),
+        s.jobs
+    );
+    let by_table = agreement_by_table(&s.comparison);
+    let (n, yes) = by_table.iter().fold((0, 0), |(n, y), t| (n + t.1, y + t.2));
+    let _ = writeln!(
+        h,
+        "<h2 class=\"group\">Agreement: {yes} of {n} paper numbers</h2>\n<table>\n<tr><th>table</th><th>numbers</th><th>agree</th><th>disagree</th><th>n/a or both NaN</th></tr>"
+    );
+    for (t, rows, a, d, o) in &by_table {
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td>{rows}</td><td>{a}</td><td>{d}</td><td>{o}</td></tr>",
+            escape(t)
+        );
+    }
+    h += "</table>\n";
+    for (stem, caption, wide) in FIGURES {
+        let svg = figures.join(format!("{stem}.svg"));
+        if !svg.is_file() {
+            continue;
+        }
+        let body = inline_svg(&svg).map_err(|m| CollectError::File {
+            path: svg.display().to_string(),
+            message: m,
+        })?;
+        let class = if wide { " class=\"wide\"" } else { "" };
+        let _ = writeln!(
+            h,
+            "<figure{class}>{body}<figcaption>{}</figcaption></figure>",
+            escape(caption)
+        );
+    }
+    h += "<h2 class=\"group\">Every comparison row</h2>\n<table>\n<tr><th>table</th><th>row</th><th>column</th><th>paper</th><th>lab mean</th><th>lab SD</th><th>runs</th><th>agree</th></tr>\n";
+    for r in &s.comparison {
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+            escape(&r.table),
+            escape(&r.row),
+            escape(&r.column),
+            number(r.paper),
+            number(r.lab_mean),
+            number(r.lab_sd),
+            r.n,
+            escape(&r.agree)
+        );
+    }
+    h += "</table>\n</body></html>\n";
+    let path = root.join("report.html");
+    chronocooked_env::fs::write_atomic(&path, h.as_bytes()).map_err(|e| CollectError::File {
+        path: path.display().to_string(),
+        message: e.to_string(),
+    })?;
+    Ok(path)
+}
