@@ -340,6 +340,15 @@ fn report_is_self_contained_and_has_every_model() {
     for col in ["fi_success", "bisection_accuracy", "foc_over_td", "wf"] {
         assert!(html.contains(col), "{col} column missing");
     }
+    // Readable headers with the description as a tooltip.
+    assert!(html.contains(">first check / TD</th>") && html.contains("<th title=\""));
+    // The per-TD fixed-interval table: the oracle checks exactly when the soup is ready.
+    let per_td = &html[html.find("Fixed interval per TD").expect("per-TD table")..];
+    let oracle = per_td
+        .lines()
+        .find(|l| l.starts_with("<tr><td>oracle</td>"))
+        .expect("oracle line");
+    assert!(oracle.contains("<td>1.00</td>"), "{oracle}");
     // The paper's psychometric grid: one panel per model and anchor pair.
     let grid = std::fs::read_to_string(rep.join("psychometric_grid.svg")).unwrap();
     for title in ["oracle · 4–12", "random · 4–12"] {

@@ -25,6 +25,9 @@ pub struct Row {
     pub values: BTreeMap<String, Spread>,
     /// Bisection metrics of every run that has them (for the psychometric grid).
     pub bisection: Vec<BisectionMetrics>,
+    /// Fixed interval: first-oven-check statistics per TD, pooled over the row's runs
+    /// (sorted by TD; empty without FI runs).
+    pub foc: Vec<FocStats>,
 }
 
 /// Recomputes the metrics of an `eval` folder from its `records.jsonl` and `eval.json`
@@ -244,6 +247,7 @@ pub fn load_rows(folders: &[PathBuf]) -> Result<Vec<Row>, String> {
                 runs: g.runs,
                 values,
                 bisection,
+                foc: pooled,
             }
         })
         .collect())

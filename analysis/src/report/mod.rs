@@ -218,6 +218,66 @@ fn column_groups<'a>(cols: &[(&'a str, &str)]) -> Vec<(&'static str, Vec<&'a str
     groups
 }
 
+/// Rows of the per-TD fixed-interval table: (model, TD, episodes, mean FOC, FOC / TD, CV).
+fn fi_by_td(rows: &[Row]) -> Vec<(String, u32, usize, String, String, String)> {
+    let num = |x: f64| {
+        if x.is_finite() {
+            format!("{x:.2}")
+        } else {
+            "–".into()
+        }
+    };
+    rows.iter()
+        .flat_map(|r| {
+            r.foc.iter().map(|f| {
+                (
+                    r.model.clone(),
+                    f.td,
+                    f.n,
+                    num(f.mean),
+                    num(f.mean / f64::from(f.td)),
+                    num(f.cv),
+                )
+            })
+        })
+        .collect()
+}
+
+/// Caption of the per-TD fixed-interval table.
+const FI_BY_TD: &str = "Fixed interval per TD: the first oven check (FOC, steps after the onion went in; the paper's convention), pooled over the row's runs and start cells. FOC / TD near 1: the agent checks when the soup is ready; near 0: it checks at once (no timing).";
+
+fn fi_by_td_html(rows: &[Row]) -> String {
+    let lines = fi_by_td(rows);
+    if lines.is_empty() {
+        return String::new();
+    }
+    let mut h = format!(
+        "<h2 class=\"group\">Fixed interval per TD</h2>\n<p>{}</p>\n<table>\n<tr><th>model</th><th>TD (steps)</th><th>episodes</th><th>mean FOC (steps)</th><th>FOC / TD</th><th>FOC CV</th></tr>\n",
+        escape(FI_BY_TD)
+    );
+    for (m, td, n, mean, ratio, cv) in lines {
+        h += &format!(
+            "<tr><td>{}</td><td>{td}</td><td>{n}</td><td>{mean}</td><td>{ratio}</td><td>{cv}</td></tr>\n",
+            escape(&m)
+        );
+    }
+    h + "</table>\n"
+}
+
+fn fi_by_td_markdown(rows: &[Row]) -> String {
+    let lines = fi_by_td(rows);
+    if lines.is_empty() {
+        return String::new();
+    }
+    let mut md = format!(
+        "\n## Fixed interval per TD\n\n{FI_BY_TD}\n\n| model | TD (steps) | episodes | mean FOC (steps) | FOC / TD | FOC CV |\n|---|---:|---:|---:|---:|---:|\n"
+    );
+    for (m, td, n, mean, ratio, cv) in lines {
+        md += &format!("| {m} | {td} | {n} | {mean} | {ratio} | {cv} |\n");
+    }
+    md
+}
+
 /// Writes `report.html`, `report.md` and `report.csv` into `out`.
 pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
@@ -293,6 +353,8 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
         }
         html += "</table>\n";
     }
+    html += &fi_by_td_html(rows);
+    md += &fi_by_td_markdown(rows);
     html += "<h2>Columns</h2>\n<dl>\n";
     html += &format!(
         "<dt><code>runs</code></dt><dd>{}</dd>\n",
