@@ -121,6 +121,23 @@ fn fi_pooling_follows_the_notebook_rule() {
     assert_eq!(c.pooled_all.n, 6);
     // Per run: means 20/3 and 5.
     assert!((c.run_mean.mean - (20.0 / 3.0 + 5.0) / 2.0).abs() < 1e-12);
+    assert_eq!(c.pooled_checks.as_ref().unwrap().mean, c.pooled.mean);
+    // An agent interacting from the onion put: FOC 0 by the paper's convention, 1 by the
+    // lab's (counted checks).
+    let spam = CompactJob {
+        job: job("FixedInterval-v0", "m", 3, &["td=6"], 20.0),
+        episodes: (0..4)
+            .map(|c| EpisodeRow {
+                foc_checks: Some(1),
+                ..ep("fi", 6, (c, 0), Some(0), 0)
+            })
+            .collect(),
+        curve: vec![],
+    };
+    let fi = analyse_fi(&[spam]);
+    let c = &fi[0].cells[0];
+    assert_eq!((c.pooled.mean, c.pooled.n), (0.0, 4));
+    assert_eq!(c.pooled_checks.as_ref().unwrap().mean, 1.0);
 }
 
 fn bisection_job(seed: u64, ep_len: f64, bp: u32) -> CompactJob {

@@ -2,7 +2,7 @@
 //! cells per (model, TD) — mean, SD, CV — and the scalar-property regressions across TDs;
 //! beside them the lab's per-run statistics (mean ± SD over runs).
 
-use super::collect::CompactJob;
+use super::collect::{CompactJob, EpisodeRow};
 use crate::behaviour::aggregate::Spread;
 use crate::behaviour::foc::{FocStats, ScalarProperty, foc_stats, scalar_property};
 use crate::evaluation::protocol::ConditionKind;
@@ -21,6 +21,11 @@ pub struct FiCell {
     pub pooled: FocStats,
     /// Pooled over every episode with a FOC (no skipping).
     pub pooled_all: FocStats,
+    /// As `pooled`, with the lab's FOC convention (`FocConvention::Checks`: an interact run
+    /// from the onion put counts as a check at step 1, where the paper's code reports 0) —
+    /// the measured effect of the paper's convention.
+    #[serde(default)]
+    pub pooled_checks: Option<FocStats>,
     /// Mean FOC per run, across runs.
     pub run_mean: Spread,
     /// SD of FOC per run, across runs.
@@ -51,6 +56,15 @@ pub struct FiModel {
 /// FOCs of one run's FI episodes in start-cell order; with `notebook_break` the list stops
 /// at the first episode without a FOC (the notebook's "did not converge" rule).
 pub fn run_focs(job: &CompactJob, notebook_break: bool) -> Vec<f64> {
+    run_focs_by(job, notebook_break, |e| e.foc)
+}
+
+/// [`run_focs`] with the FOC read by `foc` (e.g. the lab's convention, `foc_checks`).
+fn run_focs_by(
+    job: &CompactJob,
+    notebook_break: bool,
+    foc: fn(&EpisodeRow) -> Option<i32>,
+) -> Vec<f64> {
     let mut eps: Vec<_> = job
         .episodes
         .iter()
@@ -59,7 +73,7 @@ pub fn run_focs(job: &CompactJob, notebook_break: bool) -> Vec<f64> {
     eps.sort_by_key(|e| (e.row, e.col));
     let mut out = Vec::new();
     for e in eps {
-        match e.foc {
+        match foc(e) {
             Some(f) => out.push(f64::from(f)),
             None if notebook_break => break,
             None => {}
@@ -90,6 +104,10 @@ pub fn analyse_fi(jobs: &[CompactJob]) -> Vec<FiModel> {
             for (td, runs) in tds {
                 let paper: Vec<f64> = runs.iter().flat_map(|j| run_focs(j, true)).collect();
                 let all: Vec<f64> = runs.iter().flat_map(|j| run_focs(j, false)).collect();
+                let checks: Vec<f64> = runs
+                    .iter()
+                    .flat_map(|j| run_focs_by(j, true, |e| e.foc_checks))
+                    .collect();
                 let per_run: Vec<FocStats> = runs
                     .iter()
                     .map(|j| {
@@ -103,6 +121,7 @@ pub fn analyse_fi(jobs: &[CompactJob]) -> Vec<FiModel> {
                     runs: runs.len(),
                     pooled: foc_stats(&[(td, paper.clone())]).remove(0),
                     pooled_all: foc_stats(&[(td, all)]).remove(0),
+                    pooled_checks: Some(foc_stats(&[(td, checks)]).remove(0)),
                     run_mean: Spread::of(per_run.iter().map(|s| s.mean)),
                     run_sd: Spread::of(per_run.iter().map(|s| s.sd)),
                     run_cv: Spread::of(per_run.iter().map(|s| s.cv)),

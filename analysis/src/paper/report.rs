@@ -19,7 +19,7 @@ const FIGURES: [(&str, &str, bool); 5] = [
     (
         "fi_scalar",
         "Mean FOC vs TD and SD vs mean FOC (scalar property), with each model's regression line",
-        true,
+        false,
     ),
     (
         "bisection_grid",
