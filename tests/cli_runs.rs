@@ -330,8 +330,13 @@ fn report_is_self_contained_and_has_every_model() {
     let html = std::fs::read_to_string(rep.join("report.html")).unwrap();
     assert!(html.starts_with("<!DOCTYPE html>") && html.trim_end().ends_with("</html>"));
     assert!(
-        !html.contains("http") && !html.contains("src=") && !html.contains("href="),
+        !html.contains("http") && !html.contains("href="),
         "external reference"
+    );
+    // Figures are inline SVG or, where smaller, inline PNG data (never a file or URL).
+    assert_eq!(
+        html.matches("src=").count(),
+        html.matches("src=\"data:image/png;base64,").count()
     );
     for model in ["<td>oracle</td>", "<td>random</td>"] {
         assert!(html.contains(model), "{model} row missing");

@@ -264,37 +264,53 @@ pub fn load_rows_from_runs(roots: &[PathBuf]) -> Result<Vec<Row>, String> {
     load_rows(&find_eval_folders(roots))
 }
 
-/// Figure files (`.svg`) that belong to an evaluation folder: its own `figures/`, the heat
-/// maps of its `record` (`../neural_figures/`) and the learning curve of its run
-/// (`../run/figures/`), sorted within each folder.
-pub fn run_figures(folder: &Path) -> Vec<PathBuf> {
+fn sorted_entries(d: &Path) -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(d)
+        .map(|d| d.filter_map(|e| e.ok().map(|e| e.path())).collect())
+        .unwrap_or_default();
+    v.sort();
+    v
+}
+
+fn is_svg(p: &Path) -> bool {
+    p.extension().is_some_and(|e| e == "svg")
+}
+
+/// Behaviour figure files (`.svg`) of an evaluation folder: its own `figures/` and the
+/// learning curve of its run (`../run/figures/`), sorted within each folder.
+pub fn behaviour_figures(folder: &Path) -> Vec<PathBuf> {
     let mut dirs = vec![folder.join("figures")];
     if let Some(parent) = folder.parent() {
-        dirs.push(parent.join("neural_figures"));
         dirs.push(parent.join("run").join("figures"));
     }
-    let list = |d: &Path| -> Vec<PathBuf> {
-        let mut v: Vec<PathBuf> = std::fs::read_dir(d)
-            .map(|d| d.filter_map(|e| e.ok().map(|e| e.path())).collect())
-            .unwrap_or_default();
-        v.sort();
-        v
+    dirs.iter()
+        .flat_map(|d| sorted_entries(d))
+        .filter(|p| p.is_file() && is_svg(p))
+        .collect()
+}
+
+/// Neural figure files (`.svg`) recorded beside an evaluation folder (`../neural_figures/`:
+/// the heat maps, then each population's signature figures in `<population>/`).
+pub fn neural_figures(folder: &Path) -> Vec<PathBuf> {
+    let Some(parent) = folder.parent() else {
+        return Vec::new();
     };
     let mut all = Vec::new();
-    for d in dirs {
-        for p in list(&d) {
-            if p.is_dir() {
-                // Per-population signature figures (`neural_figures/<population>/*.svg`).
-                all.extend(
-                    list(&p)
-                        .into_iter()
-                        .filter(|q| q.extension().is_some_and(|e| e == "svg")),
-                );
-            } else if p.extension().is_some_and(|e| e == "svg") {
-                all.push(p);
-            }
+    for p in sorted_entries(&parent.join("neural_figures")) {
+        if p.is_dir() {
+            all.extend(sorted_entries(&p).into_iter().filter(|q| is_svg(q)));
+        } else if is_svg(&p) {
+            all.push(p);
         }
     }
+    all
+}
+
+/// Every figure file (`.svg`) that belongs to an evaluation folder: its behaviour figures,
+/// then its neural figures.
+pub fn run_figures(folder: &Path) -> Vec<PathBuf> {
+    let mut all = behaviour_figures(folder);
+    all.extend(neural_figures(folder));
     all
 }
 

@@ -152,7 +152,7 @@ pub(crate) fn escape(s: &str) -> String {
 
 /// The reports' style sheet: compact tables that fit a 1366 px window, figures as small
 /// multiples two to a row (`figure.wide`: full width).
-pub(crate) const STYLE: &str = "body{font-family:sans-serif;margin:1.5em;max-width:1600px}table{border-collapse:collapse;margin-bottom:1em}td,th{border:1px solid #bbb;padding:3px 7px;text-align:right;white-space:nowrap;font-size:14px}th{background:#eee}td:first-child{text-align:left}h2.group{font-size:1.1em;margin:0.8em 0 0.3em}figure{display:inline-block;margin:0.5em;width:46%}figure.wide{width:96%}figure svg{width:100%;height:auto}";
+pub(crate) const STYLE: &str = "body{font-family:sans-serif;margin:1.5em;max-width:1600px}table{border-collapse:collapse;margin-bottom:1em}td,th{border:1px solid #bbb;padding:3px 7px;text-align:right;white-space:nowrap;font-size:14px}th{background:#eee}td:first-child{text-align:left}h2.group{font-size:1.1em;margin:0.8em 0 0.3em}figure{display:inline-block;margin:0.5em;width:46%}figure.wide{width:96%}figure svg,figure img{width:100%;height:auto}";
 
 /// An SVG file as inline markup: the XML prolog and namespace URIs dropped (inline SVG in
 /// HTML needs neither, and the page then holds no URL at all).
@@ -164,8 +164,86 @@ pub(crate) fn inline_svg(svg: &Path) -> Result<String, String> {
         .replace(" xmlns:xlink=\"http://www.w3.org/1999/xlink\"", ""))
 }
 
-/// Runs per row and task whose figures are inlined in the HTML.
-pub const FIGURE_RUNS: usize = 3;
+/// Runs per row and task whose behaviour figures are inlined in the HTML (the other runs
+/// are named, their figures stay in their folders): a sweep's report stays readable and
+/// small (the demo's ≤ 2 MB).
+pub const FIGURE_RUNS: usize = 1;
+
+/// A figure as HTML: the SVG inline, or its PNG sibling (`stem.png`) as a base64 data URI
+/// when that is smaller (heat maps: thousands of SVG rectangles, a few kB of PNG).
+pub(crate) fn figure_markup(svg: &Path, caption: &str) -> Result<String, String> {
+    use base64::Engine as _;
+    let png = svg.with_extension("png");
+    let svg_len = std::fs::metadata(svg)
+        .map_err(|e| format!("{}: {e}", svg.display()))?
+        .len();
+    let png_len = std::fs::metadata(&png).map_or(u64::MAX, |m| m.len());
+    let body = if png_len.saturating_mul(4) / 3 < svg_len {
+        let bytes = std::fs::read(&png).map_err(|e| format!("{}: {e}", png.display()))?;
+        format!(
+            "<img alt=\"{}\" src=\"data:image/png;base64,{}\">",
+            escape(caption),
+            base64::engine::general_purpose::STANDARD.encode(bytes)
+        )
+    } else {
+        inline_svg(svg)?
+    };
+    Ok(format!(
+        "<figure>{body}<figcaption>{}</figcaption></figure>\n",
+        escape(caption)
+    ))
+}
+
+/// One row's figures: the behaviour figures of its first [`FIGURE_RUNS`] runs per task, the
+/// neural figures of one run (its fixed-interval run when it has one), the other runs named.
+fn row_figures_html(r: &Row) -> Result<String, String> {
+    use crate::report::leaderboard::{behaviour_figures, figure_caption, neural_figures};
+    let neural_run = r
+        .runs
+        .iter()
+        .filter(|run| !neural_figures(run).is_empty())
+        .min_by_key(|run| run_task(run) != "FixedInterval-v0");
+    let mut html = String::new();
+    let mut shown: Vec<(String, usize)> = Vec::new();
+    let mut named = Vec::new();
+    for run in &r.runs {
+        let task = run_task(run);
+        let count = match shown.iter_mut().find(|s| s.0 == task) {
+            Some(s) => {
+                s.1 += 1;
+                s.1
+            }
+            None => {
+                shown.push((task.clone(), 1));
+                1
+            }
+        };
+        let neural = neural_run == Some(run);
+        if count > FIGURE_RUNS && !neural {
+            named.push(run_caption(run));
+            continue;
+        }
+        html += &format!("<h3>{}</h3>\n", escape(&run_caption(run)));
+        if count <= FIGURE_RUNS {
+            for svg in behaviour_figures(run) {
+                html += &figure_markup(&svg, &figure_caption(&svg))?;
+            }
+        }
+        if neural {
+            for svg in neural_figures(run) {
+                html += &figure_markup(&svg, &format!("neural: {}", figure_caption(&svg)))?;
+            }
+        }
+    }
+    if !named.is_empty() {
+        html += "<p>Other runs (figures in their folders):</p>\n<ul>\n";
+        for n in named {
+            html += &format!("<li>{}</li>\n", escape(&n));
+        }
+        html += "</ul>\n";
+    }
+    Ok(html)
+}
 
 /// Task of an evaluation folder (from `eval.json`).
 fn run_task(folder: &Path) -> String {
@@ -244,7 +322,7 @@ fn fi_by_td(rows: &[Row]) -> Vec<(String, u32, usize, String, String, String)> {
 }
 
 /// Caption of the per-TD fixed-interval table.
-const FI_BY_TD: &str = "Fixed interval per TD: the first oven check (FOC, steps after the onion went in; the paper's convention), pooled over the row's runs and start cells. FOC / TD near 1: the agent checks when the soup is ready; near 0: it checks at once (no timing).";
+const FI_BY_TD: &str = "The first oven check (FOC, steps after the onion went in; the paper's convention), pooled over the row's runs and start cells. FOC / TD near 1: the agent checks when the soup is ready; near 0: it checks at once (no timing).";
 
 fn fi_by_td_html(rows: &[Row]) -> String {
     let lines = fi_by_td(rows);
@@ -387,37 +465,7 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
     }
     for r in rows {
         html += &format!("<h2>{}</h2>\n", escape(&r.model));
-        // Figures of up to FIGURE_RUNS runs per row and task (large sweeps stay readable);
-        // the rest are named.
-        let mut shown: Vec<(String, usize)> = Vec::new();
-        for run in &r.runs {
-            let task = run_task(run);
-            let count = match shown.iter_mut().find(|s| s.0 == task) {
-                Some(s) => {
-                    s.1 += 1;
-                    s.1
-                }
-                None => {
-                    shown.push((task.clone(), 1));
-                    1
-                }
-            };
-            if count > FIGURE_RUNS {
-                html += &format!(
-                    "<p>{} (figures in its folder)</p>\n",
-                    escape(&run_caption(run))
-                );
-                continue;
-            }
-            html += &format!("<h3>{}</h3>\n", escape(&run_caption(run)));
-            for svg in crate::report::leaderboard::run_figures(run) {
-                html += &format!(
-                    "<figure>{}<figcaption>{}</figcaption></figure>\n",
-                    inline_svg(&svg)?,
-                    escape(&crate::report::leaderboard::figure_caption(&svg))
-                );
-            }
-        }
+        html += &row_figures_html(r)?;
     }
     if grid
         .iter()
@@ -465,5 +513,36 @@ mod tests {
             );
         }
         assert_eq!(escape("a \"b\" <c>"), "a &quot;b&quot; &lt;c&gt;");
+    }
+
+    #[test]
+    fn a_figure_is_embedded_in_its_smaller_form() {
+        let dir = std::env::temp_dir().join(format!("cc-figure-markup-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let big_svg = format!("<svg>{}</svg>", "<rect/>".repeat(2000));
+        // A heat map: large SVG, small PNG → the PNG as data.
+        std::fs::write(dir.join("heat.svg"), &big_svg).unwrap();
+        std::fs::write(dir.join("heat.png"), [1u8, 2, 3]).unwrap();
+        let m = figure_markup(&dir.join("heat.svg"), "heat <map>").unwrap();
+        assert!(
+            m.contains("<img alt=\"heat &lt;map&gt;\" src=\"data:image/png;base64,AQID\">"),
+            "{m}"
+        );
+        // A line chart: small SVG, large PNG → the SVG inline.
+        std::fs::write(dir.join("line.svg"), "<svg><path/></svg>").unwrap();
+        std::fs::write(dir.join("line.png"), vec![0u8; 5000]).unwrap();
+        let m = figure_markup(&dir.join("line.svg"), "line").unwrap();
+        assert!(
+            m.contains("<svg><path/></svg>") && !m.contains("<img"),
+            "{m}"
+        );
+        // No PNG beside it: the SVG.
+        std::fs::write(dir.join("only.svg"), &big_svg).unwrap();
+        assert!(
+            figure_markup(&dir.join("only.svg"), "x")
+                .unwrap()
+                .contains("<svg>")
+        );
+        let _ = std::fs::remove_dir_all(&dir);
     }
 }

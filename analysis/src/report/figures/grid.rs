@@ -109,7 +109,8 @@ pub fn panel_chart(model: &str, runs: &[&BisectionMetrics]) -> Chart {
     }
 }
 
-/// Writes the grid for `rows` (model label, bisection metrics of its runs) to
+/// Writes the grid for `rows` (model label, bisection metrics of its runs; shape
+/// [`grid_shape`]) to
 /// `<stem>.svg` / `<stem>.png`; rows without bisection runs are left out. Returns the files
 /// written (none when no row has a bisection run).
 pub fn psychometric_grid(
@@ -139,7 +140,22 @@ pub fn psychometric_grid(
             })
         })
         .collect();
-    write_panels(stem, (models.len(), pairs.len()), &charts)
+    write_panels(stem, grid_shape(models.len(), pairs.len()), &charts)
+}
+
+/// Panels most per row of a one-pair grid (models wrap into rows of this many).
+pub const WRAP_COLUMNS: usize = 4;
+
+/// `(rows, columns)` of the psychometric grid: models × anchor pairs, or — with one anchor
+/// pair — the models wrapped into rows of up to [`WRAP_COLUMNS`] panels (row-major, so the
+/// panel order is the same).
+pub fn grid_shape(models: usize, pairs: usize) -> (usize, usize) {
+    if pairs == 1 {
+        let cols = models.clamp(1, WRAP_COLUMNS);
+        (models.div_ceil(cols), cols)
+    } else {
+        (models, pairs)
+    }
 }
 
 /// Writes `charts` (row-major; `None` leaves a panel empty) as a grid of `(rows, columns)`
@@ -185,4 +201,18 @@ where
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::grid_shape;
+
+    #[test]
+    fn one_anchor_pair_wraps_the_models_into_rows_of_four() {
+        assert_eq!(grid_shape(7, 1), (2, 4));
+        assert_eq!(grid_shape(3, 1), (1, 3));
+        assert_eq!(grid_shape(1, 1), (1, 1));
+        // Several pairs: models × pairs.
+        assert_eq!(grid_shape(4, 6), (4, 6));
+    }
 }
