@@ -181,6 +181,47 @@ fn foc_is_zero_for_an_interact_run_from_the_put() {
 }
 
 #[test]
+fn foc_counts_only_the_final_streak_and_needs_a_pickup() {
+    let check = Events::OVEN_CHECK;
+    let pickup = Events::OVEN_CHECK | Events::PICKUP;
+    // An interrupted streak: checks at timer 1 and 2, a wait at 3, then checks from 4 to the
+    // pickup at 5. Only the final streak defines FOC (the earlier checks are not counted),
+    // under both conventions.
+    let actions = [1u8, 5, 5, 5, 0, 5, 5, 2];
+    let infos = [
+        step(-1, 0),
+        step(-1, Events::ONION_IN),
+        step(1, check),
+        step(2, check),
+        step(3, 0),
+        step(4, check),
+        step(5, pickup),
+        step(-1, 0),
+    ];
+    assert_eq!(first_oven_check(&actions, &infos), Some(4));
+    assert_eq!(
+        first_oven_check_with(&actions, &infos, FocConvention::Checks),
+        Some(4)
+    );
+    // The same checks without a pickup (the episode timed out): no FOC.
+    let infos_no_pickup: Vec<_> = infos
+        .iter()
+        .map(|i| {
+            if i.events.has(Events::PICKUP) {
+                step(5, check)
+            } else {
+                *i
+            }
+        })
+        .collect();
+    assert_eq!(first_oven_check(&actions, &infos_no_pickup), None);
+    assert_eq!(
+        first_oven_check_with(&actions, &infos_no_pickup, FocConvention::Checks),
+        None
+    );
+}
+
+#[test]
 fn foc_statistics_show_the_scalar_property_on_scalar_data() {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(3);
     let groups: Vec<(u32, Vec<f64>)> = [4u32, 6, 9, 12, 18, 24]
