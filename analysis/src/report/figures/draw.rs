@@ -92,6 +92,15 @@ pub(super) fn err<E: std::fmt::Debug>(path: &Path) -> impl Fn(E) -> FigureError 
     }
 }
 
+/// The points of `s` with both coordinates finite (NaN marks a gap).
+fn finite_points(s: &Series) -> Vec<(f64, f64)> {
+    s.points
+        .iter()
+        .copied()
+        .filter(|p| p.0.is_finite() && p.1.is_finite())
+        .collect()
+}
+
 /// The corner of the plot area the data crowds least, for the legend: every point and
 /// points along each line segment are counted in a box of 40% × 35% of the axes at each
 /// corner; ties go to the upper left, then upper right, lower left, lower right.
@@ -114,12 +123,7 @@ pub(super) fn legend_corner(chart: &Chart, x: (f64, f64), y: (f64, f64)) -> Seri
         }
     };
     for s in &chart.series {
-        let pts: Vec<(f64, f64)> = s
-            .points
-            .iter()
-            .copied()
-            .filter(|p| p.0.is_finite() && p.1.is_finite())
-            .collect();
+        let pts = finite_points(s);
         for p in &pts {
             count(p.0, p.1);
         }
@@ -214,12 +218,7 @@ where
             }
             last
         } else {
-            let pts: Vec<(f64, f64)> = s
-                .points
-                .iter()
-                .copied()
-                .filter(|p| p.0.is_finite() && p.1.is_finite())
-                .collect();
+            let pts = finite_points(s);
             Some(
                 c.draw_series(
                     pts.into_iter()
