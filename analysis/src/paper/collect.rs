@@ -151,7 +151,8 @@ pub enum CollectError {
     },
 }
 
-fn err(path: &Path, e: impl std::fmt::Display) -> CollectError {
+/// A [`CollectError::File`] for `path`.
+pub(crate) fn err(path: &Path, e: impl std::fmt::Display) -> CollectError {
     CollectError::File {
         path: path.display().to_string(),
         message: e.to_string(),

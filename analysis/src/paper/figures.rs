@@ -40,6 +40,16 @@ fn regression_line(label: &str, pts: &[(f64, f64)], color: usize) -> Option<Seri
     ))
 }
 
+/// `pts` as dots with their regression line; one legend entry, `label`, on the line (on the
+/// dots when there is no line).
+fn dots_with_fit(label: &str, pts: Vec<(f64, f64)>, color: usize) -> Vec<Series> {
+    let fit = regression_line(label, &pts, color);
+    let dots_label = if fit.is_some() { "" } else { label };
+    let mut out = vec![series(dots_label, pts, false, color)];
+    out.extend(fit);
+    out
+}
+
 /// One panel per model: every pooled FOC per TD (dots, spread slightly along x) with the
 /// per-TD mean (line) and FOC = TD (grey).
 pub fn foc_panels(fi: &[FiModel]) -> Vec<Option<Chart>> {
@@ -92,13 +102,8 @@ pub fn scalar_panels(fi: &[FiModel]) -> Vec<Option<Chart>> {
             .iter()
             .map(|c| (c.pooled.mean, c.pooled.sd))
             .collect();
-        // One legend entry per model: its fit line, or its dots when it has no fit.
-        for (pts, out) in [(a, &mut mean_vs_td), (b, &mut sd_vs_mean)] {
-            let fit = regression_line(&m.model, &pts, k);
-            let label = if fit.is_some() { "" } else { m.model.as_str() };
-            out.push(series(label, pts, false, k));
-            out.extend(fit);
-        }
+        mean_vs_td.extend(dots_with_fit(&m.model, a, k));
+        sd_vs_mean.extend(dots_with_fit(&m.model, b, k));
     }
     vec![
         Some(Chart {
@@ -205,10 +210,7 @@ pub fn wf_chart(bis: &[BisectionModel]) -> Chart {
         if pts.is_empty() {
             continue;
         }
-        let fit = regression_line(&m.model, &pts, k);
-        let label = if fit.is_some() { "" } else { m.model.as_str() };
-        ser.push(series(label, pts, false, k));
-        ser.extend(fit);
+        ser.extend(dots_with_fit(&m.model, pts, k));
     }
     Chart {
         title: "Weber fraction vs anchor ratio".into(),

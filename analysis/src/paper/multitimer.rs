@@ -70,7 +70,7 @@ pub fn curriculum_of(job: &CompactJob) -> &'static str {
 }
 
 /// The final policy's mean reward and oven-off time (steps, −1 for never taken) at each of
-/// `tds` that the job evaluated.
+/// `tds` (TDs without evaluation episodes are skipped).
 fn per_td_of(job: &CompactJob, tds: &[u32]) -> Vec<(u32, f64, f64)> {
     tds.iter()
         .filter_map(|&td| {
@@ -119,12 +119,17 @@ fn run_of(job: &CompactJob) -> MtRun {
         .env_value("tds")
         .map(|v| v.split(',').filter_map(|x| x.trim().parse().ok()).collect())
         .unwrap_or_else(|| vec![3, 6, 9, 12, 15]);
+    let tested = per_td_of(job, &evaluated);
     MtRun {
         seed: job.job.seed,
         level: job.job.level_steps.len().saturating_sub(1),
         level_steps: job.job.level_steps.clone(),
-        per_td: per_td_of(job, &trained),
-        tested: per_td_of(job, &evaluated),
+        per_td: tested
+            .iter()
+            .filter(|x| trained.contains(&x.0))
+            .copied()
+            .collect(),
+        tested,
         level_reward: level_reward_of(job),
     }
 }

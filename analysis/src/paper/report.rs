@@ -2,7 +2,7 @@
 //! resources) with how many of the paper's numbers the lab reproduces per table, every
 //! comparison row, and the study's figures in the paper's form.
 
-use super::collect::CollectError;
+use super::collect::{CollectError, err};
 use super::compare::ComparisonRow;
 use super::study::PaperStudy;
 use crate::report::{STYLE, escape, inline_svg};
@@ -101,10 +101,7 @@ pub fn write_paper_report(
         if !svg.is_file() {
             continue;
         }
-        let body = inline_svg(&svg).map_err(|m| CollectError::File {
-            path: svg.display().to_string(),
-            message: m,
-        })?;
+        let body = inline_svg(&svg).map_err(|m| err(&svg, m))?;
         let class = if wide { " class=\"wide\"" } else { "" };
         let _ = writeln!(
             h,
@@ -129,9 +126,6 @@ pub fn write_paper_report(
     }
     h += "</table>\n</body></html>\n";
     let path = root.join("report.html");
-    chronocooked_env::fs::write_atomic(&path, h.as_bytes()).map_err(|e| CollectError::File {
-        path: path.display().to_string(),
-        message: e.to_string(),
-    })?;
+    chronocooked_env::fs::write_atomic(&path, h.as_bytes()).map_err(|e| err(&path, e))?;
     Ok(path)
 }

@@ -198,11 +198,15 @@ pub(crate) fn figure_markup(svg: &Path, caption: &str) -> Result<String, String>
 /// neural figures of one run (its fixed-interval run when it has one), the other runs named.
 fn row_figures_html(r: &Row) -> Result<String, String> {
     use crate::report::leaderboard::{behaviour_figures, figure_caption, neural_figures};
-    let neural_run = r
+    // The run whose neural figures are shown, with them (its folder is read once).
+    let neural = r
         .runs
         .iter()
-        .filter(|run| !neural_figures(run).is_empty())
-        .min_by_key(|run| run_task(run) != "FixedInterval-v0");
+        .filter_map(|run| {
+            let figures = neural_figures(run);
+            (!figures.is_empty()).then_some((run, figures))
+        })
+        .min_by_key(|(run, _)| run_task(run) != "FixedInterval-v0");
     let mut html = String::new();
     let mut shown: Vec<(String, usize)> = Vec::new();
     let mut named = Vec::new();
@@ -218,8 +222,8 @@ fn row_figures_html(r: &Row) -> Result<String, String> {
                 1
             }
         };
-        let neural = neural_run == Some(run);
-        if count > FIGURE_RUNS && !neural {
+        let neural_here = neural.as_ref().filter(|(n, _)| *n == run);
+        if count > FIGURE_RUNS && neural_here.is_none() {
             named.push(run_caption(run));
             continue;
         }
@@ -229,9 +233,9 @@ fn row_figures_html(r: &Row) -> Result<String, String> {
                 html += &figure_markup(&svg, &figure_caption(&svg))?;
             }
         }
-        if neural {
-            for svg in neural_figures(run) {
-                html += &figure_markup(&svg, &format!("neural: {}", figure_caption(&svg)))?;
+        if let Some((_, figures)) = neural_here {
+            for svg in figures {
+                html += &figure_markup(svg, &format!("neural: {}", figure_caption(svg)))?;
             }
         }
     }
