@@ -41,8 +41,11 @@ def main():
                 v = [x for x in p if x is not None]  # probes with no valid choice are skipped
                 drop = max([0.0] + [v[i] - v[i + 1] for i in range(len(v) - 1)])
                 ok_probes = len(v) == len(p)
-                bp = (b.get("fit") or {}).get("bp", float("nan"))
-                wf = (b.get("fit") or {}).get("wf", float("nan"))
+                # A step-shaped curve has no measurable WF: the fit writes null (undefined).
+                bp = (b.get("fit") or {}).get("bp")
+                wf = (b.get("fit") or {}).get("wf")
+                bp = float("nan") if bp is None else bp
+                wf = float("nan") if wf is None else wf
                 ratio = bp / math.sqrt(s * l)
                 acc = b["anchor_accuracy"]
                 acc = float("nan") if acc is None else acc

@@ -78,7 +78,37 @@ fn separated_failed_and_one_sided_data_are_reported_not_crashed() {
     let f = fit_logistic(&data).unwrap();
     assert!(f.separated);
     assert_eq!(f.bp, 6.5);
-    assert_eq!(f.wf, 0.0);
+    // A step has no measurable slope: DL and WF are undefined, not 0.
+    assert!(f.wf.is_nan() && f.dl.is_nan() && f.scale.is_nan(), "{f:?}");
+    // Quasi-separation: one mixed probe (3 of 8 long at 7) between all-short and
+    // all-long. The likelihood keeps rising with the slope, so WF is undefined too, and
+    // BP is where the empirical curve crosses 0.5: 7 + (0.5 − 0.375)/(1 − 0.375) = 7.2.
+    let quasi: Vec<ProbeCounts> = (1..=16)
+        .map(|t| ProbeCounts {
+            t: t as f64,
+            valid: 8,
+            long: match t {
+                ..=6 => 0,
+                7 => 3,
+                _ => 8,
+            },
+            failed: 0,
+        })
+        .collect();
+    let q = fit_logistic(&quasi).unwrap();
+    assert!(q.separated && q.wf.is_nan(), "{q:?}");
+    assert!((q.bp - 7.2).abs() < 1e-12, "BP {}", q.bp);
+    // Serialised, the undefined statistics are null and read back as NaN.
+    let json = serde_json::to_string(&q).unwrap();
+    assert!(json.contains("\"wf\":null"), "{json}");
+    let back: chronocooked_analysis::behaviour::psychometric::LogisticFit =
+        serde_json::from_str(&json).unwrap();
+    assert!(back.wf.is_nan() && (back.bp - 7.2).abs() < 1e-12);
+    // Two mixed probes identify the slope: a finite WF.
+    let mut two = quasi.clone();
+    two[7].long = 6;
+    let t = fit_logistic(&two).unwrap();
+    assert!(!t.separated && t.wf.is_finite() && t.wf > 0.0, "{t:?}");
     // A random agent that always goes long: no bisection point.
     let all_long: Vec<ProbeCounts> = (1..=16)
         .map(|t| ProbeCounts {
@@ -247,6 +277,16 @@ fn foc_statistics_show_the_scalar_property_on_scalar_data() {
     let (m, b, r2) = linear_fit(&[1.0, 2.0, 3.0], &[3.0, 5.0, 7.0]);
     assert!((m - 2.0).abs() < 1e-12 && (b - 1.0).abs() < 1e-12 && (r2 - 1.0).abs() < 1e-12);
     assert!(foc_stats(&[(4, vec![])])[0].mean.is_nan());
+    // A deterministic model: every SD 0. SD~mean has nothing to explain — R² undefined
+    // (NaN), never the "perfect" 1 a degenerate fit used to report.
+    let exact = foc_stats(&[(6, vec![6.0; 8]), (12, vec![12.0; 8]), (18, vec![18.0; 8])]);
+    let sp = scalar_property(&exact);
+    assert!(sp.r2_sd_vs_mean.is_nan(), "{sp:?}");
+    assert!((sp.r2_mean_vs_td - 1.0).abs() < 1e-12);
+    let json = serde_json::to_string(&sp).unwrap();
+    let back: chronocooked_analysis::behaviour::foc::ScalarProperty =
+        serde_json::from_str(&json).unwrap();
+    assert!(back.r2_sd_vs_mean.is_nan());
 }
 
 #[test]

@@ -59,11 +59,21 @@ fn trained_agent(cfg: &TimingRunConfig, label: &str) -> Box<dyn chronocooked_mod
 }
 
 /// Anchors, largest fall of P(long) between consecutive valid probes, BP/GM, P(long).
-fn judged_curve(model: &str, short: u32, long: u32, seed: u64) -> (f64, f64, f64, Vec<f64>) {
+fn judged_curve(
+    model: &str,
+    short: u32,
+    long: u32,
+    seed: u64,
+    sets: &[&str],
+) -> (f64, f64, f64, Vec<f64>) {
     let mut cfg = TimingRunConfig::new("Bisection-v0", model, seed);
+    for s in sets {
+        cfg.set(s).unwrap();
+    }
     cfg.set(&format!("env.short={short}")).unwrap();
     cfg.set(&format!("env.long={long}")).unwrap();
-    let mut agent = trained_agent(&cfg, &format!("judge-{model}-{short}-{long}-{seed}"));
+    let label = format!("judge-{model}-{short}-{long}-{seed}-{}", sets.len());
+    let mut agent = trained_agent(&cfg, &label);
     let conds = reference_conditions("Bisection-v0", &cfg.env).unwrap();
     let records = run_protocol(agent.as_mut(), &conds, Mode::Reference, 7).unwrap();
     let b = compute_metrics(model, &records, 0).bisection.unwrap();
@@ -81,10 +91,20 @@ fn judged_curve(model: &str, short: u32, long: u32, seed: u64) -> (f64, f64, f64
 fn timing_models_judge_bisection_against_their_anchor_memories() {
     // Each model compares its own timing state with its memories of the anchors; the
     // criterion sits at their geometric mean, so the curve is monotone, probes far below
-    // the short anchor are "short", and BP ≈ GM (issue 17's criteria, on two pairs).
+    // the short anchor are "short", and BP ≈ GM (issue 17's criteria, on two pairs). The
+    // mechanism is checked with the models' near-deterministic settings (even 6 vs 8 is
+    // then judged right); with the default noise a 6-8 judgment errs as often as its
+    // log-SD says (RESULTS.md), and a 1:3 pair is still judged right (below).
+    let quiet = |model: &str| -> &'static [&'static str] {
+        match model {
+            "ddm" => &["noise=0.06", "memory_noise=0"],
+            "sbf" => &["memory_noise=0.05", "clock_noise=0"],
+            _ => &["clock_noise=0", "memory_noise=0"],
+        }
+    };
     for model in MODELS[..2].iter().chain(&MODELS[3..]) {
         for (short, long) in [(4, 12), (6, 8)] {
-            let (anchors, drop, bp_gm, p) = judged_curve(model, short, long, 3);
+            let (anchors, drop, bp_gm, p) = judged_curve(model, short, long, 3, quiet(model));
             assert!(
                 anchors >= 0.95,
                 "{model} {short}-{long}: anchors {anchors} {p:?}"
@@ -104,6 +124,13 @@ fn timing_models_judge_bisection_against_their_anchor_memories() {
                 "{model}: the longest probe is long"
             );
         }
+        // Default noise, anchors 1:3 (half-gap ln 3 / 2 = 0.55 against a log-SD ≈ 0.2).
+        let (anchors, _, bp_gm, p) = judged_curve(model, 4, 12, 3, &[]);
+        assert!(anchors >= 0.9, "{model} 4-12 default: {anchors} {p:?}");
+        assert!(
+            (0.85..=1.25).contains(&bp_gm),
+            "{model} 4-12 default: {bp_gm}"
+        );
     }
 }
 
@@ -468,14 +495,14 @@ fn zoo_says_which_tasks_each_mechanism_cannot_do() {
             None,
             "{model}"
         );
-        // One-step reward windows: each model names its mechanistic limit (noise,
-        // resolution) — except the complete serial compound, one unit per step, which learns
-        // them (next test).
-        assert_eq!(
-            task_limit(model, "MultiTimer-v0", true).is_some(),
-            model != "timecells-csc",
-            "{model}"
-        );
+        // One-step reward windows: each model names its mechanistic limit (scalar noise,
+        // resolution) — the complete serial compound only through its default clock noise
+        // (noise-free, one unit per step, it learns them: the dual-task test).
+        let limit = task_limit(model, "MultiTimer-v0", true);
+        assert!(limit.is_some(), "{model}");
+        if model == "timecells-csc" {
+            assert!(limit.unwrap().contains("clock_noise=0"), "{limit:?}");
+        }
     }
     let entry = chronocooked_training::zoo::zoo()
         .into_iter()
@@ -606,8 +633,16 @@ fn the_time_out_category_lets_ramping_and_oscillator_clocks_learn_the_time_out()
     // diffusion 1.00 / 1.00 (normal / never-ready) on all 16; without it (the agent before
     // the category: `overdue_factor=0` also keeps the frozen clock after the cue) it waits
     // at the never-ready oven on seeds 7 and 14 (0.00; 5 of 16 seeds reach 0.9).
+    // The measurement was made with the near-deterministic clock of that version
+    // (`noise=0.06`, exact anchor memories); the defaults are noisier (next assertion).
+    // Since the drift learns at rate 0.1 (was 0.2) seed 14 also reaches 0.91 without the
+    // category, so the claim checked is the population one: with the category both seeds
+    // learn the time-out, without it not both do.
+    let mut without = Vec::new();
     for seed in [7, 14] {
-        let cfg = TimingRunConfig::new("Uncertainty-v0", "ddm", seed);
+        let mut cfg = TimingRunConfig::new("Uncertainty-v0", "ddm", seed);
+        cfg.set("noise=0.06").unwrap();
+        cfg.set("memory_noise=0").unwrap();
         let (normal, never) =
             uncertainty_success(trained_agent(&cfg, &format!("unc-{seed}")).as_mut());
         assert!(
@@ -624,12 +659,14 @@ fn the_time_out_category_lets_ramping_and_oscillator_clocks_learn_the_time_out()
         off.set("overdue_factor=0").unwrap();
         let (_, never_off) =
             uncertainty_success(trained_agent(&off, &format!("unc-off-{seed}")).as_mut());
-        assert!(
-            never_off < 0.9,
-            "seed {seed}: without the category {never_off}"
-        );
+        without.push(never_off);
     }
-    // SBF (its remembered time) learns it too.
+    assert!(
+        without.iter().any(|&v| v < 0.9),
+        "without the category every seed learned the time-out: {without:?}"
+    );
+    // SBF (its remembered time) learns it too, at its default noise. (Drift-diffusion at
+    // its default noise: RESULTS.md's task matrix.)
     let cfg = TimingRunConfig::new("Uncertainty-v0", "sbf", 0);
     let (normal, never) = uncertainty_success(trained_agent(&cfg, "unc-sbf-0").as_mut());
     assert!(normal >= 0.9 && never >= 0.9, "sbf: {normal} / {never}");
@@ -663,9 +700,15 @@ fn the_opportunity_cost_of_time_learns_the_reward_rate() {
 fn the_complete_serial_compound_learns_the_one_step_window_of_the_dual_task() {
     // One unit per step and optimistic initial values (`CSC_Q_INIT`): the agent takes the
     // soup exactly at TD 12 instead of the early reduced reward. Without optimism ε-greedy
-    // SARSA never finds the window (measured: 0% on four seeds).
+    // SARSA never finds the window (measured: 0% on four seeds). The delay line is exact
+    // here (`clock_noise=0`): with the default scalar clock noise no model can confine a
+    // response to one step (`task_limit`).
+    // As measured then: exact clock, internal check cost 0.01 (the time cells' default is
+    // now 0.05, at which plain SARSA found the window on seed 0 too).
     for seed in [0, 1] {
-        let cfg = TimingRunConfig::new("DualTask-v0", "timecells-csc", seed);
+        let mut cfg = TimingRunConfig::new("DualTask-v0", "timecells-csc", seed);
+        cfg.set("clock_noise=0").unwrap();
+        cfg.set("response_cost=0.01").unwrap();
         let mut agent = trained_agent(&cfg, &format!("dual-csc-{seed}"));
         let conditions = reference_conditions("DualTask-v0", &[]).unwrap();
         let records = run_protocol(agent.as_mut(), &conditions, Mode::Reference, 0).unwrap();

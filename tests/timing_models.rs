@@ -208,7 +208,11 @@ fn microstimuli_peak_times_and_heights_match_closed_form() {
         );
         assert!((grid[k] - h_star).abs() < 1e-6 * h_star.max(1.0));
         // The running representation (integer steps) peaks at the nearest step.
-        let mut tc = TimeCells::new(Representation::microstimulus());
+        let mut tc = TimeCells::new(Representation::Microstimulus {
+            decay: d,
+            sigma,
+            count: m,
+        });
         tc.onset();
         let mut series = Vec::new();
         let mut units = Vec::new();

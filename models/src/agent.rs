@@ -36,6 +36,14 @@ pub trait Agent {
     /// probable one, without learning (models whose behaviour is noisy anyway ignore it).
     fn set_sampling(&mut self, _on: bool) {}
 
+    /// Episodes the reference protocol plays per start cell and condition: 1 for agents
+    /// that act the same way every time from the same start (greedy policies), more for
+    /// agents with internal noise (a timing model's clock or memory), whose behaviour is a
+    /// distribution to be sampled — each draw with its own seed.
+    fn noise_draws(&self) -> usize {
+        1
+    }
+
     /// Hidden state before each action — only for reference policies (the oracle);
     /// agents that model timing must not override this.
     fn observe_state(&mut self, _state: &chronocooked_env::KitchenState) {}

@@ -11,6 +11,7 @@ use crate::evaluate::eval_tds;
 use crate::run_dir::write_atomic;
 use chronocooked_env::{ChronoEnv, TaskFamily, make_config};
 use chronocooked_models::timing::agent::TimingAgent;
+use chronocooked_models::timing::judgment::DecisionRule;
 use chronocooked_models::timing::zoo::make_timing_agent;
 use chronocooked_models::{TimingCurvePoint, TimingTrainConfig, train_timing_agent};
 use serde::{Deserialize, Serialize};
@@ -34,7 +35,7 @@ pub struct TimingRunConfig {
     pub train: TimingTrainConfig,
     /// Agent overrides applied after construction (`key=value`: `alpha`, `gamma`,
     /// `lambda`, `response_cost`, `probe`, `opportunity_cost`, `overdue_factor`, `q_init`,
-    /// `noise`, `memory_noise`, `clock_noise`).
+    /// `noise`, `memory_noise`, `clock_noise`, `decision_rule`).
     pub agent: Vec<String>,
 }
 
@@ -46,7 +47,7 @@ pub struct TimingRunConfig {
 pub const UNCERTAINTY_EPISODES: usize = 40_000;
 
 /// Every `--set` key of a timing run.
-pub const TIMING_KEYS: &str = "episodes, epsilon_start, epsilon_end, anneal_fraction, eval_every, stop_at_success, alpha, gamma, lambda, response_cost, probe, opportunity_cost, overdue_factor, q_init, noise (ddm), memory_noise (sbf), clock_noise (timecells-*), env.<task parameter>";
+pub const TIMING_KEYS: &str = "episodes, epsilon_start, epsilon_end, anneal_fraction, eval_every, stop_at_success, alpha, gamma, lambda, response_cost, probe, opportunity_cost, overdue_factor, q_init, noise (ddm), memory_noise, clock_noise (sbf, timecells-*), decision_rule (ratio, difference, likelihood, learned), env.<task parameter>";
 
 /// The allowed range of an agent override `key` when `v` lies outside it.
 fn agent_value_range(key: &str, v: f64) -> Option<&'static str> {
@@ -65,6 +66,15 @@ fn agent_value_range(key: &str, v: f64) -> Option<&'static str> {
 
 /// Parses an agent override's value and checks its range (typed error naming the key).
 fn check_agent_value(key: &str, value: &str) -> Result<(), TrainError> {
+    if key == "decision_rule" {
+        return DecisionRule::from_name(value)
+            .map(|_| ())
+            .map_err(|allowed| TrainError::InvalidParam {
+                field: key.into(),
+                value: value.into(),
+                allowed,
+            });
+    }
     let v: f64 = parse(key, value, "a number")?;
     match agent_value_range(key, v) {
         Some(allowed) => Err(TrainError::InvalidParam {
@@ -123,7 +133,8 @@ impl TimingRunConfig {
                 }
             }
             "alpha" | "gamma" | "lambda" | "response_cost" | "probe" | "opportunity_cost"
-            | "overdue_factor" | "q_init" | "noise" | "memory_noise" | "clock_noise" => {
+            | "overdue_factor" | "q_init" | "noise" | "memory_noise" | "clock_noise"
+            | "decision_rule" => {
                 check_agent_value(key, value)?;
                 self.agent.push(format!("{key}={value}"));
             }
@@ -191,6 +202,16 @@ impl TimingRunConfig {
         })?;
         for kv in &self.agent {
             let (k, v) = kv.split_once('=').unwrap_or((kv, "0"));
+            if k == "decision_rule" {
+                check_agent_value(k, v)?;
+                agent.timer.decision_mut().rule =
+                    DecisionRule::from_name(v).map_err(|allowed| TrainError::InvalidParam {
+                        field: k.into(),
+                        value: v.into(),
+                        allowed,
+                    })?;
+                continue;
+            }
             let v: f64 = parse(k, v, "a number")?;
             match k {
                 "alpha" => agent.learner.config.alpha = v,
@@ -207,15 +228,19 @@ impl TimingRunConfig {
                 },
                 "memory_noise" => match &mut agent.timer {
                     chronocooked_models::timing::timers::Timer::Sbf(s) => s.model.memory_noise = v,
-                    _ => return Err(TrainError::UnknownKey("memory_noise (sbf only)".into())),
+                    chronocooked_models::timing::timers::Timer::Ddm(d) => d.memory_noise = v,
+                    chronocooked_models::timing::timers::Timer::TimeCells(tc) => {
+                        tc.memory_noise = v
+                    }
                 },
                 "clock_noise" => match &mut agent.timer {
                     chronocooked_models::timing::timers::Timer::TimeCells(tc) => {
                         tc.cells.speed_noise = v
                     }
+                    chronocooked_models::timing::timers::Timer::Sbf(s) => s.clock_noise = v,
                     _ => {
                         return Err(TrainError::UnknownKey(
-                            "clock_noise (timecells-* only)".into(),
+                            "clock_noise (sbf, timecells-* only)".into(),
                         ));
                     }
                 },

@@ -220,6 +220,11 @@ fn timing_parameters(name: &str) -> Vec<ZooParam> {
                 "drift learning rate after a reinforced interval",
             ),
             p("start", d.start, "response threshold as a fraction of z"),
+            p(
+                "memory_noise",
+                d.memory_noise,
+                "bisection: SD of the log of a per-trial factor on each remembered anchor drift",
+            ),
         ],
         Timer::Sbf(s) => {
             let (lo, hi) = s
@@ -243,6 +248,11 @@ fn timing_parameters(name: &str) -> Vec<ZooParam> {
                     "memory_noise",
                     s.model.memory_noise,
                     "CV of the stored duration (kappa)",
+                ),
+                p(
+                    "clock_noise",
+                    s.clock_noise,
+                    "SD of the log of a per-trial oscillator-frequency factor (0 = nominal)",
                 ),
                 p(
                     "learning_rate",
@@ -310,6 +320,27 @@ fn timing_parameters(name: &str) -> Vec<ZooParam> {
             "training episodes (--set episodes=N)",
         ),
     ]);
+    if let Timer::TimeCells(tc) = &agent.timer
+        && !matches!(tc.cells.repr, Representation::Presence)
+    {
+        ps.push(p(
+            "clock_noise",
+            tc.cells.speed_noise,
+            "SD of the log of a per-trial clock-speed factor (scalar variability; 0 = deterministic)",
+        ));
+        ps.push(p(
+            "memory_noise",
+            tc.memory_noise,
+            "bisection: SD of the log of a factor on each stored anchor estimate",
+        ));
+    }
+    ps.push(p(
+        "decision_rule",
+        agent.timer.decision().rule.name(),
+        "bisection criterion between the remembered anchors S*, L*: ratio = geometric mean BY \
+         CONSTRUCTION (the default; SET), difference = arithmetic mean, likelihood = harmonic \
+         mean, learned = moved by feedback until errors on both anchors balance (BP measured)",
+    ));
     ps.push(p(
         "overdue_factor",
         agent.config.overdue_factor,

@@ -68,15 +68,20 @@ pub struct FocStats {
     /// Episodes with a FOC.
     pub n: usize,
     /// Mean FOC (NaN without data).
+    #[serde(deserialize_with = "crate::stats::nan_if_null")]
     pub mean: f64,
     /// Sample SD (n − 1; NaN below 2 episodes).
+    #[serde(deserialize_with = "crate::stats::nan_if_null")]
     pub sd: f64,
     /// `sd / mean`.
+    #[serde(deserialize_with = "crate::stats::nan_if_null")]
     pub cv: f64,
 }
 
 /// Ordinary least squares `y = slope·x + intercept`; returns `(slope, intercept, R²)`
-/// (NaN when fewer than two points or no spread in `x`).
+/// (all NaN when fewer than two points or no spread in `x`; R² NaN — undefined — when `y`
+/// has no spread, e.g. all-zero SDs: there is no variance to explain, and a "perfect" R²
+/// of 1 would report a degenerate fit as the scalar property).
 pub fn linear_fit(x: &[f64], y: &[f64]) -> (f64, f64, f64) {
     let n = x.len().min(y.len());
     if n < 2 {
@@ -98,7 +103,7 @@ pub fn linear_fit(x: &[f64], y: &[f64]) -> (f64, f64, f64) {
     let r2 = if syy > 0.0 {
         sxy * sxy / (sxx * syy)
     } else {
-        1.0
+        f64::NAN
     };
     (slope, my - slope * mx, r2)
 }
@@ -124,12 +129,16 @@ pub fn foc_stats(groups: &[(u32, Vec<f64>)]) -> Vec<FocStats> {
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ScalarProperty {
     /// Slope of mean FOC vs TD.
+    #[serde(deserialize_with = "crate::stats::nan_if_null")]
     pub mean_slope: f64,
     /// R² of mean FOC vs TD (timing: close to 1 with slope ≈ 1).
+    #[serde(deserialize_with = "crate::stats::nan_if_null")]
     pub r2_mean_vs_td: f64,
     /// Slope of SD vs mean FOC (≈ the constant CV under the scalar property).
+    #[serde(deserialize_with = "crate::stats::nan_if_null")]
     pub sd_slope: f64,
     /// R² of SD vs mean FOC (scalar property: close to 1).
+    #[serde(deserialize_with = "crate::stats::nan_if_null")]
     pub r2_sd_vs_mean: f64,
 }
 

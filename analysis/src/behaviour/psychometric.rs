@@ -40,21 +40,29 @@ impl ProbeCounts {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct LogisticFit {
     /// Bisection point (P = 0.5), steps.
+    #[serde(deserialize_with = "crate::stats::nan_if_null")]
     pub bp: f64,
-    /// Scale `s` (steps); 0 when the data are perfectly separated.
+    /// Scale `s` (steps); NaN (undefined) when the curve is a step (`separated`).
+    #[serde(deserialize_with = "crate::stats::nan_if_null")]
     pub scale: f64,
     /// `T25 = BP − s ln 3`.
+    #[serde(deserialize_with = "crate::stats::nan_if_null")]
     pub t25: f64,
     /// `T75 = BP + s ln 3`.
+    #[serde(deserialize_with = "crate::stats::nan_if_null")]
     pub t75: f64,
     /// Difference limen `(T75 − T25)/2`.
+    #[serde(deserialize_with = "crate::stats::nan_if_null")]
     pub dl: f64,
     /// Weber fraction `DL / BP`.
+    #[serde(deserialize_with = "crate::stats::nan_if_null")]
     pub wf: f64,
     /// Log-likelihood at the optimum.
     pub log_lik: f64,
-    /// The choices switch from all-short to all-long with no overlap (the MLE is a step;
-    /// BP is then the midpoint of the gap and the scale 0).
+    /// The choices switch from all-short to all-long with at most one mixed probe between
+    /// (separation or quasi-separation: the maximum-likelihood slope is infinite). BP is
+    /// then the 0.5 crossing of the empirical curve; the scale, DL, T25/T75 and WF are
+    /// undefined (NaN, `null` in JSON): a step has no measurable Weber fraction.
     pub separated: bool,
     /// Bootstrap percentile interval of BP (`None` when not computed).
     pub bp_ci: Option<(f64, f64)>,
@@ -104,6 +112,30 @@ fn usable(data: &[ProbeCounts]) -> Vec<ProbeCounts> {
         .collect()
 }
 
+/// The 0.5 crossing of a step-shaped curve (probes sorted by duration): `Some(BP)` when the
+/// probes are all-short, then at most one mixed probe, then all-long; `None` otherwise.
+fn step_crossing(sorted: &[ProbeCounts]) -> Option<f64> {
+    let p = |d: &ProbeCounts| f64::from(d.long) / f64::from(d.valid);
+    let is_mixed = |d: &ProbeCounts| d.long > 0 && d.long < d.valid;
+    if sorted.iter().filter(|d| is_mixed(d)).count() > 1 {
+        return None;
+    }
+    // All-short probes must all precede every non-short probe, and all-long ones follow
+    // every non-long probe.
+    let first_not_short = sorted.iter().position(|d| d.long > 0)?;
+    let last_not_long = sorted.iter().rposition(|d| d.long < d.valid)?;
+    let ordered = sorted[first_not_short..].iter().all(|d| d.long > 0)
+        && sorted[..=last_not_long].iter().all(|d| d.long < d.valid);
+    if !ordered || first_not_short == 0 || last_not_long + 1 == sorted.len() {
+        return None;
+    }
+    // Interpolate P = 0.5 between consecutive probes of the empirical curve.
+    sorted.windows(2).find_map(|w| {
+        let (p0, p1) = (p(&w[0]), p(&w[1]));
+        (p0 < 0.5 && p1 >= 0.5).then(|| w[0].t + (0.5 - p0) / (p1 - p0) * (w[1].t - w[0].t))
+    })
+}
+
 /// Fits the logistic by binomial maximum likelihood (Newton's method with step halving on
 /// `p = σ(a + b t)`, BP = −a/b, s = 1/b). No confidence intervals (see [`fit_with_ci`]).
 pub fn fit_logistic(data: &[ProbeCounts]) -> Result<LogisticFit, FitError> {
@@ -116,30 +148,21 @@ pub fn fit_logistic(data: &[ProbeCounts]) -> Result<LogisticFit, FitError> {
     if total_long == 0 || total_long == total {
         return Err(FitError::NoTransition);
     }
-    // Perfect separation: every probe is all-short below some gap and all-long above it.
+    // A step: every probe is all-short below the transition and all-long above it, with
+    // at most one mixed probe between. The likelihood then keeps rising as the slope
+    // grows (separation or quasi-separation), so the slope — and with it DL and WF — is
+    // not identified: they are undefined (NaN, written as null), never a tiny number. BP
+    // is where the empirical curve crosses 0.5 (linear interpolation).
     let mut sorted = data.clone();
     sorted.sort_by(|x, y| x.t.total_cmp(&y.t));
-    let last_short = sorted
-        .iter()
-        .filter(|d| d.long == 0)
-        .map(|d| d.t)
-        .fold(f64::NEG_INFINITY, f64::max);
-    let first_long = sorted
-        .iter()
-        .filter(|d| d.long == d.valid)
-        .map(|d| d.t)
-        .fold(f64::INFINITY, f64::min);
-    let mixed = sorted.iter().any(|d| d.long > 0 && d.long < d.valid);
-    if !mixed && last_short < first_long && sorted.iter().all(|d| d.long == 0 || d.long == d.valid)
-    {
-        let bp = 0.5 * (last_short + first_long);
+    if let Some(bp) = step_crossing(&sorted) {
         return Ok(LogisticFit {
             bp,
-            scale: 0.0,
-            t25: bp,
-            t75: bp,
-            dl: 0.0,
-            wf: 0.0,
+            scale: f64::NAN,
+            t25: f64::NAN,
+            t75: f64::NAN,
+            dl: f64::NAN,
+            wf: f64::NAN,
             log_lik: 0.0,
             separated: true,
             bp_ci: None,

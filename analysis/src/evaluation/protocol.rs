@@ -1,7 +1,9 @@
 //! Evaluation protocols (README "Evaluation and metrics"): the conditions each task is tested under and the runner
 //! that plays them with any [`Agent`].
 //!
-//! Reference protocol: greedy policy, one episode per free start cell per condition.
+//! Reference protocol: greedy policy, one episode per free start cell per condition (for
+//! agents with internal noise, [`Agent::noise_draws`] episodes per start cell, each with its
+//! own seed: a timing model's clock and memory noise is sampled, not frozen).
 //! Stochastic variant: `N` episodes per condition from uniformly drawn start cells, actions
 //! sampled from the policy, seeded. Conditions per trained task:
 //! * FI: the trained TD, plus peak-interval probes with the soup released at 2× and 5× TD;
@@ -254,7 +256,10 @@ pub fn run_protocol_recorded(
             .map(|&x| layout.coords(x as usize))
             .collect();
         let starts: Vec<(usize, usize)> = match mode {
-            Mode::Reference => cells.clone(),
+            // Agents with internal noise: each start cell `noise_draws` times, own seeds.
+            Mode::Reference => (0..agent.noise_draws().max(1))
+                .flat_map(|_| cells.iter().copied())
+                .collect(),
             Mode::Stochastic { episodes } => {
                 let mut rng = Xoshiro256PlusPlus::seed_from_u64(derive_seed(seed, ci as u64));
                 (0..episodes)

@@ -6,6 +6,11 @@
 
 use serde::{Deserialize, Serialize};
 
+/// Reads a number that serde_json wrote as `null` (NaN: an undefined statistic) back as NaN.
+pub fn nan_if_null<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
+}
+
 /// Mean, sample SD and count of one number across runs (NaN values are left out).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Spread {

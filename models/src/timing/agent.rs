@@ -91,6 +91,12 @@ pub struct TimingAgentConfig {
     pub overdue_factor: f64,
 }
 
+/// Episodes per start cell and condition in the reference protocol for a timing agent with
+/// internal noise ([`Agent::noise_draws`]): with 8–12 free start cells, 32–48 episodes per
+/// condition, enough to estimate a psychometric transition (a logistic fit to 8 episodes
+/// per probe is nearly separated and underestimates the Weber fraction).
+pub const NOISE_DRAWS: usize = 4;
+
 /// Default [`TimingAgentConfig::overdue_factor`].
 pub const OVERDUE_FACTOR: f64 = 1.5;
 
@@ -327,6 +333,14 @@ impl Agent for TimingAgent {
         self.name.clone()
     }
 
+    fn noise_draws(&self) -> usize {
+        if self.timer.is_noisy() {
+            NOISE_DRAWS
+        } else {
+            1
+        }
+    }
+
     fn begin_episode(&mut self, obs: &[u8], seed: u64) {
         self.rng = Xoshiro256PlusPlus::seed_from_u64(seed);
         self.ep = EpisodeState {
@@ -419,6 +433,9 @@ impl Agent for TimingAgent {
             ) {
                 // Rewarded: the chosen counter was right; not rewarded: the other one.
                 let category = if reward > 0.0 { chosen } else { LONG - chosen };
+                if let Some(judged_long) = self.ep.judgment {
+                    self.timer.judgment_feedback(judged_long, category == LONG);
+                }
                 self.timer
                     .reinforce_choice(category, t as f64, &mut self.rng);
             }

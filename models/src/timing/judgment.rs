@@ -1,10 +1,15 @@
 //! Bisection judgments: at the end of the timed interval each timing model compares its
 //! own timing state with its memories of the two anchors and says "short" or "long".
 //!
-//! The comparison is the model's, re-derived from its literature; in every case the
-//! criterion sits at the geometric mean of the remembered anchors, the similarity rule
-//! of scalar expectancy theory (Gibbon 1981; Allan & Gibbon 1991: respond "long" when
-//! `t/S ≥ L/t`, i.e. `t ≥ √(S·L)`):
+//! The comparison is the model's, re-derived from its literature. Where the criterion lies
+//! between the remembered anchors `S*`, `L*` is the [`DecisionRule`] (a setting,
+//! `--set decision_rule=…`): by default scalar expectancy theory's ratio rule (Gibbon 1981;
+//! Allan & Gibbon 1991: respond "long" when `t/S ≥ L/t`), which puts the criterion — and so
+//! the bisection point — at the geometric mean **by construction**; the difference rule
+//! puts it at the arithmetic mean, the likelihood rule at (about) the harmonic mean, and the
+//! learned rule moves it by feedback until errors on the two anchors balance, so where the
+//! bisection point falls is then a measured result (Kopec & Brody 2010 review how human
+//! bisection points move between these means). Per model:
 //!
 //! * drift-diffusion — two accumulators run during the interval with the drifts learned for
 //!   the short and the long anchor (`z/S`, `z/L`, each from its own rewarded trials); the
@@ -15,8 +20,10 @@
 //!   sample of each anchor memory (memory noise, Matell & Meck 2004); "long" iff its
 //!   coincidence has been passed during the interval (its detector envelope peaked).
 //! * time cells — the population's elapsed-time estimate (centre of mass of the active
-//!   cells' preferred times) is compared with the mean log estimate of each anchor's
-//!   rewarded trials ([`CategoryMemory`]); clock-speed noise, when set, varies it.
+//!   cells' preferred times) is compared with the criterion between one remembered
+//!   estimate of each anchor, drawn per trial from its rewarded trials
+//!   ([`CategoryMemory::sample`]); clock-speed noise varies both the estimate and the
+//!   memories.
 //!
 //! Probes far shorter than the short anchor are judged "short" by every rule (the
 //! comparison is with a criterion, not a similarity to each anchor), so the psychometric
@@ -68,6 +75,133 @@ impl CategoryMemory {
     pub fn judge(&self, log_t: f64) -> Option<bool> {
         self.criterion().map(|c| log_t >= c)
     }
+
+    /// The remembered anchors `(S*, L*)`: `exp` of each category's mean log duration.
+    pub fn anchors(&self) -> Option<(f64, f64)> {
+        let mean = |slot: u8| {
+            let m = self.log_times.get(&slot).filter(|m| !m.is_empty())?;
+            Some((m.iter().sum::<f64>() / m.len() as f64).exp())
+        };
+        Some((mean(SHORT)?, mean(LONG)?))
+    }
+
+    /// One remembered duration of each category `(S*, L*)`, drawn at random from its
+    /// stored ones: scalar expectancy theory's reference-memory sample, drawn anew on every
+    /// trial (Gibbon, Church & Meck 1984) — the memory's share of the judgment's variance.
+    pub fn sample<R: rand::Rng + ?Sized>(&self, rng: &mut R) -> Option<(f64, f64)> {
+        let draw = |slot: u8, rng: &mut R| {
+            let m = self.log_times.get(&slot).filter(|m| !m.is_empty())?;
+            Some(m[rng.random_range(0..m.len())].exp())
+        };
+        let s = draw(SHORT, rng)?;
+        Some((s, draw(LONG, rng)?))
+    }
+}
+
+/// Where a bisection judgment puts its criterion between the remembered anchors `S*` and
+/// `L*` (serialised `ratio`, `difference`, `likelihood`, `learned`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DecisionRule {
+    /// Scalar expectancy theory's ratio rule, "long" iff `t/S* ≥ L*/t`: criterion at the
+    /// geometric mean `√(S*·L*)` (Gibbon 1981; Allan & Gibbon 1991).
+    #[default]
+    Ratio,
+    /// Difference rule, "long" iff `t − S* ≥ L* − t`: criterion at the arithmetic mean
+    /// `(S* + L*)/2` (the rule Church & Deluty 1977 tested against the geometric mean).
+    Difference,
+    /// Likelihood rule: "long" iff `t` is likelier under the long anchor's memory than
+    /// under the short one's, both Gaussian with the same CV (scalar memories). Equal
+    /// likelihoods at `(t/S* − 1)² = (t/L* − 1)²` to first order in the CV: the harmonic mean
+    /// `2 S* L*/(S* + L*)` (Gibbon 1981's likelihood-ratio rule, below the geometric mean).
+    Likelihood,
+    /// A criterion learned from feedback: it starts at the arithmetic mean and moves by
+    /// [`CRITERION_STEP`] (log units) after every error — up after a wrong "long", down
+    /// after a wrong "short" — so it settles where errors on the two anchors balance.
+    Learned,
+}
+
+/// Step (in `ln` time) of the learned criterion after each bisection error.
+pub const CRITERION_STEP: f64 = 0.02;
+
+impl DecisionRule {
+    /// Every rule, in display order.
+    pub const ALL: [DecisionRule; 4] = [
+        DecisionRule::Ratio,
+        DecisionRule::Difference,
+        DecisionRule::Likelihood,
+        DecisionRule::Learned,
+    ];
+
+    /// The setting's value (`ratio`, `difference`, `likelihood`, `learned`).
+    pub fn name(self) -> &'static str {
+        match self {
+            DecisionRule::Ratio => "ratio",
+            DecisionRule::Difference => "difference",
+            DecisionRule::Likelihood => "likelihood",
+            DecisionRule::Learned => "learned",
+        }
+    }
+
+    /// Parses a setting's value; the error lists the allowed ones.
+    pub fn from_name(value: &str) -> Result<Self, String> {
+        Self::ALL
+            .into_iter()
+            .find(|r| r.name() == value)
+            .ok_or_else(|| {
+                let names: Vec<&str> = Self::ALL.iter().map(|r| r.name()).collect();
+                format!("one of {}", names.join(", "))
+            })
+    }
+
+    /// The fixed criterion of the rule for remembered anchors `s`, `l` (> 0, any time
+    /// unit); the learned rule's starting point (the arithmetic mean).
+    pub fn criterion(self, s: f64, l: f64) -> f64 {
+        match self {
+            DecisionRule::Ratio => (s * l).sqrt(),
+            DecisionRule::Difference | DecisionRule::Learned => 0.5 * (s + l),
+            DecisionRule::Likelihood => 2.0 * s * l / (s + l),
+        }
+    }
+}
+
+/// A decision rule with its learned state (the learned criterion, when it has one).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct Decision {
+    /// The rule.
+    pub rule: DecisionRule,
+    /// The learned rule's criterion (`ln` of the timer's time unit), once learning began.
+    #[serde(default)]
+    pub learned_log_criterion: Option<f64>,
+}
+
+impl Decision {
+    /// The criterion (the timer's time unit) for remembered anchors `s`, `l`.
+    pub fn criterion(&self, s: f64, l: f64) -> f64 {
+        match (self.rule, self.learned_log_criterion) {
+            (DecisionRule::Learned, Some(c)) => c.exp(),
+            (rule, _) => rule.criterion(s, l),
+        }
+    }
+
+    /// Feedback on one judgment: `judged_long` was the answer, `was_long` the truth, `s` and
+    /// `l` the remembered anchors. Only the learned rule changes (after an error).
+    pub fn feedback(&mut self, s: f64, l: f64, judged_long: bool, was_long: bool) {
+        if self.rule != DecisionRule::Learned || judged_long == was_long {
+            return;
+        }
+        let c = self
+            .learned_log_criterion
+            .unwrap_or_else(|| self.rule.criterion(s, l).ln());
+        let step = if judged_long {
+            CRITERION_STEP
+        } else {
+            -CRITERION_STEP
+        };
+        if (c + step).is_finite() {
+            self.learned_log_criterion = Some(c + step);
+        }
+    }
 }
 
 /// Drift-diffusion ratio rule: "long" iff `ln(x_S/z) + ln(x_L/z) ≥ 0` for the short- and
@@ -91,6 +225,45 @@ mod tests {
         assert_eq!(m.judge(7.9f64.ln()), Some(false));
         assert_eq!(m.judge(8f64.ln()), Some(true));
         assert_eq!(m.judge(0.5f64.ln()), Some(false));
+    }
+
+    #[test]
+    fn each_rule_puts_its_criterion_at_its_mean() {
+        let (s, l) = (4.0, 16.0);
+        assert!((DecisionRule::Ratio.criterion(s, l) - 8.0).abs() < 1e-12);
+        assert!((DecisionRule::Difference.criterion(s, l) - 10.0).abs() < 1e-12);
+        assert!((DecisionRule::Likelihood.criterion(s, l) - 6.4).abs() < 1e-12);
+        for r in DecisionRule::ALL {
+            assert_eq!(DecisionRule::from_name(r.name()), Ok(r));
+        }
+        assert!(
+            DecisionRule::from_name("geometric")
+                .unwrap_err()
+                .contains("ratio")
+        );
+    }
+
+    #[test]
+    fn the_learned_criterion_settles_where_errors_balance() {
+        // A noise-free observer of t in {4, 16}: every error moves the criterion toward
+        // the interval between the anchors; starting at the AM (10), no error ever occurs.
+        let mut d = Decision {
+            rule: DecisionRule::Learned,
+            learned_log_criterion: None,
+        };
+        assert!((d.criterion(4.0, 16.0) - 10.0).abs() < 1e-12);
+        // A wrong "long" on a short trial raises it by one step.
+        d.feedback(4.0, 16.0, true, false);
+        let c = d.learned_log_criterion.unwrap();
+        assert!((c - (10f64.ln() + CRITERION_STEP)).abs() < 1e-12);
+        // A wrong "short" lowers it back; a right answer leaves it.
+        d.feedback(4.0, 16.0, false, true);
+        d.feedback(4.0, 16.0, true, true);
+        assert!((d.learned_log_criterion.unwrap() - 10f64.ln()).abs() < 1e-12);
+        // Fixed rules never learn.
+        let mut fixed = Decision::default();
+        fixed.feedback(4.0, 16.0, true, false);
+        assert_eq!(fixed.learned_log_criterion, None);
     }
 
     #[test]

@@ -7,7 +7,8 @@
 //!   line), the last unit standing for "that long or longer";
 //! * **microstimuli** — a memory trace `y = dᵗ` read by `m` Gaussian basis functions,
 //!   exactly Ludvig, Sutton & Kehoe (2008, eqs. 1–2): `xᵢ = y · exp(−(y − i/m)²/(2σ²)) / √(2π)`,
-//!   `i = 1 … m` (defaults `d` 0.985, `σ` 0.08, `m` 10; no `1/σ` factor: the basis function
+//!   `i = 1 … m` (defaults `d` 0.95 per step, `σ` 0.08, `m` 20 — see
+//!   [`Representation::microstimulus`]; no `1/σ` factor: the basis function
 //!   is `f(y, μ, σ) = exp(−(y − μ)²/(2σ²))/√(2π)`, so a unit at `y = μ` is `μ/√(2π)` high).
 //!   Unit `i` peaks where `y² − μy − σ² = 0` (`μ = i/m`): `y* = (μ + √(μ² + 4σ²))/2`,
 //!   `t* = ln y* / ln d` (at `t = 0` if `y* ≥ 1`). The TD agent reads the units divided by
@@ -55,12 +56,18 @@ pub enum Representation {
 }
 
 impl Representation {
-    /// Ludvig et al.'s microstimuli: `d` 0.985, `σ` 0.08, `m` 10.
+    /// Microstimuli with Ludvig, Sutton & Kehoe's (2008) basis width `σ` 0.08, a trace decay
+    /// of 0.95 per env step and `m` 20 microstimuli. The decay sets the representation's
+    /// time unit: Ludvig et al.'s 0.985 is per step of their simulations, and per env step it
+    /// left the trace above 0.7 over the paper's 24-step intervals, so only 6–7 of 10
+    /// microstimuli peaked within 2 × TD. At 0.95 the trace falls to 0.09 by step 48 (2 × the
+    /// longest paper TD), so every microstimulus peaks within the task's range and the 20
+    /// units tile it as a population (peak times 0–43 steps).
     pub fn microstimulus() -> Self {
         Representation::Microstimulus {
-            decay: 0.985,
+            decay: 0.95,
             sigma: 0.08,
-            count: 10,
+            count: 20,
         }
     }
 

@@ -8,7 +8,9 @@
 //! ([`crate::timing::judgment`]).
 
 use crate::activity::StepRecorder;
-use crate::timing::judgment::{CategoryMemory, LONG, SHORT, ddm_ratio_rule};
+use crate::timing::judgment::{
+    CategoryMemory, Decision, DecisionRule, LONG, SHORT, ddm_ratio_rule,
+};
 use crate::timing::{BeatFrequency, DriftDiffusion, FrequencyLayout, Representation, TimeCells};
 use rand::Rng;
 use rand_distr::StandardNormal;
@@ -34,9 +36,35 @@ pub struct DdmTimer {
     /// intervals.
     #[serde(default)]
     pub choice_drifts: BTreeMap<u8, f64>,
+    /// Bisection decision rule (where the criterion lies between the anchors).
+    #[serde(default)]
+    pub decision: Decision,
+    /// Memory noise of the anchor drifts: SD of the log of a per-trial factor on each
+    /// remembered drift (a reference-memory sample, Gibbon, Church & Meck 1984); 0 = exact.
+    #[serde(default)]
+    pub memory_noise: f64,
     /// This trial's short- and long-anchor accumulators (empty until both drifts exist).
     #[serde(skip)]
     choice_acc: Vec<DriftDiffusion>,
+}
+
+/// A multiplicative memory factor `exp(σ ε)`, `ε ~ N(0, 1)`; exactly 1 (no draw) at `σ` 0.
+fn memory_sample<R: Rng + ?Sized>(sigma: f64, rng: &mut R) -> f64 {
+    if sigma > 0.0 {
+        (sigma * rng.sample::<f64, _>(StandardNormal)).exp()
+    } else {
+        1.0
+    }
+}
+
+impl DdmTimer {
+    /// The remembered anchors `(S*, L*) = (z/A_S, z/A_L)` (steps) from the learned drifts.
+    fn anchor_memories(&self) -> Option<(f64, f64)> {
+        let z = self.acc.threshold;
+        let s = self.choice_drifts.get(&SHORT)?;
+        let l = self.choice_drifts.get(&LONG)?;
+        Some((z / s, z / l))
+    }
 }
 
 /// Striatal beat-frequency timer of an agent. Reference memory: the last
@@ -57,9 +85,25 @@ pub struct SbfTimer {
     pub choice_memories: BTreeMap<u8, Vec<f64>>,
     /// Stop responding `stop × (start time)` after starting (`None`: never).
     pub stop: Option<f64>,
+    /// Bisection decision rule (where the criterion pattern is stored between the anchors).
+    #[serde(default)]
+    pub decision: Decision,
+    /// Clock noise: SD of the log of a per-trial factor scaling every oscillator's
+    /// frequency (trial-to-trial oscillator-frequency variability, Oprisan & Buhusi 2011);
+    /// 0 = the oscillators run at their nominal frequencies every trial.
+    #[serde(default)]
+    pub clock_noise: f64,
     #[serde(skip)]
     rt: SbfRuntime,
 }
+
+/// Envelope (0–1) from which the SBF agent responds: the coincidence detector's match to
+/// its remembered pattern. For 5–15 Hz oscillators at 25 ms per step the envelope is
+/// `≈ |sinc(0.25 (t − T))|` (t in steps), so responding begins ≈ 1 step before the
+/// remembered time at 0.9 (≈ 1.8 steps at the earlier 0.7, which made first checks at
+/// TD 4 come at 0.73 × TD; responding only once the envelope had peaked came 10–25% late,
+/// through the memories reinforced at late pickups).
+pub const SBF_RESPONSE_THRESHOLD: f64 = 0.9;
 
 /// Envelope above which the bisection criterion's coincidence counts as reached.
 pub const SBF_CRITERION_THRESHOLD: f64 = 0.5;
@@ -76,8 +120,10 @@ struct SbfRuntime {
     detectors: Vec<(Vec<f64>, Vec<f64>)>,
     readouts: [f64; 2],
     template: Option<f64>,
-    /// Criterion time `√(T_S·T_L)` (s) of this trial, when both anchors are stored.
+    /// Criterion time (s) of this trial, when both anchors are stored.
     criterion: Option<f64>,
+    /// This trial's clock-speed factor (0 before the first onset: read as 1).
+    speed: f64,
     /// The criterion detector's envelope has reached [`SBF_CRITERION_THRESHOLD`].
     criterion_reached: bool,
     /// … and has since peaked: the criterion time has passed.
@@ -125,7 +171,7 @@ impl SbfTimer {
         let criterion = if self.choice_memories.len() == 2 {
             let short = Self::sample(self.choice_memories.get(&SHORT), rng);
             let long = Self::sample(self.choice_memories.get(&LONG), rng);
-            short.zip(long).map(|(s, l)| (s * l).sqrt())
+            short.zip(long).map(|(s, l)| self.decision.criterion(s, l))
         } else {
             None
         };
@@ -133,19 +179,47 @@ impl SbfTimer {
             self.detector(template.as_slice()),
             self.detector(criterion.as_slice()),
         ];
-        let w = 2.0 * std::f64::consts::PI * self.model.clock_speed * self.seconds_per_step;
-        let rot = self.model.freqs.iter().map(|f| (w * f).sin_cos()).collect();
+        let speed = if self.clock_noise > 0.0 {
+            (self.clock_noise * rng.sample::<f64, _>(StandardNormal)).exp()
+        } else {
+            1.0
+        };
         self.rt = SbfRuntime {
             template,
             criterion,
             detectors,
-            rot,
+            speed,
             ..SbfRuntime::default()
         };
+        let w = 2.0 * std::f64::consts::PI * self.speed() * self.seconds_per_step;
+        self.rt.rot = self.model.freqs.iter().map(|f| (w * f).sin_cos()).collect();
+    }
+
+    /// Model seconds this trial's clock measured for an interval of `steps` env steps: the
+    /// trial's speed factor times the nominal time (the manipulation `k` is a distortion of
+    /// the running clock only, so memories stay in normal-speed time).
+    fn subjective(&self, steps: f64) -> f64 {
+        let trial = if self.rt.speed > 0.0 {
+            self.rt.speed
+        } else {
+            1.0
+        };
+        steps * self.seconds_per_step * trial
+    }
+
+    /// The running clock's speed: the manipulation `k` times this trial's factor.
+    fn speed(&self) -> f64 {
+        let trial = if self.rt.speed > 0.0 {
+            self.rt.speed
+        } else {
+            1.0
+        };
+        self.model.clock_speed * trial
     }
 
     /// Oscillators at `t` steps and every detector's envelope `|Σ e^{iφᵢ} conj(Wᵢ)| / N`.
     fn advance(&mut self, t: u32) {
+        let speed = self.speed();
         let rt = &mut self.rt;
         rt.now = t as f64 * self.seconds_per_step;
         if rt.step.is_some_and(|k| k + 1 == t) && rt.rot.len() == rt.cos.len() {
@@ -156,7 +230,7 @@ impl SbfTimer {
                 *s = s0 * rc + c0 * rs;
             }
         } else {
-            let w = 2.0 * std::f64::consts::PI * self.model.clock_speed * rt.now;
+            let w = 2.0 * std::f64::consts::PI * speed * rt.now;
             rt.cos.clear();
             rt.sin.clear();
             for f in &self.model.freqs {
@@ -167,7 +241,7 @@ impl SbfTimer {
         }
         rt.step = Some(t);
         let n = self.model.freqs.len().max(1) as f64;
-        let two_pi_k = 2.0 * std::f64::consts::PI * self.model.clock_speed;
+        let two_pi_k = 2.0 * std::f64::consts::PI * speed;
         for (k, (c, s)) in rt.detectors.iter().enumerate() {
             if c.is_empty() {
                 rt.readouts[k] = 0.0;
@@ -211,6 +285,16 @@ pub struct TimeCellTimer {
     /// Decoded log durations of the rewarded short and long trials.
     #[serde(default)]
     pub anchors: CategoryMemory,
+    /// Bisection decision rule (where the criterion lies between the anchors).
+    #[serde(default)]
+    pub decision: Decision,
+    /// Memory noise: SD of the log of a factor on each stored anchor estimate (scalar
+    /// expectancy theory's memory-constant variance, Gibbon 1977); 0 = exact storage.
+    #[serde(default)]
+    pub memory_noise: f64,
+    /// This trial's remembered anchors `(S*, L*)` (steps), sampled at onset.
+    #[serde(skip)]
+    trial_anchors: Option<(f64, f64)>,
 }
 
 /// Which timing model an agent uses.
@@ -226,16 +310,18 @@ pub enum Timer {
 }
 
 impl Timer {
-    /// Drift-diffusion timer: `z` 1, noise `m`, initial interval 8 steps, rate 0.2.
+    /// Drift-diffusion timer: `z` 1, noise `m`, initial interval 8 steps, rate 0.1.
     pub fn ddm(noise: f64) -> Self {
         Timer::Ddm(DdmTimer {
             acc: DriftDiffusion::new(1.0 / 8.0, 1.0, noise),
             initial_interval: 8.0,
             drifts: BTreeMap::new(),
-            rate: 0.2,
+            rate: 0.1,
             start: 1.0,
             stop: None,
             choice_drifts: BTreeMap::new(),
+            decision: Decision::default(),
+            memory_noise: 0.0,
             choice_acc: Vec::new(),
         })
     }
@@ -253,10 +339,12 @@ impl Timer {
         Timer::Sbf(SbfTimer {
             model,
             seconds_per_step: 0.025,
-            threshold: 0.7,
+            threshold: SBF_RESPONSE_THRESHOLD,
             memories: BTreeMap::new(),
             choice_memories: BTreeMap::new(),
             stop: None,
+            decision: Decision::default(),
+            clock_noise: 0.0,
             rt: SbfRuntime::default(),
         })
     }
@@ -266,6 +354,9 @@ impl Timer {
         Timer::TimeCells(TimeCellTimer {
             cells: TimeCells::new(repr),
             anchors: CategoryMemory::default(),
+            decision: Decision::default(),
+            memory_noise: 0.0,
+            trial_anchors: None,
         })
     }
 
@@ -275,6 +366,16 @@ impl Timer {
             Timer::Ddm(_) => 2,
             Timer::Sbf(_) => 2,
             Timer::TimeCells(tc) => tc.cells.repr.size(),
+        }
+    }
+
+    /// Whether any of the model's noise sources is on (its behaviour varies from trial to
+    /// trial with its RNG).
+    pub fn is_noisy(&self) -> bool {
+        match self {
+            Timer::Ddm(d) => d.acc.noise > 0.0 || d.memory_noise > 0.0,
+            Timer::Sbf(s) => s.model.memory_noise > 0.0 || s.clock_noise > 0.0,
+            Timer::TimeCells(tc) => tc.cells.speed_noise > 0.0 || tc.memory_noise > 0.0,
         }
     }
 
@@ -311,7 +412,8 @@ impl Timer {
                 {
                     for drift in [a_s, a_l] {
                         let mut acc = d.acc.clone();
-                        acc.drift = drift;
+                        // This trial's sample of the anchor's drift memory.
+                        acc.drift = drift * memory_sample(d.memory_noise, rng);
                         d.choice_acc.push(acc);
                     }
                 }
@@ -325,6 +427,7 @@ impl Timer {
                     1.0
                 };
                 tc.cells.onset_with_speed(speed);
+                tc.trial_anchors = tc.anchors.sample(rng);
             }
         }
     }
@@ -363,7 +466,7 @@ impl Timer {
                 let Some(stored) = s.rt.template else {
                     return true; // nothing stored yet: explore by checking
                 };
-                let fallback = s.rt.now > 2.0 * stored / s.model.clock_speed + 0.05;
+                let fallback = s.rt.now > 2.0 * stored / s.speed() + 0.05;
                 fallback || s.rt.readouts[0] >= s.threshold
             }
             Timer::TimeCells(_) => true,
@@ -378,7 +481,7 @@ impl Timer {
             Timer::Ddm(d) => d.acc.x >= k * d.acc.threshold,
             Timer::Sbf(s) => {
                 s.rt.template
-                    .is_some_and(|stored| s.rt.now >= k * stored / s.model.clock_speed)
+                    .is_some_and(|stored| s.rt.now >= k * stored / s.speed())
             }
             Timer::TimeCells(_) => false,
         }
@@ -415,7 +518,9 @@ impl Timer {
                 d.drifts.insert(ctx, d.acc.drift);
             }
             Timer::Sbf(s) => {
-                let stored = s.model.stored_time(interval * s.seconds_per_step, rng);
+                // The pattern stored is the oscillators' phases at reinforcement, i.e. the
+                // interval as this trial's clock measured it (its speed factor included).
+                let stored = s.model.stored_time(s.subjective(interval), rng);
                 SbfTimer::store(s.memories.entry(ctx).or_default(), stored);
             }
             Timer::TimeCells(_) => {}
@@ -440,12 +545,15 @@ impl Timer {
                 d.choice_drifts.insert(slot, acc.drift);
             }
             Timer::Sbf(s) => {
-                let stored = s.model.stored_time(interval * s.seconds_per_step, rng);
+                // The pattern stored is the oscillators' phases at reinforcement, i.e. the
+                // interval as this trial's clock measured it (its speed factor included).
+                let stored = s.model.stored_time(s.subjective(interval), rng);
                 SbfTimer::store(s.choice_memories.entry(slot).or_default(), stored);
             }
             Timer::TimeCells(tc) => {
                 if let Some(t_hat) = tc.cells.decoded_time() {
-                    tc.anchors.store(slot, t_hat.ln());
+                    let stored = t_hat * memory_sample(tc.memory_noise, rng);
+                    tc.anchors.store(slot, stored.ln());
                 }
             }
         }
@@ -457,11 +565,63 @@ impl Timer {
     pub fn judge(&self) -> Option<bool> {
         match self {
             Timer::Ddm(d) => match d.choice_acc.as_slice() {
-                [s, l] => Some(ddm_ratio_rule(s.x, l.x, d.acc.threshold)),
+                [s, l] if d.decision.rule == DecisionRule::Ratio => {
+                    Some(ddm_ratio_rule(s.x, l.x, d.acc.threshold))
+                }
+                [s, l] => {
+                    // Each accumulator reads elapsed time as x/A; their geometric average
+                    // against the rule's criterion between S* = z/A_S and L* = z/A_L (the
+                    // ratio rule above is the same comparison in closed form).
+                    let (anchor_s, anchor_l) = d.anchor_memories()?;
+                    let tau = (s.x / s.drift * l.x / l.drift).sqrt();
+                    let long = s.x > 0.0 && l.x > 0.0;
+                    Some(long && tau >= d.decision.criterion(anchor_s, anchor_l))
+                }
                 _ => None,
             },
             Timer::Sbf(s) => s.rt.criterion.map(|_| s.rt.criterion_passed),
-            Timer::TimeCells(tc) => tc.anchors.judge(tc.cells.decoded_time()?.ln()),
+            Timer::TimeCells(tc) => {
+                let (s, l) = tc.trial_anchors?;
+                Some(tc.cells.decoded_time()? >= tc.decision.criterion(s, l))
+            }
+        }
+    }
+
+    /// The bisection decision rule of this timer.
+    pub fn decision(&self) -> &Decision {
+        match self {
+            Timer::Ddm(d) => &d.decision,
+            Timer::Sbf(s) => &s.decision,
+            Timer::TimeCells(tc) => &tc.decision,
+        }
+    }
+
+    /// The bisection decision rule of this timer, to change it.
+    pub fn decision_mut(&mut self) -> &mut Decision {
+        match self {
+            Timer::Ddm(d) => &mut d.decision,
+            Timer::Sbf(s) => &mut s.decision,
+            Timer::TimeCells(tc) => &mut tc.decision,
+        }
+    }
+
+    /// Feedback on a bisection judgment (`judged_long`; the truth `was_long`) for the
+    /// decision rule (only the learned rule changes), with the remembered anchors in the
+    /// timer's own time unit.
+    pub fn judgment_feedback(&mut self, judged_long: bool, was_long: bool) {
+        let anchors = match self {
+            Timer::Ddm(d) => d.anchor_memories(),
+            Timer::Sbf(s) => {
+                let mean = |slot: u8| {
+                    let m = s.choice_memories.get(&slot).filter(|m| !m.is_empty())?;
+                    Some(m.iter().sum::<f64>() / m.len() as f64)
+                };
+                mean(SHORT).zip(mean(LONG))
+            }
+            Timer::TimeCells(tc) => tc.anchors.anchors(),
+        };
+        if let Some((s, l)) = anchors {
+            self.decision_mut().feedback(s, l, judged_long, was_long);
         }
     }
 
