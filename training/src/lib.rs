@@ -21,6 +21,7 @@ pub mod evaluate;
 pub mod ppo;
 pub mod run_dir;
 pub mod sweep;
+pub mod timing_check;
 pub mod timing_run;
 pub mod zoo;
 

@@ -182,6 +182,14 @@ pub enum Curriculum {
     },
 }
 
+/// Default [`TrainConfig::keep_checkpoints`]: the newest three checkpoints (a corrupt newest
+/// one still leaves two to resume from).
+pub const DEFAULT_KEEP_CHECKPOINTS: usize = 3;
+
+fn default_keep_checkpoints() -> usize {
+    DEFAULT_KEEP_CHECKPOINTS
+}
+
 /// A complete, resolved training configuration (saved in every run folder).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -202,6 +210,10 @@ pub struct TrainConfig {
     pub obs: ObsEncoding,
     /// Write a checkpoint every this many env steps (rounded up to whole updates; 0 = only at the end).
     pub checkpoint_every: u64,
+    /// Checkpoints kept in `checkpoints/` (the newest; older ones are deleted as new ones are
+    /// written, so storage stays bounded; the final model is kept besides). At least 1.
+    #[serde(default = "default_keep_checkpoints")]
+    pub keep_checkpoints: usize,
     /// Episodes in the training success-rate window (progress bar and CSV).
     pub stats_window: usize,
     /// Deterministic evaluation from every start cell every this many env steps (0 = only at the end).
@@ -234,6 +246,7 @@ impl TrainConfig {
             total_steps: 900_000,
             obs: ObsEncoding::Codes,
             checkpoint_every: 100_000,
+            keep_checkpoints: DEFAULT_KEEP_CHECKPOINTS,
             stats_window: 100,
             eval_every: 0,
             stop_at_success: None,
@@ -259,6 +272,7 @@ impl TrainConfig {
                 }
             }
             "checkpoint_every" => self.checkpoint_every = parse(key, v, "integer >= 0")?,
+            "keep_checkpoints" => self.keep_checkpoints = parse_pos(key, v)?,
             "eval_every" => self.eval_every = parse(key, v, "integer >= 0")?,
             "stats_window" => self.stats_window = parse_pos(key, v)?,
             "core_init" => {
@@ -445,6 +459,7 @@ impl TrainConfig {
                 .into(),
             ),
             ("checkpoint_every", self.checkpoint_every.to_string()),
+            ("keep_checkpoints", self.keep_checkpoints.to_string()),
             ("eval_every", self.eval_every.to_string()),
             ("stats_window", self.stats_window.to_string()),
             (

@@ -1,14 +1,18 @@
 //! A PPO run folder trained to its budget: a new run (config, policy description, curve
 //! header written first) or a stopped one continued from its newest checkpoint; periodic
-//! evaluation, early stop at a success target, checkpoints, the final model and summary.
+//! evaluation, early stop at a success target, checkpoints (the newest `keep_checkpoints`
+//! kept), the final model and summary. A resume never starts over silently: it continues
+//! from the newest intact checkpoint (warning about each one skipped), fails naming the
+//! files when none is usable, removes a killed writer's temporary files and cuts
+//! `curves.csv` back to the checkpoint.
 
 use crate::error::TrainError;
 use crate::evaluate::{eval_tds, evaluate_policy, success_rate};
 use crate::ppo::config::TrainConfig;
 use crate::ppo::state::UpdateLog;
 use crate::ppo::trainer::Trainer;
-use crate::run_dir::{RunDir, RunSummary, curve_header, write_atomic};
-use chronocooked_env::make_config;
+use crate::run_dir::{RunDir, RunSummary, curve_header, read_policy_config, write_atomic};
+use chronocooked_env::{integrity, make_config};
 use std::path::Path;
 
 /// Callbacks of a training run (progress display).
@@ -42,17 +46,32 @@ pub fn run_training(
             let json = serde_json::to_string_pretty(&cfg).unwrap_or_default();
             write_atomic(&run.path.join("config.json"), json.as_bytes())?;
             let pj = serde_json::to_string_pretty(trainer.policy_config()).unwrap_or_default();
-            write_atomic(&run.path.join("policy.json"), pj.as_bytes())?;
+            integrity::write_recorded(&run.path.join("policy.json"), pj.as_bytes())?;
             write_atomic(&run.path.join("curves.csv"), curve_header().as_bytes())?;
             (run, trainer)
         }
         None => {
             let run = RunDir::open(dir)?;
             let cfg = run.config()?;
-            let trainer = match run.latest_state()? {
-                Some(state) => Trainer::restore(cfg, state)?,
-                None => Trainer::new(cfg)?,
+            for p in run.remove_stale_temps() {
+                eprintln!(
+                    "note: removed {} (left by an interrupted write)",
+                    p.display()
+                );
+            }
+            read_policy_config(&run.path, &cfg)?;
+            let trainer = match run.resume_trainer(&cfg)? {
+                Some(t) => t,
+                None => {
+                    eprintln!(
+                        "note: {} holds no checkpoint yet: training starts from step 0",
+                        dir.display()
+                    );
+                    Trainer::new(cfg)?
+                }
             };
+            // The learning curve is cut back to the checkpoint (its rows are the
+            // checkpoint's history); rows of the lost updates are written again as they rerun.
             run.write_curves(&trainer.state().curve)?;
             (run, trainer)
         }
@@ -82,13 +101,13 @@ pub fn run_training(
         run.append_curve(&row)?;
         progress.update(&row, cfg.total_steps);
         if every(cfg.checkpoint_every, steps) {
-            run.write_checkpoint(trainer.state())?;
+            run.write_checkpoint(trainer.state(), cfg.keep_checkpoints)?;
         }
         if solved_at.is_some() {
             break;
         }
     }
-    run.write_checkpoint(trainer.state())?;
+    run.write_checkpoint(trainer.state(), cfg.keep_checkpoints)?;
     run.save_model(trainer.policy(), "model.bpk")?;
     let eps = evaluate_policy(&trainer.policy(), &task, cfg.obs, &eval_tds(&task))?;
     let st = trainer.state();
