@@ -22,14 +22,14 @@ pub fn is_temp_name(name: &str) -> bool {
 
 /// A temporary file beside `path` (its folder created if missing), created like any other
 /// output: mode 0666 minus the process umask (0644 under umask 022), not `tempfile`'s 0600.
-fn temp_beside(path: &Path) -> std::io::Result<tempfile::NamedTempFile> {
+fn temp_beside(path: &Path, suffix: &str) -> std::io::Result<tempfile::NamedTempFile> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
     std::fs::create_dir_all(dir)?;
     let mut builder = tempfile::Builder::new();
-    builder.prefix(TEMP_PREFIX);
+    builder.prefix(TEMP_PREFIX).suffix(suffix);
     #[cfg(unix)]
     {
         use std::os::unix::fs::PermissionsExt;
@@ -44,7 +44,7 @@ fn temp_beside(path: &Path) -> std::io::Result<tempfile::NamedTempFile> {
 /// removed and `path` keeps its previous content. The file is created with the process
 /// umask (0644 under umask 022), like every output of the lab.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let mut tmp = temp_beside(path)?;
+    let mut tmp = temp_beside(path, "")?;
     tmp.write_all(bytes)?;
     tmp.as_file().sync_all()?;
     tmp.persist(path).map_err(|e| e.error)?;
@@ -58,7 +58,12 @@ pub fn write_atomic_with(
     path: &Path,
     write: impl FnOnce(&Path) -> Result<(), String>,
 ) -> std::io::Result<()> {
-    let tmp = temp_beside(path)?.into_temp_path();
+    // The temporary file keeps the extension: writers pick the format from it.
+    let ext = path
+        .extension()
+        .map(|e| format!(".{}", e.to_string_lossy()))
+        .unwrap_or_default();
+    let tmp = temp_beside(path, &ext)?.into_temp_path();
     write(&tmp).map_err(std::io::Error::other)?;
     std::fs::File::open(&tmp)?.sync_all()?;
     tmp.persist(path).map_err(|e| e.error)?;

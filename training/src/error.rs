@@ -74,6 +74,14 @@ pub enum TrainError {
         /// What is wrong (with the line and column for TOML errors).
         message: String,
     },
+    /// A job of a sweep has settings its run would refuse.
+    #[error("job {id}: {message}")]
+    Job {
+        /// The job id.
+        id: String,
+        /// What its run would refuse.
+        message: String,
+    },
     /// A run's `config.json` is unreadable or fails the configuration's checks.
     #[error("{file}: {message}")]
     ConfigFile {

@@ -195,7 +195,8 @@ pub fn read_curve(path: &Path) -> Result<Vec<CurveRow>, CollectError> {
     Ok(out)
 }
 
-/// Job folders (those with a `job.json`) under a sweep output folder, sorted.
+/// Job folders (those with a `job.json`) under a sweep output folder, sorted; symbolic links
+/// are not followed, so each real job folder counts once.
 pub fn job_folders(root: &Path) -> Vec<PathBuf> {
     fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
         let Ok(rd) = std::fs::read_dir(dir) else {
@@ -203,7 +204,8 @@ pub fn job_folders(root: &Path) -> Vec<PathBuf> {
         };
         for e in rd.flatten() {
             let p = e.path();
-            if p.is_dir() {
+            // Real folders only: symbolic links (self-links, loops) are not followed.
+            if e.file_type().is_ok_and(|t| t.is_dir()) {
                 if p.join("job.json").is_file() {
                     out.push(p);
                 } else {

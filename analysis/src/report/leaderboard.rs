@@ -54,21 +54,18 @@ pub fn is_eval_folder(dir: &Path) -> bool {
     dir.join("eval.json").is_file() && dir.join("records.jsonl").is_file()
 }
 
-/// Every evaluation folder at or below `roots` (sorted, each once). Folders that cannot hold
-/// one (`export`, `checkpoints`, `figures`, `report`, `slurm`) are not entered.
+/// Every evaluation folder at or below `roots` (sorted, each real folder once; symbolic
+/// links below a root are not followed). Folders that cannot hold one (`export`,
+/// `checkpoints`, `figures`, `report`, `slurm`) are not entered.
 pub fn find_eval_folders(roots: &[PathBuf]) -> Vec<PathBuf> {
     fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
         if is_eval_folder(dir) {
             out.push(dir.to_path_buf());
             return;
         }
-        let Ok(entries) = std::fs::read_dir(dir) else {
-            return;
-        };
-        let mut subs: Vec<PathBuf> = entries
-            .flatten()
-            .map(|e| e.path())
-            .filter(|p| p.is_dir())
+        // Real sub-folders only: a symbolic link (a self-link, a loop) is never followed.
+        let subs: Vec<PathBuf> = chronocooked_env::fs::real_subdirs(dir)
+            .into_iter()
             .filter(|p| {
                 !matches!(
                     p.file_name().and_then(|n| n.to_str()),
@@ -83,7 +80,6 @@ pub fn find_eval_folders(roots: &[PathBuf]) -> Vec<PathBuf> {
                 )
             })
             .collect();
-        subs.sort();
         for s in subs {
             walk(&s, out);
         }
@@ -93,7 +89,9 @@ pub fn find_eval_folders(roots: &[PathBuf]) -> Vec<PathBuf> {
         walk(r, &mut out);
     }
     out.sort();
-    out.dedup();
+    // Each real folder once, however many roots reach it.
+    let mut seen = std::collections::BTreeSet::new();
+    out.retain(|p| seen.insert(std::fs::canonicalize(p).unwrap_or_else(|_| p.clone())));
     out
 }
 

@@ -155,13 +155,20 @@ pub fn variant_label(sets: &[String]) -> String {
 }
 
 impl SweepFile {
-    /// Parses a sweep file's text (`source` names it in errors).
+    /// Parses a sweep file's text and checks it fully ([`SweepFile::validate`], then every
+    /// job's resolved settings: [`crate::sweep::check::check_jobs`]); `source` names the
+    /// file in errors.
     pub fn parse(text: &str, source: &str) -> Result<Self, TrainError> {
         let f: SweepFile = toml::from_str(text).map_err(|e| TrainError::SweepFile {
             file: source.into(),
             message: e.to_string(),
         })?;
-        f.validate()?;
+        let in_file = |e: TrainError| TrainError::SweepFile {
+            file: source.into(),
+            message: e.to_string(),
+        };
+        f.validate().map_err(in_file)?;
+        crate::sweep::check::check_jobs(&f).map_err(in_file)?;
         Ok(f)
     }
 
@@ -232,11 +239,7 @@ impl SweepFile {
                     .iter()
                     .any(|m| family_of(m).is_ok_and(|f| applies(f, task, m, &s)));
                 if !used {
-                    return Err(bad(
-                        "variants",
-                        &s,
-                        "settings some model of the sweep accepts (PPO or timing-model settings, or env.<task parameter>)",
-                    ));
+                    return Err(crate::sweep::check::refusal(self, "variants", &s));
                 }
             }
         }
