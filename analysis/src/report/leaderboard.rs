@@ -38,8 +38,8 @@ pub fn load_metrics(folder: &Path) -> Result<Metrics, String> {
         std::fs::read_to_string(&p)
             .map_err(|e| format!("{}: {e} (not an `eval` output folder)", p.display()))
     };
-    let info: serde_json::Value =
-        serde_json::from_str(&read("eval.json")?).map_err(|e| format!("eval.json: {e}"))?;
+    let info: serde_json::Value = serde_json::from_str(&read("eval.json")?)
+        .map_err(|e| format!("{}: {e}", folder.join("eval.json").display()))?;
     let records = crate::evaluation::protocol::read_records(folder)
         .map_err(|e| format!("{e} (not an `eval` output folder)"))?;
     Ok(crate::behaviour::metrics::compute_metrics(
