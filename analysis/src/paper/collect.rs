@@ -315,6 +315,12 @@ pub fn collect(sweep_out: &Path, to: &Path) -> Result<(usize, usize), CollectErr
         write_csv(&out.join("curve.csv"), &curve)?;
         let metrics = dir.join("eval").join("metrics.json");
         let text = std::fs::read(&metrics).map_err(|e| err(&metrics, e))?;
+        // Copied as written, but only once it is a metrics object (never a corrupt file).
+        let parsed: serde_json::Value =
+            serde_json::from_slice(&text).map_err(|e| err(&metrics, e))?;
+        if !parsed.get("conditions").is_some_and(|c| c.is_array()) {
+            return Err(err(&metrics, "not a metrics file (no `conditions` list)"));
+        }
         let m_path = out.join("metrics.json");
         chronocooked_env::fs::write_atomic(&m_path, &text).map_err(|e| err(&m_path, e))?;
         written += 1;
