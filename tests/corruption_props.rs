@@ -78,14 +78,33 @@ fn fixtures() -> &'static Fixtures {
 /// One corruption of a file's bytes.
 #[derive(Debug, Clone)]
 enum Mutation {
-    Flip { at: usize, mask: u8 },
-    Truncate { at: usize },
-    InsertNul { at: usize, n: usize },
-    Delete { at: usize, n: usize },
+    Flip {
+        at: usize,
+        mask: u8,
+    },
+    Truncate {
+        at: usize,
+    },
+    InsertNul {
+        at: usize,
+        n: usize,
+    },
+    Delete {
+        at: usize,
+        n: usize,
+    },
     /// Replace the `k`-th JSON leaf (of line `line` for JSON lines) with a hostile value.
-    JsonLeaf { line: usize, k: usize, with: usize },
+    JsonLeaf {
+        line: usize,
+        k: usize,
+        with: usize,
+    },
     /// Cut the `k`-th JSON list to `len` items.
-    JsonCut { line: usize, k: usize, len: usize },
+    JsonCut {
+        line: usize,
+        k: usize,
+        len: usize,
+    },
 }
 
 fn mutation() -> impl Strategy<Value = Mutation> {
@@ -96,8 +115,11 @@ fn mutation() -> impl Strategy<Value = Mutation> {
         (any::<usize>(), 1usize..64).prop_map(|(at, n)| Mutation::Delete { at, n }),
         (any::<usize>(), any::<usize>(), 0usize..HOSTILE.len())
             .prop_map(|(line, k, with)| Mutation::JsonLeaf { line, k, with }),
-        (any::<usize>(), any::<usize>(), 0usize..3)
-            .prop_map(|(line, k, len)| Mutation::JsonCut { line, k, len }),
+        (any::<usize>(), any::<usize>(), 0usize..3).prop_map(|(line, k, len)| Mutation::JsonCut {
+            line,
+            k,
+            len
+        }),
     ]
 }
 
@@ -194,7 +216,11 @@ fn mutate(bytes: &[u8], m: &Mutation) -> Vec<u8> {
                 return b;
             }
             let t = targets[line % targets.len()];
-            let src = if whole { text.clone() } else { lines[t].clone() };
+            let src = if whole {
+                text.clone()
+            } else {
+                lines[t].clone()
+            };
             let Ok(mut v) = serde_json::from_str::<Value>(&src) else {
                 return b;
             };
@@ -236,10 +262,7 @@ fn copy_dir(src: &Path, dst: &Path, with_ckpt: bool) {
 }
 
 fn case_dir(name: &str) -> PathBuf {
-    std::env::temp_dir().join(format!(
-        "chronocooked-prop-{name}-{}",
-        std::process::id()
-    ))
+    std::env::temp_dir().join(format!("chronocooked-prop-{name}-{}", std::process::id()))
 }
 
 /// Writes the corrupted `bytes` over `file`; `rerecord` also rewrites its SHA-256 record.
@@ -253,7 +276,10 @@ fn plant(file: &Path, bytes: &[u8], rerecord: bool) {
 
 fn config() -> ProptestConfig {
     ProptestConfig {
-        cases: std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(64),
+        cases: std::env::var("PROPTEST_CASES")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(64),
         failure_persistence: None,
         ..ProptestConfig::default()
     }

@@ -14,12 +14,15 @@ use crate::zoo::{Family, family_of};
 /// Errors name the job and the setting.
 pub fn check_jobs(sweep: &SweepFile) -> Result<(), TrainError> {
     let models = sweep.expanded_models();
+    // `set` reaches the PPO runs (its `env.*` entries every model): an entry no PPO model
+    // of the sweep accepts would be dropped silently.
     for s in &sweep.set {
-        let used = sweep.tasks.iter().any(|task| {
-            models
-                .iter()
-                .any(|m| family_of(m).is_ok_and(|f| applies(f, task, m, s)))
-        });
+        let used = s.starts_with("env.")
+            || sweep.tasks.iter().any(|task| {
+                models.iter().any(|m| {
+                    family_of(m).is_ok_and(|f| f == Family::DeepRl && applies(f, task, m, s))
+                })
+            });
         if !used {
             return Err(refusal(sweep, "set", s));
         }
@@ -76,7 +79,11 @@ pub(crate) fn refusal(sweep: &SweepFile, field: &str, kv: &str) -> TrainError {
     let (k, v) = (k.trim(), v.trim());
     for task in &sweep.tasks {
         for m in sweep.expanded_models() {
-            let err = match family_of(&m) {
+            let family = family_of(&m);
+            if field == "set" && !matches!(family, Ok(Family::DeepRl)) {
+                continue;
+            }
+            let err = match family {
                 Ok(Family::DeepRl) => m
                     .parse()
                     .ok()
@@ -91,9 +98,14 @@ pub(crate) fn refusal(sweep: &SweepFile, field: &str, kv: &str) -> TrainError {
             }
         }
     }
+    let allowed = if field == "set" {
+        "PPO settings some PPO model of the sweep accepts, or env.<task parameter> (`set` reaches PPO runs only; timing models take `episodes` and `variants`)"
+    } else {
+        "settings some model of the sweep accepts (PPO or timing-model settings, or env.<task parameter>)"
+    };
     TrainError::InvalidParam {
         field: field.into(),
         value: kv.into(),
-        allowed: "settings some model of the sweep accepts (PPO or timing-model settings, or env.<task parameter>)".into(),
+        allowed: allowed.into(),
     }
 }
