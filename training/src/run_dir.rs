@@ -185,6 +185,15 @@ impl RunDir {
         })
     }
 
+    /// The newest intact checkpoint (SHA-256 record checked, parsed), if any.
+    pub fn latest_state(&self) -> Result<Option<TrainerState>, TrainError> {
+        Ok(self
+            .checkpoints()
+            .iter()
+            .rev()
+            .find_map(|p| Self::read_checkpoint(p).ok()))
+    }
+
     /// The newest checkpoint that is intact and fits the run, as a trainer ready to go on;
     /// `Ok(None)` when there is no checkpoint at all. A corrupt or unusable checkpoint is
     /// skipped with a warning on stderr naming it; when checkpoints exist but none is
