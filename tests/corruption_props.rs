@@ -274,14 +274,22 @@ fn plant(file: &Path, bytes: &[u8], rerecord: bool) {
     }
 }
 
+/// 64 cases per reader with a fixed seed (CI reruns the same corruptions); a wider campaign:
+/// `PROPTEST_CASES=2000 PROPTEST_RNG_SEED=<n> cargo test --release --test corruption_props`.
 fn config() -> ProptestConfig {
+    let default = ProptestConfig::default();
+    let rng_seed = match std::env::var("PROPTEST_RNG_SEED") {
+        Ok(_) => default.rng_seed,
+        Err(_) => proptest::test_runner::RngSeed::Fixed(27),
+    };
     ProptestConfig {
+        rng_seed,
         cases: std::env::var("PROPTEST_CASES")
             .ok()
             .and_then(|v| v.parse().ok())
             .unwrap_or(64),
         failure_persistence: None,
-        ..ProptestConfig::default()
+        ..default
     }
 }
 
@@ -332,7 +340,7 @@ proptest! {
             .map_err(|e| format!("{}: {e}", file.display()));
         judge(r, "step-", bad != orig, !rerecord);
         // The resume itself never panics and never silently starts over.
-        match run.resume_trainer(&run.config().unwrap()) {
+        match chronocooked_training::resume_trainer(&run, &run.config().unwrap()) {
             Ok(t) => prop_assert!(t.is_some()),
             Err(e) => prop_assert!(e.to_string().contains("checkpoint"), "{e}"),
         }

@@ -85,11 +85,11 @@ fn kill_9_at_several_points_then_resume_is_byte_identical() {
     // killed mid-update, mid-checkpoint or mid-evaluation wherever these land.
     let mut state: u64 = 0x2757;
     let mut delays = Vec::new();
-    for _ in 0..4 {
+    for _ in 0..6 {
         state = state
             .wrapping_mul(6364136223846793005)
             .wrapping_add(1442695040888963407);
-        delays.push(150 + (state >> 33) % 700);
+        delays.push(20 + (state >> 33) % 800);
     }
     let mut sessions = 0;
     for (k, ms) in delays.iter().enumerate() {
@@ -111,9 +111,10 @@ fn kill_9_at_several_points_then_resume_is_byte_identical() {
         let _ = child.kill(); // SIGKILL
         let _ = child.wait();
         sessions += 1;
+        // A kill between writing a checkpoint and deleting the oldest leaves one extra.
         assert!(
-            checkpoint_count(&dir) <= 3,
-            "more checkpoints than keep_checkpoints"
+            checkpoint_count(&dir) <= 3 + 1,
+            "more checkpoints than keep_checkpoints + 1"
         );
     }
     let out = bin()

@@ -17,7 +17,6 @@
 use crate::error::TrainError;
 use crate::ppo::config::TrainConfig;
 use crate::ppo::state::{TrainerState, UpdateLog};
-use crate::ppo::trainer::Trainer;
 use burn::module::Module;
 use chronocooked_env::integrity;
 use chronocooked_models::{ActorCritic, PolicyConfig};
@@ -192,37 +191,6 @@ impl RunDir {
             .iter()
             .rev()
             .find_map(|p| Self::read_checkpoint(p).ok()))
-    }
-
-    /// The newest checkpoint that is intact and fits the run, as a trainer ready to go on;
-    /// `Ok(None)` when there is no checkpoint at all. A corrupt or unusable checkpoint is
-    /// skipped with a warning on stderr naming it; when checkpoints exist but none is
-    /// usable, the error names each one and how to start over.
-    pub fn resume_trainer(&self, cfg: &TrainConfig) -> Result<Option<Trainer>, TrainError> {
-        let all = self.checkpoints();
-        let mut skipped = Vec::new();
-        for p in all.iter().rev() {
-            let restored = Self::read_checkpoint(p).and_then(|s| {
-                Trainer::restore(cfg.clone(), s).map_err(|e| TrainError::Corrupt {
-                    path: p.display().to_string(),
-                    reason: e.to_string(),
-                })
-            });
-            match restored {
-                Ok(t) => return Ok(Some(t)),
-                Err(e) => {
-                    eprintln!("warning: skipping checkpoint {e}; trying an older one");
-                    skipped.push(e.to_string());
-                }
-            }
-        }
-        if all.is_empty() {
-            return Ok(None);
-        }
-        Err(TrainError::NoValidCheckpoint {
-            dir: self.path.display().to_string(),
-            skipped: skipped.join("; "),
-        })
     }
 
     /// Writes the checkpoint of `state` (with its SHA-256 record), then deletes the oldest

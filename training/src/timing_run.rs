@@ -158,6 +158,16 @@ impl TimingRunConfig {
                 allowed: allowed.into(),
             })
         };
+        if !chronocooked_models::timing::zoo::is_timing_model(&self.model) {
+            return bad(
+                "model",
+                self.model.clone(),
+                "a timing model (see `chronocooked zoo list`)",
+            );
+        }
+        if self.kind != "timing" {
+            return bad("kind", self.kind.clone(), "timing");
+        }
         if t.episodes == 0 {
             return bad("episodes", "0".into(), "a positive integer");
         }

@@ -100,19 +100,29 @@ pub fn find_eval_folders(roots: &[PathBuf]) -> Vec<PathBuf> {
 fn row_label(folder: &Path, model: &str) -> String {
     folder
         .parent()
-        .and_then(|p| std::fs::read_to_string(p.join("job.json")).ok())
-        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+        .and_then(|p| optional_json::<serde_json::Value>(&p.join("job.json")))
         .and_then(|v| v["row"].as_str().map(str::to_string))
         .unwrap_or_else(|| model.to_string())
+}
+
+/// An optional file beside an evaluation: `None` when absent; when present but unreadable,
+/// also `None`, with a warning naming it (never ignored silently).
+fn optional_json<T: serde::de::DeserializeOwned>(path: &Path) -> Option<T> {
+    let text = std::fs::read_to_string(path).ok()?;
+    match serde_json::from_str(&text) {
+        Ok(v) => Some(v),
+        Err(e) => {
+            eprintln!("warning: {}: {e}; ignored", path.display());
+            None
+        }
+    }
 }
 
 /// Neural summary of the primary population recorded next to an evaluation folder: the
 /// population with the most units (first on ties: PPO `latent`, SBF `oscillators`, time
 /// cells `time_cells`; DDM `accumulator`).
 pub fn load_neural(folder: &Path) -> Option<NeuralSummary> {
-    let path = folder.parent()?.join("activity.summary.json");
-    let text = std::fs::read_to_string(path).ok()?;
-    let all: Vec<NeuralSummary> = serde_json::from_str(&text).ok()?;
+    let all: Vec<NeuralSummary> = optional_json(&folder.parent()?.join("activity.summary.json"))?;
     let max = all.iter().map(|s| s.units).max()?;
     all.into_iter().find(|s| s.units == max)
 }
@@ -120,8 +130,7 @@ pub fn load_neural(folder: &Path) -> Option<NeuralSummary> {
 /// Episodes to adapt measured next to an evaluation folder (`../adapt/adapt.json` from
 /// `adapt`): `Some(n)` adapted after n episodes, `None` inside means it never adapted.
 pub fn load_adaptation(folder: &Path) -> Option<Option<usize>> {
-    let text = std::fs::read_to_string(folder.parent()?.join("adapt").join("adapt.json")).ok()?;
-    let v: serde_json::Value = serde_json::from_str(&text).ok()?;
+    let v: serde_json::Value = optional_json(&folder.parent()?.join("adapt").join("adapt.json"))?;
     Some(v["episodes_to_adapt"].as_u64().map(|n| n as usize))
 }
 

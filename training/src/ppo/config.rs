@@ -182,6 +182,9 @@ pub enum Curriculum {
     },
 }
 
+/// Most transitions of one rollout (`n_envs · n_steps`).
+pub const MAX_ROLLOUT: usize = 1 << 20;
+
 /// Default [`TrainConfig::keep_checkpoints`]: the newest three checkpoints (a corrupt newest
 /// one still leaves two to resume from).
 pub const DEFAULT_KEEP_CHECKPOINTS: usize = 3;
@@ -210,8 +213,9 @@ pub struct TrainConfig {
     pub obs: ObsEncoding,
     /// Write a checkpoint every this many env steps (rounded up to whole updates; 0 = only at the end).
     pub checkpoint_every: u64,
-    /// Checkpoints kept in `checkpoints/` (the newest; older ones are deleted as new ones are
-    /// written, so storage stays bounded; the final model is kept besides). At least 1.
+    /// Checkpoints kept in `checkpoints/` (the newest; the oldest is deleted right after a new
+    /// one is written, so storage stays bounded: at most one more while a write is in
+    /// flight; the final model is kept besides). At least 1.
     #[serde(default = "default_keep_checkpoints")]
     pub keep_checkpoints: usize,
     /// Episodes in the training success-rate window (progress bar and CSV).
@@ -557,6 +561,15 @@ impl TrainConfig {
             replay.set(k, &v)?;
         }
         chronocooked_env::make_config(&self.task, &self.env)?;
+        // The rollout buffer holds n_envs · n_steps transitions: bounded so that a
+        // hand-edited config.json cannot ask for more memory than any machine has.
+        if self.ppo.n_envs.saturating_mul(self.ppo.n_steps) > MAX_ROLLOUT {
+            return Err(TrainError::param(
+                "n_steps",
+                self.ppo.n_steps,
+                &format!("n_envs * n_steps <= {MAX_ROLLOUT} (the rollout buffer)"),
+            ));
+        }
         if self.ppo.n_envs * self.ppo.n_steps < 2 {
             return Err(TrainError::param(
                 "n_steps",

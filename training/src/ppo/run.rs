@@ -11,7 +11,9 @@ use crate::evaluate::{eval_tds, evaluate_policy, success_rate};
 use crate::ppo::config::TrainConfig;
 use crate::ppo::state::UpdateLog;
 use crate::ppo::trainer::Trainer;
-use crate::run_dir::{RunDir, RunSummary, curve_header, read_policy_config, write_atomic};
+use crate::run_dir::{
+    RunDir, RunSummary, curve_header, expected_policy, read_policy_config, write_atomic,
+};
 use chronocooked_env::{integrity, make_config};
 use std::path::Path;
 
@@ -59,8 +61,15 @@ pub fn run_training(
                     p.display()
                 );
             }
-            read_policy_config(&run.path, &cfg)?;
-            let trainer = match run.resume_trainer(&cfg)? {
+            if run.checkpoints().is_empty() {
+                // Nothing learned yet (killed before the first checkpoint, perhaps while the
+                // folder was being set up): the policy description follows from the config.
+                let pj = serde_json::to_string_pretty(&expected_policy(&cfg)?).unwrap_or_default();
+                integrity::write_recorded(&run.path.join("policy.json"), pj.as_bytes())?;
+            } else {
+                read_policy_config(&run.path, &cfg)?;
+            }
+            let trainer = match resume_trainer(&run, &cfg)? {
                 Some(t) => t,
                 None => {
                     eprintln!(
@@ -123,4 +132,35 @@ pub fn run_training(
     let json = serde_json::to_string_pretty(&summary).unwrap_or_default();
     write_atomic(&run.path.join("summary.json"), json.as_bytes())?;
     Ok(summary)
+}
+
+/// The newest checkpoint that is intact and fits the run, as a trainer ready to go on;
+/// `Ok(None)` when there is no checkpoint at all. A corrupt or unusable checkpoint is
+/// skipped with a warning on stderr naming it; when checkpoints exist but none is
+/// usable, the error names each one and how to start over.
+pub fn resume_trainer(run: &RunDir, cfg: &TrainConfig) -> Result<Option<Trainer>, TrainError> {
+    let all = run.checkpoints();
+    let mut skipped = Vec::new();
+    for p in all.iter().rev() {
+        let restored = RunDir::read_checkpoint(p).and_then(|s| {
+            Trainer::restore(cfg.clone(), s).map_err(|e| TrainError::Corrupt {
+                path: p.display().to_string(),
+                reason: e.to_string(),
+            })
+        });
+        match restored {
+            Ok(t) => return Ok(Some(t)),
+            Err(e) => {
+                eprintln!("warning: skipping checkpoint {e}; trying an older one");
+                skipped.push(e.to_string());
+            }
+        }
+    }
+    if all.is_empty() {
+        return Ok(None);
+    }
+    Err(TrainError::NoValidCheckpoint {
+        dir: run.path.display().to_string(),
+        skipped: skipped.join("; "),
+    })
 }

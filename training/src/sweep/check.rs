@@ -5,9 +5,10 @@
 //! `sweep --dry-run` refuses everything a run would refuse, before anything starts.
 
 use crate::error::TrainError;
-use crate::sweep::file::{Job, SweepFile, applies};
+use crate::sweep::file::{Job, SweepFile, applies, refusal};
 use crate::timing_run::TimingRunConfig;
 use crate::zoo::{Family, family_of};
+use std::path::Path;
 
 /// Checks the sweep-wide settings (`set`: each must apply to some model of the sweep, so a
 /// misspelt key is an error rather than dropped) and then every job's resolved settings.
@@ -72,40 +73,27 @@ fn check_job(sweep: &SweepFile, job: &Job) -> Result<(), TrainError> {
     Ok(())
 }
 
-/// Why no model of `sweep` accepts the setting `kv` of `field` (`set` or `variants`): the
-/// range error of a model that knows the key, or else "unknown setting".
-pub(crate) fn refusal(sweep: &SweepFile, field: &str, kv: &str) -> TrainError {
-    let (k, v) = kv.split_once('=').unwrap_or((kv, ""));
-    let (k, v) = (k.trim(), v.trim());
-    for task in &sweep.tasks {
-        for m in sweep.expanded_models() {
-            let family = family_of(&m);
-            if field == "set" && !matches!(family, Ok(Family::DeepRl)) {
-                continue;
-            }
-            let err = match family {
-                Ok(Family::DeepRl) => m
-                    .parse()
-                    .ok()
-                    .and_then(|arch| crate::TrainConfig::base(task, arch).set(k, v).err()),
-                Ok(Family::Timing) => TimingRunConfig::new(task, &m, 0).set(kv).err(),
-                _ => None,
-            };
-            if let Some(TrainError::InvalidParam { field: f, .. }) = &err
-                && f == k
-            {
-                return err.unwrap_or(TrainError::BadOverride(kv.into()));
-            }
-        }
+impl SweepFile {
+    /// Parses a sweep file's text and checks it fully ([`SweepFile::validate`], then every
+    /// job's resolved settings: [`crate::sweep::check::check_jobs`]); `source` names the
+    /// file in errors.
+    pub fn parse(text: &str, source: &str) -> Result<Self, TrainError> {
+        let f: SweepFile = toml::from_str(text).map_err(|e| TrainError::SweepFile {
+            file: source.into(),
+            message: e.to_string(),
+        })?;
+        let in_file = |e: TrainError| TrainError::SweepFile {
+            file: source.into(),
+            message: e.to_string(),
+        };
+        f.validate().map_err(in_file)?;
+        check_jobs(&f).map_err(in_file)?;
+        Ok(f)
     }
-    let allowed = if field == "set" {
-        "PPO settings some PPO model of the sweep accepts, or env.<task parameter> (`set` reaches PPO runs only; timing models take `episodes` and `variants`)"
-    } else {
-        "settings some model of the sweep accepts (PPO or timing-model settings, or env.<task parameter>)"
-    };
-    TrainError::InvalidParam {
-        field: field.into(),
-        value: kv.into(),
-        allowed: allowed.into(),
+
+    /// Reads and parses a sweep file.
+    pub fn load(path: &Path) -> Result<Self, TrainError> {
+        let text = std::fs::read_to_string(path).map_err(|e| TrainError::io(path, e))?;
+        Self::parse(&text, &path.display().to_string())
     }
 }
