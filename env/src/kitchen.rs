@@ -164,7 +164,40 @@ impl Kitchen {
         }
     }
 
-    /// Restores a state captured by [`Kitchen::snapshot`] (same task spec assumed).
+    /// Checks that a snapshot (read from a checkpoint) fits this kitchen's task: the agent
+    /// on a free cell, the active TDs and the TD among the task's.
+    pub fn check_snapshot(&self, s: &KitchenSnapshot) -> Result<(), EnvError> {
+        let free = self.spec.layout.free_cells();
+        if !free.iter().any(|&c| c as usize == s.agent) {
+            return Err(EnvError::param(
+                "agent",
+                s.agent,
+                format!("a free cell of the layout ({free:?})"),
+            ));
+        }
+        let max_timers = self.spec.tds.len().max(1);
+        if s.num_timers == 0 || s.num_timers > max_timers {
+            return Err(EnvError::param(
+                "num_timers",
+                s.num_timers,
+                format!("1..={max_timers}"),
+            ));
+        }
+        if s.td == 0 {
+            return Err(EnvError::param("td", 0, "a positive number of steps"));
+        }
+        Ok(())
+    }
+
+    /// The codes observation of the current state (`[R, C, 6]`).
+    pub fn observation(&self) -> Vec<u8> {
+        let mut obs = vec![0; self.spec.background.len()];
+        self.write_full_obs(&mut obs);
+        obs
+    }
+
+    /// Restores a state captured by [`Kitchen::snapshot`] (same task spec assumed; a
+    /// snapshot read from a file is checked with [`Kitchen::check_snapshot`] first).
     pub fn restore(&mut self, s: &KitchenSnapshot) {
         self.rng = s.rng.clone();
         self.num_timers = s.num_timers;

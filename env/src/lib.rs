@@ -10,7 +10,8 @@
 //! * [`VecEnv`] — N envs into preallocated buffers with documented autoreset.
 //! * [`obs`] — the reference "codes" encoding and a one-hot view for networks.
 //! * [`oracle`] — optimal scripted policies; [`render`] — ASCII, PNG, GIF;
-//!   [`trace`] — JSON-lines episode traces; [`fs`] — the one atomic file write.
+//!   [`trace`] — JSON-lines episode traces; [`fs`] — the one atomic file write;
+//!   [`integrity`] — SHA-256 records of learned state.
 
 #![warn(missing_docs)]
 
@@ -20,6 +21,7 @@ pub mod env;
 pub mod error;
 pub mod fs;
 pub mod info;
+pub mod integrity;
 pub mod kitchen;
 pub mod layout;
 pub mod obs;

@@ -300,18 +300,57 @@ impl VecEnv {
         }
     }
 
-    /// Restores a snapshot taken from a vec-env of the same task and size.
-    pub fn restore(&mut self, s: &VecEnvSnapshot) -> Result<(), EnvError> {
-        if s.kitchens.len() != self.kitchens.len() || s.obs.len() != self.obs.len() {
-            return Err(EnvError::param(
-                "snapshot",
-                format!("{} envs", s.kitchens.len()),
-                format!(
-                    "a snapshot of exactly {} envs of this task",
-                    self.kitchens.len()
-                ),
-            ));
+    /// Checks a snapshot (read from a checkpoint) against this vec-env: as many envs,
+    /// every list of their length, every kitchen state valid for the task
+    /// ([`Kitchen::check_snapshot`]) and every observation the one of its kitchen's state.
+    /// Errors name the field (`envs.<field>`) and what it must be.
+    pub fn validate_snapshot(&self, s: &VecEnvSnapshot) -> Result<(), EnvError> {
+        let n = self.kitchens.len();
+        for (field, len, want) in [
+            ("envs.kitchens", s.kitchens.len(), n),
+            ("envs.obs", s.obs.len(), self.obs.len()),
+            ("envs.pending_reset", s.pending_reset.len(), n),
+            ("envs.infos", s.infos.len(), n),
+        ] {
+            if len != want {
+                return Err(EnvError::param(
+                    field,
+                    format!("{len} entries"),
+                    format!("exactly {want} (a snapshot of {n} envs of this task)"),
+                ));
+            }
         }
+        let len = self.obs_len;
+        for (i, (k, ks)) in self.kitchens.iter().zip(&s.kitchens).enumerate() {
+            k.check_snapshot(ks).map_err(|e| match e {
+                EnvError::InvalidParam {
+                    field,
+                    value,
+                    allowed,
+                } => EnvError::InvalidParam {
+                    field: format!("envs.kitchens[{i}].{field}"),
+                    value,
+                    allowed,
+                },
+                other => other,
+            })?;
+            let mut probe = k.clone();
+            probe.restore(ks);
+            if probe.observation() != s.obs[i * len..(i + 1) * len] {
+                return Err(EnvError::param(
+                    "envs.obs",
+                    format!("env {i}'s observation"),
+                    "the observation of the env's saved state",
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Restores a snapshot taken from a vec-env of the same task and size (checked with
+    /// [`VecEnv::validate_snapshot`] first; nothing changes on error).
+    pub fn restore(&mut self, s: &VecEnvSnapshot) -> Result<(), EnvError> {
+        self.validate_snapshot(s)?;
         for (k, ks) in self.kitchens.iter_mut().zip(&s.kitchens) {
             k.restore(ks);
         }

@@ -209,7 +209,58 @@ pub struct ActivityDataset {
     pub trials: Vec<Trial>,
 }
 
+/// Most units a recording may have (all populations together).
+pub const MAX_UNITS: usize = 1 << 20;
+
 impl ActivityDataset {
+    /// Checks a dataset read from a file before use: populations of `1..=`[`MAX_UNITS`]
+    /// units in all, a finite `dt` > 0, and every trial's activity exactly `steps × units`
+    /// values with its events inside the trial. The error names the field.
+    pub fn validate(&self) -> Result<(), String> {
+        let mut units: usize = 0;
+        for (i, p) in self.meta.populations.iter().enumerate() {
+            units = units
+                .checked_add(p.size)
+                .filter(|&u| u <= MAX_UNITS)
+                .ok_or_else(|| {
+                    format!(
+                        "meta.populations[{i}].size: {} (at most {MAX_UNITS} units in all)",
+                        p.size
+                    )
+                })?;
+        }
+        if !(self.meta.dt.is_finite() && self.meta.dt > 0.0) {
+            return Err(format!(
+                "meta.dt: {} (allowed: a finite number > 0)",
+                self.meta.dt
+            ));
+        }
+        for (i, t) in self.trials.iter().enumerate() {
+            let want = t.steps.checked_mul(units);
+            if want != Some(t.activity.len()) {
+                return Err(format!(
+                    "trials[{i}].activity: {} values (allowed: steps × units = {} × {units})",
+                    t.activity.len(),
+                    t.steps
+                ));
+            }
+            if let Some(e) = t.events.iter().find(|e| e.step as usize >= t.steps.max(1)) {
+                return Err(format!(
+                    "trials[{i}].events: a marker at step {} of a {}-step trial",
+                    e.step, t.steps
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Parses and checks ([`ActivityDataset::validate`]) an `activity.json`.
+    pub fn from_json(bytes: &[u8]) -> Result<Self, String> {
+        let ds: ActivityDataset = serde_json::from_slice(bytes).map_err(|e| e.to_string())?;
+        ds.validate()?;
+        Ok(ds)
+    }
+
     /// Activity aligned to the first `marker` of every trial that has it:
     /// `[trials, window, N]` row-major with `window = after + 1` steps starting at the
     /// step after the marker (oven time 0 … `after` when aligned to [`Marker::OvenOn`]);

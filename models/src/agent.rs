@@ -197,6 +197,34 @@ pub struct EpisodeRecord {
     pub infos: Vec<Info>,
 }
 
+impl EpisodeRecord {
+    /// Checks a record read from a file before any metric reads it: at least one step, one
+    /// `info` per action, action codes `0..=5`, a finite reward and a positive TD. The
+    /// error names the field.
+    pub fn validate(&self) -> Result<(), String> {
+        if self.actions.is_empty() {
+            return Err("field `actions`: empty (an episode has at least one step)".into());
+        }
+        if self.actions.len() != self.infos.len() {
+            return Err(format!(
+                "field `infos`: {} entries for {} actions (one per step)",
+                self.infos.len(),
+                self.actions.len()
+            ));
+        }
+        if let Some(a) = self.actions.iter().find(|&&a| a as usize >= Action::COUNT) {
+            return Err(format!("field `actions`: code {a} (allowed: 0..=5)"));
+        }
+        if !self.reward.is_finite() {
+            return Err("field `reward`: not a finite number".into());
+        }
+        if self.td == 0 {
+            return Err("field `td`: 0 (allowed: a positive number of steps)".into());
+        }
+        Ok(())
+    }
+}
+
 /// Success criterion shared by training and evaluation: a delivery paying the full reward
 /// available in the episode — 1, or, when the oven never readies itself (uncertainty task),
 /// the reduced reward of a soup readied with the manual button.

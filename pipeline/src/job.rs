@@ -56,7 +56,8 @@ fn remove_stale_temps(dir: &Path) {
     };
     for e in entries.flatten() {
         let p = e.path();
-        if p.is_dir() {
+        // Symbolic links are never followed (a link loop would never end).
+        if e.file_type().is_ok_and(|t| t.is_dir()) {
             remove_stale_temps(&p);
         } else if p
             .file_name()

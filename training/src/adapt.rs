@@ -238,7 +238,7 @@ pub fn run_adaptation(
             cfg.epsilon,
             cfg.seed,
         )?;
-        write_atomic(
+        chronocooked_env::integrity::write_recorded(
             &out.join("agent.json"),
             serde_json::to_string(&agent).unwrap_or_default().as_bytes(),
         )?;

@@ -17,7 +17,7 @@ pub enum TrainError {
     },
     /// An override names no setting.
     #[error(
-        "unknown setting `{0}` (see `chronocooked zoo list` for presets; settings: seed, total_steps, obs, n_envs, n_steps, batch_size, n_epochs, bptt_len, recurrent_batches, detach_critic, reservoir_grad_in_norm, engine, gamma, gae_lambda, clip_range, clip_range_vf, ent_coef, vf_coef, max_grad_norm, learning_rate, lr_schedule, adam_eps, target_kl, normalize_advantage, checkpoint_every, eval_every, stop_at_success, stats_window, curriculum, curriculum_thresholds, curriculum_window, curriculum_warmup, never_ready_start/end/ramp, core_init, init_from, env.<task parameter>)"
+        "unknown setting `{0}` (see `chronocooked zoo list` for presets; settings: seed, total_steps, obs, n_envs, n_steps, batch_size, n_epochs, bptt_len, recurrent_batches, detach_critic, reservoir_grad_in_norm, engine, gamma, gae_lambda, clip_range, clip_range_vf, ent_coef, vf_coef, max_grad_norm, learning_rate, lr_schedule, adam_eps, target_kl, normalize_advantage, checkpoint_every, keep_checkpoints, eval_every, stop_at_success, stats_window, curriculum, curriculum_thresholds, curriculum_window, curriculum_warmup, never_ready_start/end/ramp, core_init, init_from, env.<task parameter>)"
     )]
     UnknownKey(String),
     /// An override is not `key=value`.
@@ -74,6 +74,14 @@ pub enum TrainError {
         /// What is wrong (with the line and column for TOML errors).
         message: String,
     },
+    /// A job of a sweep has settings its run would refuse.
+    #[error("job {id}: {message}")]
+    Job {
+        /// The job id.
+        id: String,
+        /// What its run would refuse.
+        message: String,
+    },
     /// A run's `config.json` is unreadable or fails the configuration's checks.
     #[error("{file}: {message}")]
     ConfigFile {
@@ -89,6 +97,32 @@ pub enum TrainError {
     NotARun {
         /// Folder.
         path: String,
+    },
+    /// A checkpoint's state does not fit the run's configuration (wrapped with the file by
+    /// the caller that read it).
+    #[error("checkpoint {0}")]
+    BadState(crate::ppo::state::StateError),
+    /// A file of learned state is missing its SHA-256 record, does not match it, or is not a
+    /// regular file.
+    #[error(transparent)]
+    Integrity(#[from] chronocooked_env::integrity::IntegrityError),
+    /// A file of learned state or its content is corrupt.
+    #[error("{path}: {reason}")]
+    Corrupt {
+        /// The file.
+        path: String,
+        /// What is wrong (the field where there is one).
+        reason: String,
+    },
+    /// Checkpoints exist but none can be used.
+    #[error(
+        "cannot resume {dir}: no valid checkpoint ({skipped}). To start over, remove the run folder (or its checkpoints/ folder and curves.csv) and train without --resume"
+    )]
+    NoValidCheckpoint {
+        /// The run folder.
+        dir: String,
+        /// Every checkpoint tried, with why it was refused.
+        skipped: String,
     },
     /// A run folder or checkpoint is incomplete or does not match.
     #[error("cannot resume from {path}: {reason}")]

@@ -21,6 +21,7 @@ pub mod evaluate;
 pub mod ppo;
 pub mod run_dir;
 pub mod sweep;
+pub mod timing_check;
 pub mod timing_run;
 pub mod zoo;
 
@@ -29,7 +30,7 @@ pub use evaluate::{EvalEpisode, eval_tds, evaluate_policy, success_rate};
 pub use ppo::agent::PpoAgent;
 pub use ppo::config::{Curriculum, Engine, LrSchedule, ObsEncoding, PpoConfig, TrainConfig};
 pub use ppo::presets::{PRESETS, preset_settings, resolve};
-pub use ppo::run::{Progress, Silent, run_training};
+pub use ppo::run::{Progress, Silent, resume_trainer, run_training};
 pub use ppo::trainer::{Trainer, TrainerState, UpdateLog};
 pub use run_dir::{RunDir, RunSummary, load_policy};
 pub use timing_run::{

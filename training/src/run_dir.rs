@@ -5,14 +5,20 @@
 //! RUN_DIR/policy.json        PolicyConfig (architecture, input shape)
 //! RUN_DIR/command.txt        the command line(s) that produced the run
 //! RUN_DIR/curves.csv         one row per PPO update
-//! RUN_DIR/checkpoints/step-000000100000.json   full trainer state (resumable)
+//! RUN_DIR/checkpoints/step-000000100000.json   full trainer state (resumable; the newest
+//!                            `keep_checkpoints` are kept)
 //! RUN_DIR/model.bpk          final policy (burnpack), RUN_DIR/summary.json
+//! RUN_DIR/SHA256SUMS, RUN_DIR/checkpoints/SHA256SUMS   SHA-256 records of the learned state
 //! ```
+//!
+//! Learned state (`policy.json`, `model.bpk`, checkpoints) is written with a SHA-256 record
+//! ([`chronocooked_env::integrity`]) and verified whenever it is read.
 
 use crate::error::TrainError;
 use crate::ppo::config::TrainConfig;
 use crate::ppo::state::{TrainerState, UpdateLog};
 use burn::module::Module;
+use chronocooked_env::integrity;
 use chronocooked_models::{ActorCritic, PolicyConfig};
 use serde::{Deserialize, Serialize};
 use std::fs;
@@ -152,7 +158,7 @@ impl RunDir {
         Ok(cfg)
     }
 
-    /// Checkpoint files, oldest first.
+    /// Checkpoint files (`checkpoints/step-*.json`), oldest first.
     pub fn checkpoints(&self) -> Vec<PathBuf> {
         let mut v: Vec<PathBuf> = fs::read_dir(self.path.join("checkpoints"))
             .map(|rd| {
@@ -169,30 +175,59 @@ impl RunDir {
         v
     }
 
-    /// The newest checkpoint that parses.
-    pub fn latest_state(&self) -> Result<Option<TrainerState>, TrainError> {
-        for p in self.checkpoints().iter().rev() {
-            if let Ok(text) = fs::read_to_string(p)
-                && let Ok(s) = serde_json::from_str::<TrainerState>(&text)
-            {
-                return Ok(Some(s));
-            }
-        }
-        Ok(None)
+    /// Reads one checkpoint: its SHA-256 record checked, then parsed. Errors name the file.
+    pub fn read_checkpoint(path: &Path) -> Result<TrainerState, TrainError> {
+        let bytes = integrity::read_verified(path)?;
+        serde_json::from_slice(&bytes).map_err(|e| TrainError::Corrupt {
+            path: path.display().to_string(),
+            reason: e.to_string(),
+        })
     }
 
-    pub(crate) fn write_checkpoint(&self, state: &TrainerState) -> Result<(), TrainError> {
+    /// The newest intact checkpoint (SHA-256 record checked, parsed), if any.
+    pub fn latest_state(&self) -> Result<Option<TrainerState>, TrainError> {
+        Ok(self
+            .checkpoints()
+            .iter()
+            .rev()
+            .find_map(|p| Self::read_checkpoint(p).ok()))
+    }
+
+    /// Writes the checkpoint of `state` (with its SHA-256 record), then deletes the oldest
+    /// checkpoints beyond the newest `keep`.
+    pub(crate) fn write_checkpoint(
+        &self,
+        state: &TrainerState,
+        keep: usize,
+    ) -> Result<(), TrainError> {
         let p = self
             .path
             .join("checkpoints")
             .join(format!("step-{:012}.json", state.steps));
-        let json = serde_json::to_vec(state).map_err(|e| TrainError::Resume {
+        let json = serde_json::to_vec(state).map_err(|e| TrainError::Corrupt {
             path: p.display().to_string(),
-            reason: e.to_string(),
+            reason: format!("cannot serialise the trainer state: {e}"),
         })?;
-        write_atomic(&p, &json)
+        integrity::write_recorded(&p, &json)?;
+        let all = self.checkpoints();
+        for old in &all[..all.len().saturating_sub(keep.max(1))] {
+            integrity::remove_recorded(old)?;
+        }
+        Ok(())
     }
 
+    /// Removes what a killed writer left in the run folder and `checkpoints/` (temporary
+    /// files of atomic writes); returns them.
+    pub fn remove_stale_temps(&self) -> Vec<PathBuf> {
+        let mut removed = chronocooked_env::fs::remove_temp_files(&self.path);
+        removed.extend(chronocooked_env::fs::remove_temp_files(
+            &self.path.join("checkpoints"),
+        ));
+        removed
+    }
+
+    /// Rewrites `curves.csv` as the rows of `rows` (a checkpoint's learning curve: the file
+    /// is cut back to the checkpoint it resumes from, the history before it kept).
     pub(crate) fn write_curves(&self, rows: &[UpdateLog]) -> Result<(), TrainError> {
         let mut s = curve_header();
         rows.iter().for_each(|r| s.push_str(&curve_line(r)));
@@ -200,65 +235,148 @@ impl RunDir {
     }
 
     pub(crate) fn append_curve(&self, row: &UpdateLog) -> Result<(), TrainError> {
-        let p = self.path.join("curves.csv");
-        let mut f = fs::OpenOptions::new()
-            .append(true)
-            .create(true)
-            .open(&p)
-            .map_err(|e| TrainError::io(&p, e))?;
-        f.write_all(curve_line(row).as_bytes())
-            .map_err(|e| TrainError::io(&p, e))
+        append_line(&self.path.join("curves.csv"), &curve_line(row))
     }
 
-    pub(crate) fn append_command(&self, command: &str) -> Result<(), TrainError> {
-        let p = self.path.join("command.txt");
-        let mut f = fs::OpenOptions::new()
-            .append(true)
-            .create(true)
-            .open(&p)
-            .map_err(|e| TrainError::io(&p, e))?;
-        writeln!(f, "{command}").map_err(|e| TrainError::io(&p, e))
+    /// Appends a command line to `command.txt` (every session of a run is kept).
+    pub fn append_command(&self, command: &str) -> Result<(), TrainError> {
+        append_line(&self.path.join("command.txt"), &format!("{command}\n"))
     }
 
-    /// Saves a policy atomically as burnpack.
+    /// Saves a policy atomically as burnpack, with its SHA-256 record.
     pub fn save_model(&self, model: ActorCritic, name: &str) -> Result<PathBuf, TrainError> {
         let p = self.path.join(name);
-        let tmp = self.path.join(format!("{name}.tmp{}", std::process::id()));
-        model.save_file(&tmp).map_err(|e| TrainError::Resume {
-            path: p.display().to_string(),
-            reason: format!("saving the model failed: {e:?}"),
-        })?;
-        fs::rename(&tmp, &p).map_err(|e| TrainError::io(&p, e))?;
+        let bytes = crate::ppo::params::with_stable_ids(model)
+            .into_record()
+            .into_bytes()
+            .map_err(|e| TrainError::Corrupt {
+                path: p.display().to_string(),
+                reason: format!("saving the model failed: {e:?}"),
+            })?;
+        integrity::write_recorded(&p, &bytes)?;
         Ok(p)
     }
 }
 
-/// Loads a run's policy: `model.bpk` if present, else the newest checkpoint's parameters.
+/// Appends `line` to `path` (created with the process umask if missing).
+pub(crate) fn append_line(path: &Path, line: &str) -> Result<(), TrainError> {
+    let mut f = fs::OpenOptions::new()
+        .append(true)
+        .create(true)
+        .open(path)
+        .map_err(|e| TrainError::io(path, e))?;
+    f.write_all(line.as_bytes())
+        .map_err(|e| TrainError::io(path, e))
+}
+
+/// The policy description a run of `cfg` trains (what its `policy.json` must hold).
+pub fn expected_policy(cfg: &TrainConfig) -> Result<PolicyConfig, TrainError> {
+    let task = chronocooked_env::make_config(&cfg.task, &cfg.env)?;
+    let enc = crate::ppo::obs::ObsEncoder::for_config(cfg.obs, &task)?;
+    let mut p = PolicyConfig::new(
+        cfg.model,
+        enc.cells(),
+        enc.channels(),
+        chronocooked_env::Action::COUNT,
+    );
+    p.core_init = cfg.core_init;
+    Ok(p)
+}
+
+/// Reads a run's `policy.json` (SHA-256 record checked) and checks it: sizes in range
+/// ([`PolicyConfig::validate`]) and the description its `config.json` implies.
+pub fn read_policy_config(dir: &Path, cfg: &TrainConfig) -> Result<PolicyConfig, TrainError> {
+    let pp = dir.join("policy.json");
+    let corrupt = |reason: String| TrainError::Corrupt {
+        path: pp.display().to_string(),
+        reason,
+    };
+    let bytes = integrity::read_verified(&pp)?;
+    let pcfg: PolicyConfig = serde_json::from_slice(&bytes).map_err(|e| corrupt(e.to_string()))?;
+    pcfg.validate().map_err(|e| corrupt(e.to_string()))?;
+    let want = expected_policy(cfg)?;
+    if pcfg != want {
+        return Err(corrupt(format!(
+            "does not describe the policy of config.json (expected {})",
+            serde_json::to_string(&want).unwrap_or_default()
+        )));
+    }
+    Ok(pcfg)
+}
+
+fn finite_params(path: &Path, theta: &[f32]) -> Result<(), TrainError> {
+    match theta.iter().position(|x| !x.is_finite()) {
+        Some(i) => Err(TrainError::Corrupt {
+            path: path.display().to_string(),
+            reason: format!("parameter {i} is not a finite number"),
+        }),
+        None => Ok(()),
+    }
+}
+
+/// Loads a run's policy: `model.bpk` if present (anything at that path must be an intact
+/// model: a corrupt one is an error, never a silent fall-back), else the newest intact
+/// checkpoint's parameters.
 pub fn load_policy(dir: &Path) -> Result<(ActorCritic, PolicyConfig, TrainConfig), TrainError> {
     let run = RunDir::open(dir)?;
     let cfg = run.config()?;
-    let pp = dir.join("policy.json");
-    let pcfg: PolicyConfig =
-        serde_json::from_str(&fs::read_to_string(&pp).map_err(|e| TrainError::io(&pp, e))?)
-            .map_err(|e| TrainError::Resume {
-                path: pp.display().to_string(),
-                reason: e.to_string(),
-            })?;
+    let pcfg = read_policy_config(dir, &cfg)?;
+    let n_params: usize = chronocooked_models::deep::spec::param_spec(&pcfg)
+        .iter()
+        .map(|p| p.shape.iter().product::<usize>())
+        .sum();
     let device = chronocooked_models::cpu();
     let model = pcfg.init(cfg.seed, &device);
     let file = dir.join("model.bpk");
-    if file.is_file() {
-        let m = model.try_load_file(&file).map_err(|e| TrainError::Resume {
+    if fs::symlink_metadata(&file).is_ok() {
+        let bytes = integrity::read_verified(&file)?;
+        let corrupt = |reason: String| TrainError::Corrupt {
             path: file.display().to_string(),
-            reason: format!("{e:?}"),
-        })?;
+            reason,
+        };
+        let record =
+            burn::store::ModuleRecord::from_bytes(burn::tensor::Bytes::from_bytes_vec(bytes))
+                .map_err(|e| corrupt(format!("not a burnpack model: {e:?}")))?;
+        let m = model
+            .try_load_record(record)
+            .map_err(|e| corrupt(format!("does not fit policy.json: {e:?}")))?;
+        finite_params(&file, &crate::ppo::params::flat_params(&m))?;
         return Ok((m, pcfg, cfg));
     }
-    match run.latest_state()? {
-        Some(s) => Ok((crate::ppo::params::write_params(model, &s.theta), pcfg, cfg)),
-        None => Err(TrainError::Resume {
-            path: dir.display().to_string(),
-            reason: "neither model.bpk nor a checkpoint".into(),
-        }),
+    let all = run.checkpoints();
+    let mut skipped = Vec::new();
+    for p in all.iter().rev() {
+        let state = match RunDir::read_checkpoint(p) {
+            Ok(s) if s.theta.len() == n_params => s,
+            Ok(s) => {
+                skipped.push(format!(
+                    "{}: field `theta`: {} values, the policy has {n_params}",
+                    p.display(),
+                    s.theta.len()
+                ));
+                continue;
+            }
+            Err(e) => {
+                skipped.push(e.to_string());
+                continue;
+            }
+        };
+        finite_params(p, &state.theta)?;
+        for s in &skipped {
+            eprintln!("warning: skipped checkpoint {s}");
+        }
+        let m = crate::ppo::params::write_params(model, &state.theta);
+        return Ok((m, pcfg, cfg));
     }
+    Err(TrainError::Resume {
+        path: dir.display().to_string(),
+        reason: if all.is_empty() {
+            "neither model.bpk nor a checkpoint (the run has not saved any parameters yet)".into()
+        } else {
+            format!(
+                "no model.bpk, and every checkpoint is corrupt or does not fit: {}",
+                skipped.join("; ")
+            )
+        },
+    })
 }

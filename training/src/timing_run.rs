@@ -2,14 +2,15 @@
 //!
 //! Files: `config.json` (resolved [`TimingRunConfig`]), `command.txt`, `curves.csv`
 //! (episode, steps, train success/reward, eval success), `agent.json` (the trained agent:
-//! learned drifts / stored times / TD weights), `summary.json`. Training is a few seconds,
+//! learned drifts / stored times / TD weights; with its SHA-256 record in `SHA256SUMS`),
+//! `summary.json`. Training is a few seconds,
 //! deterministic from (config, seed), so an interrupted run is simply rerun: `--resume`
 //! restarts it and reaches the identical result.
 
 use crate::error::TrainError;
 use crate::evaluate::eval_tds;
 use crate::run_dir::write_atomic;
-use chronocooked_env::{ChronoEnv, TaskFamily, make_config};
+use chronocooked_env::{ChronoEnv, TaskFamily, integrity, make_config};
 use chronocooked_models::timing::agent::TimingAgent;
 use chronocooked_models::timing::judgment::DecisionRule;
 use chronocooked_models::timing::zoo::make_timing_agent;
@@ -53,6 +54,10 @@ pub const TIMING_KEYS: &str = "episodes, epsilon_start, epsilon_end, anneal_frac
 fn agent_value_range(key: &str, v: f64) -> Option<&'static str> {
     match key {
         "q_init" if !v.is_finite() => Some("a finite number (initial Q of unvisited pairs)"),
+        "alpha" if !(v > 0.0 && v <= 1.0) => Some("a step size in (0, 1]"),
+        "gamma" | "lambda" if !(0.0..=1.0).contains(&v) => Some("a number in [0, 1]"),
+        "response_cost" if !(v >= 0.0 && v.is_finite()) => Some("a finite cost >= 0"),
+        "probe" if !(0.0..1.0).contains(&v) => Some("a fraction in [0, 1)"),
         "opportunity_cost" if !(0.0..1.0).contains(&v) => Some("a step size in [0, 1) (0 = off)"),
         "overdue_factor" if !(v == 0.0 || (v >= 1.0 && v.is_finite())) => {
             Some("a number >= 1 (a multiple of the expected time), or 0 = off")
@@ -164,6 +169,16 @@ impl TimingRunConfig {
                 allowed: allowed.into(),
             })
         };
+        if !chronocooked_models::timing::zoo::is_timing_model(&self.model) {
+            return bad(
+                "model",
+                self.model.clone(),
+                "a timing model (see `chronocooked zoo list`)",
+            );
+        }
+        if self.kind != "timing" {
+            return bad("kind", self.kind.clone(), "timing");
+        }
         if t.episodes == 0 {
             return bad("episodes", "0".into(), "a positive integer");
         }
@@ -174,6 +189,15 @@ impl TimingRunConfig {
             if !(0.0..=1.0).contains(&v) {
                 return bad(f, v.to_string(), "a number in [0, 1]");
             }
+        }
+        if let Some(v) = t.stop_at_success
+            && !(v > 0.0 && v <= 1.0)
+        {
+            return bad(
+                "stop_at_success",
+                v.to_string(),
+                "a success rate in (0, 1], or none",
+            );
         }
         if !(t.anneal_fraction > 0.0 && t.anneal_fraction <= 1.0) {
             return bad(
@@ -292,7 +316,9 @@ pub fn run_timing_training(
     let start = std::time::Instant::now();
     std::fs::create_dir_all(dir).map_err(|e| TrainError::io(dir, e))?;
     write_atomic(&dir.join("config.json"), &json(cfg))?;
-    write_atomic(&dir.join("command.txt"), format!("{command}\n").as_bytes())?;
+    // Every session of the folder is kept (`--resume` reruns an unfinished run).
+    crate::run_dir::append_line(&dir.join("command.txt"), &format!("{command}\n"))?;
+    let _ = chronocooked_env::fs::remove_temp_files(dir);
     let task = make_config(&cfg.task, &cfg.env)?;
     let mut agent = cfg.build_agent()?;
     let tds = eval_tds(&task);
@@ -309,7 +335,7 @@ pub fn run_timing_training(
         );
     }
     write_atomic(&dir.join("curves.csv"), csv.as_bytes())?;
-    write_atomic(&dir.join("agent.json"), &json(&agent))?;
+    integrity::write_recorded(&dir.join("agent.json"), &json(&agent))?;
     let last = curve.last();
     let summary = TimingRunSummary {
         dir: dir.to_path_buf(),
@@ -357,9 +383,11 @@ pub fn is_timing_run_config(dir: &Path) -> bool {
         .is_some_and(|v| v["kind"] == "timing")
 }
 
-/// Whether `dir` holds a timing-agent run.
+/// Whether `dir` holds a timing-agent run (its `agent.json`, or a timing run's
+/// `config.json`: an unfinished or damaged run is still a timing run, so a missing agent
+/// is reported as such rather than as a PPO config error).
 pub fn is_timing_run(dir: &Path) -> bool {
-    dir.join("agent.json").is_file()
+    std::fs::symlink_metadata(dir.join("agent.json")).is_ok() || is_timing_run_config(dir)
 }
 
 fn bad_file(dir: &Path, name: &str, e: serde_json::Error) -> TrainError {
@@ -386,12 +414,29 @@ pub fn load_timing_config(dir: &Path) -> Result<TimingRunConfig, TrainError> {
     Ok(cfg)
 }
 
-/// Loads the config and trained agent of a timing run folder.
+/// Loads the config and trained agent of a timing run folder: `agent.json` checked against
+/// its SHA-256 record, then against the agent its config builds
+/// ([`crate::timing_check::check_agent`]).
 pub fn load_timing_agent(dir: &Path) -> Result<(TimingRunConfig, TimingAgent), TrainError> {
     let cfg = load_timing_config(dir)?;
     let p = dir.join("agent.json");
-    let text = std::fs::read_to_string(&p).map_err(|e| TrainError::io(&p, e))?;
-    let agent = serde_json::from_str(&text).map_err(|e| bad_file(dir, "agent.json", e))?;
+    if std::fs::symlink_metadata(&p).is_err() {
+        return Err(TrainError::Corrupt {
+            path: p.display().to_string(),
+            reason:
+                "missing: the timing run has not finished (train it again with `train --resume`)"
+                    .into(),
+        });
+    }
+    let bytes = integrity::read_verified(&p)?;
+    let agent: TimingAgent =
+        serde_json::from_slice(&bytes).map_err(|e| bad_file(dir, "agent.json", e))?;
+    crate::timing_check::check_agent(&agent, &cfg.build_agent()?).map_err(|reason| {
+        TrainError::Corrupt {
+            path: p.display().to_string(),
+            reason,
+        }
+    })?;
     Ok((cfg, agent))
 }
 

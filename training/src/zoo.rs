@@ -5,7 +5,6 @@
 use crate::error::TrainError;
 use crate::ppo::config::ObsEncoding;
 use crate::ppo::obs::ObsEncoder;
-use crate::ppo::params::flat_params;
 use crate::ppo::presets::PRESETS;
 use chronocooked_env::{Action, Autoreset, VecEnv, make_config};
 use chronocooked_models::{Architecture, PolicyConfig};
@@ -116,13 +115,18 @@ pub const BASELINES: [(&str, &str); 2] = [
 ];
 
 /// Number of trainable parameters of `arch` with the paper's input (code channels) on the
-/// reference FI grid.
+/// reference FI grid, counted from the parameter specification
+/// ([`chronocooked_models::deep::spec::param_spec`]) without building the network (cheap
+/// for any size: `zoo show lstm4096` does not allocate its 68M weights).
 pub fn parameter_count(arch: Architecture) -> usize {
     let task = make_config("FixedInterval-v0", &[] as &[&str]).expect("FI is registered");
     let envs = VecEnv::new(&task, 1, Autoreset::SameStep).expect("FI builds");
     let encoder = ObsEncoder::new(ObsEncoding::Codes, &envs);
     let cfg = PolicyConfig::new(arch, encoder.cells(), encoder.channels(), Action::COUNT);
-    flat_params(&cfg.init(0, &chronocooked_models::cpu())).len()
+    chronocooked_models::deep::spec::param_spec(&cfg)
+        .iter()
+        .map(|p| p.shape.iter().product::<usize>())
+        .sum()
 }
 
 fn deep_entry(arch: Architecture) -> ZooEntry {

@@ -57,6 +57,9 @@ pub fn records_from_trace(text: &str) -> Result<Vec<EvalRecord>, String> {
                     .and_then(|c| {
                         serde_json::from_value(c).map_err(|e| format!("line {}: {e}", i + 1))
                     })?;
+                config
+                    .validate()
+                    .map_err(|e| format!("line {}: config: {e}", i + 1))?;
                 let condition = condition_of(&config, t.info.td);
                 let never = t.info.never_ready;
                 out.push(EvalRecord {
@@ -88,6 +91,11 @@ pub fn records_from_trace(text: &str) -> Result<Vec<EvalRecord>, String> {
                 }
             }
         }
+    }
+    for (k, r) in out.iter().enumerate() {
+        r.episode
+            .validate()
+            .map_err(|e| format!("episode {}: {e}", k + 1))?;
     }
     Ok(out)
 }

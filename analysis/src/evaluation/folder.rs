@@ -29,7 +29,18 @@ pub struct EvalInfo {
 }
 
 fn write(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    chronocooked_env::fs::write_atomic(path, bytes).map_err(|e| e.to_string())
+    chronocooked_env::fs::write_atomic(path, bytes).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// `out` must be a folder (or not exist yet): a file there is named in the error.
+fn check_out(out: &Path) -> Result<(), String> {
+    match std::fs::metadata(out) {
+        Ok(m) if !m.is_dir() => Err(format!(
+            "{}: exists and is not a folder (the evaluation output is a folder)",
+            out.display()
+        )),
+        _ => Ok(()),
+    }
 }
 
 /// Writes `records.jsonl`, `eval.json`, `metrics.json` and the figures into `out`;
@@ -39,6 +50,7 @@ pub fn write_eval_folder(
     info: &EvalInfo,
     records: &[EvalRecord],
 ) -> Result<(Metrics, Vec<PathBuf>), String> {
+    check_out(out)?;
     let mut lines = String::new();
     for r in records {
         lines += &serde_json::to_string(r).map_err(|e| e.to_string())?;

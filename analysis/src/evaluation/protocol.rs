@@ -129,17 +129,30 @@ fn cond(kind: ConditionKind, task: &str, env: Vec<String>, td: u32) -> Condition
     }
 }
 
-/// Reads the per-episode records (`records.jsonl`) of an `eval` output folder; errors name
-/// the file (and the line of a malformed record).
+/// Reads the per-episode records (`records.jsonl`) of an `eval` output folder, each checked
+/// ([`EpisodeRecord::validate`](chronocooked_models::EpisodeRecord::validate)); errors name
+/// the file (and the line and field of a malformed record). A file without any record is an
+/// error ("no episodes"), never an empty evaluation.
 pub fn read_records(folder: &std::path::Path) -> Result<Vec<EvalRecord>, String> {
     let path = folder.join("records.jsonl");
     let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
-    text.lines()
+    let records: Vec<EvalRecord> = text
+        .lines()
         .enumerate()
         .map(|(i, l)| {
-            serde_json::from_str(l).map_err(|e| format!("{} line {}: {e}", path.display(), i + 1))
+            let at = || format!("{} line {}", path.display(), i + 1);
+            let r: EvalRecord = serde_json::from_str(l).map_err(|e| format!("{}: {e}", at()))?;
+            r.episode.validate().map_err(|e| format!("{}: {e}", at()))?;
+            Ok(r)
         })
-        .collect()
+        .collect::<Result<_, String>>()?;
+    if records.is_empty() {
+        return Err(format!(
+            "{}: no episodes (an evaluation has at least one record)",
+            path.display()
+        ));
+    }
+    Ok(records)
 }
 
 /// The reference conditions for an agent trained on `task` with overrides `env`.

@@ -195,7 +195,8 @@ pub fn read_curve(path: &Path) -> Result<Vec<CurveRow>, CollectError> {
     Ok(out)
 }
 
-/// Job folders (those with a `job.json`) under a sweep output folder, sorted.
+/// Job folders (those with a `job.json`) under a sweep output folder, sorted; symbolic links
+/// are not followed, so each real job folder counts once.
 pub fn job_folders(root: &Path) -> Vec<PathBuf> {
     fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
         let Ok(rd) = std::fs::read_dir(dir) else {
@@ -203,7 +204,8 @@ pub fn job_folders(root: &Path) -> Vec<PathBuf> {
         };
         for e in rd.flatten() {
             let p = e.path();
-            if p.is_dir() {
+            // Real folders only: symbolic links (self-links, loops) are not followed.
+            if e.file_type().is_ok_and(|t| t.is_dir()) {
                 if p.join("job.json").is_file() {
                     out.push(p);
                 } else {
@@ -313,6 +315,12 @@ pub fn collect(sweep_out: &Path, to: &Path) -> Result<(usize, usize), CollectErr
         write_csv(&out.join("curve.csv"), &curve)?;
         let metrics = dir.join("eval").join("metrics.json");
         let text = std::fs::read(&metrics).map_err(|e| err(&metrics, e))?;
+        // Copied as written, but only once it is a metrics object (never a corrupt file).
+        let parsed: serde_json::Value =
+            serde_json::from_slice(&text).map_err(|e| err(&metrics, e))?;
+        if !parsed.get("conditions").is_some_and(|c| c.is_array()) {
+            return Err(err(&metrics, "not a metrics file (no `conditions` list)"));
+        }
         let m_path = out.join("metrics.json");
         chronocooked_env::fs::write_atomic(&m_path, &text).map_err(|e| err(&m_path, e))?;
         written += 1;

@@ -38,8 +38,8 @@ pub fn load_metrics(folder: &Path) -> Result<Metrics, String> {
         std::fs::read_to_string(&p)
             .map_err(|e| format!("{}: {e} (not an `eval` output folder)", p.display()))
     };
-    let info: serde_json::Value =
-        serde_json::from_str(&read("eval.json")?).map_err(|e| format!("eval.json: {e}"))?;
+    let info: serde_json::Value = serde_json::from_str(&read("eval.json")?)
+        .map_err(|e| format!("{}: {e}", folder.join("eval.json").display()))?;
     let records = crate::evaluation::protocol::read_records(folder)
         .map_err(|e| format!("{e} (not an `eval` output folder)"))?;
     Ok(crate::behaviour::metrics::compute_metrics(
@@ -54,21 +54,18 @@ pub fn is_eval_folder(dir: &Path) -> bool {
     dir.join("eval.json").is_file() && dir.join("records.jsonl").is_file()
 }
 
-/// Every evaluation folder at or below `roots` (sorted, each once). Folders that cannot hold
-/// one (`export`, `checkpoints`, `figures`, `report`, `slurm`) are not entered.
+/// Every evaluation folder at or below `roots` (sorted, each real folder once; symbolic
+/// links below a root are not followed). Folders that cannot hold one (`export`,
+/// `checkpoints`, `figures`, `report`, `slurm`) are not entered.
 pub fn find_eval_folders(roots: &[PathBuf]) -> Vec<PathBuf> {
     fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
         if is_eval_folder(dir) {
             out.push(dir.to_path_buf());
             return;
         }
-        let Ok(entries) = std::fs::read_dir(dir) else {
-            return;
-        };
-        let mut subs: Vec<PathBuf> = entries
-            .flatten()
-            .map(|e| e.path())
-            .filter(|p| p.is_dir())
+        // Real sub-folders only: a symbolic link (a self-link, a loop) is never followed.
+        let subs: Vec<PathBuf> = chronocooked_env::fs::real_subdirs(dir)
+            .into_iter()
             .filter(|p| {
                 !matches!(
                     p.file_name().and_then(|n| n.to_str()),
@@ -83,7 +80,6 @@ pub fn find_eval_folders(roots: &[PathBuf]) -> Vec<PathBuf> {
                 )
             })
             .collect();
-        subs.sort();
         for s in subs {
             walk(&s, out);
         }
@@ -93,7 +89,9 @@ pub fn find_eval_folders(roots: &[PathBuf]) -> Vec<PathBuf> {
         walk(r, &mut out);
     }
     out.sort();
-    out.dedup();
+    // Each real folder once, however many roots reach it.
+    let mut seen = std::collections::BTreeSet::new();
+    out.retain(|p| seen.insert(std::fs::canonicalize(p).unwrap_or_else(|_| p.clone())));
     out
 }
 
@@ -102,19 +100,29 @@ pub fn find_eval_folders(roots: &[PathBuf]) -> Vec<PathBuf> {
 fn row_label(folder: &Path, model: &str) -> String {
     folder
         .parent()
-        .and_then(|p| std::fs::read_to_string(p.join("job.json")).ok())
-        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+        .and_then(|p| optional_json::<serde_json::Value>(&p.join("job.json")))
         .and_then(|v| v["row"].as_str().map(str::to_string))
         .unwrap_or_else(|| model.to_string())
+}
+
+/// An optional file beside an evaluation: `None` when absent; when present but unreadable,
+/// also `None`, with a warning naming it (never ignored silently).
+fn optional_json<T: serde::de::DeserializeOwned>(path: &Path) -> Option<T> {
+    let text = std::fs::read_to_string(path).ok()?;
+    match serde_json::from_str(&text) {
+        Ok(v) => Some(v),
+        Err(e) => {
+            eprintln!("warning: {}: {e}; ignored", path.display());
+            None
+        }
+    }
 }
 
 /// Neural summary of the primary population recorded next to an evaluation folder: the
 /// population with the most units (first on ties: PPO `latent`, SBF `oscillators`, time
 /// cells `time_cells`; DDM `accumulator`).
 pub fn load_neural(folder: &Path) -> Option<NeuralSummary> {
-    let path = folder.parent()?.join("activity.summary.json");
-    let text = std::fs::read_to_string(path).ok()?;
-    let all: Vec<NeuralSummary> = serde_json::from_str(&text).ok()?;
+    let all: Vec<NeuralSummary> = optional_json(&folder.parent()?.join("activity.summary.json"))?;
     let max = all.iter().map(|s| s.units).max()?;
     all.into_iter().find(|s| s.units == max)
 }
@@ -122,8 +130,7 @@ pub fn load_neural(folder: &Path) -> Option<NeuralSummary> {
 /// Episodes to adapt measured next to an evaluation folder (`../adapt/adapt.json` from
 /// `adapt`): `Some(n)` adapted after n episodes, `None` inside means it never adapted.
 pub fn load_adaptation(folder: &Path) -> Option<Option<usize>> {
-    let text = std::fs::read_to_string(folder.parent()?.join("adapt").join("adapt.json")).ok()?;
-    let v: serde_json::Value = serde_json::from_str(&text).ok()?;
+    let v: serde_json::Value = optional_json(&folder.parent()?.join("adapt").join("adapt.json"))?;
     Some(v["episodes_to_adapt"].as_u64().map(|n| n as usize))
 }
 

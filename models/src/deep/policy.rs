@@ -150,7 +150,86 @@ pub struct PolicyConfig {
     pub core_init: CoreInit,
 }
 
+/// Largest size of any one dimension of a policy (hidden units, trunk widths, grid cells):
+/// the zoo's largest core has 4096 units.
+pub const MAX_POLICY_DIM: usize = 4096;
+
+/// A [`PolicyConfig`] (read from `policy.json`) outside what a policy can be.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("field `{field}`: {value} (allowed: {allowed})")]
+pub struct PolicyConfigError {
+    /// The field (`arch.hidden`, `trunk.cells`, …).
+    pub field: String,
+    /// The value found.
+    pub value: String,
+    /// What it may be.
+    pub allowed: String,
+}
+
 impl PolicyConfig {
+    /// Checks every size and constant before anything is allocated: sizes in
+    /// `1..=`[`MAX_POLICY_DIM`] (a CNN-MLP has `arch.hidden = 0`), actions in `1..=64`,
+    /// CTRNN `dt` in (0, 1] and `τ_init` finite and > 0.
+    pub fn validate(&self) -> Result<(), PolicyConfigError> {
+        let err = |field: &str, value: String, allowed: &str| PolicyConfigError {
+            field: field.into(),
+            value,
+            allowed: allowed.into(),
+        };
+        let dim = format!("1..={MAX_POLICY_DIM}");
+        let t = &self.trunk;
+        for (field, v) in [
+            ("trunk.cells", t.cells),
+            ("trunk.channels", t.channels),
+            ("trunk.conv1", t.conv1),
+            ("trunk.conv2", t.conv2),
+            ("trunk.features", t.features),
+            ("head_hidden", self.head_hidden),
+        ] {
+            if !(1..=MAX_POLICY_DIM).contains(&v) {
+                return Err(err(field, v.to_string(), &dim));
+            }
+        }
+        match self.arch.core {
+            None if self.arch.hidden != 0 => {
+                return Err(err(
+                    "arch.hidden",
+                    self.arch.hidden.to_string(),
+                    "0 for the CNN-MLP",
+                ));
+            }
+            Some(_) if !(1..=MAX_POLICY_DIM).contains(&self.arch.hidden) => {
+                return Err(err("arch.hidden", self.arch.hidden.to_string(), &dim));
+            }
+            _ => {}
+        }
+        if self.arch.reservoir && self.arch.core.is_none() {
+            return Err(err(
+                "arch.reservoir",
+                "true".into(),
+                "false for the CNN-MLP",
+            ));
+        }
+        if !(1..=64).contains(&self.actions) {
+            return Err(err("actions", self.actions.to_string(), "1..=64"));
+        }
+        if !(self.ctrnn_dt > 0.0 && self.ctrnn_dt <= 1.0) {
+            return Err(err(
+                "ctrnn_dt",
+                self.ctrnn_dt.to_string(),
+                "a number in (0, 1]",
+            ));
+        }
+        if !(self.ctrnn_tau_init.is_finite() && self.ctrnn_tau_init > 0.0) {
+            return Err(err(
+                "ctrnn_tau_init",
+                self.ctrnn_tau_init.to_string(),
+                "a finite number > 0",
+            ));
+        }
+        Ok(())
+    }
+
     /// Reference configuration for `arch` on a grid of `cells` cells with `channels` inputs.
     pub fn new(arch: Architecture, cells: usize, channels: usize, actions: usize) -> Self {
         PolicyConfig {

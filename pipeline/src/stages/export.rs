@@ -21,13 +21,14 @@ pub fn export(
     }
     let mut files = Vec::new();
     if let Some(path) = activity {
-        let text = std::fs::read_to_string(path).map_err(|e| PipelineError::read(path, e))?;
-        let ds: chronocooked_models::ActivityDataset =
-            serde_json::from_str(&text).map_err(|e| PipelineError::NotA {
+        let text = std::fs::read(path).map_err(|e| PipelineError::read(path, e))?;
+        let ds = chronocooked_models::ActivityDataset::from_json(&text).map_err(|message| {
+            PipelineError::NotA {
                 path: path.to_path_buf(),
                 what: "an activity dataset (from `record`)",
-                message: e.to_string(),
-            })?;
+                message,
+            }
+        })?;
         files.extend(
             chronocooked_analysis::export::export_activity(&ds, out, window)
                 .map_err(PipelineError::Analysis)?,

@@ -65,6 +65,38 @@ pub fn clip_global_norm(grads: &mut [f32], max_norm: f64) -> f64 {
 }
 
 impl Adam {
+    /// Checks a loaded state for `n` parameters: both moments of length `n`, finite
+    /// (second moments ≥ 0), hyperparameters in range and a step count the bias correction
+    /// can take. Errors give the field (`m`, `v`, `t`, `params`) and what it must be.
+    pub fn validate(&self, n: usize) -> Result<(), (&'static str, String)> {
+        for (field, values) in [("m", &self.m), ("v", &self.v)] {
+            if values.len() != n {
+                return Err((
+                    field,
+                    format!("{} values, the run needs exactly {n}", values.len()),
+                ));
+            }
+            if let Some(i) = values.iter().position(|x| !x.is_finite()) {
+                return Err((field, format!("value {i} is not a finite number")));
+            }
+        }
+        if self.v.iter().any(|&x| x < 0.0) {
+            return Err(("v", "second moments must be >= 0".into()));
+        }
+        if self.t >= i32::MAX as u64 {
+            return Err(("t", format!("{} steps (at most {})", self.t, i32::MAX - 1)));
+        }
+        let AdamParams { beta1, beta2, eps } = self.params;
+        if !((0.0..1.0).contains(&beta1)
+            && (0.0..1.0).contains(&beta2)
+            && eps > 0.0
+            && eps.is_finite())
+        {
+            return Err(("params", "betas in [0, 1) and eps > 0".into()));
+        }
+        Ok(())
+    }
+
     /// Fresh state for `n` parameters.
     pub fn new(n: usize, params: AdamParams) -> Self {
         Adam {

@@ -182,6 +182,17 @@ pub enum Curriculum {
     },
 }
 
+/// Most transitions of one rollout (`n_envs · n_steps`).
+pub const MAX_ROLLOUT: usize = 1 << 20;
+
+/// Default [`TrainConfig::keep_checkpoints`]: the newest three checkpoints (a corrupt newest
+/// one still leaves two to resume from).
+pub const DEFAULT_KEEP_CHECKPOINTS: usize = 3;
+
+fn default_keep_checkpoints() -> usize {
+    DEFAULT_KEEP_CHECKPOINTS
+}
+
 /// A complete, resolved training configuration (saved in every run folder).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -202,6 +213,11 @@ pub struct TrainConfig {
     pub obs: ObsEncoding,
     /// Write a checkpoint every this many env steps (rounded up to whole updates; 0 = only at the end).
     pub checkpoint_every: u64,
+    /// Checkpoints kept in `checkpoints/` (the newest; the oldest is deleted right after a new
+    /// one is written, so storage stays bounded: at most one more while a write is in
+    /// flight; the final model is kept besides). At least 1.
+    #[serde(default = "default_keep_checkpoints")]
+    pub keep_checkpoints: usize,
     /// Episodes in the training success-rate window (progress bar and CSV).
     pub stats_window: usize,
     /// Deterministic evaluation from every start cell every this many env steps (0 = only at the end).
@@ -234,6 +250,7 @@ impl TrainConfig {
             total_steps: 900_000,
             obs: ObsEncoding::Codes,
             checkpoint_every: 100_000,
+            keep_checkpoints: DEFAULT_KEEP_CHECKPOINTS,
             stats_window: 100,
             eval_every: 0,
             stop_at_success: None,
@@ -259,6 +276,7 @@ impl TrainConfig {
                 }
             }
             "checkpoint_every" => self.checkpoint_every = parse(key, v, "integer >= 0")?,
+            "keep_checkpoints" => self.keep_checkpoints = parse_pos(key, v)?,
             "eval_every" => self.eval_every = parse(key, v, "integer >= 0")?,
             "stats_window" => self.stats_window = parse_pos(key, v)?,
             "core_init" => {
@@ -445,6 +463,7 @@ impl TrainConfig {
                 .into(),
             ),
             ("checkpoint_every", self.checkpoint_every.to_string()),
+            ("keep_checkpoints", self.keep_checkpoints.to_string()),
             ("eval_every", self.eval_every.to_string()),
             ("stats_window", self.stats_window.to_string()),
             (
@@ -542,6 +561,15 @@ impl TrainConfig {
             replay.set(k, &v)?;
         }
         chronocooked_env::make_config(&self.task, &self.env)?;
+        // The rollout buffer holds n_envs · n_steps transitions: bounded so that a
+        // hand-edited config.json cannot ask for more memory than any machine has.
+        if self.ppo.n_envs.saturating_mul(self.ppo.n_steps) > MAX_ROLLOUT {
+            return Err(TrainError::param(
+                "n_steps",
+                self.ppo.n_steps,
+                &format!("n_envs * n_steps <= {MAX_ROLLOUT} (the rollout buffer)"),
+            ));
+        }
         if self.ppo.n_envs * self.ppo.n_steps < 2 {
             return Err(TrainError::param(
                 "n_steps",

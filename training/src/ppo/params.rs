@@ -125,3 +125,20 @@ pub fn param_offset<M: Module>(module: &M, id: burn::module::ParamId) -> Option<
     module.visit(&mut o);
     o.found
 }
+
+struct StableIds(u64);
+
+impl ModuleMapper for StableIds {
+    fn map_float<const D: usize>(&mut self, mut param: Param<Tensor<D>>) -> Param<Tensor<D>> {
+        param.id = burn::module::ParamId::from(self.0);
+        self.0 += 1;
+        param
+    }
+}
+
+/// `module` with its float parameters numbered 0, 1, … in visiting order instead of burn's
+/// random parameter ids, so a saved model (`model.bpk`) is a function of the weights alone:
+/// the same training gives the same bytes.
+pub fn with_stable_ids<M: Module>(module: M) -> M {
+    module.map(&mut StableIds(0))
+}

@@ -1,14 +1,20 @@
 //! A PPO run folder trained to its budget: a new run (config, policy description, curve
 //! header written first) or a stopped one continued from its newest checkpoint; periodic
-//! evaluation, early stop at a success target, checkpoints, the final model and summary.
+//! evaluation, early stop at a success target, checkpoints (the newest `keep_checkpoints`
+//! kept), the final model and summary. A resume never starts over silently: it continues
+//! from the newest intact checkpoint (warning about each one skipped), fails naming the
+//! files when none is usable, removes a killed writer's temporary files and cuts
+//! `curves.csv` back to the checkpoint.
 
 use crate::error::TrainError;
 use crate::evaluate::{eval_tds, evaluate_policy, success_rate};
 use crate::ppo::config::TrainConfig;
 use crate::ppo::state::UpdateLog;
 use crate::ppo::trainer::Trainer;
-use crate::run_dir::{RunDir, RunSummary, curve_header, write_atomic};
-use chronocooked_env::make_config;
+use crate::run_dir::{
+    RunDir, RunSummary, curve_header, expected_policy, read_policy_config, write_atomic,
+};
+use chronocooked_env::{integrity, make_config};
 use std::path::Path;
 
 /// Callbacks of a training run (progress display).
@@ -42,17 +48,39 @@ pub fn run_training(
             let json = serde_json::to_string_pretty(&cfg).unwrap_or_default();
             write_atomic(&run.path.join("config.json"), json.as_bytes())?;
             let pj = serde_json::to_string_pretty(trainer.policy_config()).unwrap_or_default();
-            write_atomic(&run.path.join("policy.json"), pj.as_bytes())?;
+            integrity::write_recorded(&run.path.join("policy.json"), pj.as_bytes())?;
             write_atomic(&run.path.join("curves.csv"), curve_header().as_bytes())?;
             (run, trainer)
         }
         None => {
             let run = RunDir::open(dir)?;
             let cfg = run.config()?;
-            let trainer = match run.latest_state()? {
-                Some(state) => Trainer::restore(cfg, state)?,
-                None => Trainer::new(cfg)?,
+            for p in run.remove_stale_temps() {
+                eprintln!(
+                    "note: removed {} (left by an interrupted write)",
+                    p.display()
+                );
+            }
+            if run.checkpoints().is_empty() {
+                // Nothing learned yet (killed before the first checkpoint, perhaps while the
+                // folder was being set up): the policy description follows from the config.
+                let pj = serde_json::to_string_pretty(&expected_policy(&cfg)?).unwrap_or_default();
+                integrity::write_recorded(&run.path.join("policy.json"), pj.as_bytes())?;
+            } else {
+                read_policy_config(&run.path, &cfg)?;
+            }
+            let trainer = match resume_trainer(&run, &cfg)? {
+                Some(t) => t,
+                None => {
+                    eprintln!(
+                        "note: {} holds no checkpoint yet: training starts from step 0",
+                        dir.display()
+                    );
+                    Trainer::new(cfg)?
+                }
             };
+            // The learning curve is cut back to the checkpoint (its rows are the
+            // checkpoint's history); rows of the lost updates are written again as they rerun.
             run.write_curves(&trainer.state().curve)?;
             (run, trainer)
         }
@@ -82,13 +110,13 @@ pub fn run_training(
         run.append_curve(&row)?;
         progress.update(&row, cfg.total_steps);
         if every(cfg.checkpoint_every, steps) {
-            run.write_checkpoint(trainer.state())?;
+            run.write_checkpoint(trainer.state(), cfg.keep_checkpoints)?;
         }
         if solved_at.is_some() {
             break;
         }
     }
-    run.write_checkpoint(trainer.state())?;
+    run.write_checkpoint(trainer.state(), cfg.keep_checkpoints)?;
     run.save_model(trainer.policy(), "model.bpk")?;
     let eps = evaluate_policy(&trainer.policy(), &task, cfg.obs, &eval_tds(&task))?;
     let st = trainer.state();
@@ -104,4 +132,35 @@ pub fn run_training(
     let json = serde_json::to_string_pretty(&summary).unwrap_or_default();
     write_atomic(&run.path.join("summary.json"), json.as_bytes())?;
     Ok(summary)
+}
+
+/// The newest checkpoint that is intact and fits the run, as a trainer ready to go on;
+/// `Ok(None)` when there is no checkpoint at all. A corrupt or unusable checkpoint is
+/// skipped with a warning on stderr naming it; when checkpoints exist but none is
+/// usable, the error names each one and how to start over.
+pub fn resume_trainer(run: &RunDir, cfg: &TrainConfig) -> Result<Option<Trainer>, TrainError> {
+    let all = run.checkpoints();
+    let mut skipped = Vec::new();
+    for p in all.iter().rev() {
+        let restored = RunDir::read_checkpoint(p).and_then(|s| {
+            Trainer::restore(cfg.clone(), s).map_err(|e| TrainError::Corrupt {
+                path: p.display().to_string(),
+                reason: e.to_string(),
+            })
+        });
+        match restored {
+            Ok(t) => return Ok(Some(t)),
+            Err(e) => {
+                eprintln!("warning: skipping checkpoint {e}; trying an older one");
+                skipped.push(e.to_string());
+            }
+        }
+    }
+    if all.is_empty() {
+        return Ok(None);
+    }
+    Err(TrainError::NoValidCheckpoint {
+        dir: run.path.display().to_string(),
+        skipped: skipped.join("; "),
+    })
 }

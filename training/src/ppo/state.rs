@@ -145,3 +145,155 @@ pub struct TrainerState {
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub reservoir_grad: Vec<f32>,
 }
+
+/// A field of a loaded checkpoint that does not fit the run (see [`TrainerState::validate`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("field `{field}`: {reason}")]
+pub struct StateError {
+    /// The field (`theta`, `adam.m`, `envs.kitchens[3].agent`, …).
+    pub field: String,
+    /// What is wrong and what it must be.
+    pub reason: String,
+}
+
+fn bad(field: &str, reason: impl Into<String>) -> StateError {
+    StateError {
+        field: field.into(),
+        reason: reason.into(),
+    }
+}
+
+fn check_len(field: &str, len: usize, want: usize) -> Result<(), StateError> {
+    if len == want {
+        Ok(())
+    } else {
+        Err(bad(
+            field,
+            format!("{len} values, the run needs exactly {want}"),
+        ))
+    }
+}
+
+fn check_finite<T: Copy + Into<f64>>(field: &str, values: &[T]) -> Result<(), StateError> {
+    match values.iter().position(|&v| !v.into().is_finite()) {
+        Some(i) => Err(bad(field, format!("value {i} is not a finite number"))),
+        None => Ok(()),
+    }
+}
+
+impl TrainerState {
+    /// Checks a state read from a checkpoint against `fresh`, the state a new trainer of
+    /// the same configuration starts from (which fixes every length), before any of it is
+    /// used: parameter and optimiser lengths, finite values, per-env lists, the recurrent
+    /// state's shape (`hidden` units, a cell state for LSTMs only), counters that agree
+    /// with each other and the learning curve. The env snapshot is checked by
+    /// [`chronocooked_env::VecEnv::validate_snapshot`] when it is restored.
+    pub fn validate(
+        &self,
+        fresh: &TrainerState,
+        hidden: usize,
+        lstm: bool,
+        recurrent: bool,
+        batch: u64,
+    ) -> Result<(), StateError> {
+        let n_params = fresh.theta.len();
+        let n_envs = fresh.keep.len();
+        check_len("theta", self.theta.len(), n_params)?;
+        check_finite("theta", &self.theta)?;
+        self.adam
+            .validate(n_params)
+            .map_err(|(f, r)| bad(&format!("adam.{f}"), r))?;
+        check_len("keep", self.keep.len(), n_envs)?;
+        if self.keep.iter().any(|&k| k != 0.0 && k != 1.0) {
+            return Err(bad("keep", "every value must be 0 or 1"));
+        }
+        check_len("ep_return", self.ep_return.len(), n_envs)?;
+        check_finite("ep_return", &self.ep_return)?;
+        check_len("ep_len", self.ep_len.len(), n_envs)?;
+        match &self.core_state {
+            None => {}
+            Some(_) if !recurrent => {
+                return Err(bad(
+                    "core_state",
+                    "present, but the model has no recurrent core",
+                ));
+            }
+            Some((h, c)) => {
+                check_len("core_state.0", h.len(), n_envs * hidden)?;
+                check_finite("core_state.0", h)?;
+                match (c, lstm) {
+                    (Some(c), true) => {
+                        check_len("core_state.1", c.len(), n_envs * hidden)?;
+                        check_finite("core_state.1", c)?;
+                    }
+                    (None, false) => {}
+                    (Some(_), false) => {
+                        return Err(bad("core_state.1", "a cell state, but the core is no LSTM"));
+                    }
+                    (None, true) => {
+                        return Err(bad(
+                            "core_state.1",
+                            "missing (the LSTM core needs a cell state)",
+                        ));
+                    }
+                }
+            }
+        }
+        if let Some(i) = self.recent.iter().position(|e| !e.ret.is_finite()) {
+            return Err(bad(
+                "recent",
+                format!("episode {i} has a non-finite return"),
+            ));
+        }
+        if self.steps != self.updates.saturating_mul(batch) {
+            return Err(bad(
+                "steps",
+                format!(
+                    "{} env steps after {} updates; each update takes exactly {batch}",
+                    self.steps, self.updates
+                ),
+            ));
+        }
+        if self.curve.len() as u64 != self.updates {
+            return Err(bad(
+                "curve",
+                format!(
+                    "{} rows for {} updates (one row per update)",
+                    self.curve.len(),
+                    self.updates
+                ),
+            ));
+        }
+        if let Some(i) = self
+            .curve
+            .iter()
+            .enumerate()
+            .position(|(i, r)| r.update != i as u64 + 1)
+        {
+            return Err(bad("curve", format!("row {i} is not update {}", i + 1)));
+        }
+        if !(0.0..=1.0).contains(&self.never_ready_prob) {
+            return Err(bad("never_ready_prob", "a probability in [0, 1]"));
+        }
+        if !(self.wall_s.is_finite() && self.wall_s >= 0.0) {
+            return Err(bad("wall_s", "a finite number of seconds >= 0"));
+        }
+        if !self.reservoir_grad.is_empty() {
+            check_finite("reservoir_grad", &self.reservoir_grad)?;
+            if self.reservoir_grad.len() > n_params {
+                return Err(bad("reservoir_grad", "longer than the parameter vector"));
+            }
+        }
+        if self.envs.kitchens.len() != fresh.envs.kitchens.len() {
+            return Err(bad(
+                "envs.kitchens",
+                format!(
+                    "{} envs, the run has {}",
+                    self.envs.kitchens.len(),
+                    fresh.envs.kitchens.len()
+                ),
+            ));
+        }
+        Ok(())
+    }
+}

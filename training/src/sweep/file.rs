@@ -4,7 +4,6 @@
 use crate::error::TrainError;
 use crate::zoo::{Family, family_of};
 use serde::{Deserialize, Serialize};
-use std::path::Path;
 
 /// A sweep file (TOML). Every list is crossed with every other.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
@@ -155,22 +154,6 @@ pub fn variant_label(sets: &[String]) -> String {
 }
 
 impl SweepFile {
-    /// Parses a sweep file's text (`source` names it in errors).
-    pub fn parse(text: &str, source: &str) -> Result<Self, TrainError> {
-        let f: SweepFile = toml::from_str(text).map_err(|e| TrainError::SweepFile {
-            file: source.into(),
-            message: e.to_string(),
-        })?;
-        f.validate()?;
-        Ok(f)
-    }
-
-    /// Reads and parses a sweep file.
-    pub fn load(path: &Path) -> Result<Self, TrainError> {
-        let text = std::fs::read_to_string(path).map_err(|e| TrainError::io(path, e))?;
-        Self::parse(&text, &path.display().to_string())
-    }
-
     /// Checks every list and name (typed errors name the field and allowed values).
     pub fn validate(&self) -> Result<(), TrainError> {
         for (field, empty) in [
@@ -232,11 +215,7 @@ impl SweepFile {
                     .iter()
                     .any(|m| family_of(m).is_ok_and(|f| applies(f, task, m, &s)));
                 if !used {
-                    return Err(bad(
-                        "variants",
-                        &s,
-                        "settings some model of the sweep accepts (PPO or timing-model settings, or env.<task parameter>)",
-                    ));
+                    return Err(refusal(self, "variants", &s));
                 }
             }
         }
@@ -390,5 +369,46 @@ impl SweepFile {
             env,
             row,
         }
+    }
+}
+
+/// Why no model of `sweep` accepts the setting `kv` of `field` (`set` or `variants`): the
+/// range error of a model that knows the key, or else "unknown setting".
+pub(crate) fn refusal(sweep: &SweepFile, field: &str, kv: &str) -> TrainError {
+    let (k, v) = kv.split_once('=').unwrap_or((kv, ""));
+    let (k, v) = (k.trim(), v.trim());
+    for task in &sweep.tasks {
+        for m in sweep.expanded_models() {
+            let family = family_of(&m);
+            if field == "set" && !matches!(family, Ok(Family::DeepRl)) {
+                continue;
+            }
+            let err = match family {
+                Ok(Family::DeepRl) => m.parse().ok().and_then(|arch| {
+                    crate::ppo::config::TrainConfig::base(task, arch)
+                        .set(k, v)
+                        .err()
+                }),
+                Ok(Family::Timing) => crate::timing_run::TimingRunConfig::new(task, &m, 0)
+                    .set(kv)
+                    .err(),
+                _ => None,
+            };
+            if let Some(TrainError::InvalidParam { field: f, .. }) = &err
+                && f == k
+            {
+                return err.unwrap_or(TrainError::BadOverride(kv.into()));
+            }
+        }
+    }
+    let allowed = if field == "set" {
+        "PPO settings some PPO model of the sweep accepts, or env.<task parameter> (`set` reaches PPO runs only; timing models take `episodes` and `variants`)"
+    } else {
+        "settings some model of the sweep accepts (PPO or timing-model settings, or env.<task parameter>)"
+    };
+    TrainError::InvalidParam {
+        field: field.into(),
+        value: kv.into(),
+        allowed: allowed.into(),
     }
 }

@@ -2,7 +2,7 @@
 //! jobs; each job trains (unless a baseline), evaluates, records activity and exports, in its
 //! own folder `OUT/<task>/<model>[~<variant>]/seed<N>/`.
 //!
-//! * [`file`] — the sweep file and its jobs;
+//! * [`file`] — the sweep file and its jobs; [`check`] — every job's settings checked at load;
 //! * [`stage`] — the typed stages of a job and which ones it needs;
 //! * [`progress`] — finished stages per job folder (`progress.json`), so an interrupted sweep
 //!   rerun redoes nothing that finished;
@@ -12,6 +12,7 @@
 //! The stages themselves run in the `chronocooked-pipeline` crate (`run_job`), one level up:
 //! evaluation, recording and export need the analysis crate, a sibling of this one.
 
+pub mod check;
 pub mod cost;
 pub mod file;
 pub mod progress;

@@ -92,6 +92,27 @@ pub(super) fn err<E: std::fmt::Debug>(path: &Path) -> impl Fn(E) -> FigureError 
     }
 }
 
+/// Writes the figure file `path` atomically: `draw` renders into a temporary file beside it
+/// (same extension), renamed over `path` once complete ([`chronocooked_env::fs`]).
+pub(super) fn atomic(
+    path: &Path,
+    draw: impl FnOnce(&Path) -> Result<(), FigureError>,
+) -> Result<(), FigureError> {
+    let mut inner = None;
+    let done = chronocooked_env::fs::write_atomic_with(path, |tmp| {
+        draw(tmp).map_err(|e| {
+            let m = e.message.clone();
+            inner = Some(e);
+            m
+        })
+    });
+    match (done, inner) {
+        (Ok(()), _) => Ok(()),
+        (Err(_), Some(e)) => Err(e),
+        (Err(e), None) => Err(err(path)(e)),
+    }
+}
+
 /// The points of `s` with both coordinates finite (NaN marks a gap).
 fn finite_points(s: &Series) -> Vec<(f64, f64)> {
     s.points
@@ -253,16 +274,16 @@ pub fn write_chart(stem: &Path, chart: &Chart) -> Result<Vec<PathBuf>, FigureErr
     }
     let svg = stem.with_extension("svg");
     let png = stem.with_extension("png");
-    {
-        let root = SVGBackend::new(&svg, (800, 520)).into_drawing_area();
+    atomic(&svg, |tmp| {
+        let root = SVGBackend::new(tmp, (800, 520)).into_drawing_area();
         draw_chart(root.clone(), chart, &svg)?;
-        root.present().map_err(err(&svg))?;
-    }
-    {
-        let root = BitMapBackend::new(&png, (800, 520)).into_drawing_area();
+        root.present().map_err(err(&svg))
+    })?;
+    atomic(&png, |tmp| {
+        let root = BitMapBackend::new(tmp, (800, 520)).into_drawing_area();
         draw_chart(root.clone(), chart, &png)?;
-        root.present().map_err(err(&png))?;
-    }
+        root.present().map_err(err(&png))
+    })?;
     Ok(vec![svg, png])
 }
 
@@ -358,18 +379,22 @@ pub fn write_heatmap(
     let rows = bin_rows(rows.into_iter().map(|r| r.1).collect(), MAX_HEATMAP_ROWS);
     let svg = stem.with_extension("svg");
     let png = stem.with_extension("png");
-    draw_heatmap(
-        SVGBackend::new(&svg, (800, 520)).into_drawing_area(),
-        title,
-        &rows,
-        &svg,
-    )?;
-    draw_heatmap(
-        BitMapBackend::new(&png, (800, 520)).into_drawing_area(),
-        title,
-        &rows,
-        &png,
-    )?;
+    atomic(&svg, |tmp| {
+        draw_heatmap(
+            SVGBackend::new(tmp, (800, 520)).into_drawing_area(),
+            title,
+            &rows,
+            &svg,
+        )
+    })?;
+    atomic(&png, |tmp| {
+        draw_heatmap(
+            BitMapBackend::new(tmp, (800, 520)).into_drawing_area(),
+            title,
+            &rows,
+            &png,
+        )
+    })?;
     Ok(vec![svg, png])
 }
 

@@ -3,7 +3,7 @@
 //! fitted to the pooled counts, the anchors' arithmetic and geometric means and the
 //! bisection point.
 
-use super::draw::{Chart, FigureError, Series, draw_chart, ensure_font, err};
+use super::draw::{Chart, FigureError, Series, atomic, draw_chart, ensure_font, err};
 use crate::behaviour::metrics::BisectionMetrics;
 use crate::behaviour::psychometric::{ProbeCounts, check_transition, fit_logistic};
 use plotters::prelude::*;
@@ -172,16 +172,16 @@ pub fn write_panels(
     let size = (PANEL.0 * grid.1 as u32, PANEL.1 * grid.0 as u32);
     let svg = stem.with_extension("svg");
     let png = stem.with_extension("png");
-    {
-        let root = SVGBackend::new(&svg, size).into_drawing_area();
+    atomic(&svg, |tmp| {
+        let root = SVGBackend::new(tmp, size).into_drawing_area();
         draw_grid(&root, grid, charts, &svg)?;
-        root.present().map_err(err(&svg))?;
-    }
-    {
-        let root = BitMapBackend::new(&png, size).into_drawing_area();
+        root.present().map_err(err(&svg))
+    })?;
+    atomic(&png, |tmp| {
+        let root = BitMapBackend::new(tmp, size).into_drawing_area();
         draw_grid(&root, grid, charts, &png)?;
-        root.present().map_err(err(&png))?;
-    }
+        root.present().map_err(err(&png))
+    })?;
     Ok(vec![svg, png])
 }
 

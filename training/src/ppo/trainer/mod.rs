@@ -27,6 +27,24 @@ use std::time::Instant;
 mod curriculum;
 use curriculum::set_warmup;
 
+/// An env error about a checkpoint's field as a [`crate::ppo::state::StateError`].
+fn state_field(field: &str, e: chronocooked_env::EnvError) -> crate::ppo::state::StateError {
+    match e {
+        chronocooked_env::EnvError::InvalidParam {
+            field: f,
+            value,
+            allowed,
+        } if f.starts_with("envs") => crate::ppo::state::StateError {
+            field: f,
+            reason: format!("{value} (allowed: {allowed})"),
+        },
+        other => crate::ppo::state::StateError {
+            field: field.into(),
+            reason: other.to_string(),
+        },
+    }
+}
+
 /// A PPO trainer for one configuration and seed.
 pub struct Trainer {
     cfg: TrainConfig,
@@ -144,27 +162,34 @@ impl Trainer {
         Ok(t)
     }
 
-    /// Rebuilds a trainer from a configuration and a checkpointed state.
+    /// Rebuilds a trainer from a configuration and a checkpointed state. The state is
+    /// checked first ([`TrainerState::validate`], then the env snapshot): a state that does
+    /// not fit the configuration is an error naming the field, never a panic later.
     pub fn restore(cfg: TrainConfig, state: TrainerState) -> Result<Self, TrainError> {
         let mut t = Trainer::new(cfg)?;
-        if state.theta.len() != t.state.theta.len() {
-            return Err(TrainError::Resume {
-                path: String::new(),
-                reason: format!(
-                    "checkpoint has {} parameters, the configured model {}",
-                    state.theta.len(),
-                    t.state.theta.len()
-                ),
-            });
-        }
-        t.envs.restore(&state.envs)?;
+        let arch = t.cfg.model;
+        let batch = (t.cfg.ppo.n_envs * t.cfg.ppo.n_steps) as u64;
+        state
+            .validate(
+                &t.state,
+                arch.hidden,
+                arch.core == Some(CoreKind::Lstm),
+                arch.is_recurrent(),
+                batch,
+            )
+            .map_err(TrainError::BadState)?;
         if let Curriculum::MultiTimer { warmup, .. } = t.cfg.curriculum {
-            t.envs.set_num_timers(state.num_timers)?;
+            t.envs
+                .set_num_timers(state.num_timers)
+                .map_err(|e| TrainError::BadState(state_field("num_timers", e)))?;
             if warmup {
                 let task = make_config(&t.cfg.task, &t.cfg.env)?;
                 set_warmup(&mut t.envs, &task, state.curriculum_level == 0)?;
             }
         }
+        t.envs
+            .restore(&state.envs)
+            .map_err(|e| TrainError::BadState(state_field("envs", e)))?;
         t.model = write_params(t.model, &state.theta);
         t.state = state;
         t.apply_curriculum()?;
