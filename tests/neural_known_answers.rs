@@ -264,3 +264,45 @@ fn scaling_is_the_td_ratio_for_stretching_activity_and_one_for_a_fixed_clock() {
     // The same trajectory at the same speed (compared over the shorter window).
     assert!((sc.speed_ratio.unwrap() - 1.0).abs() < 0.1, "{sc:?}");
 }
+
+#[test]
+fn rhythms_whose_speed_varies_from_trial_to_trial_still_oscillate() {
+    // Oscillators at 5–15 Hz sampled every 25 ms (0.125–0.375 cycles per step), all starting
+    // in phase at oven-on, each trial's frequencies scaled by one log-normal factor
+    // (SD 0.15, like the SBF's clock noise): the trial average decays after a cycle or two,
+    // the single trials keep their rhythm.
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(21);
+    let (td, units) = (12u32, 20usize);
+    let freqs: Vec<f64> = (0..units)
+        .map(|i| (5.0 + 10.0 * i as f64 / (units - 1) as f64) * 0.025)
+        .collect();
+    let trials = (0..36)
+        .map(|_| {
+            let r = (0.15 * gauss(&mut rng)).exp();
+            let steps = 2 * td as usize + 1;
+            let mut activity = Vec::with_capacity(steps * units);
+            for s in 0..steps {
+                for f in &freqs {
+                    activity.push((2.0 * PI * f * r * s as f64).cos() as f32);
+                }
+            }
+            trial(td, steps, activity)
+        })
+        .collect();
+    let ds = ActivityDataset {
+        meta: meta(
+            vec![Population {
+                name: "osc".into(),
+                size: units,
+            }],
+            0,
+        ),
+        trials,
+    };
+    let c = classify_td(&ds, Some("osc"), td, &opts()).unwrap();
+    let bin = 1.0 / c.window as f64;
+    for (u, f) in c.tests.unwrap().iter().zip(&freqs) {
+        assert_eq!(u.category, Category::Oscillating, "{f}: {u:?}");
+        assert!((u.spectral_peak - f).abs() <= bin + 1e-9, "{f}: {u:?}");
+    }
+}

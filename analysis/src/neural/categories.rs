@@ -19,12 +19,19 @@
 //!      by at least half its range on both sides of the maximum. A ramp's maximum is at an
 //!      edge, so a unit cannot pass both tests with the same maximum; one that passes both
 //!      (possible only with noise) is `mixed`;
-//!    * **oscillating**: the periodogram's largest bin with at least `min_cycles` (2) cycles
-//!      in the window exceeds the `1 − alpha` quantile of the same maximum over the
-//!      surrogates (a max-statistic, so testing every bin keeps the rate at `alpha`), and
-//!      the trial average repeats itself (an autocorrelation trough ≤ −0.25, then a peak
-//!      ≥ 0.4 within half the window: [`crate::neural::oscillation::is_oscillating`]), so
-//!      a single sharp bump (flat spectrum) is not a rhythm.
+//!    * **oscillating**: a rhythm in the single trials, by three conditions: (a) the
+//!      trial-averaged single-trial periodogram's largest bin with at least `min_cycles`
+//!      (2) cycles in the window is significantly above a red-noise (AR(1)) null fitted to
+//!      the same trials (the bin's power over the null's is `χ²₂ₖ/2K`-distributed for K
+//!      trials; Bonferroni over the tested bins, level `alpha` — the test of Torrence &
+//!      Compo 1998; a circular shift keeps every trial's spectrum, so it cannot serve
+//!      here); (b) that bin is a spectral peak (above the bin just below it: the spectra of
+//!      ramps and bumps fall from the lowest frequencies on); (c) the mean single-trial
+//!      autocorrelation repeats itself within half the window — a trough ≤ −0.25, then a
+//!      peak ≥ 0.25 ([`crate::neural::oscillation::acf_repeats`]), which a single bump,
+//!      however narrow, never shows. Single trials rather than the trial average, so a
+//!      rhythm whose phase drifts from trial to trial (clock noise) after starting locked
+//!      to the event still counts;
 //! 3. Category: not tuned → `untuned`; exactly one shape → that shape; two or more shapes,
 //!    or tuned with none of them (time-locked but complex: e.g. a transient with less than
 //!    two cycles, a rise-fall-rise) → `mixed`.
@@ -33,12 +40,13 @@
 //! trials (a circular shift of one trial leaves its average's variance unchanged) or a
 //! window shorter than `min_window` steps.
 
-use crate::neural::oscillation::is_oscillating;
+use crate::neural::oscillation::{acf_repeats, autocorrelation};
 use crate::neural::shape::{monotone_r2, periodogram, spectral_peak, unimodal_r2};
 use crate::neural::{Cube, argmax};
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use serde::{Deserialize, Serialize};
+use statrs::distribution::{ChiSquared, ContinuousCDF};
 
 /// A unit's category (mutually exclusive).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -151,10 +159,14 @@ pub struct UnitTests {
     /// Width (steps) of the peak at half its height above the window's minimum (NaN when
     /// it does not fall to half on both sides).
     pub peak_width: f64,
-    /// Frequency of the largest spectral bin with ≥ `min_cycles` cycles (cycles per step).
+    /// Frequency of the largest bin with ≥ `min_cycles` cycles of the trial-averaged
+    /// single-trial periodogram (cycles per step).
     pub spectral_peak: f64,
-    /// Surrogate p of that bin's power (max-statistic over bins).
+    /// p of that bin's power against the AR(1) null (Bonferroni over the tested bins).
     pub spectral_p: f64,
+    /// Whether that bin is a spectral peak (above the bin just below it) and the mean
+    /// single-trial autocorrelation repeats itself.
+    pub narrowband: bool,
     /// Passed the ramp test.
     pub ramp: bool,
     /// Passed the time-field test.
@@ -231,6 +243,60 @@ fn half_width(m: &[f64], peak: usize) -> f64 {
     }
 }
 
+/// The single-trial rhythm test on `trials` (each truncated to the shortest, `m` steps):
+/// `(peak bin, p against the AR(1) null, the bin is above the one below it and the mean
+/// autocorrelation repeats)`.
+fn rhythm(trials: &[Vec<f64>], m: usize, bin0: usize) -> (usize, f64, bool) {
+    let k = trials.len();
+    let half = m / 2;
+    let mut power = vec![0.0; half + 1];
+    let mut acf = vec![0.0; half + 1];
+    let (mut c0, mut c1) = (0.0, 0.0);
+    for x in trials {
+        let x = &x[..m];
+        for (p, v) in power.iter_mut().zip(periodogram(x)) {
+            *p += v / k as f64;
+        }
+        for (a, v) in acf.iter_mut().zip(autocorrelation(x, half)) {
+            *a += v / k as f64;
+        }
+        let mean = x.iter().sum::<f64>() / m as f64;
+        for t in 0..m {
+            let d = x[t] - mean;
+            c0 += d * d;
+            if t + 1 < m {
+                c1 += d * (x[t + 1] - mean);
+            }
+        }
+    }
+    // Tested bins: bin0 … half − 1 (the Nyquist bin has other statistics).
+    let last = half.saturating_sub(1);
+    if c0 <= 0.0 || bin0 > last {
+        return (0, 1.0, false);
+    }
+    let rho = (c1 / c0).clamp(-0.99, 0.99);
+    let shape: Vec<f64> = (0..=half)
+        .map(|j| {
+            let w = 2.0 * std::f64::consts::PI * j as f64 / m as f64;
+            (1.0 - rho * rho) / (1.0 - 2.0 * rho * w.cos() + rho * rho)
+        })
+        .collect();
+    // Scale the null to the observed mean power over bins 1 … half − 1.
+    let bins = 1..=last;
+    let scale = bins.clone().map(|j| power[j]).sum::<f64>()
+        / bins.clone().map(|j| shape[j]).sum::<f64>().max(1e-300);
+    let (peak, _) = spectral_peak(&power[..=last], bin0);
+    if peak < bin0 || scale <= 0.0 {
+        return (peak, 1.0, false);
+    }
+    let narrowband = power[peak] > power[peak - 1] && acf_repeats(&acf, -0.25, 0.25);
+    let ratio = power[peak] / (scale * shape[peak]);
+    let dof = 2.0 * k as f64;
+    let tail = ChiSquared::new(dof).map_or(1.0, |d| d.sf(ratio * dof));
+    let tested = (last + 1 - bin0) as f64;
+    (peak, (tail * tested).min(1.0), narrowband)
+}
+
 /// Classifies every unit of `cube` (`[trials, W, units]`, NaN after a trial's end).
 pub fn classify_units(cube: &Cube, cfg: &CategoryConfig) -> Result<Vec<UnitTests>, CategoryError> {
     if cube.time < cfg.min_window {
@@ -261,10 +327,8 @@ pub fn classify_units(cube: &Cube, cfg: &CategoryConfig) -> Result<Vec<UnitTests
             });
         }
         let len = m.len();
-        let bin0 = min_bin(len, cfg.min_cycles);
         let s = variance_stat(&m);
-        let (k_peak, p_peak) = spectral_peak(&periodogram(&m), bin0);
-        let (mut above, mut above_spec) = (0usize, 0usize);
+        let mut above = 0usize;
         let mut shifts = vec![0usize; trials.len()];
         for _ in 0..cfg.surrogates {
             for (sh, x) in shifts.iter_mut().zip(&trials) {
@@ -277,13 +341,16 @@ pub fn classify_units(cube: &Cube, cfg: &CategoryConfig) -> Result<Vec<UnitTests
             if variance_stat(&ms) >= s {
                 above += 1;
             }
-            if spectral_peak(&periodogram(&ms), bin0).1 >= p_peak {
-                above_spec += 1;
-            }
         }
-        let denom = (cfg.surrogates + 1) as f64;
-        let tuning_p = (above + 1) as f64 / denom;
-        let spectral_p = (above_spec + 1) as f64 / denom;
+        // The rhythm test on the steps every trial has (undefined below `min_window`).
+        let shortest = trials.iter().map(Vec::len).min().unwrap_or(0);
+        let bin0 = min_bin(shortest, cfg.min_cycles);
+        let (k_peak, spectral_p, narrowband) = if shortest >= cfg.min_window {
+            rhythm(&trials, shortest, bin0)
+        } else {
+            (0, f64::NAN, false)
+        };
+        let tuning_p = (above + 1) as f64 / (cfg.surrogates + 1) as f64;
         let tuned = tuning_p <= cfg.alpha && s > 0.0;
         let (mono, _) = monotone_r2(&m);
         let uni = unimodal_r2(&m);
@@ -299,11 +366,7 @@ pub fn classify_units(cube: &Cube, cfg: &CategoryConfig) -> Result<Vec<UnitTests
             && peak + 1 < len
             && falls(&m[..peak])
             && falls(&m[peak + 1..]);
-        let oscillating = tuned
-            && k_peak >= bin0
-            && p_peak > 0.0
-            && spectral_p <= cfg.alpha
-            && is_oscillating(&m);
+        let oscillating = tuned && k_peak >= bin0 && spectral_p <= cfg.alpha && narrowband;
         let shapes = [ramp, time_field, oscillating];
         let category = match (tuned, shapes.iter().filter(|&&b| b).count()) {
             (false, _) => Category::Untuned,
@@ -319,8 +382,13 @@ pub fn classify_units(cube: &Cube, cfg: &CategoryConfig) -> Result<Vec<UnitTests
             unimodal_r2: uni,
             peak_time: peak,
             peak_width: half_width(&m, peak),
-            spectral_peak: k_peak as f64 / len as f64,
+            spectral_peak: if shortest > 0 {
+                k_peak as f64 / shortest as f64
+            } else {
+                f64::NAN
+            },
             spectral_p,
+            narrowband,
             ramp,
             time_field,
             oscillating,
