@@ -257,6 +257,16 @@ fn constant_units_are_excluded_and_small_populations_get_no_fractions() {
     .unwrap();
     assert!(s.categories.is_none());
     assert!(s.undefined.unwrap().contains("window of 6 steps"));
+    // Trials that end early (as on fixed-interval trials): 3 of 12 cover the window, too
+    // few for the rhythm test, which is then undefined for every unit and counted.
+    let mut ds = ramp_dataset(8, 12, 2, 0);
+    for t in ds.trials.iter_mut().skip(3) {
+        t.steps = 6;
+        t.activity.truncate(6 * 2);
+    }
+    let s = neural_summary(&ds, Some("p"), &SummaryOptions::default()).unwrap();
+    let c = s.categories.unwrap();
+    assert_eq!((c.rhythm_undefined, c.counts.oscillating), (2, 0), "{c:?}");
     // An unknown population is a typed error.
     assert!(
         neural_summary(

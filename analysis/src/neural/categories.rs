@@ -38,7 +38,10 @@
 //!
 //! Undefined tests are reported as errors, never as "false": fewer than `min_trials`
 //! trials (a circular shift of one trial leaves its average's variance unchanged) or a
-//! window shorter than `min_window` steps.
+//! window shorter than `min_window` steps. The rhythm test of a unit is run on the longest
+//! stretch after the event that `min_trials` trials cover; when that is shorter than
+//! `min_window` (trials that end early, off probe trials) it is undefined for the unit
+//! (`spectral_p` NaN) and the summaries count those units (`rhythm_undefined`).
 
 use crate::neural::oscillation::{acf_repeats, autocorrelation};
 use crate::neural::shape::{monotone_r2, periodogram, spectral_peak, unimodal_r2};
@@ -162,7 +165,9 @@ pub struct UnitTests {
     /// Frequency of the largest bin with ≥ `min_cycles` cycles of the trial-averaged
     /// single-trial periodogram (cycles per step).
     pub spectral_peak: f64,
-    /// p of that bin's power against the AR(1) null (Bonferroni over the tested bins).
+    /// p of that bin's power against the AR(1) null (Bonferroni over the tested bins);
+    /// NaN when the rhythm test is undefined (fewer than `min_trials` trials cover
+    /// `min_window` steps): such a unit cannot be `oscillating`, and summaries count it.
     pub spectral_p: f64,
     /// Whether that bin is a spectral peak (above the bin just below it) and the mean
     /// single-trial autocorrelation repeats itself.
@@ -342,11 +347,19 @@ pub fn classify_units(cube: &Cube, cfg: &CategoryConfig) -> Result<Vec<UnitTests
                 above += 1;
             }
         }
-        // The rhythm test on the steps every trial has (undefined below `min_window`).
-        let shortest = trials.iter().map(Vec::len).min().unwrap_or(0);
+        // The rhythm test on the longest stretch `shortest` that at least `min_trials`
+        // trials cover (those trials, truncated to it); undefined below `min_window`.
+        let mut lens: Vec<usize> = trials.iter().map(Vec::len).collect();
+        lens.sort_unstable_by(|a, b| b.cmp(a));
+        let shortest = lens[cfg.min_trials.max(2).min(lens.len()) - 1];
+        let long: Vec<Vec<f64>> = trials
+            .iter()
+            .filter(|x| x.len() >= shortest)
+            .cloned()
+            .collect();
         let bin0 = min_bin(shortest, cfg.min_cycles);
         let (k_peak, spectral_p, narrowband) = if shortest >= cfg.min_window {
-            rhythm(&trials, shortest, bin0)
+            rhythm(&long, shortest, bin0)
         } else {
             (0, f64::NAN, false)
         };

@@ -79,6 +79,9 @@ pub struct CategorySummary {
     pub ci: PerCategory<[f64; 2]>,
     /// Fractions; `null` below [`MIN_UNITS_FOR_FRACTIONS`] units.
     pub fractions: Option<PerCategory<f64>>,
+    /// Units whose rhythm test was undefined (too few trials covering the window's first
+    /// `min_window` steps): they could not be counted as oscillating.
+    pub rhythm_undefined: usize,
 }
 
 impl CategorySummary {
@@ -91,6 +94,7 @@ impl CategorySummary {
             ci: PerCategory::from_fn(|c| wilson_interval(counts.get(c), n)),
             fractions: (n >= MIN_UNITS_FOR_FRACTIONS)
                 .then(|| PerCategory::from_fn(|c| counts.get(c) as f64 / n as f64)),
+            rhythm_undefined: units.iter().filter(|u| u.spectral_p.is_nan()).count(),
         }
     }
 }
