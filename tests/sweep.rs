@@ -429,6 +429,7 @@ fn train_eval_record_export_report_end_to_end() {
             "record",
             "--run",
             &p(&format!("{model}/run")),
+            "--probe",
             "--summary",
             "--figures",
             &p(&format!("{model}/neural_figures")),
@@ -477,7 +478,7 @@ fn train_eval_record_export_report_end_to_end() {
     for needle in [
         "<td>lstm8</td>",
         "<td>ddm</td>",
-        "frac_ramping",
+        "frac_ramp",
         "sequentiality",
         "decode_error",
         "learning_curve",
@@ -499,8 +500,22 @@ fn train_eval_record_export_report_end_to_end() {
         .split(',')
         .collect();
     let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
-    // The DDM's accumulator is the population summarised: a ramp.
-    assert_eq!(ddm[col("frac_ramping")], "1");
+    // The DDM's accumulator is the population summarised: one unit, so no fraction in the
+    // table; its count in the summary says it is a ramp.
+    assert_eq!(ddm[col("neural_units")], "1");
+    assert_eq!(ddm[col("frac_ramp")], "NaN");
+    let summary: Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.join("ddm/activity.summary.json")).unwrap(),
+    )
+    .unwrap();
+    let acc = summary
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|s| s["population"] == "accumulator")
+        .unwrap();
+    assert_eq!(acc["categories"]["counts"]["ramp"], 1, "{acc}");
+    assert_eq!(acc["window"], 12, "2 x TD 6");
     assert_eq!(ddm[col("fi_success")], "1");
     // Bad input: a folder with no evaluation, a missing folder.
     let empty = dir.join("empty");

@@ -195,7 +195,9 @@ fn run_stage(
         }
         Stage::Record => {
             let r = stages::record(&RecordRequest {
+                probe: stages::record::can_probe(&job.task),
                 run,
+                more_runs: vec![],
                 task: None,
                 env: vec![],
                 tds: vec![],

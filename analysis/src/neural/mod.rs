@@ -6,11 +6,15 @@
 //! `ActivityDataset::aligned`).
 //!
 //! Submodules: [`decode`] — the decoders of elapsed time; [`oscillation`] — Welch spectra,
-//! autocorrelation, phase coherence and the oscillation test; [`summary`] — the per-model
-//! neural summary (the leaderboard's neural columns).
+//! autocorrelation, phase coherence and the oscillation test; [`shape`] — monotone and
+//! unimodal fits, periodograms; [`categories`] — the mutually exclusive unit categories
+//! (ramp, time field, oscillating, mixed, untuned) with surrogate tests; [`summary`] — the
+//! per-population neural summary (`record --summary`, the leaderboard's neural columns).
 
+pub mod categories;
 pub mod decode;
 pub mod oscillation;
+pub mod shape;
 pub mod summary;
 
 use crate::behaviour::foc::linear_fit;
@@ -333,10 +337,19 @@ pub fn time_cells(cube: &Cube, half_width: usize, shuffles: usize, seed: u64) ->
 }
 
 /// Temporal scaling between two responses of a unit (e.g. trial averages at two TDs):
-/// the factor `s` (grid search over `[0.25, 4]`, 1% log steps) for which `b(t) ≈ a(t/s)`
+/// the factor `s` (grid search over `[0.25, 4]`: `1.01^k`, 1 included) for which `b(t) ≈ a(t/s)`
 /// (linear interpolation of `a`; compared over `t < len(b)` where `t/s` is inside `a`),
 /// and the R² of that match. `s ≈ TD_b / TD_a` for a unit that scales with the interval.
+/// Index `t` is time `t` (origin 0); see [`scaling_factor_from`].
 pub fn scaling_factor(a: &[f64], b: &[f64]) -> (f64, f64) {
+    scaling_factor_from(a, b, 0.0)
+}
+
+/// [`scaling_factor`] with sample `i` of `a` and `b` at time `i + origin` (steps since the
+/// event; e.g. 1 when an aligned window starts one step after oven-on): `b(τ) ≈ a(τ/s)`.
+/// A factor counts when it pairs at least half of the shorter series' samples (and 3).
+/// `(NaN, −∞)` when either series has fewer than 2 samples or no factor overlaps enough.
+pub fn scaling_factor_from(a: &[f64], b: &[f64], origin: f64) -> (f64, f64) {
     let interp = |t: f64| -> Option<f64> {
         if t < 0.0 || t > (a.len() - 1) as f64 {
             return None;
@@ -350,16 +363,17 @@ pub fn scaling_factor(a: &[f64], b: &[f64]) -> (f64, f64) {
     if a.len() < 2 || b.len() < 2 {
         return best;
     }
-    let steps = (16f64.ln() / 0.01f64.ln_1p()).ceil() as i32;
-    for k in 0..=steps {
-        let s = 0.25 * 1.01f64.powi(k);
+    // Factors 1.01^k from 1/4 to 4 (1 itself on the grid).
+    let steps = (4f64.ln() / 0.01f64.ln_1p()).floor() as i32;
+    for k in -steps..=steps {
+        let s = 1.01f64.powi(k);
         let pairs: Vec<(f64, f64)> = b
             .iter()
             .enumerate()
-            .filter_map(|(t, &y)| interp(t as f64 / s).map(|x| (x, y)))
+            .filter_map(|(t, &y)| interp((t as f64 + origin) / s - origin).map(|x| (x, y)))
             .filter(|(x, y)| x.is_finite() && y.is_finite())
             .collect();
-        if pairs.len() < b.len().div_ceil(2).max(3) {
+        if pairs.len() < a.len().min(b.len()).div_ceil(2).max(3) {
             continue;
         }
         let my = pairs.iter().map(|p| p.1).sum::<f64>() / pairs.len() as f64;

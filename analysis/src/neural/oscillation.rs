@@ -146,14 +146,20 @@ pub fn is_oscillating(x: &[f64]) -> bool {
     if x.len() < 8 {
         return false;
     }
-    let r = autocorrelation(x, x.len() / 2);
-    let mut trough = false;
+    acf_repeats(&autocorrelation(x, x.len() / 2), -0.25, 0.4)
+}
+
+/// Whether an autocorrelation `r(0 … L)` repeats itself: it falls to `trough` or below and
+/// then rises again to a local peak ≥ `peak` at a lag of at least 2 ([`is_oscillating`]
+/// uses −0.25 and 0.4 on a trial average).
+pub fn acf_repeats(r: &[f64], trough: f64, peak: f64) -> bool {
+    let mut fell = false;
     for lag in 1..r.len() {
-        if r[lag] <= -0.25 {
-            trough = true;
+        if r[lag] <= trough {
+            fell = true;
         }
         let local_peak = lag + 1 >= r.len() || r[lag] >= r[lag + 1];
-        if trough && lag >= 2 && r[lag] >= 0.4 && r[lag] >= r[lag - 1] && local_peak {
+        if fell && lag >= 2 && r[lag] >= peak && r[lag] >= r[lag - 1] && local_peak {
             return true;
         }
     }

@@ -1,132 +1,457 @@
-//! Per-model neural summary of an activity dataset: the fractions of ramping, time-cell and
-//! oscillating units, the sequentiality index and the elapsed-time decoding error — the
-//! neural columns of the leaderboard.
+//! Per-population neural summary of an activity dataset: unit categories on windows of
+//! `2 × TD` steps after oven-on (one window per recorded TD), temporal scaling and
+//! population trajectory speed between the shortest and the longest TD, sequentiality and
+//! the elapsed-time decoding error — `record --summary` and the leaderboard's neural
+//! columns.
+//!
+//! Record on peak-interval probe trials (`record --probe`: the soup is withheld, so every
+//! trial lasts the whole window); on other tasks a trial that ends early leaves NaN for
+//! the rest of its window and the tests use the steps it has.
+//!
+//! * Constant units (range ≤ 1e-9 over a TD's window) are excluded and counted
+//!   (`constant_units`).
+//! * Categories ([`crate::neural::categories`]) count every analysed unit once; below
+//!   [`MIN_UNITS_FOR_FRACTIONS`] units the fractions are `null` and only the counts and
+//!   their Wilson 95% intervals are given.
+//! * The headline fields (`units`, `categories`, …) are those of the longest TD (the
+//!   longest window: the most cycles of a rhythm, the most room for a field); `by_td` has
+//!   every TD.
 
+use crate::neural::categories::{
+    CATEGORIES, CategoryConfig, CategoryCounts, CategoryError, PerCategory, UnitTests,
+    classify_units, wilson_interval,
+};
 use crate::neural::decode::{Decoder, decode_time};
-use crate::neural::oscillation::is_oscillating;
-use crate::neural::{Cube, classify_ramps, sequentiality_index, time_cells};
+use crate::neural::{Cube, scaling_factor_from, sequentiality_index};
 use chronocooked_models::{ActivityDataset, Marker};
 use serde::{Deserialize, Serialize};
 
-/// Neural summary of one model (one population or all units).
+/// Populations smaller than this get counts and intervals, no fractions.
+pub const MIN_UNITS_FOR_FRACTIONS: usize = 10;
+
+/// Smallest R² of a unit's scaling match for it to enter the median scaling factor.
+pub const MIN_SCALING_R2: f64 = 0.5;
+
+/// Elapsed steps since oven-on at column 0 of an aligned window (the first recorded step
+/// after the oven-on step).
+pub const WINDOW_ORIGIN: f64 = 1.0;
+
+/// How to summarise.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SummaryOptions {
+    /// Window (steps after oven-on) for every TD; `None` = `2 × TD`.
+    pub window: Option<usize>,
+    /// Whether unit `j` is the same unit at every TD (one agent, or timing models of the
+    /// same model and seed). When false (separately trained networks merged), the per-unit
+    /// scaling factor is not computed.
+    pub units_correspond: bool,
+    /// The category tests (their `seed` seeds the surrogates).
+    pub categories: CategoryConfig,
+}
+
+impl Default for SummaryOptions {
+    fn default() -> Self {
+        SummaryOptions {
+            window: None,
+            units_correspond: true,
+            categories: CategoryConfig::default(),
+        }
+    }
+}
+
+/// Why a summary could not be made.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum SummaryError {
+    /// The dataset has no such population.
+    #[error("no population `{0}` in the dataset")]
+    UnknownPopulation(String),
+    /// No trial turned the oven on.
+    #[error("no trial turned the oven on: nothing to align")]
+    NoOvenOn,
+}
+
+/// Categories of one window, with their intervals and (large populations) fractions.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CategorySummary {
+    /// Counts per category (sum = analysed units).
+    pub counts: CategoryCounts,
+    /// Wilson 95% interval of each category's proportion.
+    pub ci: PerCategory<[f64; 2]>,
+    /// Fractions; `null` below [`MIN_UNITS_FOR_FRACTIONS`] units.
+    pub fractions: Option<PerCategory<f64>>,
+    /// Units whose rhythm test was undefined (too few trials covering the window's first
+    /// `min_window` steps): they could not be counted as oscillating.
+    pub rhythm_undefined: usize,
+}
+
+impl CategorySummary {
+    /// From the units' tests.
+    pub fn of(units: &[UnitTests]) -> Self {
+        let counts = CategoryCounts::of(units);
+        let n = counts.total();
+        CategorySummary {
+            counts,
+            ci: PerCategory::from_fn(|c| wilson_interval(counts.get(c), n)),
+            fractions: (n >= MIN_UNITS_FOR_FRACTIONS)
+                .then(|| PerCategory::from_fn(|c| counts.get(c) as f64 / n as f64)),
+            rhythm_undefined: units.iter().filter(|u| u.spectral_p.is_nan()).count(),
+        }
+    }
+}
+
+/// The summary of one TD's window.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TdSummary {
+    /// Target duration of the trials (steps).
+    pub td: u32,
+    /// Window analysed (steps after oven-on).
+    pub window: usize,
+    /// Trials aligned to oven-on.
+    pub trials: usize,
+    /// Units analysed (varying in this window).
+    pub units: usize,
+    /// Constant units excluded.
+    pub constant_units: usize,
+    /// Categories; `null` when undefined (see `undefined`).
+    pub categories: Option<CategorySummary>,
+    /// Why the categories are undefined.
+    pub undefined: Option<String>,
+    /// Population trajectory speed: mean Euclidean distance per step between consecutive
+    /// points of the trial-averaged population vector (every unit; activity units/step).
+    pub speed: Option<f64>,
+    /// Sequentiality index of the trial average.
+    pub sequentiality: Option<f64>,
+    /// Cross-validated ridge decoding error of elapsed time (steps).
+    pub decode_ridge: Option<f64>,
+    /// Cross-validated Bayesian decoding error (steps).
+    pub decode_bayes: Option<f64>,
+}
+
+/// Temporal scaling between the shortest and the longest recorded TD.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Scaling {
+    /// Shortest TD (steps).
+    pub td_short: u32,
+    /// Longest TD (steps).
+    pub td_long: u32,
+    /// `td_long / td_short`: the factor of a unit that stretches with the interval.
+    pub td_ratio: f64,
+    /// Median per-unit scaling factor `s` (`b(τ) ≈ a(τ/s)`, τ = steps since oven-on) over
+    /// units varying at both TDs whose match has R² ≥ [`MIN_SCALING_R2`]; `null` when none
+    /// or when units do not correspond across TDs.
+    pub median: Option<f64>,
+    /// Units in the median.
+    pub units: usize,
+    /// Median R² of their matches.
+    pub median_r2: Option<f64>,
+    /// Trajectory speed at the longest TD over that at the shortest, both over the shorter
+    /// window (the first `2 × td_short` steps after oven-on): `td_short / td_long` for
+    /// dynamics that stretch with the interval (Wang, Narain, Hosseini & Jazayeri 2018),
+    /// 1 for a fixed clock.
+    pub speed_ratio: Option<f64>,
+}
+
+/// Neural summary of one population.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct NeuralSummary {
     /// Model.
     pub model: String,
     /// Population analysed (`all` for every unit).
     pub population: String,
-    /// Units analysed (constant units excluded).
+    /// Units analysed at the longest TD (constant units excluded).
     pub units: usize,
-    /// Trials aligned to oven-on.
-    pub trials: usize,
-    /// Steps after oven-on analysed.
+    /// Constant units excluded at the longest TD.
+    pub constant_units: usize,
+    /// The longest recorded TD (steps): the headline fields are its window's.
+    pub td: u32,
+    /// Its window (steps after oven-on).
     pub window: usize,
-    /// Fraction of ramping units (|r| ≥ 0.9, p ≤ 0.05).
-    #[serde(deserialize_with = "f64_or_nan")]
-    pub frac_ramping: f64,
-    /// Fraction of time cells (shuffle p < 0.05, odd/even reliability > 0.5).
-    #[serde(deserialize_with = "f64_or_nan")]
-    pub frac_time_cells: f64,
-    /// Fraction of oscillating units (the trial average repeats itself: an autocorrelation
-    /// trough ≤ −0.25 followed by a peak ≥ 0.4 within half the window,
-    /// [`crate::neural::oscillation::is_oscillating`]; needs windows of ≥ 8 steps).
-    #[serde(deserialize_with = "f64_or_nan")]
-    pub frac_oscillating: f64,
-    /// Sequentiality index of the trial average.
-    #[serde(deserialize_with = "f64_or_nan")]
-    pub sequentiality: f64,
-    /// Cross-validated ridge decoding error (steps).
-    #[serde(deserialize_with = "f64_or_nan")]
-    pub decode_ridge: f64,
-    /// Cross-validated Bayesian decoding error (steps).
-    #[serde(deserialize_with = "f64_or_nan")]
-    pub decode_bayes: f64,
+    /// Its trials.
+    pub trials: usize,
+    /// Its categories (`null` when undefined).
+    pub categories: Option<CategorySummary>,
+    /// Why they are undefined.
+    pub undefined: Option<String>,
+    /// Its sequentiality index.
+    pub sequentiality: Option<f64>,
+    /// Its ridge decoding error (steps).
+    pub decode_ridge: Option<f64>,
+    /// Its Bayesian decoding error (steps).
+    pub decode_bayes: Option<f64>,
+    /// Scaling between the shortest and the longest TD (two or more TDs recorded).
+    pub scaling: Option<Scaling>,
+    /// Every TD, shortest first.
+    pub by_td: Vec<TdSummary>,
 }
 
-/// Reads a number written by serde_json, where NaN is written as `null`.
-pub fn f64_or_nan<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-    Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
+/// One TD's window of a population: the cube of its varying units and their tests.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TdClassification {
+    /// Target duration (steps).
+    pub td: u32,
+    /// Window (steps).
+    pub window: usize,
+    /// `[trials, window, units]` of the population's varying units.
+    pub cube: Cube,
+    /// The trial average `[window, population size]` of every unit of the population.
+    pub average_all: Vec<f64>,
+    /// Population size (all units).
+    pub size: usize,
+    /// Population index of each varying unit (column `j` of `cube`).
+    pub varying: Vec<usize>,
+    /// The category tests of the varying units.
+    pub tests: Result<Vec<UnitTests>, CategoryError>,
 }
 
-/// Summarises `dataset` (population `population`, or all units when `None`), aligned to
-/// oven-on over `window` steps (the trials' median length after oven-on when `None`).
-pub fn neural_summary(
-    dataset: &ActivityDataset,
-    population: Option<&str>,
-    window: Option<usize>,
-    seed: u64,
-) -> Option<NeuralSummary> {
-    let n = dataset.meta.n_units();
-    let cols = match population {
-        Some(p) => dataset.meta.range(p)?,
-        None => 0..n,
-    };
-    let mut lens: Vec<usize> = dataset
+fn finite(v: f64) -> Option<f64> {
+    v.is_finite().then_some(v)
+}
+
+/// TDs of the trials that turned the oven on, ascending.
+pub fn recorded_tds(dataset: &ActivityDataset) -> Vec<u32> {
+    let mut tds: Vec<u32> = dataset
         .trials
         .iter()
-        .filter_map(|t| {
-            t.first(Marker::OvenOn)
-                .map(|on| t.steps.saturating_sub(on as usize + 1))
-        })
+        .filter(|t| t.first(Marker::OvenOn).is_some())
+        .map(|t| t.td)
         .collect();
-    if lens.is_empty() {
-        return None;
+    tds.sort_unstable();
+    tds.dedup();
+    tds
+}
+
+/// Classifies the units of `population` (every unit when `None`) on the trials of TD `td`.
+pub fn classify_td(
+    dataset: &ActivityDataset,
+    population: Option<&str>,
+    td: u32,
+    opts: &SummaryOptions,
+) -> Result<TdClassification, SummaryError> {
+    let n = dataset.meta.n_units();
+    let cols = match population {
+        Some(p) => dataset
+            .meta
+            .range(p)
+            .ok_or_else(|| SummaryError::UnknownPopulation(p.into()))?,
+        None => 0..n,
+    };
+    let window = opts.window.unwrap_or(2 * td as usize).max(2);
+    let sub = ActivityDataset {
+        meta: dataset.meta.clone(),
+        trials: dataset
+            .trials
+            .iter()
+            .filter(|t| t.td == td)
+            .cloned()
+            .collect(),
+    };
+    let (aligned, used) = sub.aligned(Marker::OvenOn, window - 1);
+    if used.is_empty() {
+        return Err(SummaryError::NoOvenOn);
     }
-    lens.sort_unstable();
-    let window = window.unwrap_or(lens[lens.len() / 2]).max(2);
-    let (aligned, used) = dataset.aligned(Marker::OvenOn, window - 1);
-    // Keep the chosen columns, and only units that vary.
     let full = Cube::from_f32(&aligned, used.len(), window, n);
-    let varying: Vec<usize> = cols
-        .filter(|&i| {
+    let size = cols.len();
+    let pick = |units: &[usize]| {
+        let mut data = Vec::with_capacity(full.trials * window * units.len());
+        for k in 0..full.trials {
+            for t in 0..window {
+                data.extend(units.iter().map(|&j| full.at(k, t, cols.start + j)));
+            }
+        }
+        Cube {
+            trials: full.trials,
+            time: window,
+            units: units.len(),
+            data,
+        }
+    };
+    let all: Vec<usize> = (0..size).collect();
+    let average_all = pick(&all).average();
+    let varying: Vec<usize> = all
+        .into_iter()
+        .filter(|&j| {
             let (lo, hi) = crate::neural::finite_range(
                 (0..full.trials)
                     .flat_map(|k| (0..window).map(move |t| (k, t)))
-                    .map(|(k, t)| full.at(k, t, i)),
+                    .map(|(k, t)| full.at(k, t, cols.start + j)),
             );
             hi - lo > 1e-9
         })
         .collect();
-    let u = varying.len();
-    if u == 0 {
+    let cube = pick(&varying);
+    let mut cfg = opts.categories.clone();
+    cfg.seed = cfg.seed.wrapping_add(u64::from(td));
+    let tests = classify_units(&cube, &cfg);
+    Ok(TdClassification {
+        td,
+        window,
+        cube,
+        average_all,
+        size,
+        varying,
+        tests,
+    })
+}
+
+/// Mean distance per step of a `[time, units]` trajectory (rows with NaN skipped).
+pub fn trajectory_speed(avg: &[f64], units: usize) -> Option<f64> {
+    let rows: Vec<&[f64]> = avg
+        .chunks_exact(units.max(1))
+        .filter(|r| r.iter().all(|v| v.is_finite()))
+        .collect();
+    if rows.len() < 2 || units == 0 {
         return None;
     }
-    let mut data = Vec::with_capacity(full.trials * window * u);
-    for k in 0..full.trials {
-        for t in 0..window {
-            data.extend(varying.iter().map(|&i| full.at(k, t, i)));
-        }
-    }
-    let cube = Cube {
-        trials: full.trials,
-        time: window,
-        units: u,
-        data,
-    };
-    let avg = cube.average();
-    let ramps = classify_ramps(&avg, u, 0.9, 0.05);
-    let cells = time_cells(&cube, 1, 100, seed);
-    let oscillating = (0..u)
-        .filter(|&i| {
-            let series: Vec<f64> = (0..window)
-                .map(|t| avg[t * u + i])
-                .filter(|v| v.is_finite())
-                .collect();
-            is_oscillating(&series)
+    let total: f64 = rows
+        .windows(2)
+        .map(|w| {
+            w[0].iter()
+                .zip(w[1])
+                .map(|(a, b)| (a - b).powi(2))
+                .sum::<f64>()
+                .sqrt()
         })
-        .count();
-    let frac = |c: usize| c as f64 / u as f64;
-    Some(NeuralSummary {
+        .sum();
+    Some(total / (rows.len() - 1) as f64)
+}
+
+fn td_summary(c: &TdClassification) -> TdSummary {
+    let u = c.cube.units;
+    let avg = c.cube.average();
+    let (categories, undefined) = match &c.tests {
+        Ok(t) => (Some(CategorySummary::of(t)), None),
+        Err(e) => (None, Some(e.to_string())),
+    };
+    let decode = |d| {
+        (u > 0)
+            .then(|| decode_time(&c.cube, d, 5, 1.0).mean_abs_error)
+            .and_then(finite)
+    };
+    TdSummary {
+        td: c.td,
+        window: c.window,
+        trials: c.cube.trials,
+        units: u,
+        constant_units: c.size - u,
+        categories,
+        undefined,
+        speed: trajectory_speed(&c.average_all, c.size),
+        sequentiality: (u > 0)
+            .then(|| sequentiality_index(&avg, u))
+            .and_then(finite),
+        decode_ridge: decode(Decoder::Ridge),
+        decode_bayes: decode(Decoder::Bayes),
+    }
+}
+
+fn median(mut v: Vec<f64>) -> Option<f64> {
+    v.retain(|x| x.is_finite());
+    if v.is_empty() {
+        return None;
+    }
+    v.sort_by(f64::total_cmp);
+    let m = v.len() / 2;
+    Some(if v.len() % 2 == 1 {
+        v[m]
+    } else {
+        0.5 * (v[m - 1] + v[m])
+    })
+}
+
+/// Per-unit scaling factors `(unit, s, R²)` between two TDs' windows of the same population
+/// (units varying in both; time origin [`WINDOW_ORIGIN`]).
+pub fn unit_scaling(short: &TdClassification, long: &TdClassification) -> Vec<(usize, f64, f64)> {
+    let size = short.size.min(long.size);
+    let col = |c: &TdClassification, j: usize| -> Vec<f64> {
+        c.average_all
+            .iter()
+            .skip(j)
+            .step_by(c.size)
+            .copied()
+            .take_while(|v| v.is_finite())
+            .collect()
+    };
+    (0..size)
+        .filter(|j| short.varying.contains(j) && long.varying.contains(j))
+        .map(|j| {
+            let (s, r2) = scaling_factor_from(&col(short, j), &col(long, j), WINDOW_ORIGIN);
+            (j, s, r2)
+        })
+        .collect()
+}
+
+fn scaling(short: &TdClassification, long: &TdClassification, opts: &SummaryOptions) -> Scaling {
+    let good: Vec<(usize, f64, f64)> = if opts.units_correspond {
+        unit_scaling(short, long)
+            .into_iter()
+            .filter(|&(_, s, r2)| s.is_finite() && r2 >= MIN_SCALING_R2)
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let common = short.window.min(long.window);
+    let speed = |c: &TdClassification| trajectory_speed(&c.average_all[..common * c.size], c.size);
+    Scaling {
+        td_short: short.td,
+        td_long: long.td,
+        td_ratio: f64::from(long.td) / f64::from(short.td.max(1)),
+        median: median(good.iter().map(|g| g.1).collect()),
+        units: good.len(),
+        median_r2: median(good.iter().map(|g| g.2).collect()),
+        speed_ratio: match (speed(short), speed(long)) {
+            (Some(a), Some(b)) if a > 0.0 => Some(b / a),
+            _ => None,
+        },
+    }
+}
+
+/// Summarises `population` (every unit when `None`) of `dataset`: one window per recorded
+/// TD (`2 × TD` steps after oven-on unless `opts.window`), scaling between the shortest and
+/// the longest TD when there are two or more.
+pub fn neural_summary(
+    dataset: &ActivityDataset,
+    population: Option<&str>,
+    opts: &SummaryOptions,
+) -> Result<NeuralSummary, SummaryError> {
+    let tds = recorded_tds(dataset);
+    if tds.is_empty() {
+        return Err(SummaryError::NoOvenOn);
+    }
+    let classes = tds
+        .iter()
+        .map(|&td| classify_td(dataset, population, td, opts))
+        .collect::<Result<Vec<_>, _>>()?;
+    let by_td: Vec<TdSummary> = classes.iter().map(td_summary).collect();
+    let (first, last) = (&classes[0], &classes[classes.len() - 1]);
+    let head = by_td[by_td.len() - 1].clone();
+    Ok(NeuralSummary {
         model: dataset.meta.model.clone(),
         population: population.unwrap_or("all").to_string(),
-        units: u,
-        trials: cube.trials,
-        window,
-        frac_ramping: frac(ramps.iter().filter(|r| r.ramping).count()),
-        frac_time_cells: frac(cells.iter().filter(|c| c.time_cell).count()),
-        frac_oscillating: frac(oscillating),
-        sequentiality: sequentiality_index(&avg, u),
-        decode_ridge: decode_time(&cube, Decoder::Ridge, 5, 1.0).mean_abs_error,
-        decode_bayes: decode_time(&cube, Decoder::Bayes, 5, 1.0).mean_abs_error,
+        units: head.units,
+        constant_units: head.constant_units,
+        td: head.td,
+        window: head.window,
+        trials: head.trials,
+        categories: head.categories,
+        undefined: head.undefined,
+        sequentiality: head.sequentiality,
+        decode_ridge: head.decode_ridge,
+        decode_bayes: head.decode_bayes,
+        scaling: (classes.len() >= 2).then(|| scaling(first, last, opts)),
+        by_td,
     })
+}
+
+/// The fraction of `cat` in a summary's categories (`None` when undefined or the
+/// population is below [`MIN_UNITS_FOR_FRACTIONS`]).
+pub fn fraction(s: &NeuralSummary, cat: crate::neural::categories::Category) -> Option<f64> {
+    s.categories
+        .as_ref()
+        .and_then(|c| c.fractions.as_ref())
+        .map(|f| f.get(cat))
+}
+
+/// Every category name, in report order.
+pub fn category_names() -> Vec<&'static str> {
+    CATEGORIES.iter().map(|c| c.name()).collect()
 }

@@ -134,24 +134,45 @@ pub fn load_adaptation(folder: &Path) -> Option<Option<usize>> {
     Some(v["episodes_to_adapt"].as_u64().map(|n| n as usize))
 }
 
-/// Neural column keys of the leaderboard.
-pub const NEURAL_COLUMNS: [&str; 5] = [
-    "frac_ramping",
-    "frac_time_cells",
+/// Neural column keys of the leaderboard (from the primary population's summary: the
+/// longest recorded TD's window of `2 × TD` steps). Category fractions are NaN (shown "–")
+/// for populations under [`crate::neural::summary::MIN_UNITS_FOR_FRACTIONS`] units, whose
+/// counts are in `activity.summary.json`.
+pub const NEURAL_COLUMNS: [&str; 10] = [
+    "neural_units",
+    "frac_ramp",
+    "frac_time_field",
     "frac_oscillating",
+    "frac_mixed",
+    "frac_untuned",
+    "scaling",
+    "speed_ratio",
     "sequentiality",
     "decode_error",
 ];
 
-/// Value of neural column `key` in a summary.
+/// Value of neural column `key` in a summary (NaN when undefined).
 fn neural_value(s: &NeuralSummary, key: &str) -> f64 {
+    use crate::neural::categories::Category;
+    use crate::neural::summary::fraction;
+    let nan = f64::NAN;
+    let frac = |c| fraction(s, c).unwrap_or(nan);
     match key {
-        "frac_ramping" => s.frac_ramping,
-        "frac_time_cells" => s.frac_time_cells,
-        "frac_oscillating" => s.frac_oscillating,
-        "sequentiality" => s.sequentiality,
-        "decode_error" => s.decode_ridge,
-        _ => f64::NAN,
+        "neural_units" => s.units as f64,
+        "frac_ramp" => frac(Category::Ramp),
+        "frac_time_field" => frac(Category::TimeField),
+        "frac_oscillating" => frac(Category::Oscillating),
+        "frac_mixed" => frac(Category::Mixed),
+        "frac_untuned" => frac(Category::Untuned),
+        "scaling" => s.scaling.as_ref().and_then(|x| x.median).unwrap_or(nan),
+        "speed_ratio" => s
+            .scaling
+            .as_ref()
+            .and_then(|x| x.speed_ratio)
+            .unwrap_or(nan),
+        "sequentiality" => s.sequentiality.unwrap_or(nan),
+        "decode_error" => s.decode_ridge.unwrap_or(nan),
+        _ => nan,
     }
 }
 

@@ -16,7 +16,7 @@ use std::path::{Path, PathBuf};
 pub const RUNS_LEGEND: &str = "evaluation folders aggregated in the row (seeds, and task settings such as FI TDs); every other cell is the mean ± SD over the runs that have the metric";
 
 /// What every column means and which direction is better.
-pub const COLUMNS: [(&str, &str); 26] = [
+pub const COLUMNS: [(&str, &str); 31] = [
     (
         "fi_success",
         "FI: full-reward deliveries at the trained TD (higher is better)",
@@ -81,16 +81,36 @@ pub const COLUMNS: [(&str, &str); 26] = [
         "uncertainty adaptation: fraction of runs that adapted within the budget (higher is better)",
     ),
     (
-        "frac_ramping",
-        "neural: fraction of ramping units (|r| ≥ 0.9, p ≤ 0.05) after oven-on",
+        "neural_units",
+        "neural: units analysed in the primary population (constant units excluded), window 2 x TD after oven-on at the longest recorded TD",
     ),
     (
-        "frac_time_cells",
-        "neural: fraction of time cells (shuffle-significant, reliable peak)",
+        "frac_ramp",
+        "neural: fraction of ramps (time-locked, monotone fit R² ≥ 0.9); – below 10 units (counts in activity.summary.json)",
+    ),
+    (
+        "frac_time_field",
+        "neural: fraction of time fields (time-locked, one interior peak falling by half its range on both sides)",
     ),
     (
         "frac_oscillating",
-        "neural: fraction of oscillating units (autocorrelation trough ≤ −0.25, then a peak ≥ 0.4 within half the window)",
+        "neural: fraction of oscillating units (significant spectral peak with ≥ 2 cycles in the window, repeating autocorrelation)",
+    ),
+    (
+        "frac_mixed",
+        "neural: fraction of mixed units (time-locked with several or none of the three shapes)",
+    ),
+    (
+        "frac_untuned",
+        "neural: fraction of untuned units (not time-locked: circular-shift surrogate p > 0.05)",
+    ),
+    (
+        "scaling",
+        "neural: median per-unit temporal scaling factor from the shortest to the longest recorded TD (= TD ratio when activity stretches with the interval, 1 for a fixed clock)",
+    ),
+    (
+        "speed_ratio",
+        "neural: population trajectory speed at the longest TD over that at the shortest (= TD_short/TD_long when dynamics stretch)",
     ),
     (
         "sequentiality",
@@ -126,9 +146,14 @@ pub fn column_title(key: &str) -> &'static str {
         "unc_button_use" => "button use (never ready)",
         "unc_episodes_to_adapt" => "episodes to adapt",
         "unc_adapted" => "runs adapted",
-        "frac_ramping" => "ramping units",
-        "frac_time_cells" => "time cells",
-        "frac_oscillating" => "oscillating units",
+        "neural_units" => "units",
+        "frac_ramp" => "ramps",
+        "frac_time_field" => "time fields",
+        "frac_oscillating" => "oscillating",
+        "frac_mixed" => "mixed",
+        "frac_untuned" => "untuned",
+        "scaling" => "scaling (long/short)",
+        "speed_ratio" => "speed ratio",
         "sequentiality" => "sequentiality",
         "decode_error" => "decoding error (steps)",
         _ => "other",

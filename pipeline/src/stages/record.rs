@@ -1,24 +1,44 @@
 //! The record stage: the neural activity of a trained agent as an activity dataset
 //! (`activity.json`), with its neural summary and figures.
+//!
+//! With `probe`, an agent trained on fixed interval plays peak-interval probe trials
+//! (`PeakInterval-v0`, `probe_factor=0`: the soup is never released), so every trial goes
+//! on for at least `2 × TD` steps after oven-on — the window the neural summary analyses.
+//! Several runs (the same model trained at different TDs) are recorded each at its own TD
+//! into one dataset, so the summary can measure temporal scaling between TDs.
 
 use crate::PipelineError;
-use chronocooked_env::make_config;
+use chronocooked_analysis::neural::summary::{SummaryOptions, neural_summary};
+use chronocooked_env::{TaskFamily, make_config};
+use chronocooked_models::ActivityDataset;
 use chronocooked_models::agent::record_dataset;
 use chronocooked_training::eval_tds;
-use chronocooked_training::timing_run::{load_agent, run_task};
-use std::path::PathBuf;
+use chronocooked_training::timing_run::{is_timing_run, load_agent, load_timing_config, run_task};
+use std::path::{Path, PathBuf};
+
+/// Steps a probe episode lasts beyond `2 × TD`: time to fetch the onion and turn the oven
+/// on (the kitchen's free cells are at most ~10 steps from the oven).
+pub const PROBE_MARGIN: u32 = 40;
 
 /// What to record (the arguments of `chronocooked record`).
 #[derive(Debug, Clone)]
 pub struct RecordRequest {
     /// Run folder of the trained agent (PPO or timing model).
     pub run: PathBuf,
+    /// More run folders of the same model (e.g. trained at other TDs), recorded into the
+    /// same dataset (each at its own TD when `tds` is empty).
+    pub more_runs: Vec<PathBuf>,
     /// Task to play (default: the run's own task).
     pub task: Option<String>,
     /// Task overrides `key=value` (with `task`).
     pub env: Vec<String>,
-    /// Target durations to record (steps; default: the task's evaluation TDs).
+    /// Target durations to record (steps; default: the task's evaluation TDs — with
+    /// `probe`, the run's own TD).
     pub tds: Vec<u32>,
+    /// Play peak-interval probe trials (soup withheld for the whole episode) with the run's
+    /// fixed-interval settings; needs runs trained on `FixedInterval-v0` or
+    /// `PeakInterval-v0`.
+    pub probe: bool,
     /// Repetitions of the every-start-cell protocol (seeds `seed + r`).
     pub repeats: u64,
     /// Seed of the recording.
@@ -53,19 +73,70 @@ fn json_bytes<T: serde::Serialize>(value: &T, pretty: bool) -> Result<Vec<u8>, P
     bytes.map_err(|e| PipelineError::Analysis(format!("serialising the activity: {e}")))
 }
 
-/// Records the activity of `req` and writes the dataset (and summary, figures).
-pub fn record(req: &RecordRequest) -> Result<RecordOutcome, PipelineError> {
+/// Whether runs trained on `task` can be recorded on probe trials (`record --probe`).
+pub fn can_probe(task: &str) -> bool {
+    make_config(task, &[] as &[&str]).is_ok_and(|c| {
+        matches!(
+            c.family(),
+            TaskFamily::FixedInterval | TaskFamily::PeakInterval
+        )
+    })
+}
+
+/// The probe task of a run trained on `task` with overrides `env` at TDs `tds`: the same
+/// settings on `PeakInterval-v0` with the soup never released, and (unless the run set it)
+/// `max_timesteps = 2 × max TD + PROBE_MARGIN`.
+pub fn probe_task(task: &str, env: &[String], tds: &[u32]) -> Result<Vec<String>, PipelineError> {
+    if !can_probe(task) {
+        return Err(PipelineError::Invalid(format!(
+            "--probe plays peak-interval probe trials, for runs trained on FixedInterval-v0 or \
+             PeakInterval-v0 (this run: {task}); record it without --probe"
+        )));
+    }
+    let key = |e: &String| e.split('=').next().unwrap_or("").trim().to_string();
+    let mut out: Vec<String> = env
+        .iter()
+        .filter(|e| !matches!(key(e).as_str(), "probe_factor" | "k"))
+        .cloned()
+        .collect();
+    out.push("probe_factor=0".into());
+    if !env
+        .iter()
+        .any(|e| matches!(key(e).as_str(), "max_timesteps" | "max_steps"))
+    {
+        let longest = tds.iter().copied().max().unwrap_or(12);
+        out.push(format!("max_timesteps={}", 2 * longest + PROBE_MARGIN));
+    }
+    Ok(out)
+}
+
+/// Records one run: `(task, env, dataset)`.
+fn record_run(
+    req: &RecordRequest,
+    run: &Path,
+) -> Result<(String, Vec<String>, ActivityDataset), PipelineError> {
     let (task, env) = match &req.task {
         Some(t) => (t.clone(), req.env.clone()),
-        None => run_task(&req.run)?,
+        None => run_task(run)?,
+    };
+    let own = make_config(&task, &env)?;
+    let tds = if !req.tds.is_empty() {
+        req.tds.clone()
+    } else if req.probe {
+        vec![own.params.td().unwrap_or(12)]
+    } else {
+        eval_tds(&own)
+    };
+    let (task, env) = if req.probe {
+        (
+            "PeakInterval-v0".to_string(),
+            probe_task(&task, &env, &tds)?,
+        )
+    } else {
+        (task, env)
     };
     let config = make_config(&task, &env)?;
-    let mut agent = load_agent(&req.run, Some(&config))?;
-    let tds = if req.tds.is_empty() {
-        eval_tds(&config)
-    } else {
-        req.tds.clone()
-    };
+    let mut agent = load_agent(run, Some(&config))?;
     let dataset = record_dataset(
         agent.as_mut(),
         &config,
@@ -75,6 +146,46 @@ pub fn record(req: &RecordRequest) -> Result<RecordOutcome, PipelineError> {
         req.repeats,
         req.seed,
     )?;
+    Ok((task, env, dataset))
+}
+
+/// Whether unit `j` is the same unit in every run: one run, or timing-model runs of the
+/// same model and seed (fixed oscillator frequencies, time-cell bases).
+fn units_correspond(runs: &[&PathBuf]) -> bool {
+    if runs.len() <= 1 {
+        return true;
+    }
+    let keys: Option<Vec<(String, u64)>> = runs
+        .iter()
+        .map(|r| {
+            is_timing_run(r)
+                .then(|| load_timing_config(r).ok().map(|c| (c.model, c.seed)))
+                .flatten()
+        })
+        .collect();
+    keys.is_some_and(|k| k.windows(2).all(|w| w[0] == w[1]))
+}
+
+/// Records the activity of `req` and writes the dataset (and summary, figures).
+pub fn record(req: &RecordRequest) -> Result<RecordOutcome, PipelineError> {
+    let runs: Vec<&PathBuf> = std::iter::once(&req.run).chain(&req.more_runs).collect();
+    let (task, _, mut dataset) = record_run(req, &req.run)?;
+    for run in &req.more_runs {
+        let (_, _, more) = record_run(req, run)?;
+        if more.meta.populations != dataset.meta.populations
+            || more.meta.model != dataset.meta.model
+        {
+            return Err(PipelineError::Invalid(format!(
+                "{} records {} with other populations than {} ({}): record runs of one model \
+                 together",
+                run.display(),
+                more.meta.model,
+                req.run.display(),
+                dataset.meta.model
+            )));
+        }
+        dataset.trials.extend(more.trials);
+    }
     let write = |path: &std::path::Path, bytes: &[u8]| {
         chronocooked_env::fs::write_atomic(path, bytes).map_err(|e| PipelineError::write(path, e))
     };
@@ -84,18 +195,16 @@ pub fn record(req: &RecordRequest) -> Result<RecordOutcome, PipelineError> {
             .map_err(|e| PipelineError::Analysis(e.to_string()))?;
     }
     if req.summary {
+        let mut opts = SummaryOptions {
+            units_correspond: units_correspond(&runs),
+            ..SummaryOptions::default()
+        };
+        opts.categories.seed = req.seed;
         let summaries: Vec<_> = dataset
             .meta
             .populations
             .iter()
-            .filter_map(|p| {
-                chronocooked_analysis::neural::summary::neural_summary(
-                    &dataset,
-                    Some(&p.name),
-                    None,
-                    req.seed,
-                )
-            })
+            .filter_map(|p| neural_summary(&dataset, Some(&p.name), &opts).ok())
             .collect();
         write(
             &req.out.with_extension("summary.json"),
