@@ -202,7 +202,7 @@ fn sbf_oscillators_oscillate_at_their_own_frequencies_and_the_detector_peaks_at_
             "{}: {sc:?}",
             p.label
         );
-        // The detector's readout (`envelope`, the coincidence of the oscillators with the
+        // The striatal detector (`striatum`, the coincidence of the oscillators with the
         // stored pattern) is a time field peaking at the remembered time at every TD.
         for (k, &td) in TDS.iter().enumerate() {
             let (_, agent) = load_timing_agent(&p.runs[k]).unwrap();
@@ -212,7 +212,7 @@ fn sbf_oscillators_oscillate_at_their_own_frequencies_and_the_detector_peaks_at_
             let stored: Vec<f64> = timer.memories.values().flatten().copied().collect();
             let remembered =
                 stored.iter().sum::<f64>() / stored.len() as f64 / timer.seconds_per_step;
-            let (_, tests) = p.classify("envelope", td);
+            let (_, tests) = p.classify("striatum", td);
             let u = &tests[0];
             let peak = u.peak_time as f64 + WINDOW_ORIGIN;
             assert_eq!(

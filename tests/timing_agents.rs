@@ -207,7 +207,7 @@ fn every_model_records_into_the_same_dataset_type() {
         ("ddm", vec!["accumulator", "drift", "value", "rpe"]),
         (
             "sbf",
-            vec!["oscillators", "striatum", "envelope", "value", "rpe"],
+            vec!["oscillators", "striatum", "value", "rpe"],
         ),
         (
             "timecells-laplace",

@@ -636,11 +636,11 @@ impl Timer {
                 let mut osc: Vec<f32> = s.rt.cos.iter().map(|&v| v as f32).collect();
                 osc.resize(s.model.len(), 1.0);
                 rec.record("oscillators", &osc);
-                let out = s.rt.detectors.first().map_or(0.0, |(c, _)| {
-                    c.iter().zip(&s.rt.cos).map(|(w, x)| w * x).sum::<f64>()
-                });
-                rec.scalar("striatum", out as f32);
-                rec.scalar("envelope", s.rt.readouts[0] as f32);
+                // The striatal coincidence detector's response: the quadrature (cosine and
+                // sine weights) match of the oscillators with this trial's remembered
+                // pattern, 0–1 — what the agent's response threshold reads. (One in-phase
+                // detector alone, Σ wᵢ cos φᵢ, would swing with the ~10 Hz carrier.)
+                rec.scalar("striatum", s.rt.readouts[0] as f32);
             }
             Timer::TimeCells(tc) => {
                 let mut units = Vec::new();
