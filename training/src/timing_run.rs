@@ -47,6 +47,10 @@ pub struct TimingRunConfig {
 /// reach 100% on every seed, 20,000 gave microstimuli 1 seed of 4).
 pub const UNCERTAINTY_EPISODES: usize = 40_000;
 
+/// Most training episodes of a timing run (40,000 take seconds; 10^7 about hours): a
+/// larger value is a typo or a corrupt `config.json`, not a run anyone waits for.
+pub const MAX_EPISODES: usize = 10_000_000;
+
 /// Every `--set` key of a timing run.
 pub const TIMING_KEYS: &str = "episodes, epsilon_start, epsilon_end, anneal_fraction, eval_every, stop_at_success, alpha, gamma, lambda, response_cost, probe, opportunity_cost, overdue_factor, q_init, noise (ddm), memory_noise, clock_noise (sbf, timecells-*), decision_rule (ratio, difference, likelihood, learned), env.<task parameter>";
 
@@ -126,7 +130,7 @@ impl TimingRunConfig {
         let (key, value) = (key.trim(), value.trim());
         let t = &mut self.train;
         match key {
-            "episodes" => t.episodes = parse(key, value, "a positive integer")?,
+            "episodes" => t.episodes = parse(key, value, "a positive integer (at most 10^7)")?,
             "epsilon_start" => t.epsilon_start = parse(key, value, "a number in [0, 1]")?,
             "epsilon_end" => t.epsilon_end = parse(key, value, "a number in [0, 1]")?,
             "anneal_fraction" => t.anneal_fraction = parse(key, value, "a number in (0, 1]")?,
@@ -179,8 +183,12 @@ impl TimingRunConfig {
         if self.kind != "timing" {
             return bad("kind", self.kind.clone(), "timing");
         }
-        if t.episodes == 0 {
-            return bad("episodes", "0".into(), "a positive integer");
+        if t.episodes == 0 || t.episodes > MAX_EPISODES {
+            return bad(
+                "episodes",
+                t.episodes.to_string(),
+                &format!("1..={MAX_EPISODES}"),
+            );
         }
         for (f, v) in [
             ("epsilon_start", t.epsilon_start),
