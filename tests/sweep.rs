@@ -409,8 +409,6 @@ fn train_eval_record_export_report_end_to_end() {
         "--model",
         "ddm",
         "--set",
-        "episodes=400",
-        "--set",
         "env.td=6",
         "--quiet",
         "--out",
