@@ -479,7 +479,12 @@ fn multitimer_analysis_reads_levels_rewards_and_oven_off_times() {
     assert!(svg.contains("training reward per level") && svg.contains("oven-off time"));
     let report = write_paper_report(&dir, &study, &dir.join("figures")).unwrap();
     let html = std::fs::read_to_string(report).unwrap();
-    assert!(html.contains("<svg") && html.contains("Numbers printed in the paper: 0 of 0 agree under the z rule (0 under the old rule)"));
+    assert!(
+        html.contains("<svg")
+            && html.contains(
+                "Numbers printed in the paper: 0 of 0 agree under the z rule (0 under the old rule)"
+            )
+    );
     assert!(!html.contains("http://"), "the page must hold no URL");
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -35,8 +35,16 @@ fn z_scores_have_by_hand_values() {
     );
     // Negative differences give negative z.
     assert!(close(z_score(0.5, 0.2, 4, 0.8, f64::NAN, 0), -3.0));
-    // SD against SD: √(0.04/6 + 0.01/6) = 0.0912871, z = 0.1 / 0.0912871 = 1.0954451.
-    assert!(close(z_score_sd(0.2, 4, 0.1, 4), 1.095_445_115_010_332));
+    // SD against SD on the log scale: ln(0.2/0.1) / √(1/6 + 1/6) = 0.6931472 / 0.5773503
+    // = 1.2005661; a printed SD of 0 against a positive one cannot agree.
+    assert!(close(
+        z_score_sd(0.2, 4, 0.1, 4),
+        2f64.ln() / (1.0f64 / 3.0).sqrt()
+    ));
+    assert!(close(z_score_sd(0.2, 4, 0.1, 4), 1.200_566_133_852_943_6));
+    assert_eq!(z_score_sd(0.01, 3, 0.0, 4), f64::INFINITY);
+    assert_eq!(z_score_sd(0.0, 3, 0.0, 4), 0.0);
+    assert!(z_score_sd(0.2, 1, 0.1, 4).is_nan());
     // Zero standard error: equal values z = 0, different values ±∞ (disagree).
     assert_eq!(z_score(1.0, 0.0, 4, 1.0, f64::NAN, 0), 0.0);
     let z = z_score(1.0, 0.0, 4, 2.0, f64::NAN, 0);

@@ -1,7 +1,7 @@
 //! `agreement.json`: how many published numbers agree with the lab under each rule (per
 //! table × source × rule), and a **negative control** — the same rules applied to
 //! deliberately mismatched pairs (the paper's LSTM125 numbers against the lab's reservoir
-//! CTRNN125, the paper's CTRNN125 against the lab's LSTM125, the paper's size-8 numbers
+//! CTRNN125 and against its trained CTRNN125, the paper's CTRNN125 against the lab's LSTM125, the paper's size-8 numbers
 //! against the lab's size 125), beside the faithful pairs on the same numbers — so a reader
 //! sees how often each rule agrees by chance.
 
@@ -182,7 +182,7 @@ pub fn negative_control(
         Vec<PaperNumber>,
         fn(&str) -> Option<&'static str>,
     );
-    let pairings: [Pairing; 6] = [
+    let pairings: [Pairing; 7] = [
         (
             "paper LSTM125 vs lab lstm125",
             true,
@@ -194,6 +194,12 @@ pub fn negative_control(
             false,
             of_model(&all, "LSTM125"),
             |_| Some("ctrnn-reservoir125"),
+        ),
+        (
+            "paper LSTM125 vs lab ctrnn125 (trained CTRNN)",
+            false,
+            of_model(&all, "LSTM125"),
+            |_| Some("ctrnn125"),
         ),
         (
             "paper CTRNN125 vs lab ctrnn-reservoir125",
@@ -247,7 +253,7 @@ pub fn agreement(
         format!(
             "|z| ≤ {Z_AGREE}, z = (lab − paper)/√(lab_sd²/n + paper_sd²/n_paper); the paper's \
              term only where it prints an SD (WF, DL: 4 runs), else the lab's standard error \
-             alone; SD rows use sd/√(2(n−1)) for both; counts must be equal"
+             alone; SD rows: z = ln(lab_sd/paper_sd)/√(1/(2(n−1)) + 1/(2(n_paper−1))); counts must be equal"
         ),
     );
     Agreement {

@@ -18,9 +18,9 @@
 //! the combined standard error of the two means. The paper's SD and run count
 //! ([`PAPER_RUNS`]) enter only where the paper prints an SD for that number (WF and DL:
 //! `se_from = lab+paper`); elsewhere (CV, R², the notebook's numbers) only the lab's
-//! standard error (`se_from = lab`), which makes the rule stricter there. For the `*_sd`
-//! rows both SDs get the large-sample standard error of an SD, `sd/√(2(n−1))`
-//! (`se_from = sd`). Counts (`multitimer_runs_at_last_level`) have no z: the verdict is
+//! standard error (`se_from = lab`), which makes the rule stricter there. The `*_sd` rows
+//! compare the two SDs on the log scale, `z = ln(lab_sd/paper_sd) / √(1/(2(n−1)) +
+//! 1/(2(n_paper−1)))` ([`z_score_sd`], `se_from = sd`). Counts (`multitimer_runs_at_last_level`) have no z: the verdict is
 //! exact equality (`se_from = exact`). Zero standard error: z = 0 when the numbers are equal,
 //! ±∞ otherwise. The NaN, `n/a` and `both-nan` cases are those of the old rule.
 
@@ -98,27 +98,27 @@ pub fn z_score(
     d / var.sqrt()
 }
 
-/// `z` of an SD against an SD: `(lab_sd − paper_sd) / √(lab_sd²/(2(n_lab−1)) +
-/// paper_sd²/(2(n_paper−1)))` (large-sample standard error of an SD; the paper's term left
-/// out when `n_paper < 2`). NaN when either SD is NaN or `n_lab < 2`.
+/// `z` of an SD against an SD on the log scale (the SD of a sample SD grows with the SD):
+/// `ln(lab_sd / paper_sd) / √(1/(2(n_lab−1)) + 1/(2(n_paper−1)))` — the large-sample
+/// standard error of `ln sd` is `1/√(2(n−1))`; the paper's term is left out when
+/// `n_paper < 2`. ±∞ when exactly one SD is 0 (a printed 0.00 cannot be matched on a ratio
+/// scale), 0 when both are; NaN when either is NaN or negative, or `n_lab < 2`.
 pub fn z_score_sd(lab_sd: f64, n_lab: usize, paper_sd: f64, n_paper: usize) -> f64 {
-    if n_lab < 2 || !lab_sd.is_finite() || !paper_sd.is_finite() {
+    let ok = |x: f64| x.is_finite() && x >= 0.0;
+    if n_lab < 2 || !ok(lab_sd) || !ok(paper_sd) {
         return f64::NAN;
     }
-    let var = |sd: f64, n: usize| sd * sd / (2.0 * (n as f64 - 1.0));
-    let mut v = var(lab_sd, n_lab);
+    match (lab_sd == 0.0, paper_sd == 0.0) {
+        (true, true) => return 0.0,
+        (true, false) => return f64::NEG_INFINITY,
+        (false, true) => return f64::INFINITY,
+        _ => {}
+    }
+    let mut v = 1.0 / (2.0 * (n_lab as f64 - 1.0));
     if n_paper >= 2 {
-        v += var(paper_sd, n_paper);
+        v += 1.0 / (2.0 * (n_paper as f64 - 1.0));
     }
-    let d = lab_sd - paper_sd;
-    if v == 0.0 {
-        return if d == 0.0 {
-            0.0
-        } else {
-            d.signum() * f64::INFINITY
-        };
-    }
-    d / v.sqrt()
+    (lab_sd / paper_sd).ln() / v.sqrt()
 }
 
 /// The discriminating verdict from a z and the two values: `both-nan`, `no` (only one

@@ -11,7 +11,9 @@
 //! freedom (k bins, n probe episodes; each episode checks at most once per step). A curve
 //! is `uniform` when p ≥ 0.05, `non-uniform` otherwise, `no checks` when it never checks
 //! after the TD. The bins share episodes, so p is approximate (the test treats them as
-//! independent samples of n episodes).
+//! independent samples of n episodes; an episode's checks are positively correlated over
+//! time, which makes bins more alike than independent samples would be, so the test errs
+//! towards `uniform`).
 
 use super::collect::{CollectError, CompactJob, err};
 use crate::evaluation::protocol::ConditionKind;
@@ -330,7 +332,7 @@ pub fn pi_markdown(m: &mut String, v: &[PiVerdict]) {
     );
     let _ = writeln!(
         m,
-        "| model | factor | curves | uniform | non-uniform | no checks | mean rate after TD | mean drop by 2×TD | mean slope per TD | verdict |"
+        "| model | factor | curves | uniform | non-uniform | no checks or no bins | mean rate after TD | mean drop by 2×TD | mean slope per TD | verdict |"
     );
     let _ = writeln!(m, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|");
     for x in v {
