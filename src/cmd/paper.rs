@@ -13,8 +13,9 @@ pub enum PaperCommand {
     /// thinned learning curve, metrics; no checkpoints) into a results folder.
     Collect(CollectArgs),
     /// Analyse a results folder as the paper does (and as the lab does), compare with the
-    /// paper's numbers: writes analysis.json, comparison.csv, tables.md, report.html and
-    /// figures/ there.
+    /// paper's numbers under the old rule and the z rule: writes analysis.json,
+    /// comparison.csv, agreement.json (with the negative control), pi.csv (peak-interval
+    /// uniformity), tables.md, report.html and figures/ there.
     Analyse(AnalyseArgs),
 }
 

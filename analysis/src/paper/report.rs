@@ -96,7 +96,7 @@ pub fn write_paper_report(
             escape(src)
         );
     }
-    h += "</table>\n<h2 class=\"group\">Negative control: agreement rate (yes / (yes + no)) of mismatched pairs</h2>\n<table>\n<tr><th>pairing</th><th>matched</th><th>source</th><th>old rule</th><th>z rule</th></tr>\n";
+    h += "</table>\n<h2 class=\"group\">Negative control (matched = false) beside the faithful pairs: yes of (yes + no)</h2>\n<table>\n<tr><th>pairing</th><th>matched</th><th>source</th><th>old rule</th><th>z rule</th></tr>\n";
     let nc = &s.agreement.negative_control;
     for c in nc.iter().filter(|c| c.rule == "old") {
         let z = nc
