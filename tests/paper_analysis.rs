@@ -238,10 +238,11 @@ fn pearson_and_agreement_rules_have_known_answers() {
 
 #[test]
 fn study_figures_and_comparison_come_out_of_constructed_jobs() {
+    use chronocooked_analysis::paper::agreement::agreement;
     use chronocooked_analysis::paper::compare::compare;
     use chronocooked_analysis::paper::figures::write_figures;
     use chronocooked_analysis::paper::multitimer::analyse_multitimer;
-    use chronocooked_analysis::paper::study::{PaperStudy, job_costs};
+    use chronocooked_analysis::paper::study::{PaperStudy, job_costs, write_study};
     let mut jobs = Vec::new();
     for seed in 1..=3u64 {
         for td in [4u32, 12] {
@@ -285,9 +286,26 @@ fn study_figures_and_comparison_come_out_of_constructed_jobs() {
     let m = focs.iter().sum::<f64>() / 36.0;
     let sd = (focs.iter().map(|f| (f - m).powi(2)).sum::<f64>() / 35.0).sqrt();
     assert!((cv4.lab_mean - sd / m).abs() < 1e-12);
+    // Every row carries its source and a z recomputed from its own columns.
+    for r in &comparison {
+        let want = if r.table.ends_with("_notebook") || r.table.starts_with("multitimer") {
+            "notebook"
+        } else {
+            "paper"
+        };
+        assert_eq!(r.source, want, "{r:?}");
+        if r.se_from == "lab" && r.n >= 2 && r.paper.is_finite() && r.lab_sd > 0.0 {
+            let z = (r.lab_mean - r.paper) / (r.lab_sd / (r.n as f64).sqrt());
+            assert!((r.z - z).abs() < 1e-9, "{r:?}");
+        }
+    }
+    let agreement = agreement(&comparison, &fi, &bisection, &multitimer);
     let study = PaperStudy {
         jobs: jobs.len(),
         cost: job_costs(&jobs),
+        agreement,
+        pi: vec![],
+        pi_verdicts: vec![],
         fi,
         bisection,
         multitimer,
@@ -312,6 +330,23 @@ fn study_figures_and_comparison_come_out_of_constructed_jobs() {
     }
     let grid = std::fs::read_to_string(dir.join("bisection_grid.svg")).unwrap();
     assert!(grid.contains("least squares") && grid.contains("max. likelihood"));
+    // comparison.csv has the new columns; agreement.json and pi.csv are written beside it.
+    write_study(&dir, &study).unwrap();
+    let csv = std::fs::read_to_string(dir.join("comparison.csv")).unwrap();
+    assert_eq!(
+        csv.lines().next().unwrap(),
+        "table,row,column,source,paper,paper_sd,paper_n,lab_mean,lab_sd,n,z,se_from,agree,agree_z"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("agreement.json")).unwrap())
+            .unwrap();
+    assert!(json["counts"].as_array().is_some_and(|a| !a.is_empty()));
+    assert!(
+        json["negative_control"]
+            .as_array()
+            .is_some_and(|a| !a.is_empty())
+    );
+    assert!(dir.join("pi.csv").is_file());
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -419,6 +454,9 @@ fn multitimer_analysis_reads_levels_rewards_and_oven_off_times() {
         bisection: vec![],
         multitimer: mt,
         comparison: vec![],
+        agreement: Default::default(),
+        pi: vec![],
+        pi_verdicts: vec![],
     };
     let (grid, panels) = multitimer_panels(&study);
     assert_eq!(grid, (3, 1));
@@ -441,7 +479,12 @@ fn multitimer_analysis_reads_levels_rewards_and_oven_off_times() {
     assert!(svg.contains("training reward per level") && svg.contains("oven-off time"));
     let report = write_paper_report(&dir, &study, &dir.join("figures")).unwrap();
     let html = std::fs::read_to_string(report).unwrap();
-    assert!(html.contains("<svg") && html.contains("Agreement: 0 of 0"));
+    assert!(
+        html.contains("<svg")
+            && html.contains(
+                "Numbers printed in the paper: 0 of 0 agree under the z rule (0 under the old rule)"
+            )
+    );
     assert!(!html.contains("http://"), "the page must hold no URL");
     let _ = std::fs::remove_dir_all(&dir);
 }

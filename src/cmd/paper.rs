@@ -13,8 +13,9 @@ pub enum PaperCommand {
     /// thinned learning curve, metrics; no checkpoints) into a results folder.
     Collect(CollectArgs),
     /// Analyse a results folder as the paper does (and as the lab does), compare with the
-    /// paper's numbers: writes analysis.json, comparison.csv, tables.md, report.html and
-    /// figures/ there.
+    /// paper's numbers under the old rule and the z rule: writes analysis.json,
+    /// comparison.csv, agreement.json (with the negative control), pi.csv (peak-interval
+    /// uniformity), tables.md, report.html and figures/ there.
     Analyse(AnalyseArgs),
 }
 
@@ -60,12 +61,23 @@ pub fn run(cmd: PaperCommand) -> Result<()> {
                 &a.results.join("figures"),
             )?;
             let agree = s.comparison.iter().filter(|r| r.agree == "yes").count();
+            let agree_z = s.comparison.iter().filter(|r| r.agree_z == "yes").count();
+            let printed: Vec<_> = s
+                .comparison
+                .iter()
+                .filter(|r| r.source == "paper")
+                .collect();
             println!(
-                "{} jobs analysed; {} of {} paper numbers within the lab's interval; wrote {}, \
-                 {} and {} figure files",
+                "{} jobs analysed; {} of {} paper numbers within the lab's interval (old rule), \
+                 {} with |z| <= 2; printed in the paper: {} (old) and {} (z) of {}; wrote {}, \
+                 {} and {} figure files (and agreement.json, pi.csv)",
                 s.jobs,
                 agree,
                 s.comparison.len(),
+                agree_z,
+                printed.iter().filter(|r| r.agree == "yes").count(),
+                printed.iter().filter(|r| r.agree_z == "yes").count(),
+                printed.len(),
                 a.results.join("tables.md").display(),
                 report.display(),
                 figures.len()

@@ -9,11 +9,15 @@
 //! * [`multitimer`] — curriculum levels reached, steps and training reward per level, the
 //!   final policy's reward and oven-off time per TD;
 //! * [`reference`] — the paper's published numbers;
-//! * [`compare`] — `comparison.csv` rows and the agreement rule;
+//! * [`compare`] — `comparison.csv` rows, the old agreement rule and the z rule;
+//! * [`agreement`] — `agreement.json`: verdict counts per table × source × rule and the
+//!   negative control;
+//! * [`pi`] — `pi.csv`: the peak-interval probes and the uniform-checking test;
 //! * [`figures`] — the study's figures in the paper's form;
 //! * [`study`] — the whole analysis of a results folder, written as JSON, CSV and Markdown;
 //! * [`report`] — the study's `report.html`: agreement per table, figures, every row.
 
+pub mod agreement;
 pub mod bisection;
 pub mod collect;
 pub mod compare;
@@ -21,6 +25,7 @@ pub mod fi;
 pub mod figures;
 pub mod lsq;
 pub mod multitimer;
+pub mod pi;
 pub mod reference;
 pub mod report;
 pub mod study;

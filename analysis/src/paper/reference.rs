@@ -1,7 +1,8 @@
 //! The paper's published numbers that the paper-core study covers: its tables (FI CV, FI
 //! R², bisection WF and DL for CTRNN125 / LSTM125) and the numbers printed in its
 //! notebooks (pooled FI FOC means and SDs, R² as the notebook prints it now, multi-timer
-//! levels reached), with where each comes from. NaN = the paper prints NaN.
+//! levels reached), with where each comes from ([`Source`]: the paper's tables in
+//! `chronocooked-paper.tex`, or only the notebook's output). NaN = the paper prints NaN.
 
 /// One published number.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -14,9 +15,38 @@ pub struct PaperNumber {
     pub column: &'static str,
     /// The value.
     pub value: f64,
+    /// Printed in the paper, or only in the authors' notebook output.
+    pub source: Source,
 }
 
+/// Where a published number is printed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Source {
+    /// A table of the paper (`chronocooked-paper.tex`).
+    Paper,
+    /// Only the output cells of the authors' notebooks (`paper-protocol.md` §4).
+    Notebook,
+}
+
+impl Source {
+    /// `paper` or `notebook` (the `source` column of `comparison.csv`).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Source::Paper => "paper",
+            Source::Notebook => "notebook",
+        }
+    }
+}
+
+/// Training runs behind each of the paper's per-run means and SDs (WF, DL): logs 1–4 of
+/// the authors' scripts (`paper-protocol.md` §2.2; the paper does not print how many of
+/// them survived its exclusion rule, so 4 is an upper bound).
+pub const PAPER_RUNS: usize = 4;
+
 const N: f64 = f64::NAN;
+use Source::{Notebook, Paper};
+use serde::{Deserialize, Serialize};
 
 /// The paper's model names and the lab's faithful counterparts (the paper's CTRNN is an
 /// untrained reservoir: see the README).
@@ -32,6 +62,7 @@ pub fn lab_model(paper: &str) -> Option<&'static str> {
 }
 
 fn rows(
+    source: Source,
     table: &'static str,
     column: &'static str,
     keys: &[&'static str],
@@ -44,6 +75,7 @@ fn rows(
             row,
             column,
             value,
+            source,
         })
         .collect()
 }
@@ -58,12 +90,14 @@ pub fn numbers() -> Vec<PaperNumber> {
     let mut v = Vec::new();
     // Paper, Table "Coefficient of Variation" (FI).
     v.extend(rows(
+        Paper,
         "fi_cv",
         "CTRNN125",
         &TDS,
         &[N, N, 1.14, 2.34, 0.27, 0.05],
     ));
     v.extend(rows(
+        Paper,
         "fi_cv",
         "LSTM125",
         &TDS,
@@ -71,12 +105,14 @@ pub fn numbers() -> Vec<PaperNumber> {
     ));
     // Paper, Table "R²" (FI scalar property).
     v.extend(rows(
+        Paper,
         "fi_r2",
         "mean_vs_td",
         &["CTRNN125", "LSTM125"],
         &[0.9, 0.97],
     ));
     v.extend(rows(
+        Paper,
         "fi_r2",
         "sd_vs_mean",
         &["CTRNN125", "LSTM125"],
@@ -84,42 +120,49 @@ pub fn numbers() -> Vec<PaperNumber> {
     ));
     // FI notebook (current outputs), pooled FOC means and SDs, and R².
     v.extend(rows(
+        Notebook,
         "fi_foc_mean_notebook",
         "LSTM125",
         &TDS,
         &[3.98, 5.63, 9.02, 11.46, 18.19, 22.75],
     ));
     v.extend(rows(
+        Notebook,
         "fi_foc_mean_notebook",
         "CTRNN125",
         &TDS,
         &[2.52, 3.71, 2.86, 7.14, 13.03, 18.92],
     ));
     v.extend(rows(
+        Notebook,
         "fi_foc_mean_notebook",
         "CNN",
         &TDS,
         &[0.06, 0.06, 0.81, 0.00, 0.75, 0.81],
     ));
     v.extend(rows(
+        Notebook,
         "fi_foc_sd_notebook",
         "LSTM125",
         &TDS,
         &[0.53, 1.23, 0.96, 2.13, 2.43, 2.72],
     ));
     v.extend(rows(
+        Notebook,
         "fi_foc_sd_notebook",
         "CTRNN125",
         &TDS,
         &[1.44, 1.88, 3.21, 3.61, 3.70, 4.25],
     ));
     v.extend(rows(
+        Notebook,
         "fi_r2_notebook",
         "mean_vs_td",
         &["CTRNN125", "LSTM125"],
         &[0.95, 1.00],
     ));
     v.extend(rows(
+        Notebook,
         "fi_r2_notebook",
         "sd_vs_mean",
         &["CTRNN125", "LSTM125"],
@@ -127,48 +170,56 @@ pub fn numbers() -> Vec<PaperNumber> {
     ));
     // Paper, Tables "Weber fraction" and "Difference limen" (mean and SD over runs).
     v.extend(rows(
+        Paper,
         "bisection_wf",
         "CTRNN125",
         &ANCHORS,
         &[N, N, 0.05, 0.04, 0.04, 0.06],
     ));
     v.extend(rows(
+        Paper,
         "bisection_wf",
         "LSTM125",
         &ANCHORS,
         &[0.04, 0.09, 0.07, 0.13, 0.15, 0.14],
     ));
     v.extend(rows(
+        Paper,
         "bisection_wf_sd",
         "CTRNN125",
         &ANCHORS,
         &[N, N, 0.06, 0.05, 0.00, 0.00],
     ));
     v.extend(rows(
+        Paper,
         "bisection_wf_sd",
         "LSTM125",
         &ANCHORS,
         &[0.05, 0.03, 0.01, 0.02, 0.04, 0.06],
     ));
     v.extend(rows(
+        Paper,
         "bisection_dl",
         "CTRNN125",
         &ANCHORS,
         &[N, N, 0.46, 0.26, 0.48, 0.59],
     ));
     v.extend(rows(
+        Paper,
         "bisection_dl",
         "LSTM125",
         &ANCHORS,
         &[0.29, 0.50, 0.62, 1.04, 1.69, 1.19],
     ));
     v.extend(rows(
+        Paper,
         "bisection_dl_sd",
         "CTRNN125",
         &ANCHORS,
         &[N, N, 0.53, 0.33, 0.02, 0.08],
     ));
     v.extend(rows(
+        Paper,
         "bisection_dl_sd",
         "LSTM125",
         &ANCHORS,
@@ -179,12 +230,67 @@ pub fn numbers() -> Vec<PaperNumber> {
     // at env1 (one timer, undercooking possible) while its level counter starts at 0
     // (`paper-protocol.md` §5.10), so its "env0" is the one-timer level: level 1 in the
     // code's env numbering, which the lab's levels follow (0 = warm-up).
-    v.extend(rows("multitimer_level", "exact", &["CTRNN125"], &[1.0]));
     v.extend(rows(
+        Notebook,
+        "multitimer_level",
+        "exact",
+        &["CTRNN125"],
+        &[1.0],
+    ));
+    v.extend(rows(
+        Notebook,
         "multitimer_runs_at_last_level",
         "exact",
         &["LSTM125"],
         &[0.0],
+    ));
+    v
+}
+
+/// The size-8 numbers: the appendix's WF and DL tables (`tab:wf_supp`, `tab:dl_supp`:
+/// every CTRNN8 and LSTM8 entry is printed as NaN) and the FI notebook's pooled FOC means
+/// and R² of LSTM8 and CTRNN8 (`paper-protocol.md` §4; "–" there = NaN here). Used only by
+/// the negative control of `agreement.json` (paper size 8 against the lab's size 125, the
+/// stand-in for size 256 until that runs).
+pub fn size8_numbers() -> Vec<PaperNumber> {
+    let mut v = Vec::new();
+    for model in ["CTRNN8", "LSTM8"] {
+        for table in [
+            "bisection_wf",
+            "bisection_wf_sd",
+            "bisection_dl",
+            "bisection_dl_sd",
+        ] {
+            v.extend(rows(Paper, table, model, &ANCHORS, &[N; 6]));
+        }
+    }
+    v.extend(rows(
+        Notebook,
+        "fi_foc_mean_notebook",
+        "LSTM8",
+        &TDS,
+        &[3.39, 3.92, 5.59, 12.50, N, 10.85],
+    ));
+    v.extend(rows(
+        Notebook,
+        "fi_foc_mean_notebook",
+        "CTRNN8",
+        &TDS,
+        &[0.0, 0.0, 7.58, 6.17, 5.44, N],
+    ));
+    v.extend(rows(
+        Notebook,
+        "fi_r2_notebook",
+        "mean_vs_td",
+        &["CTRNN8", "LSTM8"],
+        &[0.44, 0.57],
+    ));
+    v.extend(rows(
+        Notebook,
+        "fi_r2_notebook",
+        "sd_vs_mean",
+        &["CTRNN8", "LSTM8"],
+        &[0.35, 0.35],
     ));
     v
 }

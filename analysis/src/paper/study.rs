@@ -1,12 +1,15 @@
 //! The whole paper analysis of a compact results folder: FI, bisection, multi-timer, the
-//! comparison with the paper, and the cost of each job kind; written as `analysis.json`,
-//! `comparison.csv` and `tables.md`.
+//! comparison with the paper (under both rules, with the negative control), the
+//! peak-interval probes, and the cost of each job kind; written as `analysis.json`,
+//! `comparison.csv`, `agreement.json`, `pi.csv` and `tables.md`.
 
+use super::agreement::{Agreement, agreement};
 use super::bisection::{BisectionModel, analyse_bisection};
 use super::collect::{CollectError, CompactJob, read_compact};
 use super::compare::{ComparisonRow, compare};
 use super::fi::{FiModel, analyse_fi};
 use super::multitimer::{MtCell, analyse_multitimer};
+use super::pi::{PiRow, PiVerdict, analyse_pi, pi_verdicts};
 use super::reference::HUMAN_WF_VS_RATIO;
 use crate::behaviour::aggregate::Spread;
 use serde::{Deserialize, Serialize};
@@ -44,6 +47,12 @@ pub struct PaperStudy {
     pub multitimer: Vec<MtCell>,
     /// Comparison with the paper.
     pub comparison: Vec<ComparisonRow>,
+    /// Verdict counts under both rules and the negative control (`agreement.json`).
+    pub agreement: Agreement,
+    /// Peak-interval probe curves (`pi.csv`).
+    pub pi: Vec<PiRow>,
+    /// Uniform-checking verdict per model × probe factor.
+    pub pi_verdicts: Vec<PiVerdict>,
     /// Cost per job kind.
     pub cost: Vec<JobCost>,
 }
@@ -73,8 +82,14 @@ pub fn analyse(root: &Path) -> Result<PaperStudy, CollectError> {
     let bisection = analyse_bisection(&jobs);
     let multitimer = analyse_multitimer(&jobs);
     let comparison = compare(&fi, &bisection, &multitimer);
+    let agreement = agreement(&comparison, &fi, &bisection, &multitimer);
+    let pi = analyse_pi(root, &jobs)?;
+    let pi_verdicts = pi_verdicts(&pi);
     Ok(PaperStudy {
         jobs: jobs.len(),
+        agreement,
+        pi,
+        pi_verdicts,
         cost: job_costs(&jobs),
         fi,
         bisection,
@@ -281,6 +296,8 @@ pub fn tables_markdown(s: &PaperStudy) -> String {
             cells.join(" | ")
         );
     }
+    super::agreement::agreement_markdown(&mut m, &s.agreement);
+    super::pi::pi_markdown(&mut m, &s.pi_verdicts);
     let _ = writeln!(m, "\n## Cost per job kind (one core per job)\n");
     let _ = writeln!(
         m,
@@ -302,7 +319,8 @@ pub fn tables_markdown(s: &PaperStudy) -> String {
     m
 }
 
-/// Writes `analysis.json`, `comparison.csv` and `tables.md` into `root`.
+/// Writes `analysis.json`, `comparison.csv`, `agreement.json`, `pi.csv` and `tables.md`
+/// into `root`.
 pub fn write_study(root: &Path, s: &PaperStudy) -> Result<(), CollectError> {
     let e = |p: &Path, m: String| CollectError::File {
         path: p.display().to_string(),
@@ -320,5 +338,13 @@ pub fn write_study(root: &Path, s: &PaperStudy) -> Result<(), CollectError> {
     }
     let bytes = w.into_inner().map_err(|x| e(root, x.to_string()))?;
     write("comparison.csv", &bytes)?;
+    let json = serde_json::to_string_pretty(&s.agreement).map_err(|x| e(root, x.to_string()))?;
+    write("agreement.json", json.as_bytes())?;
+    let mut w = csv::Writer::from_writer(Vec::new());
+    for r in &s.pi {
+        w.serialize(r).map_err(|x| e(root, x.to_string()))?;
+    }
+    let bytes = w.into_inner().map_err(|x| e(root, x.to_string()))?;
+    write("pi.csv", &bytes)?;
     write("tables.md", tables_markdown(s).as_bytes())
 }
