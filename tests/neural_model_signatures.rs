@@ -157,11 +157,7 @@ fn the_ddm_accumulator_is_a_ramp_that_stretches_with_the_interval() {
         // The remembered times themselves are learned with the model's 15% noise and come
         // out within the behavioural band of FOC/TD (0.8–1.2) of each TD, so their ratio
         // lies within ±20% of the TD ratio (seed 0 at the defaults: 1.69 for 2).
-        assert!(
-            (m / sc.td_ratio - 1.0).abs() <= 0.2,
-            "{}: {sc:?}",
-            p.label
-        );
+        assert!((m / sc.td_ratio - 1.0).abs() <= 0.2, "{}: {sc:?}", p.label);
         // The trajectory runs 1/s as fast.
         let speed = sc.speed_ratio.unwrap();
         assert!((speed * m - 1.0).abs() < 0.1, "{}: {sc:?}", p.label);

@@ -205,10 +205,7 @@ fn every_model_records_into_the_same_dataset_type() {
     let mut agents: Vec<(Box<dyn Agent>, Vec<&str>)> = Vec::new();
     for (name, pops) in [
         ("ddm", vec!["accumulator", "drift", "value", "rpe"]),
-        (
-            "sbf",
-            vec!["oscillators", "striatum", "value", "rpe"],
-        ),
+        ("sbf", vec!["oscillators", "striatum", "value", "rpe"]),
         (
             "timecells-laplace",
             vec!["time_cells", "laplace", "value", "rpe"],
