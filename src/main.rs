@@ -62,7 +62,20 @@ enum Command {
     },
 }
 
+/// Ends the process quietly when a reader of its output goes away (`chronocooked zoo show |
+/// head`), as command-line tools do, instead of panicking in `println!` on a broken pipe:
+/// the default action of SIGPIPE, which Rust's runtime sets to "ignore".
+fn restore_default_sigpipe() {
+    #[cfg(unix)]
+    // SAFETY: called once at start-up, before any thread is spawned; `signal` with
+    // `SIG_DFL` only resets the disposition of SIGPIPE.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
 fn main() -> ExitCode {
+    restore_default_sigpipe();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Env { command } => env::run(command),

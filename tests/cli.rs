@@ -281,3 +281,26 @@ fn env_replay_accepts_reference_parameter_names_for_multi_timer() {
     );
     assert_eq!(lines[8]["terminated"], true);
 }
+
+#[test]
+fn a_reader_that_goes_away_ends_the_command_quietly() {
+    // `chronocooked env list | head -0`: the read end of stdout is closed before the command
+    // writes. A command-line tool then ends on SIGPIPE with nothing on stderr; it must not
+    // panic ("failed printing to stdout: Broken pipe", exit 101).
+    let mut child = bin()
+        .args(["env", "list"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_ne!(out.status.code(), Some(101), "{:?} {stderr}", out.status);
+    #[cfg(unix)]
+    {
+        use std::os::unix::process::ExitStatusExt;
+        assert_eq!(out.status.signal(), Some(13), "{:?}", out.status);
+    }
+}
