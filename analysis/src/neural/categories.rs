@@ -412,19 +412,7 @@ pub fn classify_units(cube: &Cube, cfg: &CategoryConfig) -> Result<Vec<UnitTests
 }
 
 /// Counts per category (they sum to the units classified).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
-pub struct CategoryCounts {
-    /// Ramps.
-    pub ramp: usize,
-    /// Time fields.
-    pub time_field: usize,
-    /// Oscillating units.
-    pub oscillating: usize,
-    /// Mixed units.
-    pub mixed: usize,
-    /// Untuned units.
-    pub untuned: usize,
-}
+pub type CategoryCounts = PerCategory<usize>;
 
 impl CategoryCounts {
     /// Counts of `units`' categories.
@@ -436,27 +424,6 @@ impl CategoryCounts {
         c
     }
 
-    fn get_mut(&mut self, cat: Category) -> &mut usize {
-        match cat {
-            Category::Ramp => &mut self.ramp,
-            Category::TimeField => &mut self.time_field,
-            Category::Oscillating => &mut self.oscillating,
-            Category::Mixed => &mut self.mixed,
-            Category::Untuned => &mut self.untuned,
-        }
-    }
-
-    /// The count of `cat`.
-    pub fn get(&self, cat: Category) -> usize {
-        match cat {
-            Category::Ramp => self.ramp,
-            Category::TimeField => self.time_field,
-            Category::Oscillating => self.oscillating,
-            Category::Mixed => self.mixed,
-            Category::Untuned => self.untuned,
-        }
-    }
-
     /// Units counted.
     pub fn total(&self) -> usize {
         CATEGORIES.iter().map(|&c| self.get(c)).sum()
@@ -464,7 +431,7 @@ impl CategoryCounts {
 }
 
 /// A value per category (fractions or interval bounds).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct PerCategory<T> {
     /// Ramps.
     pub ramp: T,
@@ -498,6 +465,17 @@ impl<T: Copy> PerCategory<T> {
             Category::Oscillating => self.oscillating,
             Category::Mixed => self.mixed,
             Category::Untuned => self.untuned,
+        }
+    }
+
+    /// The value of `cat`, to change it.
+    pub fn get_mut(&mut self, cat: Category) -> &mut T {
+        match cat {
+            Category::Ramp => &mut self.ramp,
+            Category::TimeField => &mut self.time_field,
+            Category::Oscillating => &mut self.oscillating,
+            Category::Mixed => &mut self.mixed,
+            Category::Untuned => &mut self.untuned,
         }
     }
 }
