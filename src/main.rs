@@ -2,7 +2,9 @@
 
 mod cmd;
 
-use cmd::{adapt, bench, demo, env, eval, export, paper, record, report, sweep, train, zoo};
+use cmd::{
+    adapt, bench, demo, env, eval, export, mechanisms, paper, record, report, sweep, train, zoo,
+};
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -49,6 +51,10 @@ enum Command {
         #[command(subcommand)]
         command: zoo::ZooCommand,
     },
+    /// Mechanism fingerprints of a study's compact results: each model's behavioural and
+    /// neural signatures and, per trained agent, the distance to every timing mechanism and
+    /// the nearest one (bootstrap over seeds).
+    Mechanisms(mechanisms::MechanismsArgs),
     /// The paper's study: collect a sweep's compact results, analyse them as the paper does
     /// and compare with the paper's numbers.
     Paper {
@@ -91,6 +97,7 @@ fn main() -> ExitCode {
         Command::SweepJob(args) => sweep::run_job_cmd(args),
         Command::Zoo { command } => zoo::run_zoo(command),
         Command::Paper { command } => paper::run(command),
+        Command::Mechanisms(args) => mechanisms::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

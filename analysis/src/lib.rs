@@ -14,6 +14,8 @@
 //!   the SVG/PNG figures (`figures`);
 //! * [`export`] — NPZ (numpy) + CSV + JSON-metadata export of activity and evaluation
 //!   records (`npz`: the NPZ format);
+//! * [`mechanisms`] — mechanism fingerprints: each model's behavioural and neural
+//!   signatures, and which timing mechanism each trained agent is nearest to;
 //! * [`paper`] — the paper's study: compact sweep results, the paper's analyses beside the
 //!   lab's, and the comparison with the paper's numbers.
 
@@ -22,6 +24,7 @@
 pub mod behaviour;
 pub mod evaluation;
 pub mod export;
+pub mod mechanisms;
 pub mod neural;
 pub mod paper;
 pub mod report;

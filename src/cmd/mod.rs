@@ -11,6 +11,7 @@
 //! * [`report`] — `report`: the leaderboard;
 //! * [`sweep`] — `sweep` and the hidden `sweep-job`;
 //! * [`paper`] — `paper collect | analyse`: the paper's study;
+//! * [`mechanisms`] — `mechanisms`: fingerprints and each agent's nearest timing mechanism;
 //! * [`zoo`] — `zoo list | show`;
 //! * [`bench`] — `bench env | train | timing`.
 
@@ -20,6 +21,7 @@ pub mod demo;
 pub mod env;
 pub mod eval;
 pub mod export;
+pub mod mechanisms;
 pub mod paper;
 pub mod record;
 pub mod report;

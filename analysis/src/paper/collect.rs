@@ -1,8 +1,8 @@
 //! Compact study results: from a sweep's output folder (run folders with checkpoints,
 //! per-step evaluation records) to what the paper's analysis needs and what a repository
 //! can keep — per job a summary (`job.json`), one line per evaluation episode
-//! (`episodes.csv`), a thinned learning curve (`curve.csv`) and the lab's metrics
-//! (`metrics.json`).
+//! (`episodes.csv`), a thinned learning curve (`curve.csv`), the lab's metrics
+//! (`metrics.json`) and, for recorded jobs, the neural summary (`activity.summary.json`).
 
 use crate::behaviour::foc::{FocConvention, first_oven_check_with};
 use crate::evaluation::protocol::{ConditionKind, EvalRecord, read_records};
@@ -228,7 +228,13 @@ pub fn summarise_job(dir: &Path) -> Result<Option<CompactJob>, CollectError> {
     }
     let job = read_json(&dir.join("job.json"))?;
     let cfg = read_json(&dir.join("run").join("config.json"))?;
-    let curve = read_curve(&dir.join("run").join("curves.csv"))?;
+    // A timing-model run's curves.csv has its own columns (episodes, not PPO updates): its
+    // compact result keeps the evaluation, metrics and neural summary, no PPO curve.
+    let curve = if cfg["kind"].as_str() == Some("timing") {
+        Vec::new()
+    } else {
+        read_curve(&dir.join("run").join("curves.csv"))?
+    };
     let records = read_records(&eval).map_err(|e| err(&eval.join("records.jsonl"), e))?;
     let s = |v: &serde_json::Value, k: &str| v[k].as_str().unwrap_or_default().to_string();
     let mut level_steps = vec![0];
@@ -323,6 +329,22 @@ pub fn collect(sweep_out: &Path, to: &Path) -> Result<(usize, usize), CollectErr
         }
         let m_path = out.join("metrics.json");
         chronocooked_env::fs::write_atomic(&m_path, &text).map_err(|e| err(&m_path, e))?;
+        // The neural summary of a recorded job (a few kB; the activity itself stays behind),
+        // copied only when it is a list of population summaries.
+        let neural = dir.join("activity.summary.json");
+        if neural.is_file() {
+            let text = std::fs::read(&neural).map_err(|e| err(&neural, e))?;
+            let parsed: serde_json::Value =
+                serde_json::from_slice(&text).map_err(|e| err(&neural, e))?;
+            if !parsed.is_array() {
+                return Err(err(
+                    &neural,
+                    "not a neural summary (no list of populations)",
+                ));
+            }
+            let n_path = out.join("activity.summary.json");
+            chronocooked_env::fs::write_atomic(&n_path, &text).map_err(|e| err(&n_path, e))?;
+        }
         written += 1;
     }
     Ok((written, pending))

@@ -1,0 +1,171 @@
+//! `chronocooked mechanisms` on constructed compact results whose answers are known: the
+//! features read by hand from the job files, and an agent built as a copy of one mechanism
+//! is nearest to it in every bootstrap resample.
+
+mod common;
+
+use chronocooked_analysis::mechanisms::{compare, signatures};
+use common::run_ok;
+use serde_json::json;
+use std::path::Path;
+
+/// Writes one compact job: FI at `td` (FOC mean `foc`, CV `cv`, PI peak `peak` and CV 0.3
+/// on the 2 × TD probe) or, with `bis`, bisection 4-12 (BP, WF); `frac` the share of ramps
+/// among 10 units of the timing population (the rest time fields), plus a value read-out
+/// that must not count.
+#[allow(clippy::too_many_arguments)]
+fn job(
+    root: &Path,
+    model: &str,
+    seed: u64,
+    td: u32,
+    foc: f64,
+    cv: f64,
+    bis: Option<(f64, f64)>,
+    ramps: u64,
+) {
+    let task = if bis.is_some() {
+        "Bisection-v0"
+    } else {
+        "FixedInterval-v0"
+    };
+    let dir = root
+        .join("jobs")
+        .join(task)
+        .join(format!("{model}~td-{td}"))
+        .join(format!("seed{seed}"));
+    std::fs::create_dir_all(&dir).unwrap();
+    let j = json!({"id": format!("{task}/{model}/seed{seed}"), "task": task, "model": model,
+                   "row": model, "seed": seed, "env": []});
+    std::fs::write(dir.join("job.json"), j.to_string()).unwrap();
+    let metrics = match bis {
+        Some((bp, wf)) => json!({"conditions": [], "bisection": {"short": 4, "long": 12,
+                                  "fit": {"bp": bp, "wf": wf}}}),
+        None => json!({"conditions": [],
+                       "fi": {"foc": [{"td": td, "n": 48, "mean": foc, "sd": cv * foc, "cv": cv}]},
+                       "pi": [{"factor": 2.0, "td": td, "fit": {"peak": 1.5 * td as f64, "cv": 0.3}},
+                              {"factor": 5.0, "td": td, "fit": {"peak": 9.0 * td as f64, "cv": 0.9}}]}),
+    };
+    std::fs::write(dir.join("metrics.json"), metrics.to_string()).unwrap();
+    if bis.is_none() {
+        let counts = |r: u64, t: u64| {
+            json!({"ramp": r, "time_field": t, "oscillating": 0,
+                                            "mixed": 0, "untuned": 0})
+        };
+        let summary = json!([
+            {"population": "cells", "td": td, "decode_ridge": 0.1 * td as f64,
+             "categories": {"counts": counts(ramps, 10 - ramps)}},
+            {"population": "value", "td": td, "decode_ridge": 9.0,
+             "categories": {"counts": counts(0, 1)}}
+        ]);
+        std::fs::write(dir.join("activity.summary.json"), summary.to_string()).unwrap();
+    }
+}
+
+#[test]
+fn fingerprints_read_every_feature_and_find_the_mechanism_an_agent_copies() {
+    let root = tempfile::tempdir().unwrap();
+    for seed in 0..4 {
+        let e = 0.01 * seed as f64;
+        // "ddm": ramps, CV 0.15 at both TDs; "timecells-csc": time fields, CV 0.3 → 0.15.
+        job(root.path(), "ddm", seed, 6, 6.6, 0.15 + e, None, 10);
+        job(root.path(), "ddm", seed, 12, 12.0, 0.15 + e, None, 10);
+        job(
+            root.path(),
+            "ddm",
+            seed,
+            0,
+            0.0,
+            0.0,
+            Some((7.0, 0.1 + e)),
+            0,
+        );
+        job(root.path(), "timecells-csc", seed, 6, 6.0, 0.3 + e, None, 1);
+        job(
+            root.path(),
+            "timecells-csc",
+            seed,
+            12,
+            12.0,
+            0.15 + e,
+            None,
+            1,
+        );
+        job(
+            root.path(),
+            "timecells-csc",
+            seed,
+            0,
+            0.0,
+            0.0,
+            Some((8.0, 0.2 + e)),
+            0,
+        );
+        // The agent copies the ramp's behaviour and activity, up to small offsets.
+        job(root.path(), "agent125", seed, 6, 6.5, 0.16 + e, None, 9);
+        job(root.path(), "agent125", seed, 12, 12.1, 0.15 + e, None, 9);
+        job(
+            root.path(),
+            "agent125",
+            seed,
+            0,
+            0.0,
+            0.0,
+            Some((7.1, 0.11 + e)),
+            0,
+        );
+    }
+    let sigs = signatures(root.path()).unwrap();
+    assert_eq!(sigs.len(), 12);
+    let csc0 = sigs
+        .iter()
+        .find(|s| s.model == "timecells-csc" && s.seed == 0)
+        .unwrap();
+    let f = |k: &str| csc0.features[k];
+    // By hand: FOC/TD (1 + 1)/2; CV (0.3 + 0.15)/2; trend ln(0.15/0.3); PI peak/TD 1.5 and
+    // CV 0.3 from the 2 × TD probe only; BP/GM 8/√48; ramps 1 of 10 units (the value
+    // read-out excluded); decoding error 0.1 × TD / TD.
+    assert!((f("foc_over_td") - 1.0).abs() < 1e-12);
+    assert!((f("foc_cv") - 0.225).abs() < 1e-12);
+    assert!((f("foc_cv_trend") - 0.5f64.ln()).abs() < 1e-12);
+    assert!((f("pi_peak_over_td") - 1.5).abs() < 1e-12 && (f("pi_cv") - 0.3).abs() < 1e-12);
+    assert!((f("bp_over_gm") - 8.0 / 48f64.sqrt()).abs() < 1e-12);
+    assert!((f("wf") - 0.2).abs() < 1e-12);
+    assert!((f("frac_ramp") - 0.1).abs() < 1e-12 && (f("frac_time_field") - 0.9).abs() < 1e-12);
+    assert!((f("decode_error_over_td") - 0.1).abs() < 1e-12);
+    let c = compare(&sigs, &["ddm", "timecells-csc"], 300, 3);
+    let get = |m: &str| {
+        c.iter()
+            .find(|x| x.agent == "agent125" && x.mechanism == m)
+            .unwrap()
+    };
+    assert!(get("ddm").distance < get("timecells-csc").distance, "{c:?}");
+    assert_eq!(get("ddm").nearest_fraction, 1.0);
+    // Through the CLI: the three tables, the agent's row naming its nearest mechanism.
+    let out = root.path().join("out");
+    run_ok(&[
+        "mechanisms",
+        root.path().to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--resamples",
+        "200",
+    ]);
+    let md = std::fs::read_to_string(out.join("mechanisms.md")).unwrap();
+    let row = md
+        .lines()
+        .find(|l| l.starts_with("| agent125 |") && l.contains("ddm (1.00)"))
+        .unwrap_or_default();
+    assert!(!row.is_empty(), "{md}");
+    let csv = std::fs::read_to_string(out.join("signatures.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 13, "{csv}");
+    // An empty folder is an error naming it.
+    let empty = root.path().join("empty");
+    std::fs::create_dir_all(&empty).unwrap();
+    assert!(
+        signatures(&empty)
+            .unwrap_err()
+            .to_string()
+            .contains("empty")
+    );
+}
