@@ -13,8 +13,9 @@
 //! * `wf`, `bp_over_gm` — bisection Weber fraction and bisection point / geometric mean;
 //! * `frac_ramp`, `frac_time_field`, `frac_oscillating` — the unit categories of the
 //!   model's own timing populations on probe trials (value and RPE read-outs excluded),
-//!   pooled over its recorded populations; `decode_error_over_td` — the cross-validated
-//!   ridge decoding error of elapsed time over TD.
+//!   pooled over its recorded populations, from its fixed-interval jobs only (recorded on
+//!   peak-interval probe trials); `decode_error_over_td` — the cross-validated ridge
+//!   decoding error of elapsed time over TD.
 //!
 //! Features are standardised by their SD over every signature, a model's fingerprint is the
 //! mean of its seeds' signatures, and the distance between two fingerprints is the root mean
@@ -97,7 +98,9 @@ struct JobFeatures {
     fi_cv: Option<(u32, f64)>,
 }
 
-fn job_features(dir: &Path) -> Result<JobFeatures, MechanismError> {
+/// The features of one job; the neural ones only from fixed-interval (or peak-interval)
+/// jobs, whose recordings are peak-interval probe trials with 2 × TD windows (`probe`).
+fn job_features(dir: &Path, probe: bool) -> Result<JobFeatures, MechanismError> {
     let metrics = read(&dir.join("metrics.json"))?;
     let mut out = JobFeatures::default();
     if let Some(foc) = metrics["fi"]["foc"].as_array() {
@@ -131,7 +134,7 @@ fn job_features(dir: &Path) -> Result<JobFeatures, MechanismError> {
         out.values.push(("bp_over_gm", bp / (s * l).sqrt()));
     }
     let summary = dir.join("activity.summary.json");
-    if summary.is_file() {
+    if probe && summary.is_file() {
         let pops = read(&summary)?;
         let (mut counts, mut units) = ([0.0f64; 3], 0.0);
         let mut decode = Vec::new();
@@ -207,7 +210,11 @@ pub fn signatures(results: &Path) -> Result<Vec<Signature>, MechanismError> {
             .unwrap_or("unknown")
             .to_string();
         let key = (model, job["seed"].as_u64().unwrap_or(0));
-        let f = job_features(&dir)?;
+        let probe = matches!(
+            job["task"].as_str(),
+            Some("FixedInterval-v0" | "PeakInterval-v0")
+        );
+        let f = job_features(&dir, probe)?;
         let slot = values.entry(key.clone()).or_default();
         for (name, v) in f.values {
             slot.entry(name).or_default().push(v);
