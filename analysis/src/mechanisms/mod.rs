@@ -250,33 +250,31 @@ pub fn signatures(results: &Path) -> Result<Vec<Signature>, MechanismError> {
         .collect())
 }
 
-/// SD of each feature over `sigs` (features with fewer than 2 values or no spread left out).
-fn feature_sds(sigs: &[Signature]) -> BTreeMap<&'static str, f64> {
+/// One statistic of every feature over `sigs` (`pick` reads it from the feature's spread;
+/// `None` leaves the feature out).
+fn per_feature<'a>(
+    sigs: impl Iterator<Item = &'a Signature> + Clone,
+    pick: impl Fn(crate::stats::Spread) -> Option<f64>,
+) -> BTreeMap<&'static str, f64> {
     FEATURES
         .iter()
         .filter_map(|&f| {
-            let v: Vec<f64> = sigs
-                .iter()
-                .filter_map(|s| s.features.get(f).copied())
-                .collect();
-            let sd = crate::stats::Spread::of(v).sd;
-            (sd.is_finite() && sd > 0.0).then_some((f, sd))
+            let values = sigs.clone().filter_map(|s| s.features.get(f).copied());
+            pick(crate::stats::Spread::of(values)).map(|v| (f, v))
         })
         .collect()
 }
 
+/// SD of each feature over `sigs` (features with fewer than 2 values or no spread left out).
+fn feature_sds(sigs: &[Signature]) -> BTreeMap<&'static str, f64> {
+    per_feature(sigs.iter(), |s| {
+        (s.sd.is_finite() && s.sd > 0.0).then_some(s.sd)
+    })
+}
+
 /// Mean of each feature over `sigs` (features no signature has are absent).
 fn mean_features(sigs: &[&Signature]) -> BTreeMap<&'static str, f64> {
-    FEATURES
-        .iter()
-        .filter_map(|&f| {
-            let v: Vec<f64> = sigs
-                .iter()
-                .filter_map(|s| s.features.get(f).copied())
-                .collect();
-            (!v.is_empty()).then(|| (f, v.iter().sum::<f64>() / v.len() as f64))
-        })
-        .collect()
+    per_feature(sigs.iter().copied(), |s| (s.n > 0).then_some(s.mean))
 }
 
 /// RMS of the standardised differences over the features both fingerprints have (NaN when
