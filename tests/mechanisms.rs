@@ -157,6 +157,7 @@ fn fingerprints_read_every_feature_and_find_the_mechanism_an_agent_copies() {
         .find(|l| l.starts_with("| agent125 |") && l.contains("ddm (1.00)"))
         .unwrap_or_default();
     assert!(!row.is_empty(), "{md}");
+    assert!(out.join("fingerprints.svg").is_file() && out.join("fingerprints.png").is_file());
     let csv = std::fs::read_to_string(out.join("signatures.csv")).unwrap();
     assert_eq!(csv.lines().count(), 13, "{csv}");
     // An empty folder is an error naming it.

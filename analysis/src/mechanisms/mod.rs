@@ -388,7 +388,7 @@ pub const MECHANISMS: [&str; 5] = [
 /// What [`write_tables`] wrote.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Written {
-    /// `signatures.csv`, `mechanisms.csv`, `mechanisms.md`.
+    /// `signatures.csv`, `mechanisms.csv`, `mechanisms.md`, `fingerprints.svg`/`.png`.
     pub files: Vec<PathBuf>,
     /// Signatures (model × seed).
     pub signatures: usize,
@@ -502,15 +502,61 @@ pub fn write_tables(
         });
         md.push_str(&format!("| {a} | {} | {nearest} |\n", cells.join(" | ")));
     }
-    let files = vec![
+    let mut files = vec![
         write("signatures.csv", &csv)?,
         write("mechanisms.csv", &mcsv)?,
         write("mechanisms.md", &md)?,
     ];
+    files.extend(fingerprint_figure(&sigs, &out.join("fingerprints"))?);
     Ok(Written {
         files,
         signatures: sigs.len(),
         agents: agents.len(),
+    })
+}
+
+/// The fingerprints as parallel coordinates: per model (seed mean) a line over the
+/// features (x: the feature's index in [`FEATURES`], y: its value in SDs from the mean over
+/// all signatures); SVG and PNG at `stem`.
+fn fingerprint_figure(sigs: &[Signature], stem: &Path) -> Result<Vec<PathBuf>, MechanismError> {
+    use crate::report::figures::{Chart, Series, write_chart};
+    let sds = feature_sds(sigs);
+    let all: Vec<&Signature> = sigs.iter().collect();
+    let centre = mean_features(&all);
+    let mut models: Vec<&str> = sigs.iter().map(|s| s.model.as_str()).collect();
+    models.dedup();
+    let series = models
+        .iter()
+        .enumerate()
+        .map(|(k, m)| {
+            let mine: Vec<&Signature> = sigs.iter().filter(|s| s.model == *m).collect();
+            let mean = mean_features(&mine);
+            let points = FEATURES
+                .iter()
+                .enumerate()
+                .filter_map(|(i, f)| {
+                    Some((i as f64, (mean.get(f)? - centre.get(f)?) / sds.get(f)?))
+                })
+                .collect();
+            Series {
+                label: m.to_string(),
+                points,
+                line: true,
+                color: k,
+            }
+        })
+        .collect();
+    let chart = Chart {
+        title: "Mechanism fingerprints (seed means)".into(),
+        x_label: "feature (0 foc_cv … 10 decode_error_over_td, in the order of mechanisms.md)"
+            .into(),
+        y_label: "SDs from the mean of all signatures".into(),
+        series,
+        ..Chart::default()
+    };
+    write_chart(stem, &chart).map_err(|e| MechanismError::File {
+        path: stem.to_path_buf(),
+        message: e.to_string(),
     })
 }
 
