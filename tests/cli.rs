@@ -284,11 +284,13 @@ fn env_replay_accepts_reference_parameter_names_for_multi_timer() {
 
 #[test]
 fn a_reader_that_goes_away_ends_the_command_quietly() {
-    // `chronocooked env list | head -0`: the read end of stdout is closed before the command
-    // writes. A command-line tool then ends on SIGPIPE with nothing on stderr; it must not
-    // panic ("failed printing to stdout: Broken pipe", exit 101).
+    // `chronocooked env replay … | head -0`: the read end of stdout is closed while the
+    // command writes ≈ 110 KB of JSON lines, more than a pipe holds (64 KiB), so some write
+    // finds no reader. A command-line tool then ends on SIGPIPE with nothing on stderr; it
+    // must not panic ("failed printing to stdout: Broken pipe", exit 101).
+    let waits = vec!["0"; 190].join(",");
     let mut child = bin()
-        .args(["env", "list"])
+        .args(["env", "replay", "FixedInterval-v0", "--actions", &waits])
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
