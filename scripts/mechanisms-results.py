@@ -13,7 +13,8 @@ status = (f"**Status: {done} of 108 jobs finished** (every timing-mechanism job;
           "running — resume with `chronocooked sweep sweeps/mechanisms.toml --out lab-out/mechanisms "
           "--workers 2`, then `chronocooked paper collect lab-out/mechanisms --out results/mechanisms` and "
           "`chronocooked mechanisms results/mechanisms`). The agent rows below are preliminary: they rest on "
-          "the finished LSTM125 fixed-interval jobs only (no bisection features yet), so they are no finding yet.")
+          "the PPO agents' jobs finished so far (n per model in the table; bisection features only where its jobs "
+          "finished), so they are no finding yet.")
 p = pathlib.Path('RESULTS.md'); s = p.read_text()
 s = re.sub(r'(\*\*Status: \d+ of 108 jobs finished\*\*.*?no finding yet\.|MECH_STATUS)', status, s, count=1, flags=re.S)
 s = re.sub(r'(<!-- mech -->.*?<!-- /mech -->|MECH_TABLES)', '<!-- mech -->\n' + tables.strip() + '\n<!-- /mech -->', s, count=1, flags=re.S)
