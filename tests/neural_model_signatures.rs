@@ -40,6 +40,14 @@ struct Probe {
     ds: ActivityDataset,
     summaries: Vec<NeuralSummary>,
     runs: Vec<PathBuf>,
+    /// The temporary folder of the runs and the recording (removed with the probe).
+    root: PathBuf,
+}
+
+impl Drop for Probe {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.root);
+    }
 }
 
 impl Probe {
@@ -95,6 +103,7 @@ fn probe(model: &str, sets: &[&str]) -> Probe {
         ds: serde_json::from_str(&read(out.clone())).unwrap(),
         summaries: serde_json::from_str(&read(out.with_extension("summary.json"))).unwrap(),
         runs,
+        root,
     };
     for s in &probe.summaries {
         let counts: Vec<String> = s
