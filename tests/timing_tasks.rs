@@ -1,0 +1,139 @@
+//! Timing-model agents learning what particular tasks ask beyond timing: the uncertainty
+//! task's time-out category, the opportunity cost of time, and the dual task's one-step
+//! window (split from `timing_agents.rs`).
+
+use chronocooked_analysis::{Mode, reference_conditions, run_protocol};
+use chronocooked_training::timing_run::load_agent;
+use chronocooked_training::{TimingRunConfig, run_timing_training};
+
+fn temp_dir(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("cc-timing-tasks-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+/// Trains the timing run `cfg` through the project's training path (in a temporary run
+/// folder named after `label`) and loads the saved agent.
+fn trained_agent(cfg: &TimingRunConfig, label: &str) -> Box<dyn chronocooked_models::Agent> {
+    let dir = temp_dir(label);
+    run_timing_training(cfg, &dir, "test", |_| {}).unwrap();
+    let agent = load_agent(&dir, None).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    agent
+}
+
+/// (normal, never-ready) success of a trained uncertainty agent in the reference evaluation.
+fn uncertainty_success(agent: &mut dyn chronocooked_models::Agent) -> (f64, f64) {
+    let conditions = reference_conditions("Uncertainty-v0", &[]).unwrap();
+    let records = run_protocol(agent, &conditions, Mode::Reference, 0).unwrap();
+    let rate = |never: bool| {
+        let kind: Vec<_> = records
+            .iter()
+            .filter(|r| r.condition.never_ready == Some(never))
+            .collect();
+        assert!(!kind.is_empty());
+        kind.iter().filter(|r| r.episode.success).count() as f64 / kind.len() as f64
+    };
+    (rate(false), rate(true))
+}
+
+#[test]
+fn the_time_out_category_lets_ramping_and_oscillator_clocks_learn_the_time_out() {
+    // Past 1.5 × its expected time without the ready cue the model is "overdue", and the
+    // TD learner sees that category instead of the ramp (whose linear readout would carry
+    // the rising value of waiting past the expected time). Measured, seeds 0–15: drift-
+    // diffusion 1.00 / 1.00 (normal / never-ready) on all 16; without it (the agent before
+    // the category: `overdue_factor=0` also keeps the frozen clock after the cue) it waits
+    // at the never-ready oven on seeds 7 and 14 (0.00; 5 of 16 seeds reach 0.9).
+    // The measurement was made with the near-deterministic clock of that version
+    // (`noise=0.06`, exact anchor memories); the defaults are noisier (next assertion).
+    // Since the drift learns at rate 0.1 (was 0.2) seed 14 also reaches 0.91 without the
+    // category, so the claim checked is the population one: with the category both seeds
+    // learn the time-out, without it not both do.
+    let mut without = Vec::new();
+    for seed in [7, 14] {
+        let mut cfg = TimingRunConfig::new("Uncertainty-v0", "ddm", seed);
+        cfg.set("noise=0.06").unwrap();
+        cfg.set("memory_noise=0").unwrap();
+        let (normal, never) =
+            uncertainty_success(trained_agent(&cfg, &format!("unc-{seed}")).as_mut());
+        assert!(
+            normal >= 0.9 && never >= 0.9,
+            "seed {seed}: {normal} / {never}"
+        );
+        let mut off = cfg.clone();
+        // A factor below 1 would call the interval overdue before its expected time.
+        let err = off.set("overdue_factor=0.5").unwrap_err().to_string();
+        assert!(
+            err.contains("overdue_factor") && err.contains(">= 1"),
+            "{err}"
+        );
+        off.set("overdue_factor=0").unwrap();
+        let (_, never_off) =
+            uncertainty_success(trained_agent(&off, &format!("unc-off-{seed}")).as_mut());
+        without.push(never_off);
+    }
+    assert!(
+        without.iter().any(|&v| v < 0.9),
+        "without the category every seed learned the time-out: {without:?}"
+    );
+    // SBF (its remembered time) learns it too, at its default noise. (Drift-diffusion at
+    // its default noise: RESULTS.md's task matrix.)
+    let cfg = TimingRunConfig::new("Uncertainty-v0", "sbf", 0);
+    let (normal, never) = uncertainty_success(trained_agent(&cfg, "unc-sbf-0").as_mut());
+    assert!(normal >= 0.9 && never >= 0.9, "sbf: {normal} / {never}");
+}
+
+#[test]
+fn the_opportunity_cost_of_time_learns_the_reward_rate() {
+    // The rate is learned only when asked for, and it is the reward per step.
+    let mut cfg = TimingRunConfig::new("FixedInterval-v0", "ddm", 0);
+    cfg.set("episodes=1500").unwrap();
+    cfg.set("opportunity_cost=0.001").unwrap();
+    let dir = temp_dir("fi-oc");
+    run_timing_training(&cfg, &dir, "test", |_| {}).unwrap();
+    let saved: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("agent.json")).unwrap()).unwrap();
+    let rho = saved["reward_rate"].as_f64().unwrap();
+    // FI TD 12: one soup (reward 1) per episode of ≥ 12 + walking steps.
+    assert!(rho > 0.01 && rho < 1.0 / 12.0, "reward rate {rho}");
+    let _ = std::fs::remove_dir_all(&dir);
+    let mut plain = TimingRunConfig::new("FixedInterval-v0", "ddm", 0);
+    plain.set("episodes=300").unwrap();
+    let dir = temp_dir("fi-no-oc");
+    run_timing_training(&plain, &dir, "test", |_| {}).unwrap();
+    let saved: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("agent.json")).unwrap()).unwrap();
+    assert_eq!(saved["reward_rate"].as_f64(), Some(0.0));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn the_complete_serial_compound_learns_the_one_step_window_of_the_dual_task() {
+    // One unit per step and optimistic initial values (`CSC_Q_INIT`): the agent takes the
+    // soup exactly at TD 12 instead of the early reduced reward. Without optimism ε-greedy
+    // SARSA never finds the window (measured: 0% on four seeds). The delay line is exact
+    // here (`clock_noise=0`): with the default scalar clock noise no model can confine a
+    // response to one step (`task_limit`).
+    // As measured then: exact clock, internal check cost 0.01 (the time cells' default is
+    // now 0.05, at which plain SARSA found the window on seed 0 too).
+    for seed in [0, 1] {
+        let mut cfg = TimingRunConfig::new("DualTask-v0", "timecells-csc", seed);
+        cfg.set("clock_noise=0").unwrap();
+        cfg.set("response_cost=0.01").unwrap();
+        let mut agent = trained_agent(&cfg, &format!("dual-csc-{seed}"));
+        let conditions = reference_conditions("DualTask-v0", &[]).unwrap();
+        let records = run_protocol(agent.as_mut(), &conditions, Mode::Reference, 0).unwrap();
+        let rate =
+            records.iter().filter(|r| r.episode.success).count() as f64 / records.len() as f64;
+        assert!(rate >= 0.9, "seed {seed}: dual success {rate}");
+        let mut plain = cfg.clone();
+        plain.set("q_init=0").unwrap();
+        let mut agent = trained_agent(&plain, &format!("dual-csc-plain-{seed}"));
+        let records = run_protocol(agent.as_mut(), &conditions, Mode::Reference, 0).unwrap();
+        assert!(
+            records.iter().all(|r| !r.episode.success),
+            "seed {seed}: plain SARSA found the window"
+        );
+    }
+}
