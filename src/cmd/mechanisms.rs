@@ -20,11 +20,25 @@ pub struct MechanismsArgs {
     /// Seed of the bootstrap.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
+    /// A sweep's output folder (e.g. lab-out/mechanisms) whose fixed-interval runs of each
+    /// model and seed at two or more TDs are first recorded together on probe trials, for
+    /// the temporal-scaling feature; the compact summaries go to `<results>/scaling/`
+    /// (groups already there are skipped).
+    #[arg(long, value_name = "SWEEP_OUT")]
+    pub scaling_from: Option<PathBuf>,
 }
 
 /// Runs `mechanisms`.
 pub fn run(args: MechanismsArgs) -> Result<()> {
     let out = args.out.clone().unwrap_or_else(|| args.results.clone());
+    if let Some(study) = &args.scaling_from {
+        let s = chronocooked_pipeline::stages::record_scaling(study, &args.results)?;
+        println!(
+            "scaling: {} model x seed groups recorded, {} already there",
+            s.recorded.len(),
+            s.skipped
+        );
+    }
     let w = chronocooked_analysis::mechanisms::write_tables(
         &args.results,
         &out,

@@ -15,7 +15,14 @@
 //!   model's own timing populations on probe trials (value and RPE read-outs excluded),
 //!   pooled over its recorded populations, from its fixed-interval jobs only (recorded on
 //!   peak-interval probe trials); `decode_error_over_td` — the cross-validated ridge
-//!   decoding error of elapsed time over TD.
+//!   decoding error of elapsed time over TD;
+//! * `scaling_index` — how the activity stretches between the shortest and the longest
+//!   TD (1: with the interval, 0: a fixed clock), from the model × seed's fixed-interval
+//!   runs recorded together (`<results>/scaling/<row>/seed<N>/`, written by
+//!   `mechanisms --scaling-from SWEEP_OUT`): per timing population the geometry scaling
+//!   index (no unit correspondence needed) or, where the geometry cannot tell (a straight
+//!   ramp) and the units correspond, `ln(median unit factor) / ln(TD ratio)`; the
+//!   unit-weighted mean over the populations.
 //!
 //! Features are standardised by their SD over every signature, a model's fingerprint is the
 //! mean of its seeds' signatures, and the distance between two fingerprints is the root mean
@@ -30,7 +37,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// The features of a signature, in table order.
-pub const FEATURES: [&str; 11] = [
+pub const FEATURES: [&str; 12] = [
     "foc_cv",
     "foc_cv_trend",
     "foc_over_td",
@@ -41,6 +48,7 @@ pub const FEATURES: [&str; 11] = [
     "frac_ramp",
     "frac_time_field",
     "frac_oscillating",
+    "scaling_index",
     "decode_error_over_td",
 ];
 
@@ -170,6 +178,57 @@ fn job_features(dir: &Path, probe: bool) -> Result<JobFeatures, MechanismError> 
     Ok(out)
 }
 
+/// The scaling index of one model × seed's joint recording (`activity.summary.json` of
+/// `record --summary` over runs at several TDs): per non-read-out population the geometry
+/// index, else the per-unit one; weighted by units. `None` when no population has one.
+fn scaling_index(summary: &Value) -> Option<f64> {
+    let (mut sum, mut weight) = (0.0, 0.0);
+    for p in summary.as_array().into_iter().flatten() {
+        let name = p["population"].as_str().unwrap_or_default();
+        let s = &p["scaling"];
+        if READOUTS.contains(&name) || s.is_null() {
+            continue;
+        }
+        let ratio = num(&s["td_ratio"]).filter(|r| *r > 1.0);
+        let index = num(&s["geometry_index"]).or_else(|| {
+            let m = num(&s["median"]).filter(|m| *m > 0.0)?;
+            Some(m.ln() / ratio?.ln())
+        });
+        let units = p["units"].as_f64().unwrap_or(0.0);
+        if let Some(i) = index
+            && units > 0.0
+        {
+            sum += units * i;
+            weight += units;
+        }
+    }
+    (weight > 0.0).then(|| sum / weight)
+}
+
+/// `(model, seed, scaling index)` of every joint recording under `<results>/scaling/`.
+fn scaling_features(results: &Path) -> Result<Vec<(String, u64, f64)>, MechanismError> {
+    let mut out = Vec::new();
+    for model_dir in chronocooked_env::fs::real_subdirs(&results.join("scaling")) {
+        for dir in chronocooked_env::fs::real_subdirs(&model_dir) {
+            let (job, summary) = (dir.join("scaling.json"), dir.join("activity.summary.json"));
+            if !job.is_file() || !summary.is_file() {
+                continue;
+            }
+            let j = read(&job)?;
+            let (Some(model), Some(seed)) = (j["model"].as_str(), j["seed"].as_u64()) else {
+                return Err(MechanismError::File {
+                    path: job,
+                    message: "fields `model` and `seed` required".into(),
+                });
+            };
+            if let Some(i) = scaling_index(&read(&summary)?) {
+                out.push((model.to_string(), seed, i));
+            }
+        }
+    }
+    Ok(out)
+}
+
 /// Finished job folders (`job.json` + `metrics.json`) under `results` (its `jobs/` folder
 /// when there is one), sorted; symbolic links are not followed.
 fn job_dirs(results: &Path) -> Vec<PathBuf> {
@@ -221,6 +280,11 @@ pub fn signatures(results: &Path) -> Result<Vec<Signature>, MechanismError> {
         }
         if let Some(cv) = f.fi_cv {
             fi_cvs.entry(key).or_default().push(cv);
+        }
+    }
+    for (model, seed, index) in scaling_features(results)? {
+        if let Some(slot) = values.get_mut(&(model, seed)) {
+            slot.entry("scaling_index").or_default().push(index);
         }
     }
     Ok(values
@@ -548,8 +612,12 @@ fn fingerprint_figure(sigs: &[Signature], stem: &Path) -> Result<Vec<PathBuf>, M
         .collect();
     let chart = Chart {
         title: "Mechanism fingerprints (seed means)".into(),
-        x_label: "feature (0 foc_cv … 10 decode_error_over_td, in the order of mechanisms.md)"
-            .into(),
+        x_label: format!(
+            "feature (0 {} … {} {}, in the order of mechanisms.md)",
+            FEATURES[0],
+            FEATURES.len() - 1,
+            FEATURES[FEATURES.len() - 1]
+        ),
         y_label: "SDs from the mean of all signatures".into(),
         series,
         ..Chart::default()
@@ -597,6 +665,25 @@ mod tests {
         assert_eq!(get("ramp").nearest_fraction, 1.0);
         assert_eq!(get("cells").nearest_fraction, 0.0);
         assert_eq!(get("ramp").seeds, (4, 4));
+    }
+
+    #[test]
+    fn the_scaling_index_prefers_the_geometry_and_skips_readouts() {
+        let summary = serde_json::json!([
+            // Geometry defined: its index (0.9) counts with 30 units.
+            {"population": "cells", "units": 30,
+             "scaling": {"td_ratio": 2.0, "median": 1.0, "geometry_index": 0.9}},
+            // Geometry undefined (a straight ramp): ln(2)/ln(2) = 1 from the unit factor.
+            {"population": "accumulator", "units": 10,
+             "scaling": {"td_ratio": 2.0, "median": 2.0, "geometry_index": null}},
+            // Read-outs and populations without scaling are left out.
+            {"population": "value", "units": 1,
+             "scaling": {"td_ratio": 2.0, "median": 8.0, "geometry_index": 3.0}},
+            {"population": "other", "units": 5, "scaling": null}
+        ]);
+        let i = scaling_index(&summary).unwrap();
+        assert!((i - (30.0 * 0.9 + 10.0 * 1.0) / 40.0).abs() < 1e-12, "{i}");
+        assert_eq!(scaling_index(&serde_json::json!([])), None);
     }
 
     #[test]

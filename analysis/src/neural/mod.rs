@@ -13,6 +13,7 @@
 
 pub mod categories;
 pub mod decode;
+pub mod geometry;
 pub mod oscillation;
 pub mod shape;
 pub mod summary;

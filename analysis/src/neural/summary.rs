@@ -149,6 +149,19 @@ pub struct Scaling {
     /// dynamics that stretch with the interval (Wang, Narain, Hosseini & Jazayeri 2018),
     /// 1 for a fixed clock.
     pub speed_ratio: Option<f64>,
+    /// Scaling factor of the population's geometry (the matrix of distances between its
+    /// states at every pair of times; [`crate::neural::geometry`]): ≈ `td_ratio` for
+    /// dynamics that stretch with the interval, ≈ 1 for a fixed clock; needs no unit
+    /// correspondence, so it compares separately trained networks too. `null` when the
+    /// geometry cannot tell the two apart (e.g. a straight ramp).
+    #[serde(default)]
+    pub geometry_factor: Option<f64>,
+    /// `ln(geometry_factor) / ln(td_ratio)`: 1 = scales with the interval, 0 = fixed clock.
+    #[serde(default)]
+    pub geometry_index: Option<f64>,
+    /// R² of the geometry match at `geometry_factor`.
+    #[serde(default)]
+    pub geometry_r2: Option<f64>,
 }
 
 /// Neural summary of one population.
@@ -389,12 +402,21 @@ fn scaling(short: &TdClassification, long: &TdClassification, opts: &SummaryOpti
     } else {
         Vec::new()
     };
+    let td_ratio = f64::from(long.td) / f64::from(short.td.max(1));
+    let geometry = crate::neural::geometry::geometry_scaling(
+        &short.average_all,
+        short.size,
+        &long.average_all,
+        long.size,
+        td_ratio,
+        WINDOW_ORIGIN,
+    );
     let common = short.window.min(long.window);
     let speed = |c: &TdClassification| trajectory_speed(&c.average_all[..common * c.size], c.size);
     Scaling {
         td_short: short.td,
         td_long: long.td,
-        td_ratio: f64::from(long.td) / f64::from(short.td.max(1)),
+        td_ratio,
         median: median(good.iter().map(|g| g.1).collect()),
         units: good.len(),
         median_r2: median(good.iter().map(|g| g.2).collect()),
@@ -402,6 +424,9 @@ fn scaling(short: &TdClassification, long: &TdClassification, opts: &SummaryOpti
             (Some(a), Some(b)) if a > 0.0 => Some(b / a),
             _ => None,
         },
+        geometry_factor: geometry.map(|g| g.factor),
+        geometry_index: geometry.map(|g| g.index),
+        geometry_r2: geometry.map(|g| g.r2),
     }
 }
 

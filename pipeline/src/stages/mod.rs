@@ -13,6 +13,7 @@ pub mod adapt;
 pub mod evaluate;
 pub mod export;
 pub mod record;
+pub mod scaling;
 pub mod train;
 
 pub use adapt::{AdaptRequest, adapt};
@@ -21,4 +22,5 @@ pub use evaluate::{
 };
 pub use export::export;
 pub use record::{RecordOutcome, RecordRequest, record};
+pub use scaling::{ScalingJob, ScalingOutcome, record_scaling};
 pub use train::{Quiet, TrainObserver, TrainOutcome, TrainRequest, train};

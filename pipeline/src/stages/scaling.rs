@@ -1,0 +1,138 @@
+//! Temporal scaling of a study's agents: each model × seed's fixed-interval runs at two or
+//! more TDs recorded together on peak-interval probe trials, so the neural summary can
+//! compare their activity between the shortest and the longest TD.
+//!
+//! A sweep job trains and records one TD; scaling needs a model's runs at several TDs in one
+//! dataset, so it is a step after the sweep: [`record_scaling`] walks a sweep's output
+//! (`<out>/FixedInterval-v0/<row>/seed<N>/{job.json, run/}`), groups the finished runs by
+//! (row, seed), records every group with at least two TDs (`record --probe --summary --run
+//! TD_short --run TD_long …`) and keeps only the compact summary:
+//! `<results>/scaling/<row>/seed<N>/{scaling.json, activity.summary.json}`.
+
+use crate::error::PipelineError;
+use crate::stages::record::{RecordRequest, record};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// Where a study's fixed-interval jobs are.
+const FI_TASK: &str = "FixedInterval-v0";
+
+/// One recorded group.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct ScalingJob {
+    /// The sweep row (model name with its variant).
+    pub model: String,
+    /// Training seed.
+    pub seed: u64,
+    /// TDs of the runs recorded together (steps), shortest first.
+    pub tds: Vec<u32>,
+    /// The run folders, relative to the sweep output, in `tds` order.
+    pub runs: Vec<String>,
+}
+
+/// What [`record_scaling`] did.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ScalingOutcome {
+    /// Groups recorded now.
+    pub recorded: Vec<ScalingJob>,
+    /// Groups whose summary was already there (skipped).
+    pub skipped: usize,
+}
+
+fn read_json(path: &Path) -> Result<serde_json::Value, PipelineError> {
+    let text = std::fs::read_to_string(path).map_err(|e| PipelineError::read(path, e))?;
+    serde_json::from_str(&text)
+        .map_err(|e| PipelineError::Invalid(format!("{}: {e}", path.display())))
+}
+
+/// Finished fixed-interval runs of `study` grouped by (row, seed): TD → run folder.
+fn groups(study: &Path) -> Result<BTreeMap<(String, u64), BTreeMap<u32, PathBuf>>, PipelineError> {
+    let mut out: BTreeMap<(String, u64), BTreeMap<u32, PathBuf>> = BTreeMap::new();
+    let root = study.join(FI_TASK);
+    for row in chronocooked_env::fs::real_subdirs(&root) {
+        for job_dir in chronocooked_env::fs::real_subdirs(&row) {
+            let (job_file, run) = (job_dir.join("job.json"), job_dir.join("run"));
+            if !job_file.is_file() || !run.join("summary.json").is_file() {
+                continue;
+            }
+            let job = read_json(&job_file)?;
+            let field = |k: &str| {
+                PipelineError::Invalid(format!("{}: field `{k}` missing", job_file.display()))
+            };
+            let model = job["row"]
+                .as_str()
+                .or(job["model"].as_str())
+                .ok_or_else(|| field("row"))?
+                .to_string();
+            let seed = job["seed"].as_u64().ok_or_else(|| field("seed"))?;
+            let td = job["env"]
+                .as_array()
+                .into_iter()
+                .flatten()
+                .filter_map(|e| e.as_str()?.strip_prefix("td=")?.parse::<u32>().ok())
+                .next()
+                .ok_or_else(|| field("env (td=N)"))?;
+            out.entry((model, seed)).or_default().insert(td, run);
+        }
+    }
+    Ok(out)
+}
+
+/// Records every (row, seed) of `study` with fixed-interval runs at two or more TDs into
+/// `<results>/scaling/<row>/seed<N>/` (`activity.summary.json` with the scaling between
+/// the shortest and the longest TD, `scaling.json` naming the runs). Groups already
+/// recorded are skipped; the activity dataset itself is not kept.
+pub fn record_scaling(study: &Path, results: &Path) -> Result<ScalingOutcome, PipelineError> {
+    let mut outcome = ScalingOutcome::default();
+    for ((model, seed), runs) in groups(study)? {
+        if runs.len() < 2 {
+            continue;
+        }
+        let dir = results
+            .join("scaling")
+            .join(&model)
+            .join(format!("seed{seed}"));
+        if dir.join("scaling.json").is_file() && dir.join("activity.summary.json").is_file() {
+            outcome.skipped += 1;
+            continue;
+        }
+        std::fs::create_dir_all(&dir).map_err(|e| PipelineError::write(&dir, e))?;
+        let paths: Vec<PathBuf> = runs.values().cloned().collect();
+        let dataset = dir.join("activity.json");
+        record(&RecordRequest {
+            run: paths[0].clone(),
+            more_runs: paths[1..].to_vec(),
+            probe: true,
+            task: None,
+            env: vec![],
+            tds: vec![],
+            repeats: 1,
+            seed: 0,
+            out: dataset.clone(),
+            summary: true,
+            figures: None,
+        })?;
+        std::fs::remove_file(&dataset).map_err(|e| PipelineError::write(&dataset, e))?;
+        let job = ScalingJob {
+            model,
+            seed,
+            tds: runs.keys().copied().collect(),
+            runs: paths
+                .iter()
+                .map(|p| {
+                    p.strip_prefix(study)
+                        .unwrap_or(p)
+                        .to_string_lossy()
+                        .into_owned()
+                })
+                .collect(),
+        };
+        let file = dir.join("scaling.json");
+        let text = serde_json::to_vec_pretty(&job)
+            .map_err(|e| PipelineError::Invalid(format!("{}: {e}", file.display())))?;
+        chronocooked_env::fs::write_atomic(&file, &text)
+            .map_err(|e| PipelineError::write(&file, e))?;
+        outcome.recorded.push(job);
+    }
+    Ok(outcome)
+}
