@@ -170,3 +170,69 @@ fn fingerprints_read_every_feature_and_find_the_mechanism_an_agent_copies() {
             .contains("empty")
     );
 }
+
+#[test]
+fn scaling_from_a_sweep_records_each_model_and_seed_at_both_tds_and_enters_the_fingerprint() {
+    let root = tempfile::tempdir().unwrap();
+    let (study, results) = (root.path().join("study"), root.path().join("results"));
+    // A sweep's layout: the drift-diffusion model trained at TD 6 and 12, seed 0.
+    for td in [6u32, 12] {
+        let dir = study
+            .join("FixedInterval-v0")
+            .join(format!("ddm~env.td-{td}"))
+            .join("seed0");
+        std::fs::create_dir_all(&dir).unwrap();
+        let j = json!({"task": "FixedInterval-v0", "model": "ddm", "row": "ddm", "seed": 0,
+                       "env": [format!("td={td}")]});
+        std::fs::write(dir.join("job.json"), j.to_string()).unwrap();
+        run_ok(&[
+            "train",
+            "--task",
+            "FixedInterval-v0",
+            "--model",
+            "ddm",
+            "--set",
+            &format!("env.td={td}"),
+            "--quiet",
+            "--out",
+            dir.join("run").to_str().unwrap(),
+        ]);
+        job(&results, "ddm", 0, td, td as f64, 0.15, None, 10);
+    }
+    let args = [
+        "mechanisms",
+        results.to_str().unwrap(),
+        "--resamples",
+        "10",
+        "--scaling-from",
+        study.to_str().unwrap(),
+    ];
+    let out = run_ok(&args);
+    assert!(out.contains("1 model x seed groups recorded"), "{out}");
+    let dir = results.join("scaling/ddm/seed0");
+    let job: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("scaling.json")).unwrap()).unwrap();
+    assert_eq!(job["tds"], json!([6, 12]));
+    assert!(
+        !dir.join("activity.json").exists(),
+        "only the compact summary is kept"
+    );
+    // The accumulator's scaling is measured between TD 6 and 12 and enters the signature.
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("activity.summary.json")).unwrap())
+            .unwrap();
+    let acc = summary
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|p| p["population"] == "accumulator")
+        .unwrap();
+    assert_eq!(acc["scaling"]["td_short"], 6);
+    assert_eq!(acc["scaling"]["td_long"], 12);
+    let sig = signatures(&results).unwrap();
+    let index = sig[0].features["scaling_index"];
+    let expected = chronocooked_analysis::mechanisms::scaling_index_of_summary(&summary).unwrap();
+    assert_eq!(index, expected);
+    // A second run finds it recorded.
+    assert!(run_ok(&args).contains("0 model x seed groups recorded, 1 already there"));
+}

@@ -208,7 +208,11 @@ fn sbf_oscillators_oscillate_at_their_own_frequencies_and_the_detector_peaks_at_
             p.label
         );
         // Their geometry says the same without unit correspondence: index ≈ 0.
-        assert!(sc.geometry_index.unwrap().abs() < 0.1, "{}: {sc:?}", p.label);
+        assert!(
+            sc.geometry_index.unwrap().abs() < 0.1,
+            "{}: {sc:?}",
+            p.label
+        );
         // The detector's response is a bump at the remembered time: it stretches.
         let det = p.summary("striatum").scaling.clone().unwrap();
         assert!(
@@ -289,7 +293,11 @@ fn csc_time_cells_are_time_fields_tiling_the_interval() {
     for p in variants("timecells-csc") {
         // A delay line is a fixed clock: its geometry does not stretch with the interval.
         let sc = p.summary("time_cells").scaling.clone().unwrap();
-        assert!(sc.geometry_index.unwrap().abs() < 0.1, "{}: {sc:?}", p.label);
+        assert!(
+            sc.geometry_index.unwrap().abs() < 0.1,
+            "{}: {sc:?}",
+            p.label
+        );
         for td in TDS {
             assert_fields_or_edge_ramps(&p, td);
             let (f, frac, _) = fields(&p, "time_cells", td);

@@ -481,14 +481,18 @@ fn train_eval_record_export_report_end_to_end() {
         "decode_error",
         "learning_curve",
         "foc_over_td",
-        // Signature panel of a one-unit population: the accumulator's trace per TD.
-        "accumulator/by_td",
+        // The "Mechanisms" section: a signature card per model whose recording has trials
+        // with the oven on (the DDM's timing population is its accumulator, not its value
+        // read-out; the 2,000-step LSTM never turns the oven on, so it has no card).
+        "<h2>Mechanisms</h2>",
+        "ddm — accumulator",
         // One headline table per theme (readable in a 1366 px window).
         "<h2 class=\"group\">Fixed interval</h2>",
         "<h2 class=\"group\">Neural activity</h2>",
     ] {
         assert!(html.contains(needle), "{needle} missing from the report");
     }
+    assert!(!html.contains("lstm8 — "), "a card without oven-on trials");
     let csv = std::fs::read_to_string(dir.join("report/report.csv")).unwrap();
     let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
     let ddm: Vec<&str> = csv

@@ -70,7 +70,8 @@ fn at(d: &[f64], t: usize, x: f64, y: f64) -> f64 {
     let (fx, fy) = (x - i as f64, y - j as f64);
     let (i1, j1) = ((i + 1).min(t - 1), (j + 1).min(t - 1));
     let v = |a: usize, b: usize| d[a * t + b];
-    (1.0 - fx) * ((1.0 - fy) * v(i, j) + fy * v(i, j1)) + fx * ((1.0 - fy) * v(i1, j) + fy * v(i1, j1))
+    (1.0 - fx) * ((1.0 - fy) * v(i, j) + fy * v(i, j1))
+        + fx * ((1.0 - fy) * v(i1, j) + fy * v(i1, j1))
 }
 
 /// R² of the gain-only fit `long(s·τ) ≈ b·short(τ)` over the short window's time pairs
@@ -100,6 +101,33 @@ fn fit(ds: &[f64], ts: usize, dl: &[f64], tl: usize, s: f64, origin: f64) -> Opt
     (ss > 0.0).then(|| 1.0 - sse / ss)
 }
 
+/// The fit R² of every factor `s = 1.01ᵏ` in `[1/4, 4]` whose stretched times fall inside
+/// the long window: `(s, R²)` ascending in `s` (the curve whose peak is
+/// [`GeometryScaling::factor`]; empty when a window has fewer than 4 finite rows).
+pub fn geometry_profile(
+    short: &[f64],
+    units_short: usize,
+    long: &[f64],
+    units_long: usize,
+    origin: f64,
+) -> Vec<(f64, f64)> {
+    if units_short == 0 || units_long == 0 {
+        return Vec::new();
+    }
+    let (ds, ts) = distances(short, units_short);
+    let (dl, tl) = distances(long, units_long);
+    if ts < 4 || tl < 4 {
+        return Vec::new();
+    }
+    let steps = (4f64.ln() / 0.01f64.ln_1p()).floor() as i32;
+    (-steps..=steps)
+        .filter_map(|k| {
+            let s = 1.01f64.powi(k);
+            fit(&ds, ts, &dl, tl, s, origin).map(|r2| (s, r2))
+        })
+        .collect()
+}
+
 /// The geometry scaling between a short TD's trial-averaged trajectory `short`
 /// (`[T_s, units_short]`, row-major) and a long TD's `long` (`[T_l, units_long]`); the
 /// units need not correspond. `td_ratio = TD_long / TD_short`; `origin` = steps since
@@ -114,7 +142,7 @@ pub fn geometry_scaling(
     td_ratio: f64,
     origin: f64,
 ) -> Option<GeometryScaling> {
-    if units_short == 0 || units_long == 0 || !(td_ratio > 1.0) {
+    if units_short == 0 || units_long == 0 || td_ratio.is_nan() || td_ratio <= 1.0 {
         return None;
     }
     let (ds, ts) = distances(short, units_short);
@@ -127,16 +155,12 @@ pub fn geometry_scaling(
     if (r2_fixed - r2_scaled).abs() < MIN_CONTRAST {
         return None;
     }
-    let steps = (4f64.ln() / 0.01f64.ln_1p()).floor() as i32;
-    let mut best = (f64::NAN, f64::NEG_INFINITY);
-    for k in -steps..=steps {
-        let s = 1.01f64.powi(k);
-        if let Some(r2) = fit(&ds, ts, &dl, tl, s, origin)
-            && r2 > best.1
-        {
-            best = (s, r2);
-        }
-    }
+    let best = geometry_profile(short, units_short, long, units_long, origin)
+        .into_iter()
+        .fold(
+            (f64::NAN, f64::NEG_INFINITY),
+            |b, p| if p.1 > b.1 { p } else { b },
+        );
     best.0.is_finite().then(|| GeometryScaling {
         factor: best.0,
         r2: best.1,
@@ -172,6 +196,20 @@ mod tests {
         assert!((g.factor - 2.0).abs() < 0.06, "{g:?}");
         assert!((g.index - 1.0).abs() < 0.05, "{g:?}");
         assert!(g.r2_scaled > 0.99 && g.r2_fixed < 0.9, "{g:?}");
+    }
+
+    #[test]
+    fn the_profile_peaks_at_the_factor() {
+        let frac = [0.25, 0.5, 0.75, 1.0, 1.25, 1.5, 1.75];
+        let short = fields(12, &frac.map(|f| 6.0 * f), |_| 1.5);
+        let long = fields(24, &frac.map(|f| 12.0 * f), |_| 3.0);
+        let p = geometry_profile(&short, 7, &long, 7, 1.0);
+        let g = geometry_scaling(&short, 7, &long, 7, 2.0, 1.0).unwrap();
+        let top = p.iter().fold(p[0], |b, x| if x.1 > b.1 { *x } else { b });
+        assert_eq!(top, (g.factor, g.r2));
+        assert!(p.windows(2).all(|w| w[0].0 < w[1].0));
+        // Factors that stretch the short window beyond the long one are left out.
+        assert!(p.iter().all(|x| x.0 <= 4.0 && x.0 >= 0.25));
     }
 
     #[test]
@@ -246,9 +284,18 @@ mod tests {
 
     #[test]
     fn too_short_or_still_windows_are_undefined() {
-        assert_eq!(geometry_scaling(&[0.0, 1.0, 2.0], 1, &[0.0; 8], 1, 2.0, 1.0), None);
-        assert_eq!(geometry_scaling(&[1.0; 12], 1, &[1.0; 24], 1, 2.0, 1.0), None);
+        assert_eq!(
+            geometry_scaling(&[0.0, 1.0, 2.0], 1, &[0.0; 8], 1, 2.0, 1.0),
+            None
+        );
+        assert_eq!(
+            geometry_scaling(&[1.0; 12], 1, &[1.0; 24], 1, 2.0, 1.0),
+            None
+        );
         let nan_rows = [f64::NAN; 12];
-        assert_eq!(geometry_scaling(&nan_rows, 1, &[1.0; 24], 1, 2.0, 1.0), None);
+        assert_eq!(
+            geometry_scaling(&nan_rows, 1, &[1.0; 24], 1, 2.0, 1.0),
+            None
+        );
     }
 }

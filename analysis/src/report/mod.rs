@@ -7,6 +7,7 @@
 
 pub mod figures;
 pub mod leaderboard;
+pub mod mechanisms;
 
 use crate::behaviour::aggregate::Spread;
 pub use crate::report::leaderboard::{Row, load_metrics, load_rows, load_rows_from_runs};
@@ -177,7 +178,7 @@ pub(crate) fn escape(s: &str) -> String {
 
 /// The reports' style sheet: compact tables that fit a 1366 px window, figures as small
 /// multiples two to a row (`figure.wide`: full width).
-pub(crate) const STYLE: &str = "body{font-family:sans-serif;margin:1.5em;max-width:1600px}table{border-collapse:collapse;margin-bottom:1em}td,th{border:1px solid #bbb;padding:3px 7px;text-align:right;white-space:nowrap;font-size:14px}th{background:#eee}td:first-child{text-align:left}h2.group{font-size:1.1em;margin:0.8em 0 0.3em}figure{display:inline-block;margin:0.5em;width:46%}figure.wide{width:96%}figure svg,figure img{width:100%;height:auto}";
+pub(crate) const STYLE: &str = "body{font-family:sans-serif;margin:1.5em;max-width:1600px}table{border-collapse:collapse;margin-bottom:1em}td,th{border:1px solid #bbb;padding:3px 7px;text-align:right;white-space:nowrap;font-size:14px}th{background:#eee}td:first-child{text-align:left}h2.group{font-size:1.1em;margin:0.8em 0 0.3em}figure{display:inline-block;margin:0.5em;width:46%}figure.wide{width:96%}figure.panel{width:23.5%;margin:0.3em}figure.half{width:60%}figure svg,figure img{width:100%;height:auto}.card{border:1px solid #ccc;border-radius:4px;padding:0.3em 0.6em;margin:0.6em 0}.card h3{font-size:1em;margin:0.3em 0}.catbar{display:flex;width:100%;height:1.4em;font-size:12px;line-height:1.4em;color:#fff;overflow:hidden}.catbar span{white-space:nowrap;overflow:hidden;padding-left:3px;box-sizing:border-box}figcaption{font-size:13px}";
 
 /// An SVG file as inline markup: the XML prolog and namespace URIs dropped (inline SVG in
 /// HTML needs neither, and the page then holds no URL at all).
@@ -220,18 +221,10 @@ pub(crate) fn figure_markup(svg: &Path, caption: &str) -> Result<String, String>
 }
 
 /// One row's figures: the behaviour figures of its first [`FIGURE_RUNS`] runs per task, the
-/// neural figures of one run (its fixed-interval run when it has one), the other runs named.
+/// other runs named. (Its neural activity is in the "Mechanisms" section's card; every
+/// population's heat map stays in the run's `neural_figures/`.)
 fn row_figures_html(r: &Row) -> Result<String, String> {
-    use crate::report::leaderboard::{behaviour_figures, figure_caption, neural_figures};
-    // The run whose neural figures are shown, with them (its folder is read once).
-    let neural = r
-        .runs
-        .iter()
-        .filter_map(|run| {
-            let figures = neural_figures(run);
-            (!figures.is_empty()).then_some((run, figures))
-        })
-        .min_by_key(|(run, _)| run_task(run) != "FixedInterval-v0");
+    use crate::report::leaderboard::{behaviour_figures, figure_caption};
     let mut html = String::new();
     let mut shown: Vec<(String, usize)> = Vec::new();
     let mut named = Vec::new();
@@ -247,21 +240,13 @@ fn row_figures_html(r: &Row) -> Result<String, String> {
                 1
             }
         };
-        let neural_here = neural.as_ref().filter(|(n, _)| *n == run);
-        if count > FIGURE_RUNS && neural_here.is_none() {
+        if count > FIGURE_RUNS {
             named.push(run_caption(run));
             continue;
         }
         html += &format!("<h3>{}</h3>\n", escape(&run_caption(run)));
-        if count <= FIGURE_RUNS {
-            for svg in behaviour_figures(run) {
-                html += &figure_markup(&svg, &figure_caption(&svg))?;
-            }
-        }
-        if let Some((_, figures)) = neural_here {
-            for svg in figures {
-                html += &figure_markup(svg, &format!("neural: {}", figure_caption(svg)))?;
-            }
+        for svg in behaviour_figures(run) {
+            html += &figure_markup(&svg, &figure_caption(&svg))?;
         }
     }
     if !named.is_empty() {
@@ -436,6 +421,8 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>Chronocooked leaderboard</title>\n",
     );
     html += &format!("<style>{STYLE}</style></head><body>\n<h1>Chronocooked leaderboard</h1>\n");
+    let (mech_html, mech_md) = mechanisms::mechanisms_section(rows, out)?;
+    html += &mech_html;
     for (group, keys) in column_groups(&cols) {
         html +=
             &format!("<h2 class=\"group\">{group}</h2>\n<table>\n<tr><th>model</th><th>runs</th>");
@@ -462,6 +449,7 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
     }
     html += &fi_by_td_html(rows);
     md += &fi_by_td_markdown(rows);
+    md += &mech_md;
     html += "<h2>Columns</h2>\n<dl>\n";
     html += &format!(
         "<dt><code>runs</code></dt><dd>{}</dd>\n",

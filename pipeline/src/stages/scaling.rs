@@ -45,9 +45,12 @@ fn read_json(path: &Path) -> Result<serde_json::Value, PipelineError> {
         .map_err(|e| PipelineError::Invalid(format!("{}: {e}", path.display())))
 }
 
-/// Finished fixed-interval runs of `study` grouped by (row, seed): TD → run folder.
-fn groups(study: &Path) -> Result<BTreeMap<(String, u64), BTreeMap<u32, PathBuf>>, PipelineError> {
-    let mut out: BTreeMap<(String, u64), BTreeMap<u32, PathBuf>> = BTreeMap::new();
+/// Run folders by TD (steps) of one (row, seed).
+type RunsByTd = BTreeMap<u32, PathBuf>;
+
+/// Finished fixed-interval runs of `study` grouped by (row, seed).
+fn groups(study: &Path) -> Result<BTreeMap<(String, u64), RunsByTd>, PipelineError> {
+    let mut out: BTreeMap<(String, u64), RunsByTd> = BTreeMap::new();
     let root = study.join(FI_TASK);
     for row in chronocooked_env::fs::real_subdirs(&root) {
         for job_dir in chronocooked_env::fs::real_subdirs(&row) {

@@ -268,6 +268,15 @@ where
 
 /// Writes `chart` to `<stem>.svg` and `<stem>.png` (800×520); returns both paths.
 pub fn write_chart(stem: &Path, chart: &Chart) -> Result<Vec<PathBuf>, FigureError> {
+    write_chart_sized(stem, chart, (800, 520))
+}
+
+/// [`write_chart`] at `size` (width, height in pixels), e.g. the report's small panels.
+pub fn write_chart_sized(
+    stem: &Path,
+    chart: &Chart,
+    size: (u32, u32),
+) -> Result<Vec<PathBuf>, FigureError> {
     ensure_font();
     if let Some(dir) = stem.parent() {
         std::fs::create_dir_all(dir).map_err(err(stem))?;
@@ -275,12 +284,12 @@ pub fn write_chart(stem: &Path, chart: &Chart) -> Result<Vec<PathBuf>, FigureErr
     let svg = stem.with_extension("svg");
     let png = stem.with_extension("png");
     atomic(&svg, |tmp| {
-        let root = SVGBackend::new(tmp, (800, 520)).into_drawing_area();
+        let root = SVGBackend::new(tmp, size).into_drawing_area();
         draw_chart(root.clone(), chart, &svg)?;
         root.present().map_err(err(&svg))
     })?;
     atomic(&png, |tmp| {
-        let root = BitMapBackend::new(tmp, (800, 520)).into_drawing_area();
+        let root = BitMapBackend::new(tmp, size).into_drawing_area();
         draw_chart(root.clone(), chart, &png)?;
         root.present().map_err(err(&png))
     })?;
@@ -359,6 +368,17 @@ pub fn write_heatmap(
     avg: &[f64],
     units: usize,
 ) -> Result<Vec<PathBuf>, FigureError> {
+    write_heatmap_sized(stem, title, avg, units, (800, 520))
+}
+
+/// [`write_heatmap`] at `size` (width, height in pixels).
+pub fn write_heatmap_sized(
+    stem: &Path,
+    title: &str,
+    avg: &[f64],
+    units: usize,
+    size: (u32, u32),
+) -> Result<Vec<PathBuf>, FigureError> {
     ensure_font();
     if let Some(dir) = stem.parent() {
         std::fs::create_dir_all(dir).map_err(err(stem))?;
@@ -381,7 +401,7 @@ pub fn write_heatmap(
     let png = stem.with_extension("png");
     atomic(&svg, |tmp| {
         draw_heatmap(
-            SVGBackend::new(tmp, (800, 520)).into_drawing_area(),
+            SVGBackend::new(tmp, size).into_drawing_area(),
             title,
             &rows,
             &svg,
@@ -389,7 +409,7 @@ pub fn write_heatmap(
     })?;
     atomic(&png, |tmp| {
         draw_heatmap(
-            BitMapBackend::new(tmp, (800, 520)).into_drawing_area(),
+            BitMapBackend::new(tmp, size).into_drawing_area(),
             title,
             &rows,
             &png,

@@ -8,7 +8,9 @@ pub mod grid;
 
 use crate::evaluation::protocol::ConditionKind;
 use draw::err;
-pub use draw::{Chart, FigureError, Series, write_chart, write_heatmap};
+pub use draw::{
+    Chart, FigureError, Series, write_chart, write_chart_sized, write_heatmap, write_heatmap_sized,
+};
 pub use grid::{psychometric_grid, write_panels};
 use std::path::{Path, PathBuf};
 

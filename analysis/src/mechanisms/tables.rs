@@ -1,0 +1,186 @@
+//! The fingerprint tables and figure of a study (`chronocooked mechanisms RESULTS`).
+
+use super::{
+    Comparison, FEATURES, MECHANISMS, MechanismError, Signature, compare, feature_sds,
+    mean_features, read::signatures,
+};
+use std::path::{Path, PathBuf};
+
+/// What [`write_tables`] wrote.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Written {
+    /// `signatures.csv`, `mechanisms.csv`, `mechanisms.md`, `fingerprints.svg`/`.png`.
+    pub files: Vec<PathBuf>,
+    /// Signatures (model × seed).
+    pub signatures: usize,
+    /// Agents compared.
+    pub agents: usize,
+}
+
+fn fmt(x: f64, digits: usize) -> String {
+    if x.is_finite() {
+        format!("{x:.digits$}")
+    } else {
+        "–".into()
+    }
+}
+
+/// Reads the compact results under `results`, compares every agent with the
+/// [`MECHANISMS`] (bootstrap of `resamples`, seeded) and writes into `out`:
+/// `signatures.csv` (model, seed, every feature), `mechanisms.csv` (agent, mechanism,
+/// distance, nearest fraction, seeds) and `mechanisms.md` (the fingerprints with seed
+/// spreads, then per agent its distances and nearest mechanism).
+pub fn write_tables(
+    results: &Path,
+    out: &Path,
+    resamples: usize,
+    seed: u64,
+) -> Result<Written, MechanismError> {
+    let sigs = signatures(results)?;
+    let comparisons = compare(&sigs, &MECHANISMS, resamples, seed);
+    let write = |name: &str, text: &str| {
+        let p = out.join(name);
+        chronocooked_env::fs::write_atomic(&p, text.as_bytes()).map_err(|e| {
+            MechanismError::File {
+                path: p.clone(),
+                message: e.to_string(),
+            }
+        })?;
+        Ok::<PathBuf, MechanismError>(p)
+    };
+    let mut csv = format!("model,seed,{}\n", FEATURES.join(","));
+    for s in &sigs {
+        let row: Vec<String> = FEATURES
+            .iter()
+            .map(|f| s.features.get(*f).map_or(String::new(), |v| v.to_string()))
+            .collect();
+        csv.push_str(&format!("{},{},{}\n", s.model, s.seed, row.join(",")));
+    }
+    let mut mcsv =
+        String::from("agent,mechanism,distance,nearest_fraction,agent_seeds,mechanism_seeds\n");
+    for c in &comparisons {
+        mcsv.push_str(&format!(
+            "{},{},{},{},{},{}\n",
+            c.agent, c.mechanism, c.distance, c.nearest_fraction, c.seeds.0, c.seeds.1
+        ));
+    }
+    // Markdown: fingerprints (mean ± SD over seeds), then the comparison.
+    let mut models: Vec<&str> = sigs.iter().map(|s| s.model.as_str()).collect();
+    models.dedup();
+    let mut md = String::from("# Mechanism fingerprints\n\n");
+    md.push_str(&format!(
+        "Mean ± SD over training seeds (n). Features: {}.\n\n| model | n | {} |\n|---|---|{}\n",
+        FEATURES.join(", "),
+        FEATURES.join(" | "),
+        "---|".repeat(FEATURES.len())
+    ));
+    for m in &models {
+        let mine: Vec<&Signature> = sigs.iter().filter(|s| s.model == *m).collect();
+        let cells: Vec<String> = FEATURES
+            .iter()
+            .map(|f| {
+                let sp = crate::stats::Spread::of(
+                    mine.iter().filter_map(|s| s.features.get(*f).copied()),
+                );
+                if sp.n == 0 {
+                    "–".into()
+                } else {
+                    format!("{} ± {}", fmt(sp.mean, 3), fmt(sp.sd, 3))
+                }
+            })
+            .collect();
+        md.push_str(&format!(
+            "| {m} | {} | {} |\n",
+            mine.len(),
+            cells.join(" | ")
+        ));
+    }
+    md.push_str(&format!(
+        "\n## Nearest mechanism\n\nDistance: RMS of feature differences in units of each \
+         feature's SD over all signatures; nearest: the share of {resamples} bootstrap \
+         resamples of the seeds in which the mechanism is the nearest.\n\n| agent | {} | nearest (bootstrap share) |\n|---|{}---|\n",
+        MECHANISMS.join(" | "),
+        "---|".repeat(MECHANISMS.len())
+    ));
+    let mut agents: Vec<&str> = comparisons.iter().map(|c| c.agent.as_str()).collect();
+    agents.dedup();
+    for a in &agents {
+        let mine: Vec<&Comparison> = comparisons.iter().filter(|c| c.agent == *a).collect();
+        let cells: Vec<String> = MECHANISMS
+            .iter()
+            .map(|m| {
+                mine.iter()
+                    .find(|c| c.mechanism == *m)
+                    .map_or("–".into(), |c| fmt(c.distance, 2))
+            })
+            .collect();
+        let best = mine
+            .iter()
+            .filter(|c| c.distance.is_finite())
+            .min_by(|x, y| x.distance.total_cmp(&y.distance));
+        let nearest = best.map_or("–".into(), |c| {
+            format!("{} ({:.2})", c.mechanism, c.nearest_fraction)
+        });
+        md.push_str(&format!("| {a} | {} | {nearest} |\n", cells.join(" | ")));
+    }
+    let mut files = vec![
+        write("signatures.csv", &csv)?,
+        write("mechanisms.csv", &mcsv)?,
+        write("mechanisms.md", &md)?,
+    ];
+    files.extend(fingerprint_figure(&sigs, &out.join("fingerprints"))?);
+    Ok(Written {
+        files,
+        signatures: sigs.len(),
+        agents: agents.len(),
+    })
+}
+
+/// The fingerprints as parallel coordinates: per model (seed mean) a line over the
+/// features (x: the feature's index in [`FEATURES`], y: its value in SDs from the mean over
+/// all signatures); SVG and PNG at `stem`.
+pub fn fingerprint_figure(sigs: &[Signature], stem: &Path) -> Result<Vec<PathBuf>, MechanismError> {
+    use crate::report::figures::{Chart, Series, write_chart};
+    let sds = feature_sds(sigs);
+    let all: Vec<&Signature> = sigs.iter().collect();
+    let centre = mean_features(&all);
+    let mut models: Vec<&str> = sigs.iter().map(|s| s.model.as_str()).collect();
+    models.dedup();
+    let series = models
+        .iter()
+        .enumerate()
+        .map(|(k, m)| {
+            let mine: Vec<&Signature> = sigs.iter().filter(|s| s.model == *m).collect();
+            let mean = mean_features(&mine);
+            let points = FEATURES
+                .iter()
+                .enumerate()
+                .filter_map(|(i, f)| {
+                    Some((i as f64, (mean.get(f)? - centre.get(f)?) / sds.get(f)?))
+                })
+                .collect();
+            Series {
+                label: m.to_string(),
+                points,
+                line: true,
+                color: k,
+            }
+        })
+        .collect();
+    let chart = Chart {
+        title: "Mechanism fingerprints (seed means)".into(),
+        x_label: format!(
+            "feature (0 {} … {} {}, in the order of mechanisms.md)",
+            FEATURES[0],
+            FEATURES.len() - 1,
+            FEATURES[FEATURES.len() - 1]
+        ),
+        y_label: "SDs from the mean of all signatures".into(),
+        series,
+        ..Chart::default()
+    };
+    write_chart(stem, &chart).map_err(|e| MechanismError::File {
+        path: stem.to_path_buf(),
+        message: e.to_string(),
+    })
+}
