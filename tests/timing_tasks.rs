@@ -137,3 +137,59 @@ fn the_complete_serial_compound_learns_the_one_step_window_of_the_dual_task() {
         );
     }
 }
+
+/// Actions between the onion going in and the soup coming out, per fixed-interval episode
+/// of the reference evaluation of the timing run `cfg`.
+fn interval_actions(cfg: &TimingRunConfig, label: &str) -> Vec<Vec<u8>> {
+    use chronocooked_env::Events;
+    let mut agent = trained_agent(cfg, label);
+    let conditions = reference_conditions("FixedInterval-v0", &cfg.env).unwrap();
+    let records = run_protocol(agent.as_mut(), &conditions, Mode::Reference, 0).unwrap();
+    records
+        .iter()
+        .filter(|r| r.condition.kind == chronocooked_analysis::ConditionKind::Fi)
+        .filter_map(|r| {
+            let e = &r.episode;
+            let on = e
+                .infos
+                .iter()
+                .position(|i| i.events.has(Events::ONION_IN))?;
+            let out = e.infos.iter().position(|i| i.events.has(Events::PICKUP))?;
+            Some(e.actions[on + 1..=out].to_vec())
+        })
+        .collect()
+}
+
+#[test]
+fn timing_agents_wait_at_the_oven_while_timing_unless_told_otherwise() {
+    // With the default `wait_at_oven`, an empty-handed agent at the running oven may only
+    // wait (0) or check (5): its first check comes from its clock, not from a walking
+    // route. Drift-diffusion seed 3 at TD 5 is the case measured walking a fixed route
+    // (checks at exactly TD, CV 0.00) before the setting.
+    let mut cfg = TimingRunConfig::new("FixedInterval-v0", "ddm", 3);
+    cfg.set("env.td=5").unwrap();
+    let eps = interval_actions(&cfg, "wait-on");
+    assert!(eps.len() >= 40, "{} episodes with a pickup", eps.len());
+    for a in &eps {
+        assert!(a.iter().all(|&x| x == 0 || x == 5), "{a:?}");
+    }
+    // The first checks vary with the clock's noise (scalar timing, not a fixed route).
+    let first: Vec<f64> = eps
+        .iter()
+        .filter_map(|a| a.iter().position(|&x| x == 5).map(|k| k as f64 + 1.0))
+        .collect();
+    let mean = first.iter().sum::<f64>() / first.len() as f64;
+    let sd = (first.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / first.len() as f64).sqrt();
+    assert!(sd / mean > 0.05, "first checks {first:?}");
+    // Off, the agent may walk while timing (the setting exists and is applied).
+    cfg.set("wait_at_oven=false").unwrap();
+    let walked = interval_actions(&cfg, "wait-off")
+        .iter()
+        .any(|a| a.iter().any(|&x| (1..=4).contains(&x)));
+    assert!(
+        walked,
+        "with wait_at_oven=false no episode walks while timing"
+    );
+    let err = cfg.set("wait_at_oven=maybe").unwrap_err().to_string();
+    assert!(err.contains("true or false"), "{err}");
+}

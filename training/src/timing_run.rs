@@ -35,7 +35,8 @@ pub struct TimingRunConfig {
     /// Training schedule.
     pub train: TimingTrainConfig,
     /// Agent overrides applied after construction (`key=value`: `alpha`, `gamma`,
-    /// `lambda`, `response_cost`, `probe`, `opportunity_cost`, `overdue_factor`, `q_init`,
+    /// `lambda`, `response_cost`, `probe`, `opportunity_cost`, `overdue_factor`,
+    /// `wait_at_oven`, `q_init`,
     /// `noise`, `memory_noise`, `clock_noise`, `decision_rule`).
     pub agent: Vec<String>,
 }
@@ -52,7 +53,7 @@ pub const UNCERTAINTY_EPISODES: usize = 40_000;
 pub const MAX_EPISODES: usize = 10_000_000;
 
 /// Every `--set` key of a timing run.
-pub const TIMING_KEYS: &str = "episodes, epsilon_start, epsilon_end, anneal_fraction, eval_every, stop_at_success, alpha, gamma, lambda, response_cost, probe, opportunity_cost, overdue_factor, q_init, noise (ddm), memory_noise, clock_noise (sbf, timecells-*), decision_rule (ratio, difference, likelihood, learned), env.<task parameter>";
+pub const TIMING_KEYS: &str = "episodes, epsilon_start, epsilon_end, anneal_fraction, eval_every, stop_at_success, alpha, gamma, lambda, response_cost, probe, opportunity_cost, overdue_factor, wait_at_oven (true, false), q_init, noise (ddm), memory_noise, clock_noise (sbf, timecells-*), decision_rule (ratio, difference, likelihood, learned), env.<task parameter>";
 
 /// The allowed range of an agent override `key` when `v` lies outside it.
 fn agent_value_range(key: &str, v: f64) -> Option<&'static str> {
@@ -75,6 +76,9 @@ fn agent_value_range(key: &str, v: f64) -> Option<&'static str> {
 
 /// Parses an agent override's value and checks its range (typed error naming the key).
 fn check_agent_value(key: &str, value: &str) -> Result<(), TrainError> {
+    if key == "wait_at_oven" {
+        return parse::<bool>(key, value, "true or false").map(|_| ());
+    }
     if key == "decision_rule" {
         return DecisionRule::from_name(value)
             .map(|_| ())
@@ -143,7 +147,7 @@ impl TimingRunConfig {
             }
             "alpha" | "gamma" | "lambda" | "response_cost" | "probe" | "opportunity_cost"
             | "overdue_factor" | "q_init" | "noise" | "memory_noise" | "clock_noise"
-            | "decision_rule" => {
+            | "decision_rule" | "wait_at_oven" => {
                 check_agent_value(key, value)?;
                 self.agent.push(format!("{key}={value}"));
             }
@@ -242,6 +246,10 @@ impl TimingRunConfig {
                         value: v.into(),
                         allowed,
                     })?;
+                continue;
+            }
+            if k == "wait_at_oven" {
+                agent.config.wait_at_oven = parse(k, v, "true or false")?;
                 continue;
             }
             let v: f64 = parse(k, v, "a number")?;

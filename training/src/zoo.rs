@@ -346,6 +346,12 @@ fn timing_parameters(name: &str) -> Vec<ZooParam> {
          mean, learned = moved by feedback until errors on both anchors balance (BP measured)",
     ));
     ps.push(p(
+        "wait_at_oven",
+        agent.config.wait_at_oven,
+        "FI/PI/multi-timer: while the oven runs, an empty-handed agent next to it waits or \
+         checks, never walks (a fixed walking route would be a clock of its own)",
+    ));
+    ps.push(p(
         "overdue_factor",
         agent.config.overdue_factor,
         if agent.timer.has_gate() {

@@ -89,6 +89,17 @@ pub struct TimingAgentConfig {
     /// as it was before the category (agents saved then load with 0).
     #[serde(default)]
     pub overdue_factor: f64,
+    /// Wait at the oven while timing: in tasks where nothing but the soup pays during the
+    /// interval (no ready cue, no reward sink, no oven button — fixed and peak interval,
+    /// multi-timer), an empty-handed agent next to the running oven may only wait or check,
+    /// not walk. Otherwise the TD learner can time the interval with a fixed walking route
+    /// (a mediating behaviour whose length is a clock of its own) and the model's
+    /// mechanism no longer sets the first check: measured with `false`, drift-diffusion
+    /// seed 3 at TD 5 and microstimuli seed 2 at TD 8 checked at exactly TD every trial
+    /// (CV 0.00 and 0.02) after such a route. Agents saved before the setting load with
+    /// `false` (their behaviour unchanged).
+    #[serde(default)]
+    pub wait_at_oven: bool,
 }
 
 /// Episodes per start cell and condition in the reference protocol for a timing agent with
@@ -109,6 +120,7 @@ impl Default for TimingAgentConfig {
             probe: 0.15,
             opportunity_cost: 0.0,
             overdue_factor: OVERDUE_FACTOR,
+            wait_at_oven: true,
         }
     }
 }
@@ -158,6 +170,10 @@ pub struct TimingAgent {
     /// Cells from which the manual oven button is pressed (uncertainty task).
     #[serde(default)]
     pub button_cells: Vec<usize>,
+    /// The layout has something besides the soup to act on during the interval (a reward
+    /// sink or an oven button): the agent may leave the oven while timing.
+    #[serde(default)]
+    pub side_task: bool,
     /// Settings.
     pub config: TimingAgentConfig,
     /// Learned reward rate `ρ` (reward per step; with `config.opportunity_cost` > 0).
@@ -199,6 +215,10 @@ impl TimingAgent {
             .into_iter()
             .map(|(c, _)| c)
             .collect();
+        let side_task = !next_to(&|k| {
+            matches!(k, ObjectKind::RewardSink | ObjectKind::OvenButton).then_some(0)
+        })
+        .is_empty();
         let features = timer.n_features() + 1 + JUDGMENT_FEATURES + OVERDUE_FEATURES;
         let judges = choice_cells.iter().any(|&(_, slot)| slot == LONG);
         TimingAgent {
@@ -210,6 +230,7 @@ impl TimingAgent {
             choice_cells,
             judges,
             button_cells,
+            side_task,
             config,
             reward_rate: 0.0,
             training: false,
@@ -230,6 +251,7 @@ impl TimingAgent {
         self.choice_cells = fresh.choice_cells;
         self.judges = fresh.judges;
         self.button_cells = fresh.button_cells;
+        self.side_task = fresh.side_task;
     }
 
     /// Sets the exploration rate (training schedule).
@@ -385,8 +407,16 @@ impl Agent for TimingAgent {
             && !self.ep.responding
             && p.carry == 0
             && self.parser.next_to_oven(p.cell);
+        // Waiting at the oven while timing (see `TimingAgentConfig::wait_at_oven`).
+        let hold = self.config.wait_at_oven
+            && !self.shows_ready
+            && !self.side_task
+            && self.ep.running
+            && p.carry == 0
+            && self.parser.next_to_oven(p.cell);
         let allowed: Vec<usize> = (0..Action::COUNT)
             .filter(|&a| !(gated && a == Action::Interact.code() as usize))
+            .filter(|&a| !(hold && Action::ALL[a].delta() != (0, 0)))
             .collect();
         let eps = if self.training {
             self.config.epsilon
