@@ -96,8 +96,9 @@ pub struct TimingAgentConfig {
     /// (a mediating behaviour whose length is a clock of its own) and the model's
     /// mechanism no longer sets the first check: measured with `false`, drift-diffusion
     /// seed 3 at TD 5 and microstimuli seed 2 at TD 8 checked at exactly TD every trial
-    /// (CV 0.00 and 0.02) after such a route. Agents saved before the setting load with
-    /// `false` (their behaviour unchanged).
+    /// (CV 0.00 and 0.02) after such a route. A gated model whose responding has stopped
+    /// (drift-diffusion, SBF past their stop) may leave. Agents saved before the setting
+    /// load with `false` (their behaviour unchanged).
     #[serde(default)]
     pub wait_at_oven: bool,
 }
@@ -408,10 +409,14 @@ impl Agent for TimingAgent {
             && p.carry == 0
             && self.parser.next_to_oven(p.cell);
         // Waiting at the oven while timing (see `TimingAgentConfig::wait_at_oven`).
+        // A gated model whose responding has stopped (the peak procedure's "stop": the
+        // interval is long past its expected time) is timing nothing: it may leave.
+        let stopped = self.timer.has_gate() && self.ep.started.is_some() && !self.ep.responding;
         let hold = self.config.wait_at_oven
             && !self.shows_ready
             && !self.side_task
             && self.ep.running
+            && !stopped
             && p.carry == 0
             && self.parser.next_to_oven(p.cell);
         let allowed: Vec<usize> = (0..Action::COUNT)
