@@ -107,6 +107,23 @@ fn evaluation(metrics: &Metrics) -> ZooEvaluation {
     }
 }
 
+/// Whether the evaluation episodes of `eval` (its records) equal the lines of a committed
+/// job's `episodes.csv` (`None` when there is no such file): the same behaviour, episode
+/// for episode, whatever the metrics code computed from them then and now.
+fn same_episodes(eval: &Path, committed: &Path) -> Result<Option<bool>> {
+    use chronocooked_analysis::paper::collect::EpisodeRow;
+    if !committed.is_file() {
+        return Ok(None);
+    }
+    let records = chronocooked_analysis::evaluation::protocol::read_records(eval)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", eval.display()))?;
+    let mine: Vec<EpisodeRow> = records.iter().map(EpisodeRow::of).collect();
+    let theirs = csv::Reader::from_path(committed)
+        .and_then(|mut r| r.deserialize().collect::<Result<Vec<EpisodeRow>, _>>())
+        .with_context(|| committed.display().to_string())?;
+    Ok(Some(mine == theirs))
+}
+
 /// Runs `zoo add`: copies the job's final model, configuration and summary into
 /// `zoo/<model>/<task>/`, writes its provenance, records every file in `SHA256SUMS` and
 /// adds the agent to the index.
@@ -139,15 +156,9 @@ pub fn add(args: ZooAddArgs) -> Result<()> {
     let name = format!("{model}/{task}");
     let (study_job, reproduces) = match &args.study {
         Some(study) => {
-            let other = study.join("jobs").join(&id).join("metrics.json");
-            let same = std::fs::read_to_string(&other).ok().map(|t| {
-                serde_json::from_str::<serde_json::Value>(&t).ok()
-                    == serde_json::from_str(&metrics_text).ok()
-            });
-            (
-                same.map(|_| study.join("jobs").join(&id).display().to_string()),
-                same,
-            )
+            let other = study.join("jobs").join(&id);
+            let same = same_episodes(&eval, &other.join("episodes.csv"))?;
+            (same.map(|_| other.display().to_string()), same)
         }
         None => (None, None),
     };

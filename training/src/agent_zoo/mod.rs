@@ -143,8 +143,10 @@ pub struct Provenance {
     /// The committed compact job of the same study, model, task, settings and seed
     /// (`results/<study>/jobs/<job id>`), when there is one.
     pub study_job: Option<String>,
-    /// Whether that job's `metrics.json` equals this agent's evaluation metrics exactly
-    /// (training and evaluation are reproducible from the seed).
+    /// Whether this agent's evaluation episodes equal that job's `episodes.csv` line for
+    /// line (training and evaluation are reproducible from the seed; the job's
+    /// `metrics.json` may differ where the metrics code changed since it was collected,
+    /// e.g. bootstrap intervals).
     pub reproduces_study_job: Option<bool>,
 }
 
