@@ -120,7 +120,7 @@ def main(out):
     print("leaderboard:", files[0])
     # 4. Activity: how well does each population encode elapsed time after oven-on?
     for name in ("mine", "lstm125"):
-        print(f"time decoding R² ({name}): {time_decoding_r2(out / 'eval' / name, td):.3f}")
+        print(f"R² {name}: {time_decoding_r2(out / 'eval' / name, td):.3f}  (time since oven-on from activity)")
 
 
 if __name__ == "__main__":
