@@ -155,6 +155,9 @@ fn eval_with_zoo(zoo: &Path, name: &str, out: &Path) -> std::process::Output {
         .unwrap()
 }
 
+/// A way to spoil an agent's folder: (what, how, words the error must contain).
+type Case<'a> = (&'a str, &'a dyn Fn(&Path), &'a [&'a str]);
+
 #[test]
 fn corrupt_edited_or_unexpected_zoo_files_are_refused_naming_them() {
     let dir = temp_dir("zoo-corrupt");
@@ -165,8 +168,7 @@ fn corrupt_edited_or_unexpected_zoo_files_are_refused_naming_them() {
         eval_with_zoo(&zoo, name, &out).status.success(),
         "the intact copy loads"
     );
-    let agent = zoo.join(name);
-    let cases: [(&str, &dyn Fn(&Path), &[&str]); 5] = [
+    let cases: [Case; 5] = [
         (
             "a flipped weight byte",
             &|a| {
@@ -218,7 +220,6 @@ fn corrupt_edited_or_unexpected_zoo_files_are_refused_naming_them() {
             assert!(err.contains(n), "{what}: `{n}` not in: {err}");
         }
     }
-    let _ = agent;
     let err = run_err(&[
         "eval",
         "--run",

@@ -87,16 +87,22 @@ class PacemakerAgent:
         return WAIT
 
 
-def time_decoding_r2(eval_dir, td):
-    """R² of a least-squares linear read-out of time since oven-on (0 … TD-1 steps) from the
-    oven-on-aligned activity ``[trials, time, units]`` of an evaluation's FI trials."""
+def time_decoding_r2(eval_dir, td, ridge=1.0):
+    """Cross-validated R² of a linear (ridge) read-out of the time since oven-on (0 … TD-1
+    steps) from the oven-on-aligned activity ``[trials, time, units]`` of an evaluation:
+    fitted on the even trials, scored on the odd ones."""
     arrays, _ = chronocooked.load_activity(eval_dir)
-    cube = arrays["aligned"][:, :td, :]
+    cube = arrays["aligned"][:, :td, :].astype(float)
     trials, steps, units = cube.shape
-    x = np.concatenate([cube.reshape(-1, units), np.ones((trials * steps, 1))], axis=1)
-    t = np.tile(np.arange(steps, dtype=float), trials)
-    coef, *_ = np.linalg.lstsq(x, t, rcond=None)
-    return 1 - np.sum((x @ coef - t) ** 2) / np.sum((t - t.mean()) ** 2)
+    t = np.arange(steps, dtype=float)
+
+    def design(part):
+        x = part.reshape(-1, units)
+        return np.concatenate([x, np.ones((len(x), 1))], axis=1), np.tile(t, len(part))
+
+    (xa, ta), (xb, tb) = design(cube[0::2]), design(cube[1::2])
+    coef = np.linalg.solve(xa.T @ xa + ridge * np.eye(units + 1), xa.T @ ta)
+    return 1 - np.sum((xb @ coef - tb) ** 2) / np.sum((tb - tb.mean()) ** 2)
 
 
 def main(out):
