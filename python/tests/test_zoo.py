@@ -79,13 +79,16 @@ def readme_example():
 def test_the_readme_example_runs_as_written_in_under_a_minute(tmp_path):
     env = dict(os.environ,
                PYTHONPATH=str(ROOT / "examples" / "python"),
-               CHRONOCOOKED_BASELINES=str(ROOT / "results" / "paper-core"))
+               CHRONOCOOKED_BASELINES=str(ROOT / "results" / "paper-core"),
+               CHRONOCOOKED_CACHE=str(tmp_path / "cache"))  # outside the repository: the compiled-in zoo
     start = time.time()
     out = subprocess.run([sys.executable, "-c", readme_example()], cwd=tmp_path, env=env,
                          capture_output=True, text=True)
     seconds = time.time() - start
     assert out.returncode == 0, out.stderr
     assert seconds < 60, f"{seconds:.0f} s"
+    # Run outside the repository, the agent came from the package's compiled-in zoo.
+    assert list((tmp_path / "cache").glob("zoo-*/lstm125/FixedInterval-v0/model.bpk"))
     rows = (tmp_path / "lab-out" / "leaderboard" / "report.csv").read_text().splitlines()
     models = [r.split(",")[0] for r in rows[1:]]
     assert models[:2] == ["my-pacemaker", "zoo-lstm125"]
