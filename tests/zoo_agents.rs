@@ -122,7 +122,10 @@ fn every_zoo_agent_evaluates_to_its_recorded_success_and_records_activity() {
             .unwrap()
             .parse()
             .unwrap();
-        assert!(trials >= 12 && units >= 125, "{name}: {line}");
+        // Recurrent cores have 125 units; CNN-MLP's latent layer 64 (plus the value).
+        let min_units = if p["model"] == "cnn-mlp" { 64 } else { 125 };
+        assert!(trials >= 12 && units > min_units, "{name}: {line}");
+        assert!(act.is_file(), "{name}: activity written");
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
