@@ -17,15 +17,22 @@ pub fn resolve_run(arg: &Path) -> Result<PathBuf> {
     Ok(agent_zoo::resolve_run(arg)?)
 }
 
-/// One agent as a line of `zoo list`.
+/// One agent as a line of `zoo list`: its task's headline success (FI: full-reward
+/// deliveries at the trained TD; bisection: correct counter at the anchors) as recorded
+/// when it was added.
 fn agent_line(a: &ZooAgent) -> String {
     let p = &a.provenance;
+    let h = &p.evaluation.headline;
+    let success = match (h.get("fi_success"), h.get("bisection_accuracy")) {
+        (Some(s), _) => format!("FI success {s:.2}"),
+        (None, Some(s)) => format!("anchor accuracy {s:.2}"),
+        (None, None) => format!("success {:.2}", p.evaluation.success_rate),
+    };
     format!(
-        "  zoo:{:<36} seed {}  {} env steps  success {:.2} over {} episodes  {:.0} kB",
+        "  zoo:{:<36} seed {}  {} env steps  {success:<21} ({} episodes)  {:.0} kB",
         p.name,
         p.seed,
         p.env_steps,
-        p.evaluation.success_rate,
         p.evaluation.episodes,
         a.bytes as f64 / 1024.0
     )
