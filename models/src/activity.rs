@@ -107,6 +107,19 @@ impl StepRecorder {
         self.record(name, &[value]);
     }
 
+    /// The values population `name` was given at this step (its units in order), if it
+    /// was written.
+    pub fn population(&self, name: &str) -> Option<&[f32]> {
+        let mut start = 0;
+        for p in &self.populations[..self.cursor.min(self.populations.len())] {
+            if p.name == name {
+                return self.values.get(start..start + p.size);
+            }
+            start += p.size;
+        }
+        None
+    }
+
     fn begin(&mut self) {
         self.values.clear();
         self.cursor = 0;

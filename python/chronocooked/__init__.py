@@ -8,12 +8,17 @@
   ``chronocooked report --eval DIR``).
 * :func:`load_eval` / :func:`load_activity` read evaluation folders and activity exports;
   :func:`to_nwb` writes a model run as an NWB file (needs ``pynwb``).
+* :mod:`chronocooked.zoo` holds the repository's trained agents (``zoo.load("lstm125/
+  FixedInterval-v0")`` is a policy for :func:`evaluate`); :func:`report` writes the
+  leaderboard of evaluation folders next to the committed baselines.
 """
 
 from . import _core
 from ._core import EVENT_FLAGS, __version__, reference_conditions
 from .envs import ChronoEnv, ChronoVectorEnv, overrides, register_envs, task_ids
+from . import zoo
 from .evaluation import evaluate, load_activity, load_eval
+from .zoo import report
 
 
 def tasks():
@@ -42,7 +47,9 @@ __all__ = [
     "overrides",
     "reference_conditions",
     "register_envs",
+    "report",
     "task_ids",
     "tasks",
     "to_nwb",
+    "zoo",
 ]

@@ -6,6 +6,7 @@
 //! * [`info`] — the Rust `Info` as a dict of plain Python values, or a dict of arrays;
 //! * [`evaluate`] — the lab's evaluation protocol with a Python policy;
 //! * [`registry`] — the task registry and parameter documentation;
+//! * [`zoo`] — the zoo of trained agents (`ZooPolicy`) and the leaderboard (`report`);
 //! * [`errors`] — Rust errors as Python exceptions (`ValueError` for bad input).
 //!
 //! The gymnasium classes live in Python (`chronocooked/envs.py`) on top of these.
@@ -18,6 +19,7 @@ mod evaluate;
 mod info;
 mod registry;
 mod vector;
+mod zoo;
 
 use pyo3::prelude::*;
 
@@ -37,6 +39,9 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(registry::resolve, m)?)?;
     m.add_function(wrap_pyfunction!(evaluate::evaluate, m)?)?;
     m.add_function(wrap_pyfunction!(evaluate::reference_conditions, m)?)?;
+    m.add_class::<zoo::ZooPolicy>()?;
+    m.add_function(wrap_pyfunction!(zoo::zoo_agents, m)?)?;
+    m.add_function(wrap_pyfunction!(zoo::report, m)?)?;
     m.add_function(wrap_pyfunction!(_panic_for_tests, m)?)?;
     m.add("EVENT_FLAGS", info::event_flags(m.py())?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

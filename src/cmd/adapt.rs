@@ -10,7 +10,8 @@ use std::path::PathBuf;
 /// Arguments of `adapt`.
 #[derive(Args, Debug)]
 pub struct AdaptArgs {
-    /// Run folder of the trained agent (PPO or timing model).
+    /// Run folder of the trained agent (PPO or timing model), or a zoo agent
+    /// (`zoo:<model>/<task>`).
     #[arg(long)]
     pub run: PathBuf,
     /// Task to adapt to.
@@ -57,7 +58,7 @@ pub fn run(args: AdaptArgs) -> Result<()> {
         seed: args.seed,
     };
     let r = chronocooked_pipeline::stages::adapt(&AdaptRequest {
-        run: args.run.clone(),
+        run: crate::cmd::zoo_agents::resolve_run(&args.run)?,
         config,
         out: args.out.clone(),
     })?;

@@ -10,7 +10,8 @@ use std::path::{Path, PathBuf};
 /// Arguments of `eval`.
 #[derive(Args, Debug)]
 pub struct EvalArgs {
-    /// Run folder of a trained agent (PPO or timing model).
+    /// Run folder of a trained agent (PPO or timing model), or a zoo agent
+    /// (`zoo:<model>/<task>`, see `zoo list`).
     #[arg(long, conflicts_with_all = ["agent", "from"])]
     pub run: Option<PathBuf>,
     /// A reference agent instead of a run: oracle or random.
@@ -71,7 +72,7 @@ pub fn run(args: EvalArgs) -> Result<()> {
         stages::evaluate_human(file, args.seed, &args.out)?
     } else {
         let subject = match (&args.run, &args.agent) {
-            (Some(run), _) => EvalSubject::Run(run.clone()),
+            (Some(run), _) => EvalSubject::Run(crate::cmd::zoo_agents::resolve_run(run)?),
             (None, Some(name)) => EvalSubject::Reference(name.clone()),
             (None, None) => {
                 bail!("say what to evaluate: --run DIR, --agent oracle|random, or --from DIR")

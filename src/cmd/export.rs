@@ -9,8 +9,13 @@ use std::path::PathBuf;
 #[derive(Args, Debug)]
 pub struct ExportArgs {
     /// Activity dataset written by `record` (JSON).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "run")]
     pub activity: Option<PathBuf>,
+    /// A trained agent's run folder or a zoo agent (`zoo:<model>/<task>`): evaluated with
+    /// its activity into `<out>/eval/` (the reference protocol of its own task, seed 0),
+    /// then exported like `--activity <out>/eval/activity.json --eval <out>/eval`.
+    #[arg(long, conflicts_with = "eval")]
+    pub run: Option<PathBuf>,
     /// Evaluation folder written by `eval` (its records.jsonl).
     #[arg(long)]
     pub eval: Option<PathBuf>,
@@ -93,7 +98,22 @@ fn export_nwb(args: &ExportArgs) -> Result<PathBuf> {
 }
 
 /// Runs `export`.
-pub fn run(args: ExportArgs) -> Result<()> {
+pub fn run(mut args: ExportArgs) -> Result<()> {
+    if let Some(run) = &args.run {
+        use chronocooked_pipeline::stages::{EvalRequest, EvalSubject, evaluate};
+        let out = args.out.join("eval");
+        let outcome = evaluate(&EvalRequest {
+            subject: EvalSubject::Run(crate::cmd::zoo_agents::resolve_run(run)?),
+            task: None,
+            env: vec![],
+            mode: chronocooked_analysis::Mode::Reference,
+            seed: 0,
+            out: out.clone(),
+            activity: true,
+        })?;
+        args.activity = outcome.activity.map(|a| a.2);
+        args.eval = Some(out);
+    }
     let mut files = chronocooked_pipeline::stages::export(
         args.activity.as_deref(),
         args.eval.as_deref(),

@@ -12,7 +12,8 @@
 //! * [`sweep`] — `sweep` and the hidden `sweep-job`;
 //! * [`paper`] — `paper collect | analyse`: the paper's study;
 //! * [`mechanisms`] — `mechanisms`: fingerprints and each agent's nearest timing mechanism;
-//! * [`zoo`] — `zoo list | show`;
+//! * [`zoo`] — `zoo list | show | add`; [`zoo_agents`] — the trained agents of the zoo
+//!   (`--run zoo:<model>/<task>`);
 //! * [`bench`] — `bench env | train | timing`.
 
 pub mod adapt;
@@ -28,3 +29,4 @@ pub mod report;
 pub mod sweep;
 pub mod train;
 pub mod zoo;
+pub mod zoo_agents;

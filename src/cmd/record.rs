@@ -13,7 +13,8 @@ use std::path::PathBuf;
 /// Arguments of `record`.
 #[derive(Args, Debug)]
 pub struct RecordArgs {
-    /// Run folder of a trained agent (PPO or timing model). Repeat it (`--run A --run B`) to
+    /// Run folder of a trained agent (PPO or timing model) or a zoo agent
+    /// (`zoo:<model>/<task>`). Repeat it (`--run A --run B`) to
     /// record runs of the same model trained at different TDs into one dataset (each at its
     /// own TD unless --tds): the summary then measures temporal scaling between TDs.
     #[arg(long, required = true, num_args = 1..)]
@@ -59,9 +60,14 @@ pub struct RecordArgs {
 
 /// Runs `record`.
 pub fn record(args: RecordArgs) -> Result<()> {
+    let runs = args
+        .run
+        .iter()
+        .map(|r| crate::cmd::zoo_agents::resolve_run(r))
+        .collect::<Result<Vec<_>>>()?;
     let r = chronocooked_pipeline::stages::record(&RecordRequest {
-        run: args.run[0].clone(),
-        more_runs: args.run[1..].to_vec(),
+        run: runs[0].clone(),
+        more_runs: runs[1..].to_vec(),
         probe: args.probe,
         task: args.task.clone(),
         env: args.env.clone(),

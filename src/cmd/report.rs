@@ -1,6 +1,8 @@
 //! `report`: the leaderboard (HTML with inline SVG figures, Markdown, CSV) from `eval`
 //! output folders, or from any run / sweep folders holding them; folders of the same model
-//! are aggregated (mean ± SD), with the neural summaries recorded next to them.
+//! are aggregated (mean ± SD), with the neural summaries recorded next to them; with
+//! `--baselines`, the committed study results (default `results/paper-core`) as marked
+//! baseline rows beside them.
 
 use anyhow::{Result, bail};
 use clap::Args;
@@ -16,6 +18,12 @@ pub struct ReportArgs {
     /// sweeps' outputs to merge them into one report).
     #[arg(long = "runs", value_name = "DIR", num_args = 1..)]
     pub runs: Vec<PathBuf>,
+    /// Committed baselines: compact study results folders (`results/<study>`, the
+    /// `jobs/` layout of `paper collect`) shown as marked rows, one per model, size and
+    /// variant; the flag alone adds the committed `results/paper-core` (found from the
+    /// current folder or the program's location, or `$CHRONOCOOKED_BASELINES`).
+    #[arg(long, value_name = "DIR", num_args = 0..)]
+    pub baselines: Option<Vec<PathBuf>>,
     /// Output folder (report.html, report.md, report.csv, psychometric_grid.svg/png).
     #[arg(long, default_value = "report")]
     pub out: PathBuf,
@@ -23,10 +31,11 @@ pub struct ReportArgs {
 
 /// Runs `report`.
 pub fn run(args: ReportArgs) -> Result<()> {
+    use chronocooked_analysis::report::baselines::{load_baseline_rows, locate_default_baselines};
     use chronocooked_analysis::report::leaderboard::{find_eval_folders, load_rows};
-    if args.evals.is_empty() && args.runs.is_empty() {
+    if args.evals.is_empty() && args.runs.is_empty() && args.baselines.is_none() {
         bail!(
-            "say what to compare: --eval DIR [DIR ...] (from `eval`) or --runs DIR [DIR ...] (run or sweep folders)"
+            "say what to compare: --eval DIR [DIR ...] (from `eval`), --runs DIR [DIR ...] (run or sweep folders) and/or --baselines [DIR ...] (committed study results)"
         );
     }
     for d in &args.runs {
@@ -36,7 +45,7 @@ pub fn run(args: ReportArgs) -> Result<()> {
     }
     let mut folders = args.evals.clone();
     folders.extend(find_eval_folders(&args.runs));
-    if folders.is_empty() {
+    if folders.is_empty() && args.baselines.is_none() {
         bail!(
             "no evaluation folders (eval.json + records.jsonl) under {}; run `eval` or a sweep first",
             args.runs
@@ -46,7 +55,24 @@ pub fn run(args: ReportArgs) -> Result<()> {
                 .join(", ")
         );
     }
-    let rows = load_rows(&folders).map_err(anyhow::Error::msg)?;
+    let mut rows = load_rows(&folders).map_err(anyhow::Error::msg)?;
+    if let Some(dirs) = &args.baselines {
+        let dirs = if dirs.is_empty() {
+            vec![locate_default_baselines()?]
+        } else {
+            dirs.clone()
+        };
+        for d in dirs {
+            let before = rows.len();
+            rows.extend(load_baseline_rows(&d)?);
+            let runs: usize = rows[before..].iter().map(|r| r.runs.len()).sum();
+            eprintln!(
+                "baselines: {} rows from {} ({runs} runs)",
+                rows.len() - before,
+                d.display()
+            );
+        }
+    }
     for f in
         chronocooked_analysis::report::write_report(&rows, &args.out).map_err(anyhow::Error::msg)?
     {

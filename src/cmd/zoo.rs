@@ -16,6 +16,9 @@ pub enum ZooCommand {
         #[arg(long)]
         json: bool,
     },
+    /// Add a finished sweep job's trained agent to the zoo (final model, configuration,
+    /// summary and provenance; every file recorded in SHA256SUMS).
+    Add(crate::cmd::zoo_agents::ZooAddArgs),
     /// Show one model: description, parameters and (deep RL) the resolved preset for a task.
     Show {
         /// Model name (cnn-mlp, lstm125, ddm, timecells-ms, oracle, …).
@@ -39,7 +42,8 @@ pub fn run_zoo(cmd: ZooCommand) -> Result<()> {
             let entries = zoo();
             let tasks: Vec<&str> = chronocooked_env::all_tasks().iter().map(|t| t.id).collect();
             if json {
-                let v = serde_json::json!({"models": entries, "tasks": tasks, "presets": PRESETS});
+                let (_, agents) = crate::cmd::zoo_agents::agents_listing()?;
+                let v = serde_json::json!({"models": entries, "tasks": tasks, "presets": PRESETS, "trained": agents});
                 println!("{}", serde_json::to_string_pretty(&v)?);
                 return Ok(());
             }
@@ -59,9 +63,13 @@ pub fn run_zoo(cmd: ZooCommand) -> Result<()> {
                 "  fast       the lab's quickest wall-clock on a 2-core CPU: recurrent 4 envs x 250 steps, 10 epochs, batch 256 (16x16-step chunks), lr 3e-4 (CTRNN 1e-3); CNN-MLP 16 envs x 64 steps, 4 epochs, batch 256, lr 1e-3; greedy eval every 10k steps"
             );
             println!(
-                "\n`chronocooked zoo show MODEL [--task ID --preset NAME]` describes one model."
+                "\n`chronocooked zoo show MODEL [--task ID --preset NAME]` describes one model.\n"
             );
+            for line in crate::cmd::zoo_agents::agents_listing()?.0 {
+                println!("{line}");
+            }
         }
+        ZooCommand::Add(args) => crate::cmd::zoo_agents::add(args)?,
         ZooCommand::Show {
             model,
             task,

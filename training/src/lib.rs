@@ -7,7 +7,8 @@
 //! * [`run_dir`] — run folders (config, curves, checkpoints, model) with exact resume; [`timing_run`] — training runs of the
 //!   timing models; [`evaluate`] — the deterministic evaluation used during training;
 //! * [`adapt`] — adaptation to the uncertainty task; [`zoo`] — every model the lab can
-//!   train, evaluate or record;
+//!   train, evaluate or record; [`agent_zoo`] — the trained agents the repository keeps
+//!   (`zoo:<model>/<task>`);
 //! * [`sweep`] — sweep files, typed job stages, job progress, Slurm emission, cost estimates
 //!   (the stages themselves run in the `chronocooked-pipeline` crate, above this one and
 //!   the analysis crate);
@@ -16,6 +17,7 @@
 #![warn(missing_docs)]
 
 pub mod adapt;
+pub mod agent_zoo;
 pub mod error;
 pub mod evaluate;
 pub mod ppo;

@@ -28,6 +28,27 @@ pub struct Row {
     /// Fixed interval: first-oven-check statistics per TD, pooled over the row's runs
     /// (sorted by TD; empty without FI runs).
     pub foc: Vec<FocStats>,
+    /// `Some(study)` for a committed baseline row read from compact study results
+    /// (`results/<study>/jobs/`, see [`crate::report::baselines`]); `None` for a row of
+    /// evaluation folders.
+    pub baseline: Option<String>,
+}
+
+/// One evaluated run, ready to be grouped into a row: what an evaluation folder or a
+/// compact study job contributes to the leaderboard.
+#[derive(Debug, Clone)]
+pub struct RunResult {
+    /// Row label the run belongs to.
+    pub label: String,
+    /// Where the run's results are (evaluation folder or compact job folder).
+    pub path: PathBuf,
+    /// Its behavioural metrics.
+    pub metrics: Metrics,
+    /// Neural summary of its primary population, when recorded.
+    pub neural: Option<NeuralSummary>,
+    /// Uncertainty adaptation measured with it: `Some(Some(n))` adapted after n episodes,
+    /// `Some(None)` never adapted, `None` not measured.
+    pub adapt: Option<Option<usize>>,
 }
 
 /// Recomputes the metrics of an `eval` folder from its `records.jsonl` and `eval.json`
@@ -197,6 +218,25 @@ pub fn wf_constancy(bisection: &[BisectionMetrics]) -> Option<f64> {
 /// Loads every folder's metrics (and neural summary) and groups them into rows
 /// (input order of first appearance kept).
 pub fn load_rows(folders: &[PathBuf]) -> Result<Vec<Row>, String> {
+    let mut results = Vec::with_capacity(folders.len());
+    for f in folders {
+        let metrics = load_metrics(f)?;
+        results.push(RunResult {
+            label: row_label(f, &metrics.model),
+            path: f.clone(),
+            neural: load_neural(f),
+            adapt: load_adaptation(f),
+            metrics,
+        });
+    }
+    Ok(group_rows(results))
+}
+
+/// Groups runs into rows by label (order of first appearance kept): every headline column
+/// as mean ± SD over the row's runs, the neural columns, the scalar-property regressions
+/// over the row's FI runs at different TDs, adaptation and the Weber-fraction constancy.
+/// Evaluation folders and committed baselines go through this one function.
+pub fn group_rows(results: Vec<RunResult>) -> Vec<Row> {
     struct Group {
         label: String,
         runs: Vec<PathBuf>,
@@ -205,14 +245,12 @@ pub fn load_rows(folders: &[PathBuf]) -> Result<Vec<Row>, String> {
         adapt: Vec<Option<usize>>,
     }
     let mut groups: Vec<Group> = Vec::new();
-    for f in folders {
-        let m = load_metrics(f)?;
-        let label = row_label(f, &m.model);
-        let idx = match groups.iter().position(|g| g.label == label) {
+    for r in results {
+        let idx = match groups.iter().position(|g| g.label == r.label) {
             Some(i) => i,
             None => {
                 groups.push(Group {
-                    label,
+                    label: r.label.clone(),
                     runs: vec![],
                     metrics: vec![],
                     neural: vec![],
@@ -222,12 +260,12 @@ pub fn load_rows(folders: &[PathBuf]) -> Result<Vec<Row>, String> {
             }
         };
         let g = &mut groups[idx];
-        g.adapt.extend(load_adaptation(f));
-        g.runs.push(f.clone());
-        g.neural.extend(load_neural(f));
-        g.metrics.push(m);
+        g.adapt.extend(r.adapt);
+        g.runs.push(r.path);
+        g.neural.extend(r.neural);
+        g.metrics.push(r.metrics);
     }
-    Ok(groups
+    groups
         .into_iter()
         .map(|g| {
             let mut values = aggregate(&g.metrics);
@@ -276,9 +314,10 @@ pub fn load_rows(folders: &[PathBuf]) -> Result<Vec<Row>, String> {
                 values,
                 bisection,
                 foc: pooled,
+                baseline: None,
             }
         })
-        .collect())
+        .collect()
 }
 
 /// Rows of every evaluation folder found at or below `roots` (run folders, sweep outputs,

@@ -5,6 +5,7 @@
 //! Submodules: [`leaderboard`] — rows and columns of the leaderboard; [`figures`] — the
 //! SVG/PNG figures (plotters, bundled font).
 
+pub mod baselines;
 pub mod figures;
 pub mod leaderboard;
 pub mod mechanisms;
@@ -15,6 +16,9 @@ use std::path::{Path, PathBuf};
 
 /// What the `runs` column counts.
 pub const RUNS_LEGEND: &str = "evaluation folders aggregated in the row (seeds, and task settings such as FI TDs); every other cell is the mean ± SD over the runs that have the metric";
+
+/// What a row labelled `model (study)` is (rows with [`Row::baseline`]).
+pub const BASELINE_LEGEND: &str = "rows labelled `model (study)` are committed baselines: the compact results of that study in the repository (results/<study>/jobs/, one run per job), grouped exactly as evaluation folders are";
 
 /// What every column means and which direction is better.
 pub const COLUMNS: [(&str, &str); 31] = [
@@ -375,7 +379,7 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     let cols = used_columns(rows);
     // CSV: mean and SD columns.
-    let mut header = vec!["model".to_string(), "runs".to_string()];
+    let mut header = vec!["model".to_string(), "baseline".into(), "runs".to_string()];
     for (k, _) in &cols {
         header.push(k.to_string());
         header.push(format!("{k}_sd"));
@@ -383,7 +387,8 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
     let table: Vec<Vec<String>> = rows
         .iter()
         .map(|r| {
-            let mut line = vec![r.model.clone(), r.runs.len().to_string()];
+            let baseline = r.baseline.clone().unwrap_or_default();
+            let mut line = vec![r.model.clone(), baseline, r.runs.len().to_string()];
             for (k, _) in &cols {
                 match r.values.get(*k) {
                     Some(s) => line.extend([s.mean.to_string(), s.sd.to_string()]),
@@ -412,6 +417,9 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
     }
     md += "\n## Columns\n\n";
     md += &format!("* `runs`: {RUNS_LEGEND}\n");
+    if rows.iter().any(|r| r.baseline.is_some()) {
+        md += &format!("* {BASELINE_LEGEND}\n");
+    }
     for (k, what) in &cols {
         md += &format!("* `{k}`: {what}\n");
     }
@@ -462,6 +470,9 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
             escape(what)
         );
     }
+    if rows.iter().any(|r| r.baseline.is_some()) {
+        html += &format!("<dt>baselines</dt><dd>{}</dd>\n", escape(BASELINE_LEGEND));
+    }
     html += "</dl>\n";
     let grid_rows: Vec<(String, Vec<crate::behaviour::metrics::BisectionMetrics>)> = rows
         .iter()
@@ -480,7 +491,7 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
             inline_svg(svg)?
         );
     }
-    for r in rows {
+    for r in rows.iter().filter(|r| r.baseline.is_none()) {
         html += &format!("<h2>{}</h2>\n", escape(&r.model));
         html += &row_figures_html(r)?;
     }

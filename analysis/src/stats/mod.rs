@@ -1,8 +1,11 @@
 //! Small statistics shared by the behavioural and neural analyses:
 //!
-//! * [`Spread`] — mean, sample SD and count of one number across runs.
+//! * [`Spread`] — mean, sample SD and count of one number across runs;
+//! * [`nan_json`] — JSON with `null` for undefined floats read back as NaN.
 //!
 //! Special functions (normal CDF, incomplete beta, …) come from `statrs`.
+
+pub mod nan_json;
 
 use serde::{Deserialize, Serialize};
 

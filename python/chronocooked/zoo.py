@@ -1,0 +1,63 @@
+"""The zoo of trained agents and the leaderboard with committed baselines.
+
+* :func:`agents` lists the zoo's trained agents (``zoo:<model>/<task>``) with their
+  provenance (training command, seed, commit, the success they reached);
+* :func:`load` returns one as a policy for :func:`chronocooked.evaluate` or a gymnasium
+  loop: ``policy(obs, state, episode_start) -> (action, state, activity)`` with reference
+  code observations (``uint8 [R, C, 6]``) and its latent population as ``activity``
+  (``float32 [units]``);
+* :func:`report` writes the leaderboard of evaluation folders next to the committed
+  baselines (``results/paper-core`` of the repository by default).
+
+The zoo is found as by the CLI: ``$CHRONOCOOKED_ZOO``; a ``zoo/`` folder (with
+``index.json``) in the current folder or an ancestor; else the copy compiled into the
+extension, unpacked once into ``$CHRONOCOOKED_CACHE`` (default ``~/.cache/chronocooked``)
+— so an installed wheel has the agents without the repository.
+"""
+
+import json
+import os
+from pathlib import Path
+
+from . import _core
+
+
+def agents():
+    """Every zoo agent: a list of dicts with ``name`` (``zoo:<model>/<task>``), ``dir``,
+    ``bytes`` and ``provenance`` (model, task, env, seed, preset, env_steps, sweep, job,
+    command, commit, train_wall_s, evaluation, study_job, reproduces_study_job)."""
+    return json.loads(_core.zoo_agents())["agents"]
+
+
+def load(name):
+    """Zoo agent ``name`` (``"lstm125/FixedInterval-v0"`` or ``"zoo:lstm125/FixedInterval-v0"``)
+    as a policy; its files are checked against their SHA-256 records (``ValueError`` naming
+    a corrupt file)."""
+    return _core.ZooPolicy(str(name))
+
+
+def provenance(policy):
+    """The provenance record (dict) of a policy from :func:`load`."""
+    return json.loads(policy.provenance_json)
+
+
+def report(evals, out, baselines=True):
+    """Writes the leaderboard (``report.html``, ``report.md``, ``report.csv``) of the
+    evaluation folders ``evals`` (a path or a list of paths, from :func:`chronocooked.evaluate`
+    or ``chronocooked eval``) into ``out``, with committed baselines: ``True`` (default) the
+    repository's ``results/paper-core`` (found from the current folder upwards, or
+    ``$CHRONOCOOKED_BASELINES``), a path or list of compact study results folders, or
+    ``False``/``None`` for none. Baseline rows are labelled ``model (study)``. Returns the
+    written paths."""
+    if isinstance(evals, (str, os.PathLike)):
+        evals = [evals]
+    if baselines is True:
+        extra, default = [], True
+    elif not baselines:
+        extra, default = [], False
+    elif isinstance(baselines, (str, os.PathLike)):
+        extra, default = [str(baselines)], False
+    else:
+        extra, default = [str(b) for b in baselines], False
+    files = _core.report([str(e) for e in evals], str(out), extra, default)
+    return [Path(f) for f in files]

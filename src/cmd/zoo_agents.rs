@@ -1,0 +1,245 @@
+//! The trained agents of the zoo on the command line: listed by `zoo list`, added by
+//! `zoo add` (from a finished sweep job), and accepted as `--run zoo:<model>/<task>` by
+//! `eval`, `record`, `export` and `adapt` ([`resolve_run`]).
+
+use anyhow::{Context, Result, bail};
+use chronocooked_analysis::behaviour::aggregate::headline;
+use chronocooked_analysis::behaviour::metrics::Metrics;
+use chronocooked_env::integrity;
+use chronocooked_training::agent_zoo::{
+    self, AGENT_FILES, INDEX, Provenance, ZooAgent, ZooEvaluation, ZooIndex,
+};
+use clap::Args;
+use std::path::{Path, PathBuf};
+
+/// A `--run` argument: `zoo:<model>/<task>` becomes the zoo agent's checked folder.
+pub fn resolve_run(arg: &Path) -> Result<PathBuf> {
+    Ok(agent_zoo::resolve_run(arg)?)
+}
+
+/// One agent as a line of `zoo list`: its task's headline success (FI: full-reward
+/// deliveries at the trained TD; bisection: correct counter at the anchors) as recorded
+/// when it was added.
+fn agent_line(a: &ZooAgent) -> String {
+    let p = &a.provenance;
+    let h = &p.evaluation.headline;
+    let success = match (h.get("fi_success"), h.get("bisection_accuracy")) {
+        (Some(s), _) => format!("FI success {s:.2}"),
+        (None, Some(s)) => format!("anchor accuracy {s:.2}"),
+        (None, None) => format!("success {:.2}", p.evaluation.success_rate),
+    };
+    format!(
+        "  zoo:{:<36} seed {}  {} env steps  {success:<21} ({} episodes)  {:.0} kB",
+        p.name,
+        p.seed,
+        p.env_steps,
+        p.evaluation.episodes,
+        a.bytes as f64 / 1024.0
+    )
+}
+
+/// The trained agents for `zoo list` (text lines) and `zoo list --json` (values).
+pub fn agents_listing() -> Result<(Vec<String>, serde_json::Value)> {
+    let root = agent_zoo::zoo_root()?;
+    let agents = agent_zoo::list_agents(&root)?;
+    let total: u64 = agents.iter().map(|a| a.bytes).sum();
+    let mut lines = vec![format!(
+        "Trained agents ({} in {}, {:.2} MB; `--run zoo:NAME` in eval, record, export, adapt):",
+        agents.len(),
+        root.display(),
+        total as f64 / 1e6
+    )];
+    lines.extend(agents.iter().map(agent_line));
+    let json = serde_json::json!({
+        "root": root,
+        "bytes": total,
+        "agents": agents.iter().map(|a| serde_json::json!({
+            "name": format!("zoo:{}", a.provenance.name),
+            "dir": a.dir,
+            "bytes": a.bytes,
+            "provenance": a.provenance,
+        })).collect::<Vec<_>>(),
+    });
+    Ok((lines, json))
+}
+
+/// Arguments of `zoo add`.
+#[derive(Args, Debug)]
+pub struct ZooAddArgs {
+    /// A finished sweep job folder (`job.json`, `run/` with `model.bpk`, `eval/`).
+    pub job: PathBuf,
+    /// The sweep file the job belongs to (recorded in the provenance).
+    #[arg(long)]
+    pub sweep: PathBuf,
+    /// The sweep output folder the job was run into (for the recorded command).
+    #[arg(long)]
+    pub sweep_out: PathBuf,
+    /// Git commit of the code that trained the job.
+    #[arg(long)]
+    pub commit: String,
+    /// Compact results of the same study (`results/<study>`): the job of the same id is
+    /// compared with this one.
+    #[arg(long)]
+    pub study: Option<PathBuf>,
+    /// The zoo folder (its `index.json` gains the agent).
+    #[arg(long, default_value = "zoo")]
+    pub zoo: PathBuf,
+}
+
+fn read_json(path: &Path) -> Result<serde_json::Value> {
+    let text = std::fs::read_to_string(path).with_context(|| path.display().to_string())?;
+    serde_json::from_str(&text).with_context(|| format!("{}: not JSON", path.display()))
+}
+
+/// The evaluation record of a metrics file.
+fn evaluation(metrics: &Metrics) -> ZooEvaluation {
+    ZooEvaluation {
+        episodes: metrics.episodes,
+        success_rate: metrics.success_rate,
+        headline: headline(metrics)
+            .into_iter()
+            .filter(|(_, v)| v.is_finite())
+            .collect(),
+        conditions: metrics
+            .conditions
+            .iter()
+            .map(|c| {
+                let kind = serde_json::to_value(c.kind)
+                    .ok()
+                    .and_then(|v| v.as_str().map(str::to_string))
+                    .unwrap_or_default();
+                (kind, c.td, c.episodes, c.success_rate)
+            })
+            .collect(),
+    }
+}
+
+/// Whether the evaluation episodes of `eval` (its records) equal the lines of a committed
+/// job's `episodes.csv` (`None` when there is no such file): the same behaviour, episode
+/// for episode, whatever the metrics code computed from them then and now.
+fn same_episodes(eval: &Path, committed: &Path) -> Result<Option<bool>> {
+    use chronocooked_analysis::paper::collect::EpisodeRow;
+    if !committed.is_file() {
+        return Ok(None);
+    }
+    let records = chronocooked_analysis::evaluation::protocol::read_records(eval)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", eval.display()))?;
+    let mine: Vec<EpisodeRow> = records.iter().map(EpisodeRow::of).collect();
+    let theirs = csv::Reader::from_path(committed)
+        .and_then(|mut r| r.deserialize().collect::<Result<Vec<EpisodeRow>, _>>())
+        .with_context(|| committed.display().to_string())?;
+    Ok(Some(mine == theirs))
+}
+
+/// Runs `zoo add`: copies the job's final model, configuration and summary into
+/// `zoo/<model>/<task>/`, writes its provenance, records every file in `SHA256SUMS` and
+/// adds the agent to the index.
+pub fn add(args: ZooAddArgs) -> Result<()> {
+    let job = read_json(&args.job.join("job.json"))?;
+    let s = |k: &str| -> Result<String> {
+        job[k].as_str().map(str::to_string).with_context(|| {
+            format!(
+                "{}: field `{k}` missing",
+                args.job.join("job.json").display()
+            )
+        })
+    };
+    let (id, task, model) = (s("id")?, s("task")?, s("model")?);
+    let run = args.job.join("run");
+    let eval = args.job.join("eval");
+    // The model must load intact before it is copied.
+    chronocooked_training::load_policy(&run)?;
+    let metrics_text = std::fs::read_to_string(eval.join("metrics.json"))
+        .with_context(|| eval.join("metrics.json").display().to_string())?;
+    let metrics: Metrics = chronocooked_analysis::stats::nan_json::from_str_nan(&metrics_text)
+        .with_context(|| {
+            format!(
+                "{}: not a metrics file",
+                eval.join("metrics.json").display()
+            )
+        })?;
+    let cfg = read_json(&run.join("config.json"))?;
+    let summary = read_json(&run.join("summary.json"))?;
+    let name = format!("{model}/{task}");
+    let (study_job, reproduces) = match &args.study {
+        Some(study) => {
+            let other = study.join("jobs").join(&id);
+            let same = same_episodes(&eval, &other.join("episodes.csv"))?;
+            (same.map(|_| other.display().to_string()), same)
+        }
+        None => (None, None),
+    };
+    let provenance = Provenance {
+        name: name.clone(),
+        model: model.clone(),
+        task: task.clone(),
+        env: cfg["env"]
+            .as_array()
+            .map(|a| {
+                a.iter()
+                    .filter_map(|v| v.as_str().map(str::to_string))
+                    .collect()
+            })
+            .unwrap_or_default(),
+        seed: cfg["seed"].as_u64().unwrap_or_default(),
+        preset: cfg["preset"].as_str().unwrap_or_default().to_string(),
+        env_steps: summary["env_steps"].as_u64().unwrap_or_default(),
+        sweep: args.sweep.display().to_string(),
+        job: id.clone(),
+        command: format!(
+            "chronocooked sweep-job {} --out {} --id '{id}'",
+            args.sweep.display(),
+            args.sweep_out.display()
+        ),
+        commit: args.commit.clone(),
+        train_wall_s: summary["wall_s"].as_f64().unwrap_or(f64::NAN),
+        evaluation: evaluation(&metrics),
+        study_job,
+        reproduces_study_job: reproduces,
+    };
+    let dir = args.zoo.join(&name);
+    if dir.exists() {
+        bail!(
+            "{}: already in the zoo (remove the folder to replace it)",
+            dir.display()
+        );
+    }
+    std::fs::create_dir_all(&dir).with_context(|| dir.display().to_string())?;
+    for file in AGENT_FILES {
+        let bytes = if file == "provenance.json" {
+            let mut t = serde_json::to_string_pretty(&provenance)?;
+            t.push('\n');
+            t.into_bytes()
+        } else if file == "model.bpk" || file == "policy.json" {
+            integrity::read_verified(&run.join(file))?
+        } else {
+            std::fs::read(run.join(file)).with_context(|| run.join(file).display().to_string())?
+        };
+        integrity::write_recorded(&dir.join(file), &bytes)?;
+    }
+    agent_zoo::verify_agent(&dir)?;
+    let index_path = args.zoo.join(INDEX);
+    let mut index = if index_path.is_file() {
+        agent_zoo::read_index(&args.zoo)?
+    } else {
+        ZooIndex {
+            format: 1,
+            agents: vec![],
+        }
+    };
+    if !index.agents.contains(&name) {
+        index.agents.push(name.clone());
+    }
+    let mut text = serde_json::to_string_pretty(&index)?;
+    text.push('\n');
+    chronocooked_env::fs::write_atomic(&index_path, text.as_bytes())
+        .with_context(|| index_path.display().to_string())?;
+    println!(
+        "zoo:{name} ← {} (success {:.2}; reproduces {}: {:?})",
+        args.job.display(),
+        metrics.success_rate,
+        id,
+        reproduces
+    );
+    Ok(())
+}
