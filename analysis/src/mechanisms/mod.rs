@@ -215,6 +215,17 @@ pub fn compare(
     out
 }
 
+/// The nearest mechanism among one agent's comparisons as `mechanism (bootstrap share)`,
+/// `–` when no distance is defined.
+pub fn nearest_label(mine: &[&Comparison]) -> String {
+    mine.iter()
+        .filter(|c| c.distance.is_finite())
+        .min_by(|x, y| x.distance.total_cmp(&y.distance))
+        .map_or("–".into(), |c| {
+            format!("{} ({:.2})", c.mechanism, c.nearest_fraction)
+        })
+}
+
 /// The mechanism models of the lab's zoo, in table order.
 pub const MECHANISMS: [&str; 5] = [
     "ddm",

@@ -114,13 +114,7 @@ pub fn write_tables(
                     .map_or("–".into(), |c| fmt(c.distance, 2))
             })
             .collect();
-        let best = mine
-            .iter()
-            .filter(|c| c.distance.is_finite())
-            .min_by(|x, y| x.distance.total_cmp(&y.distance));
-        let nearest = best.map_or("–".into(), |c| {
-            format!("{} ({:.2})", c.mechanism, c.nearest_fraction)
-        });
+        let nearest = crate::mechanisms::nearest_label(&mine);
         md.push_str(&format!("| {a} | {} | {nearest} |\n", cells.join(" | ")));
     }
     let mut files = vec![

@@ -470,13 +470,7 @@ fn nearest_tables(sigs: &[Signature]) -> (String, String) {
             html += &format!("<td>{cell}</td>");
             md += &format!(" {cell} |");
         }
-        let best = mine
-            .iter()
-            .filter(|c| c.distance.is_finite())
-            .min_by(|x, y| x.distance.total_cmp(&y.distance));
-        let nearest = best.map_or("–".into(), |c| {
-            format!("{} ({:.2})", c.mechanism, c.nearest_fraction)
-        });
+        let nearest = crate::mechanisms::nearest_label(&mine);
         html += &format!("<td>{}</td></tr>\n", escape(&nearest));
         md += &format!(" {nearest} |\n");
     }
@@ -646,6 +640,7 @@ mod tests {
             values: BTreeMap::new(),
             bisection: Vec::new(),
             foc: Vec::new(),
+            baseline: None,
         }
     }
 
