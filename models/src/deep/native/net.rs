@@ -23,6 +23,11 @@ pub struct SeqBatch<'a> {
     pub h0: &'a [f32],
     /// Initial LSTM cell state `[B, H]` (`None` for the other models).
     pub c0: Option<&'a [f32]>,
+    /// `[T]`: how many sequences are real at step `t` — a prefix of the batch, never
+    /// growing with `t` (sequences sorted longest first, padding after each one's end).
+    /// The core steps only those; the rows of ended sequences get zero state and must
+    /// have zero output gradients. `None`: every sequence runs every step.
+    pub active: Option<&'a [usize]>,
 }
 
 /// Activations of the last forward pass (kept for the backward pass) and reusable
@@ -79,6 +84,7 @@ pub struct NativePolicy {
     cfg: PolicyConfig,
     layout: Layout,
     detach_critic: bool,
+    frozen_core: bool,
 }
 
 impl NativePolicy {
@@ -88,7 +94,17 @@ impl NativePolicy {
             cfg: *cfg,
             layout: Layout::new(cfg),
             detach_critic: false,
+            frozen_core: false,
         }
+    }
+
+    /// The same engine for a core that is never trained (a reservoir): the backward
+    /// pass still carries the gradient through the core to the trunk but leaves the
+    /// core's own parameter gradients (input projection, `W_rec`, biases, τ) at zero and
+    /// skips their products.
+    pub fn with_frozen_core(mut self, frozen: bool) -> Self {
+        self.frozen_core = frozen;
+        self
     }
 
     /// The same engine whose critic reads a *detached* copy of the recurrent core's
@@ -277,15 +293,21 @@ impl NativePolicy {
         if let (Some((params, inp)), Some(rec)) = (self.core_params(theta), l.core_rec) {
             core::backward(&params, &mut cache.core, &cache.dlat, grad, rec, l.tau, s);
             let gh = params.kind.gates() * params.hidden;
-            linear_backward(
-                Mat::new(&cache.f, n, t.features),
-                Mat::new(cache.core.dxw(), n, gh),
-                theta,
-                inp,
-                grad,
-                Some((&mut cache.df, t.features)),
-                s,
-            );
+            let dxw = Mat::new(cache.core.dxw(), n, gh);
+            if self.frozen_core {
+                let w = Mat::new(inp.0.of(theta), t.features, gh);
+                matmul_nt(dxw, w, &mut cache.df, t.features, false, s);
+            } else {
+                linear_backward(
+                    Mat::new(&cache.f, n, t.features),
+                    dxw,
+                    theta,
+                    inp,
+                    grad,
+                    Some((&mut cache.df, t.features)),
+                    s,
+                );
+            }
         } else {
             cache.df.copy_from_slice(&cache.dlat);
         }
@@ -335,6 +357,7 @@ impl NativePolicy {
             b_rec: rec.1.map(|b| b.of(theta)),
             tau: l.tau.map(|b| b.of(theta)),
             dt: self.cfg.ctrnn_dt,
+            grads: !self.frozen_core,
         };
         Some((params, inp))
     }
