@@ -123,6 +123,13 @@ impl Adam {
             bc2_sqrt: bc2.sqrt(),
         };
         #[cfg(target_arch = "x86_64")]
+        if std::is_x86_feature_detected!("avx512f") {
+            // SAFETY: the CPU supports AVX-512F (checked just above). Same IEEE operations
+            // in the same order (no FMA contraction), so results equal the baseline build's.
+            unsafe { adam_avx512(theta, grad, &mut self.m, &mut self.v, &k) };
+            return;
+        }
+        #[cfg(target_arch = "x86_64")]
         if std::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU supports AVX2 (checked just above). Same IEEE operations in
             // the same order (no FMA contraction), so results equal the baseline build's.
@@ -140,6 +147,12 @@ struct StepConsts {
     eps: f64,
     step_size: f64,
     bc2_sqrt: f64,
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+fn adam_avx512(theta: &mut [f32], grad: &[f32], m: &mut [f32], v: &mut [f32], k: &StepConsts) {
+    adam_loop(theta, grad, m, v, k);
 }
 
 #[cfg(target_arch = "x86_64")]

@@ -59,7 +59,7 @@ pub(super) fn pack(b: Mat<'_>, transpose: bool, out: &mut Vec<f32>) {
     }
 }
 
-/// One `R × 16·V` block of `C (+)= A·B`: `A` rows at `ap` (stride `lda`), `B` rows at `bp`
+/// One `R × 16·V` block of `C (+)= A·B`: `A[r, kk]` at `ap + r·lda + kk·acs`, `B` rows at `bp`
 /// (stride `ldb`), `C` rows at `cp` (stride `ldc`), `k` terms, lane masks per vector.
 /// `U` interleaved sets of accumulators (`k` split by parity when `U = 2`, summed at the
 /// end) keep enough independent FMA chains in flight when `R·V` is small (one or two
@@ -70,7 +70,7 @@ pub(super) fn pack(b: Mat<'_>, transpose: bool, out: &mut Vec<f32>) {
 /// of `C` are readable (and `C` writable) in every lane the masks select.
 #[inline(always)]
 unsafe fn tile<const R: usize, const V: usize, const U: usize>(
-    (ap, lda): (*const f32, usize),
+    (ap, lda, acs): (*const f32, usize, usize),
     (bp, ldb): (*const f32, usize),
     (cp, ldc): (*mut f32, usize),
     k: usize,
@@ -92,12 +92,12 @@ unsafe fn tile<const R: usize, const V: usize, const U: usize>(
         let mut kk = 0;
         while kk < k_main {
             for (u, acc_u) in acc.iter_mut().enumerate() {
-                step::<R, V>(acc_u, (ap, lda), (bp, ldb), kk + u, masks);
+                step::<R, V>(acc_u, (ap, lda, acs), (bp, ldb), kk + u, masks);
             }
             kk += U;
         }
         for kk in k_main..k {
-            step::<R, V>(&mut acc[0], (ap, lda), (bp, ldb), kk, masks);
+            step::<R, V>(&mut acc[0], (ap, lda, acs), (bp, ldb), kk, masks);
         }
         let (first, rest) = acc.split_at_mut(1);
         for other in rest.iter() {
@@ -122,7 +122,7 @@ unsafe fn tile<const R: usize, const V: usize, const U: usize>(
 #[inline(always)]
 unsafe fn step<const R: usize, const V: usize>(
     acc: &mut [[__m512; V]; R],
-    (ap, lda): (*const f32, usize),
+    (ap, lda, acs): (*const f32, usize, usize),
     (bp, ldb): (*const f32, usize),
     kk: usize,
     masks: [__mmask16; V],
@@ -134,7 +134,7 @@ unsafe fn step<const R: usize, const V: usize>(
         let bv: [__m512; V] =
             std::array::from_fn(|v| _mm512_maskz_loadu_ps(masks[v], brow.add(16 * v)));
         for (r, acc_r) in acc.iter_mut().enumerate() {
-            let av = _mm512_set1_ps(*ap.add(r * lda + kk));
+            let av = _mm512_set1_ps(*ap.add(r * lda + kk * acs));
             for (x, &bvv) in acc_r.iter_mut().zip(&bv) {
                 *x = _mm512_fmadd_ps(av, bvv, *x);
             }
@@ -150,7 +150,7 @@ unsafe fn step<const R: usize, const V: usize>(
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 unsafe fn block<const V: usize>(
-    a: Mat<'_>,
+    a: ATerm<'_>,
     (i0, r): (usize, usize),
     (bp, ldb): (*const f32, usize),
     (c, ldc): (*mut f32, usize),
@@ -158,9 +158,9 @@ unsafe fn block<const V: usize>(
     accumulate: bool,
 ) {
     let masks: [__mmask16; V] = std::array::from_fn(|v| lane_mask(w.saturating_sub(16 * v)));
-    let ap = (a.data.as_ptr().wrapping_add(i0 * a.ld), a.ld);
+    let ap = a.rows_from(i0);
     let cp = (c.wrapping_add(i0 * ldc + j0), ldc);
-    let (k, b) = (a.cols, (bp, ldb));
+    let (k, b) = (a.k(), (bp, ldb));
     // SAFETY: forwarded contract; r rows from i0 exist in A and C.
     unsafe {
         match r {
@@ -177,19 +177,54 @@ unsafe fn block<const V: usize>(
     }
 }
 
+/// The left factor `A [M, K]` of a product: a row-major view, or the transpose of one
+/// (`A = Xᵀ` for `X [K, M]`, read in place: the weight gradients `xᵀ·dy`).
+#[derive(Clone, Copy)]
+pub(super) enum ATerm<'a> {
+    /// `A` itself.
+    Plain(Mat<'a>),
+    /// `A = Xᵀ`.
+    Transposed(Mat<'a>),
+}
+
+impl ATerm<'_> {
+    fn m(&self) -> usize {
+        match self {
+            ATerm::Plain(x) => x.rows,
+            ATerm::Transposed(x) => x.cols,
+        }
+    }
+
+    fn k(&self) -> usize {
+        match self {
+            ATerm::Plain(x) => x.cols,
+            ATerm::Transposed(x) => x.rows,
+        }
+    }
+
+    /// `(pointer to A[i0, 0], row stride, column stride)`.
+    fn rows_from(&self, i0: usize) -> (*const f32, usize, usize) {
+        match self {
+            ATerm::Plain(x) => (x.data.as_ptr().wrapping_add(i0 * x.ld), x.ld, 1),
+            ATerm::Transposed(x) => (x.data.as_ptr().wrapping_add(i0), 1, x.ld),
+        }
+    }
+}
+
 /// Rows per block for `V` vectors (`R·V ≤ 24` accumulators).
 const fn rows_for(v: usize) -> usize {
     if v >= 4 { 6 } else { 8 }
 }
 
-/// `C (+)= A·B` for `A [M, K]`, `B [K, N]`, `C [M, N]` (row stride `ldc`), `B` row-major.
+/// `C (+)= A·B` for `A [M, K]` (row-major or the transpose of a row-major view), `B [K, N]`,
+/// `C [M, N]` (row stride `ldc`), `B` row-major.
 ///
 /// # Safety
-/// The CPU supports AVX-512F; the caller has checked the shapes (`a.cols == b.rows`,
+/// The CPU supports AVX-512F; the caller has checked the shapes (`A`'s `K == b.rows`,
 /// `ldc ≥ N`, `c.len() ≥ (M−1)·ldc + N`).
 #[target_feature(enable = "avx512f")]
-pub(super) unsafe fn matmul(a: Mat<'_>, b: Mat<'_>, c: &mut [f32], ldc: usize, accumulate: bool) {
-    let (m, n) = (a.rows, b.cols);
+pub(super) unsafe fn matmul(a: ATerm<'_>, b: Mat<'_>, c: &mut [f32], ldc: usize, accumulate: bool) {
+    let (m, n) = (a.m(), b.cols);
     // Narrow products use fewer, fully used vectors per row; wide ones 3 (8 rows).
     let v = n.div_ceil(16).clamp(1, 4);
     let v = if v == 4 && n > 64 { 3 } else { v };
@@ -245,7 +280,7 @@ pub(super) unsafe fn matmul_packed(
             // columns j0..j0 + w ≤ N (masks); AVX-512F available.
             unsafe {
                 block::<4>(
-                    a,
+                    ATerm::Plain(a),
                     (i0, r),
                     (panel.as_ptr(), PANEL),
                     (cp, ldc),

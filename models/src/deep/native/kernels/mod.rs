@@ -142,7 +142,7 @@ pub fn matmul_isa(isa: Isa, a: Mat<'_>, b: Mat<'_>, c: &mut [f32], ldc: usize, a
         Isa::Avx512 => {
             // SAFETY: the CPU supports AVX-512F (asserted above) and the shapes were
             // checked just above.
-            unsafe { avx512::matmul(a, b, c, ldc, accumulate) }
+            unsafe { avx512::matmul(avx512::ATerm::Plain(a), b, c, ldc, accumulate) }
         }
         #[cfg(target_arch = "x86_64")]
         Isa::Avx2 => {
@@ -353,6 +353,24 @@ pub fn transpose_into(a: Mat<'_>, out: &mut Vec<f32>) {
 /// `C = Aᵀ·B` (or `+=`): `A [M, K]`, `B [M, N]` → `C [K, N]` (dense); `scratch` holds `Aᵀ`.
 pub fn matmul_tn(a: Mat<'_>, b: Mat<'_>, c: &mut [f32], accumulate: bool, scratch: &mut Vec<f32>) {
     assert_eq!(a.rows, b.rows, "row counts differ");
+    #[cfg(target_arch = "x86_64")]
+    if Isa::detect() == Isa::Avx512 && a.cols > 1 {
+        // AVX-512 reads Aᵀ in place (no transposed copy).
+        assert!(
+            c.len() >= a.cols * b.cols,
+            "output shorter than the product"
+        );
+        if a.rows == 0 {
+            if !accumulate {
+                c[..a.cols * b.cols].fill(0.0);
+            }
+            return;
+        }
+        // SAFETY: the CPU supports AVX-512F (detected); Aᵀ is [a.cols, a.rows] with
+        // a.rows == b.rows, and C holds a.cols rows of b.cols (checked above).
+        unsafe { avx512::matmul(avx512::ATerm::Transposed(a), b, c, b.cols, accumulate) };
+        return;
+    }
     transpose_into(a, scratch);
     matmul(Mat::new(scratch, a.cols, a.rows), b, c, b.cols, accumulate);
 }

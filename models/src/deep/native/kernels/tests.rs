@@ -147,6 +147,19 @@ fn check_all_kernels(m: usize, k: usize, n: usize, accumulate: bool, seed: u32) 
         );
         check(&format!("{isa:?}"), &c);
     }
+    // Aᵀ·B with A given transposed (read in place under AVX-512).
+    let mut at = Vec::new();
+    transpose_into(Mat::new(&a, m, k), &mut at);
+    let mut c = c0.clone();
+    let mut s = Vec::new();
+    matmul_tn(
+        Mat::new(&at, k, m),
+        Mat::new(&b, k, n),
+        &mut c,
+        accumulate,
+        &mut s,
+    );
+    check("tn", &c);
     let mut p = Packed::default();
     p.pack(Mat::new(&b, k, n), false);
     let mut c = c0.clone();
