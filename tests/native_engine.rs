@@ -57,6 +57,7 @@ fn check(arch: Architecture, seed: u64, lens: Option<[usize; 3]>) {
     keep[3 * b + 1] = 0.0;
     keep[2] = 0.0;
     let hid = arch.hidden;
+    let lat = if arch.is_recurrent() { hid } else { 64 };
     let h0 = uniform(b * hid, 0.8, &mut rng);
     let c0 = uniform(b * hid, 0.8, &mut rng);
     let lstm = arch.core == Some(CoreKind::Lstm);
@@ -121,8 +122,13 @@ fn check(arch: Architecture, seed: u64, lens: Option<[usize; 3]>) {
     );
     assert_close(
         &format!("{arch} latent"),
-        &rows(cache.latent(), cache.latent().len() / (t * b)),
-        &rows(&to_vec(&out.latent), cache.latent().len() / (t * b)),
+        // With padding the native latent holds the real rows only (step after step).
+        &if lens.is_some() {
+            cache.latent().to_vec()
+        } else {
+            rows(cache.latent(), lat)
+        },
+        &rows(&to_vec(&out.latent), lat),
         2e-5,
     );
     if let (Some(st), None) = (&out.state, lens) {

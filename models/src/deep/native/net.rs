@@ -35,7 +35,16 @@ pub struct SeqBatch<'a> {
 /// [`Cache::final_state`].
 #[derive(Debug, Default, Clone)]
 pub struct Cache {
+    /// Rows computed: `T·B`, or the real rows only when padding is left out.
     rows: usize,
+    /// Padded rows `T·B` of the outputs.
+    padded: usize,
+    /// Padded-layout index of each computed row (empty when every row is computed).
+    real: Vec<usize>,
+    keep: Vec<f32>,
+    /// Outputs and output gradients of the computed rows (packed layout only).
+    logits_p: Vec<f32>,
+    values_p: Vec<f32>,
     steps: usize,
     batch: usize,
     x: Vec<f32>,
@@ -58,7 +67,9 @@ pub struct Cache {
 }
 
 impl Cache {
-    /// The latent fed to the heads `[T·B, L]` (core output, or trunk features for CNN-MLP).
+    /// The latent fed to the heads `[T·B, L]` (core output, or trunk features for CNN-MLP);
+    /// with sequences that end early ([`SeqBatch::active`]) only their real rows, step
+    /// after step.
     pub fn latent(&self) -> &[f32] {
         if self.core.is_empty() {
             &self.f
@@ -69,7 +80,7 @@ impl Cache {
 
     /// State after the last step: `(h [B, H], c [B, H] for the LSTM)` (empty for CNN-MLP).
     pub fn final_state(&self) -> (&[f32], Option<&[f32]>) {
-        self.core.final_state(self.steps, self.batch)
+        self.core.final_state()
     }
 }
 
@@ -147,6 +158,20 @@ impl NativePolicy {
             "observation length"
         );
         assert_eq!(batch.keep.len(), n, "keep mask length");
+        // Sequences that end early (`active`): only their real rows are computed, step
+        // after step (the recurrent core's packed layout), outputs scattered back.
+        cache.real.clear();
+        if let Some(a) = batch.active
+            && a.iter().sum::<usize>() < n
+        {
+            let b = batch.batch;
+            for (t, &bt) in a.iter().enumerate() {
+                cache.real.extend((0..bt.min(b)).map(|j| t * b + j));
+            }
+        }
+        let packed = !cache.real.is_empty();
+        cache.padded = n;
+        let n = if packed { cache.real.len() } else { n };
         cache.rows = n;
         cache.steps = batch.steps;
         cache.batch = batch.batch;
@@ -158,7 +183,16 @@ impl NativePolicy {
         }
         let nc = n * t.cells;
         cache.x.clear();
-        cache.x.extend_from_slice(batch.obs);
+        if packed {
+            let w = t.cells * t.channels;
+            for &r in &cache.real {
+                cache.x.extend_from_slice(&batch.obs[r * w..(r + 1) * w]);
+            }
+            cache.keep.clear();
+            cache.keep.extend(cache.real.iter().map(|&r| batch.keep[r]));
+        } else {
+            cache.x.extend_from_slice(batch.obs);
+        }
         // conv1 (per cell) + ReLU.
         resize(&mut cache.a1, nc * t.conv1);
         let x = Mat::new(&cache.x, nc, t.channels);
@@ -184,7 +218,11 @@ impl NativePolicy {
             resize(&mut cache.xw, n * gh);
             let f = Mat::new(&cache.f, n, t.features);
             linear(f, theta, inp, gh, &mut cache.xw);
-            core::forward(&params, &cache.xw, batch, &mut cache.core);
+            let core_batch = SeqBatch {
+                keep: if packed { &cache.keep } else { batch.keep },
+                ..*batch
+            };
+            core::forward(&params, &cache.xw, &core_batch, packed, &mut cache.core);
         } else {
             cache.core.clear();
         }
@@ -206,12 +244,27 @@ impl NativePolicy {
         );
         tanh_inplace(&mut cache.z);
         let a_n = self.cfg.actions;
-        resize(&mut cache.logits, n * a_n);
+        let (lg, vl) = if packed {
+            (&mut cache.logits_p, &mut cache.values_p)
+        } else {
+            (&mut cache.logits, &mut cache.values)
+        };
+        resize(lg, n * a_n);
         let z_pi = Mat::strided(&cache.z, n, hh, 2 * hh);
-        linear(z_pi, theta, l.pi, a_n, &mut cache.logits);
-        resize(&mut cache.values, n);
+        linear(z_pi, theta, l.pi, a_n, lg);
+        resize(vl, n);
         let z_vf = Mat::strided(&cache.z[hh..], n, hh, 2 * hh);
-        linear(z_vf, theta, l.vf, 1, &mut cache.values);
+        linear(z_vf, theta, l.vf, 1, vl);
+        if packed {
+            // Padding rows: zero outputs (their loss weight is zero).
+            resize(&mut cache.logits, cache.padded * a_n);
+            resize(&mut cache.values, cache.padded);
+            for (i, &r) in cache.real.iter().enumerate() {
+                cache.logits[r * a_n..(r + 1) * a_n]
+                    .copy_from_slice(&cache.logits_p[i * a_n..(i + 1) * a_n]);
+                cache.values[r] = cache.values_p[i];
+            }
+        }
     }
 
     /// Gradient of `Σ d_logits·logits + Σ d_values·values` with respect to every parameter
@@ -229,8 +282,25 @@ impl NativePolicy {
         let (t, l) = (&self.cfg.trunk, &self.layout);
         let (hh, a_n, lat_dim) = (self.cfg.head_hidden, self.cfg.actions, self.latent_dim());
         assert_eq!(grad.len(), l.total, "gradient vector length");
-        assert_eq!(d_logits.len(), n * a_n, "logit gradient length");
-        assert_eq!(d_values.len(), n, "value gradient length");
+        assert_eq!(d_logits.len(), cache.padded * a_n, "logit gradient length");
+        assert_eq!(d_values.len(), cache.padded, "value gradient length");
+        // Packed layout: the output gradients of the computed rows (the forward pass's
+        // packed outputs are not needed any more; their buffers are reused).
+        let (mut dl_p, mut dv_p) = (
+            std::mem::take(&mut cache.logits_p),
+            std::mem::take(&mut cache.values_p),
+        );
+        let (d_logits, d_values) = if cache.real.is_empty() {
+            (d_logits, d_values)
+        } else {
+            dl_p.clear();
+            dv_p.clear();
+            for &r in &cache.real {
+                dl_p.extend_from_slice(&d_logits[r * a_n..(r + 1) * a_n]);
+                dv_p.push(d_values[r]);
+            }
+            (&dl_p[..], &dv_p[..])
+        };
         grad.fill(0.0);
         if n == 0 {
             return;
@@ -344,6 +414,7 @@ impl NativePolicy {
             None,
             s,
         );
+        (cache.logits_p, cache.values_p) = (dl_p, dv_p);
     }
 
     /// The core's parameters in `theta` and its input-projection blocks (`None` for CNN-MLP).
