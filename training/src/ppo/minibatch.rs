@@ -46,7 +46,7 @@ impl Minibatch {
     /// order among equal lengths); `hidden` is the core size (0 for CNN-MLP).
     pub fn gather(r: &Rollout, mb: &[Chunk], l: usize, hidden: usize, normalize: bool) -> Self {
         let mut sorted = mb.to_vec();
-        sorted.sort_by(|x, y| y.len.cmp(&x.len));
+        sorted.sort_by_key(|c| std::cmp::Reverse(c.len));
         let mb = &sorted[..];
         let (n, b, olen) = (r.n_envs, mb.len(), r.obs_len);
         let m = l * b;
