@@ -122,6 +122,7 @@ fn resize(v: &mut Vec<f32>, len: usize) {
 }
 
 /// Copies `src` rows scaled by their keep value into `dst` (`[B, H]`).
+#[inline(always)]
 fn masked_copy(dst: &mut [f32], src: &[f32], keep: &[f32], h: usize) {
     for ((d, s), &k) in dst.chunks_exact_mut(h).zip(src.chunks_exact(h)).zip(keep) {
         if k == 1.0 {
@@ -137,6 +138,7 @@ fn masked_copy(dst: &mut [f32], src: &[f32], keep: &[f32], h: usize) {
 /// rows of the others are absent (`xw`, `batch.keep` and every output hold `Σ active`
 /// rows, step after step); otherwise they stay in place (`[T·B]` rows) and are left at
 /// zero.
+#[inline(always)]
 pub(super) fn forward(
     p: &CoreParams<'_>,
     xw: &[f32],
@@ -251,6 +253,7 @@ pub(super) fn forward(
 
 /// GRU step `t`: `r, z = σ(x_{r,z} + (h̃ W_rec + b_rec)_{r,z})`, `n = tanh(x_n + r ⊙ ĥ_n)` with
 /// `ĥ_n = (h̃ W_rec + b_rec)_n`, `h = n + z ⊙ (h̃ − n)`.
+#[inline(always)]
 fn gru_step(p: &CoreParams<'_>, cc: &mut CoreCache, t: usize, bt: usize, xw_t: &[f32]) {
     let h = p.hidden;
     let gh = 3 * h;
@@ -294,6 +297,7 @@ fn gru_step(p: &CoreParams<'_>, cc: &mut CoreCache, t: usize, bt: usize, xw_t: &
 
 /// LSTM gate activations and cell update for step `t` (pre-activations already in `gates`)
 /// of the first `bt` of `b` sequences, fused per sequence ([`lstm_cell`]).
+#[inline(always)]
 fn lstm_step(
     cc: &mut CoreCache,
     t: usize,
@@ -328,6 +332,7 @@ fn lstm_step(
 /// Back-propagation through time from `dlat = ∂L/∂h_t` `[N, H]`: accumulates the
 /// recurrent weight (and GRU bias, CTRNN τ) gradients into `grad` at the blocks `rec`
 /// and `tau`, and leaves `∂L/∂(x W_in + b_in)` in the cache ([`CoreCache::dxw`]).
+#[inline(always)]
 pub(super) fn backward(
     p: &CoreParams<'_>,
     cc: &mut CoreCache,

@@ -3,7 +3,7 @@
 
 use super::core::{self, CoreCache};
 use super::kernels::{
-    Mat, add_bias, add_col_sums, matmul, matmul_nt, matmul_tn, relu_inplace, tanh_inplace,
+    Isa, Mat, add_bias, add_col_sums, matmul, matmul_nt, matmul_tn, relu_inplace, tanh_inplace,
 };
 use super::{Block, Layout};
 use crate::PolicyConfig;
@@ -148,6 +148,25 @@ impl NativePolicy {
     /// Forward pass of `batch` with parameters `theta`; fills `cache` (outputs and what
     /// [`NativePolicy::backward`] needs).
     pub fn forward(&self, theta: &[f32], batch: &SeqBatch<'_>, cache: &mut Cache) {
+        match Isa::detect() {
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: the CPU supports AVX-512F, AVX2 and FMA (detected).
+            Isa::Avx512 => unsafe { self.forward_avx512(theta, batch, cache) },
+            _ => self.forward_impl(theta, batch, cache),
+        }
+    }
+
+    /// [`NativePolicy::forward`] with its element-wise loops (masks, gates, CTRNN leak,
+    /// ReLU, biases) compiled for AVX-512; the same IEEE operations (no contraction into
+    /// FMA), so the same results.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx512f,avx2,fma")]
+    fn forward_avx512(&self, theta: &[f32], batch: &SeqBatch<'_>, cache: &mut Cache) {
+        self.forward_impl(theta, batch, cache);
+    }
+
+    #[inline(always)]
+    fn forward_impl(&self, theta: &[f32], batch: &SeqBatch<'_>, cache: &mut Cache) {
         assert_eq!(theta.len(), self.layout.total, "parameter vector length");
         let t = &self.cfg.trunk;
         let l = &self.layout;
@@ -271,6 +290,38 @@ impl NativePolicy {
     /// (written to `grad`, same layout as `theta`), for the last forward pass in `cache`.
     /// Gradients do not flow into the initial state.
     pub fn backward(
+        &self,
+        theta: &[f32],
+        cache: &mut Cache,
+        d_logits: &[f32],
+        d_values: &[f32],
+        grad: &mut [f32],
+    ) {
+        match Isa::detect() {
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: the CPU supports AVX-512F, AVX2 and FMA (detected).
+            Isa::Avx512 => unsafe { self.backward_avx512(theta, cache, d_logits, d_values, grad) },
+            _ => self.backward_impl(theta, cache, d_logits, d_values, grad),
+        }
+    }
+
+    /// [`NativePolicy::backward`] with its element-wise loops compiled for AVX-512 (same
+    /// IEEE operations, same results).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx512f,avx2,fma")]
+    fn backward_avx512(
+        &self,
+        theta: &[f32],
+        cache: &mut Cache,
+        d_logits: &[f32],
+        d_values: &[f32],
+        grad: &mut [f32],
+    ) {
+        self.backward_impl(theta, cache, d_logits, d_values, grad);
+    }
+
+    #[inline(always)]
+    fn backward_impl(
         &self,
         theta: &[f32],
         cache: &mut Cache,
@@ -454,6 +505,7 @@ fn linear_backward(
 }
 
 /// Zeroes `d` where the ReLU output `y` is 0 (its derivative).
+#[inline(always)]
 fn relu_backward(d: &mut [f32], y: &[f32]) {
     for (d, &y) in d.iter_mut().zip(y) {
         if y <= 0.0 {
