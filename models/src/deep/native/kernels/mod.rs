@@ -34,14 +34,21 @@ pub enum Isa {
 }
 
 impl Isa {
-    /// The best instruction set this CPU supports (detected once, then cached).
+    /// The best instruction set this CPU supports (detected once, then cached), or a
+    /// lower one named by the environment variable `CHRONOCOOKED_ISA` (`scalar`, `avx2`,
+    /// `avx512`; to test and measure the fallbacks on a machine that has more).
     pub fn detect() -> Isa {
         static BEST: std::sync::OnceLock<Isa> = std::sync::OnceLock::new();
         *BEST.get_or_init(|| {
+            let cap = match std::env::var("CHRONOCOOKED_ISA").as_deref() {
+                Ok("scalar") => Isa::Scalar,
+                Ok("avx2") => Isa::Avx2,
+                _ => Isa::Avx512,
+            };
             Isa::all()
                 .into_iter()
                 .rev()
-                .find(|i| i.supported())
+                .find(|i| *i <= cap && i.supported())
                 .unwrap_or(Isa::Scalar)
         })
     }
