@@ -123,6 +123,10 @@ def load_env_class(ref_dir):
 
 def make_vec_env(env_cls):
     def _make():
+        if env_cls is None:
+            # The lab's Rust-backed env (the `chronocooked` Python package).
+            import chronocooked  # noqa: F401  (registers the envs)
+            return Monitor(gym.make("chronocooked/FixedInterval-v0", td=12, max_timesteps=200))
         return Monitor(env_cls(oven_duration=12, max_timesteps=200))
 
     return DummyVecEnv([_make])
@@ -154,9 +158,10 @@ def build(name, env, seed):
     if name == "ppo-cnn-mlp":
         return PPO("MlpPolicy", env, batch_size=64, policy_kwargs=dict(EXTRACTOR),
                    seed=seed, **COMMON)
-    if name in ("rppo-lstm125", "rppo-lstm125-shared"):
+    if name.startswith("rppo-lstm"):
         shared = name.endswith("-shared")
-        kwargs = dict(EXTRACTOR, lstm_hidden_size=125, n_lstm_layers=1,
+        size = int(name[len("rppo-lstm"):].removesuffix("-shared"))
+        kwargs = dict(EXTRACTOR, lstm_hidden_size=size, n_lstm_layers=1,
                       shared_lstm=shared, enable_critic_lstm=not shared)
         return RecurrentPPO("MlpLstmPolicy", env, batch_size=128, policy_kwargs=kwargs,
                             seed=seed, **COMMON)
@@ -210,6 +215,11 @@ def main():
     ap.add_argument("--rppo-lstm", choices=["default", "shared", "both"], default="both",
                     help="RecurrentPPO LSTM layout: sb3-contrib default (separate actor "
                          "and critic LSTMs), shared (one LSTM), or both")
+    ap.add_argument("--rppo-sizes", default="125",
+                    help="comma-separated LSTM sizes for RecurrentPPO (e.g. 8,125,256)")
+    ap.add_argument("--env", choices=["original", "chronocooked"], default="original",
+                    help="original Python env (needs --ref-dir) or the lab's Rust-backed "
+                         "chronocooked/FixedInterval-v0 (the `chronocooked` package)")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--json", action="store_true", help="print JSON lines")
     args = ap.parse_args()
@@ -220,8 +230,12 @@ def main():
     except RuntimeError:
         pass
 
-    env_cls = load_env_class(args.ref_dir)
-    probe = env_cls(oven_duration=12, max_timesteps=200)
+    if args.env == "original":
+        env_cls = load_env_class(args.ref_dir)
+        probe = env_cls(oven_duration=12, max_timesteps=200)
+    else:
+        env_cls = None
+        probe = make_vec_env(None).envs[0]
     info = {
         "python": platform.python_version(),
         "torch": torch.__version__,
@@ -239,15 +253,17 @@ def main():
         print("# " + ", ".join(f"{k}={v}" for k, v in info.items()), flush=True)
 
     runs = [("ppo-cnn-mlp", args.ppo_updates)]
-    if args.rppo_lstm in ("default", "both"):
-        runs.append(("rppo-lstm125", args.rppo_updates))
-    if args.rppo_lstm in ("shared", "both"):
-        runs.append(("rppo-lstm125-shared", args.rppo_updates))
+    for size in [int(x) for x in args.rppo_sizes.split(",") if x]:
+        if args.rppo_lstm in ("default", "both"):
+            runs.append((f"rppo-lstm{size}", args.rppo_updates))
+        if args.rppo_lstm in ("shared", "both"):
+            runs.append((f"rppo-lstm{size}-shared", args.rppo_updates))
     for name, updates in runs:
         if updates <= 0:
             continue
         r = measure(name, env_cls, updates, args.seed)
-        r["task"] = "FixedInterval TD=12 (python original, SB3)"
+        r["task"] = ("FixedInterval TD=12 (python original, SB3)" if env_cls is not None
+                     else "chronocooked/FixedInterval-v0 TD=12 (Rust-backed env, SB3)")
         if args.json:
             print(json.dumps(r), flush=True)
         else:

@@ -5,6 +5,8 @@
 # alike, and prints the mean of each measurement and the new/old ratio.
 #
 #   bash scripts/bench-compare.sh OLD_BIN NEW_BIN [ROUNDS]
+#   MODELS=lstm125,lstm256,ctrnn256 TRAIN_SETS="--set env.td=12" UPDATES=3 bash scripts/bench-compare.sh ...
+#   (MODELS: the models of `bench train`, default its own; TRAIN_SETS: extra arguments)
 #   e.g. git worktree add /tmp/old <commit> && (cd /tmp/old && cargo build --release)
 #        bash scripts/bench-compare.sh /tmp/old/target/release/chronocooked target/release/chronocooked
 set -euo pipefail
@@ -20,7 +22,8 @@ for l in sys.stdin:
         d = json.loads(l)
         if d["encoding"] == "codes":
             print(sys.argv[1], "env-" + d["mode"], d["steps_per_sec"])' "$side" >> "$log"
-        "$bin" bench train --updates 5 2> /dev/null \
+        # shellcheck disable=SC2086
+        "$bin" bench train --updates "${UPDATES:-5}" ${MODELS:+--models "$MODELS"} ${TRAIN_SETS:-} 2> /dev/null \
             | awk -v s="$side" '$6 == "env-steps/s" {print s, $2, $5}' >> "$log"
     done
 done

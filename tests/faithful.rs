@@ -54,6 +54,7 @@ fn detached_critic_keeps_the_value_loss_out_of_core_and_trunk() {
             keep: &keep,
             h0: &h0,
             c0: (arch.core == Some(CoreKind::Lstm)).then_some(&c0[..]),
+            active: None,
         };
         let wl = uniform(t * b * actions, &mut rng);
         let wv = uniform(t * b, &mut rng);

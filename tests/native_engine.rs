@@ -24,9 +24,18 @@ fn assert_close(what: &str, got: &[f32], want: &[f32], tol: f32) {
     }
 }
 
-fn check(arch: Architecture, seed: u64) {
+/// Native vs burn at one architecture. With `lens` (sequence lengths, longest first) the
+/// rows past each sequence's end are padding: their output weights are zero, the native
+/// engine skips them (`SeqBatch::active`) and outputs are compared on real rows only.
+fn check(arch: Architecture, seed: u64, lens: Option<[usize; 3]>) {
     let (cells, ch, actions) = (15, 6, 6);
     let (t, b) = (6, 3);
+    let real = |row: usize| lens.is_none_or(|l| row / b < l[row % b]);
+    let active: Option<Vec<usize>> = lens.map(|l| {
+        (0..t)
+            .map(|s| l.iter().filter(|&&x| x > s).count())
+            .collect()
+    });
     let d = cpu_autodiff();
     let pc = PolicyConfig::new(arch, cells, ch, actions);
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
@@ -48,6 +57,7 @@ fn check(arch: Architecture, seed: u64) {
     keep[3 * b + 1] = 0.0;
     keep[2] = 0.0;
     let hid = arch.hidden;
+    let lat = if arch.is_recurrent() { hid } else { 64 };
     let h0 = uniform(b * hid, 0.8, &mut rng);
     let c0 = uniform(b * hid, 0.8, &mut rng);
     let lstm = arch.core == Some(CoreKind::Lstm);
@@ -65,8 +75,12 @@ fn check(arch: Architecture, seed: u64) {
         })
         .collect();
     let out = model.forward_seq(x, state, &keep_t);
-    let wl = uniform(t * b * actions, 1.0, &mut rng);
-    let wv = uniform(t * b, 1.0, &mut rng);
+    let mut wl = uniform(t * b * actions, 1.0, &mut rng);
+    let mut wv = uniform(t * b, 1.0, &mut rng);
+    for row in (0..t * b).filter(|&r| !real(r)) {
+        wv[row] = 0.0;
+        wl[row * actions..(row + 1) * actions].fill(0.0);
+    }
     let objective = (out.logits.clone()
         * Tensor::<2>::from_data(TensorData::new(wl.clone(), [t * b, actions]), &d))
     .sum()
@@ -83,27 +97,41 @@ fn check(arch: Architecture, seed: u64) {
         keep: &keep,
         h0: if arch.is_recurrent() { &h0 } else { &[] },
         c0: lstm.then_some(&c0[..]),
+        active: active.as_deref(),
     };
     native.forward(&theta, &batch, &mut cache);
+    // Real rows only (all rows without padding), `width` values per row.
+    let rows = |v: &[f32], width: usize| -> Vec<f32> {
+        v.chunks_exact(width)
+            .enumerate()
+            .filter(|(r, _)| real(*r))
+            .flat_map(|(_, x)| x.to_vec())
+            .collect()
+    };
     assert_close(
         &format!("{arch} logits"),
-        &cache.logits,
-        &to_vec(&out.logits),
+        &rows(&cache.logits, actions),
+        &rows(&to_vec(&out.logits), actions),
         2e-5,
     );
     assert_close(
         &format!("{arch} values"),
-        &cache.values,
-        &to_vec(&out.values),
+        &rows(&cache.values, 1),
+        &rows(&to_vec(&out.values), 1),
         2e-5,
     );
     assert_close(
         &format!("{arch} latent"),
-        cache.latent(),
-        &to_vec(&out.latent),
+        // With padding the native latent holds the real rows only (step after step).
+        &if lens.is_some() {
+            cache.latent().to_vec()
+        } else {
+            rows(cache.latent(), lat)
+        },
+        &rows(&to_vec(&out.latent), lat),
         2e-5,
     );
-    if let Some(st) = &out.state {
+    if let (Some(st), None) = (&out.state, lens) {
         let (h, c) = cache.final_state();
         assert_close(&format!("{arch} final h"), h, &to_vec(&st.h), 2e-5);
         if let (Some(c), Some(want)) = (c, &st.c) {
@@ -153,15 +181,36 @@ fn check(arch: Architecture, seed: u64) {
     }
 }
 
+/// Tolerances: outputs within 2e-5 and every gradient block within 2e-4 of the block's
+/// largest burn value (f32 sums in a different order: tiled, packed and fused kernels).
 #[test]
 fn native_forward_and_gradients_equal_burn_autodiff() {
-    check(Architecture::CNN_MLP, 1);
+    check(Architecture::CNN_MLP, 1, None);
+    // The paper's sizes: 8, 125 (odd: tails of every kernel) and 256 (packed panels of
+    // W_hh wider than one cache page), every core kind.
     for (i, kind) in CoreKind::ALL.into_iter().enumerate() {
-        check(Architecture::recurrent(kind, 12), 10 + i as u64);
+        for (j, size) in [8, 125, 256].into_iter().enumerate() {
+            check(
+                Architecture::recurrent(kind, size),
+                10 + 3 * i as u64 + j as u64,
+                None,
+            );
+        }
     }
-    // The paper's size exercises the tiled kernels (4 × 16 blocks and their edges).
-    check(Architecture::recurrent(CoreKind::Lstm, 125), 20);
-    check(Architecture::recurrent(CoreKind::Ctrnn, 125), 21);
+}
+
+#[test]
+fn native_skips_padding_after_each_sequence_and_keeps_the_gradients() {
+    // Sequences of 6, 4 and 1 steps (longest first) in a batch of 6 steps.
+    for (i, kind) in CoreKind::ALL.into_iter().enumerate() {
+        for size in [8, 125] {
+            check(
+                Architecture::recurrent(kind, size),
+                40 + i as u64,
+                Some([6, 4, 1]),
+            );
+        }
+    }
 }
 
 #[test]
@@ -185,6 +234,7 @@ fn native_outputs_do_not_depend_on_state_before_an_episode_start() {
             keep: &keep,
             h0,
             c0: Some(c0),
+            active: None,
         };
         native.forward(&theta, &batch, &mut cache);
         cache.logits.clone()
@@ -295,6 +345,7 @@ fn native_ctrnn_with_zero_weights_follows_exact_euler_decay() {
         keep: &keep,
         h0: &h0,
         c0: None,
+        active: None,
     };
     native.forward(&theta, &batch, &mut cache);
     let alpha = 0.1 / (1.0 + 1f64.exp()).ln();
@@ -323,6 +374,7 @@ fn native_empty_batch_gives_empty_outputs_and_zero_gradient() {
         keep: &[],
         h0: &[0.0; 21],
         c0: None,
+        active: None,
     };
     native.forward(&theta, &batch, &mut cache);
     assert!(cache.logits.is_empty() && cache.values.is_empty());

@@ -128,6 +128,7 @@ impl Actor {
                     keep,
                     h0: &state.0,
                     c0: state.1.as_deref(),
+                    active: None,
                 };
                 net.forward(theta, &batch, cache);
                 let (h, c) = cache.final_state();

@@ -41,13 +41,38 @@ pub struct Adam {
     pub t: u64,
 }
 
-/// L2 norm of a gradient vector.
+/// L2 norm of a gradient vector (f64 sums; 16 interleaved partial sums so that the loop
+/// vectorises — a fixed order, so deterministic).
 pub fn global_norm(grads: &[f32]) -> f64 {
-    grads
-        .iter()
-        .map(|&g| (g as f64) * (g as f64))
-        .sum::<f64>()
-        .sqrt()
+    #[cfg(target_arch = "x86_64")]
+    if std::is_x86_feature_detected!("avx512f") {
+        // SAFETY: the CPU supports AVX-512F (checked just above).
+        return unsafe { sum_squares_avx512(grads) }.sqrt();
+    }
+    sum_squares(grads).sqrt()
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+fn sum_squares_avx512(x: &[f32]) -> f64 {
+    sum_squares(x)
+}
+
+#[inline(always)]
+fn sum_squares(x: &[f32]) -> f64 {
+    let mut acc = [0f64; 16];
+    let chunks = x.chunks_exact(16);
+    let tail = chunks.remainder();
+    for c in chunks {
+        for (a, &g) in acc.iter_mut().zip(c) {
+            *a += (g as f64) * (g as f64);
+        }
+    }
+    let mut s: f64 = acc.iter().sum();
+    for &g in tail {
+        s += (g as f64) * (g as f64);
+    }
+    s
 }
 
 /// Scales `grads` in place so that their global L2 norm is at most `max_norm`
@@ -123,6 +148,13 @@ impl Adam {
             bc2_sqrt: bc2.sqrt(),
         };
         #[cfg(target_arch = "x86_64")]
+        if std::is_x86_feature_detected!("avx512f") {
+            // SAFETY: the CPU supports AVX-512F (checked just above). Same IEEE operations
+            // in the same order (no FMA contraction), so results equal the baseline build's.
+            unsafe { adam_avx512(theta, grad, &mut self.m, &mut self.v, &k) };
+            return;
+        }
+        #[cfg(target_arch = "x86_64")]
         if std::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU supports AVX2 (checked just above). Same IEEE operations in
             // the same order (no FMA contraction), so results equal the baseline build's.
@@ -140,6 +172,12 @@ struct StepConsts {
     eps: f64,
     step_size: f64,
     bc2_sqrt: f64,
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+fn adam_avx512(theta: &mut [f32], grad: &[f32], m: &mut [f32], v: &mut [f32], k: &StepConsts) {
+    adam_loop(theta, grad, m, v, k);
 }
 
 #[cfg(target_arch = "x86_64")]

@@ -36,12 +36,18 @@ pub struct Minibatch {
     pub h0: Vec<f32>,
     /// Initial LSTM cell state `[B, H]`.
     pub c0: Option<Vec<f32>>,
+    /// `[L]`: chunks still running at step `t` (chunks are stored longest first, so these
+    /// are the first `active[t]`; the native engine skips the padding after the others).
+    pub active: Vec<usize>,
 }
 
 impl Minibatch {
-    /// Gathers the chunks `mb` (each `≤ l` steps) of rollout `r`; `hidden` is the core
-    /// size (0 for CNN-MLP).
+    /// Gathers the chunks `mb` (each `≤ l` steps) of rollout `r`, longest first (stable
+    /// order among equal lengths); `hidden` is the core size (0 for CNN-MLP).
     pub fn gather(r: &Rollout, mb: &[Chunk], l: usize, hidden: usize, normalize: bool) -> Self {
+        let mut sorted = mb.to_vec();
+        sorted.sort_by_key(|c| std::cmp::Reverse(c.len));
+        let mb = &sorted[..];
         let (n, b, olen) = (r.n_envs, mb.len(), r.obs_len);
         let m = l * b;
         let mut s = Minibatch {
@@ -57,6 +63,9 @@ impl Minibatch {
             old_values: vec![0f32; m],
             h0: Vec::with_capacity(b * hidden),
             c0: None,
+            active: (0..l)
+                .map(|t| mb.iter().filter(|c| c.len > t).count())
+                .collect(),
         };
         for (j, c) in mb.iter().enumerate() {
             for t in 0..c.len {
@@ -124,6 +133,7 @@ impl Minibatch {
             keep: &self.keep,
             h0: &self.h0,
             c0: self.c0.as_deref(),
+            active: Some(&self.active),
         };
         net.forward(theta, &batch, cache);
         self.output_grads(&cache.logits, &cache.values, c)

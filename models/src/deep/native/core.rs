@@ -6,7 +6,9 @@
 //! masked incoming state), `r_t = h̃ W_rec (+ b_rec)`.
 
 use super::Block;
-use super::kernels::{Mat, matmul, matmul_tn, sigmoid_inplace, tanh_inplace, transpose_into};
+use super::kernels::{
+    Mat, Packed, lstm_cell, matmul, matmul_packed, matmul_tn, sigmoid_inplace, tanh_inplace,
+};
 use super::net::SeqBatch;
 use crate::CoreKind;
 
@@ -22,6 +24,9 @@ pub(super) struct CoreParams<'a> {
     pub tau: Option<&'a [f32]>,
     /// CTRNN step.
     pub dt: f32,
+    /// Whether the core's own gradients (`W_rec`, `b_rec`, `τ`) are wanted (not for a
+    /// frozen reservoir, whose BPTT only carries the gradient on to the trunk).
+    pub grads: bool,
 }
 
 impl CoreParams<'_> {
@@ -44,6 +49,8 @@ pub(crate) struct CoreCache {
     active: bool,
     steps: usize,
     batch: usize,
+    /// Rows held (`T·B`, or `Σ active` in the packed layout).
+    rows: usize,
     keep: Vec<f32>,
     /// Outputs `h_t` `[N, H]`.
     h: Vec<f32>,
@@ -63,7 +70,14 @@ pub(crate) struct CoreCache {
     dh: Vec<f32>,
     dh_carry: Vec<f32>,
     dc_carry: Vec<f32>,
-    w_rec_t: Vec<f32>,
+    /// Real sequences per step `[T]` (a prefix of the batch; all when not given).
+    active_rows: Vec<usize>,
+    /// First row of each step `[T]`: `t·B` (padded layout) or the running sum of
+    /// `active_rows` (packed layout: rows of ended sequences left out).
+    off: Vec<usize>,
+    /// `W_rec` prepared for the per-step products, and its transpose for the backward.
+    w_pack: Packed,
+    wt_pack: Packed,
 }
 
 impl CoreCache {
@@ -87,13 +101,16 @@ impl CoreCache {
         &self.dxw
     }
 
-    /// State after the last of `steps` steps of `batch` sequences.
-    pub fn final_state(&self, steps: usize, batch: usize) -> (&[f32], Option<&[f32]>) {
-        if !self.active || steps == 0 {
+    /// State after the last step, of the sequences that run to the last step.
+    pub fn final_state(&self) -> (&[f32], Option<&[f32]>) {
+        let Some((&o, &bt)) = self.off.last().zip(self.active_rows.last()) else {
+            return (&[], None);
+        };
+        if !self.active {
             return (&[], None);
         }
         let h = self.hidden;
-        let range = (steps - 1) * batch * h..steps * batch * h;
+        let range = o * h..(o + bt) * h;
         let c = (!self.c.is_empty()).then(|| &self.c[range.clone()]);
         (&self.h[range], c)
     }
@@ -105,6 +122,7 @@ fn resize(v: &mut Vec<f32>, len: usize) {
 }
 
 /// Copies `src` rows scaled by their keep value into `dst` (`[B, H]`).
+#[inline(always)]
 fn masked_copy(dst: &mut [f32], src: &[f32], keep: &[f32], h: usize) {
     for ((d, s), &k) in dst.chunks_exact_mut(h).zip(src.chunks_exact(h)).zip(keep) {
         if k == 1.0 {
@@ -116,10 +134,20 @@ fn masked_copy(dst: &mut [f32], src: &[f32], keep: &[f32], h: usize) {
 }
 
 /// Runs the core over the sequence: `xw [N, G·H]` is the input projection (with bias).
-pub(super) fn forward(p: &CoreParams<'_>, xw: &[f32], batch: &SeqBatch<'_>, cc: &mut CoreCache) {
+/// Only the first `batch.active[t]` sequences are stepped at step `t`. With `packed` the
+/// rows of the others are absent (`xw`, `batch.keep` and every output hold `Σ active`
+/// rows, step after step); otherwise they stay in place (`[T·B]` rows) and are left at
+/// zero.
+#[inline(always)]
+pub(super) fn forward(
+    p: &CoreParams<'_>,
+    xw: &[f32],
+    batch: &SeqBatch<'_>,
+    packed: bool,
+    cc: &mut CoreCache,
+) {
     let (h, g) = (p.hidden, p.kind.gates());
     let (t_len, b) = (batch.steps, batch.batch);
-    let n = t_len * b;
     let gh = g * h;
     assert_eq!(batch.h0.len(), b * h, "initial hidden state length");
     if let Some(c0) = batch.c0 {
@@ -131,6 +159,27 @@ pub(super) fn forward(p: &CoreParams<'_>, xw: &[f32], batch: &SeqBatch<'_>, cc: 
     cc.batch = b;
     cc.keep.clear();
     cc.keep.extend_from_slice(batch.keep);
+    cc.active_rows.clear();
+    match batch.active {
+        Some(a) => {
+            assert_eq!(a.len(), t_len, "active rows per step");
+            assert!(
+                a.iter().all(|&x| x <= b) && a.windows(2).all(|w| w[1] <= w[0]),
+                "active rows must not grow along the sequence"
+            );
+            cc.active_rows.extend_from_slice(a);
+        }
+        None => cc.active_rows.resize(t_len, b),
+    }
+    cc.off.clear();
+    let mut n = 0;
+    for (t, &bt) in cc.active_rows.iter().enumerate() {
+        cc.off.push(if packed { n } else { t * b });
+        n = if packed { n + bt } else { (t + 1) * b };
+    }
+    cc.rows = n;
+    assert_eq!(xw.len(), n * g * h, "input projection rows");
+    assert_eq!(batch.keep.len(), n, "keep mask rows");
     resize(&mut cc.h, n * h);
     resize(&mut cc.h_prev, n * h);
     resize(&mut cc.gates, n * gh);
@@ -149,26 +198,37 @@ pub(super) fn forward(p: &CoreParams<'_>, xw: &[f32], batch: &SeqBatch<'_>, cc: 
     let (alpha, _) = p.alpha();
     let zero_c = vec![0f32; b * h];
     let w_rec = Mat::new(p.w_rec, h, gh);
+    // Several steps: W_rec is prepared once (packed panels) for every step's product.
+    let w_packed = t_len > 1;
+    if w_packed {
+        cc.w_pack.pack(w_rec, false);
+    }
     for t in 0..t_len {
-        let (r0, r1) = (t * b * h, (t + 1) * b * h);
-        let keep = &batch.keep[t * b..(t + 1) * b];
+        let (bt, o) = (cc.active_rows[t], cc.off[t]);
+        let (r0, r1) = (o * h, (o + bt) * h);
+        let keep = &batch.keep[o..o + bt];
         let src = if t == 0 {
-            batch.h0
+            &batch.h0[..bt * h]
         } else {
-            &cc.h[r0 - b * h..r0]
+            let q = cc.off[t - 1];
+            &cc.h[q * h..(q + bt) * h]
         };
         masked_copy(&mut cc.h_prev[r0..r1], src, keep, h);
-        let hp = Mat::new(&cc.h_prev[r0..r1], b, h);
-        let xw_t = &xw[t * b * gh..(t + 1) * b * gh];
+        let hp = Mat::new(&cc.h_prev[r0..r1], bt, h);
+        let xw_t = &xw[o * gh..(o + bt) * gh];
         match p.kind {
-            CoreKind::Gru => gru_step(p, cc, t, b, xw_t),
+            CoreKind::Gru => gru_step(p, cc, t, bt, xw_t),
             kind => {
                 // Pre-activations x_t + h̃ W_rec, then the kind's non-linearity.
-                let pre = &mut cc.gates[t * b * gh..(t + 1) * b * gh];
+                let pre = &mut cc.gates[o * gh..(o + bt) * gh];
                 pre.copy_from_slice(xw_t);
-                matmul(hp, w_rec, pre, gh, true);
+                if w_packed {
+                    matmul_packed(hp, &cc.w_pack, pre, gh, true);
+                } else {
+                    matmul(hp, w_rec, pre, gh, true);
+                }
                 match kind {
-                    CoreKind::Lstm => lstm_step(cc, t, b, h, keep, batch.c0, &zero_c),
+                    CoreKind::Lstm => lstm_step(cc, t, bt, h, keep, batch.c0, &zero_c),
                     CoreKind::Rnn => {
                         tanh_inplace(pre);
                         cc.h[r0..r1].copy_from_slice(pre);
@@ -193,17 +253,23 @@ pub(super) fn forward(p: &CoreParams<'_>, xw: &[f32], batch: &SeqBatch<'_>, cc: 
 
 /// GRU step `t`: `r, z = σ(x_{r,z} + (h̃ W_rec + b_rec)_{r,z})`, `n = tanh(x_n + r ⊙ ĥ_n)` with
 /// `ĥ_n = (h̃ W_rec + b_rec)_n`, `h = n + z ⊙ (h̃ − n)`.
-fn gru_step(p: &CoreParams<'_>, cc: &mut CoreCache, t: usize, b: usize, xw_t: &[f32]) {
+#[inline(always)]
+fn gru_step(p: &CoreParams<'_>, cc: &mut CoreCache, t: usize, bt: usize, xw_t: &[f32]) {
     let h = p.hidden;
     let gh = 3 * h;
-    let r0 = t * b * h;
-    let hw = &mut cc.hw_step;
-    let hp = Mat::new(&cc.h_prev[r0..r0 + b * h], b, h);
-    matmul(hp, Mat::new(p.w_rec, h, gh), hw, gh, false);
+    let o = cc.off[t];
+    let r0 = o * h;
+    let hw = &mut cc.hw_step[..bt * gh];
+    let hp = Mat::new(&cc.h_prev[r0..r0 + bt * h], bt, h);
+    if cc.steps > 1 {
+        matmul_packed(hp, &cc.w_pack, hw, gh, false);
+    } else {
+        matmul(hp, Mat::new(p.w_rec, h, gh), hw, gh, false);
+    }
     if let Some(bias) = p.b_rec {
         super::kernels::add_bias(hw, bias);
     }
-    let pre = &mut cc.gates[t * b * gh..(t + 1) * b * gh];
+    let pre = &mut cc.gates[o * gh..(o + bt) * gh];
     pre.copy_from_slice(xw_t);
     for (bi, (row, hw_row)) in pre
         .chunks_exact_mut(gh)
@@ -229,48 +295,44 @@ fn gru_step(p: &CoreParams<'_>, cc: &mut CoreCache, t: usize, b: usize, xw_t: &[
     }
 }
 
-/// LSTM gate activations and cell update for step `t` (pre-activations already in `gates`).
+/// LSTM gate activations and cell update for step `t` (pre-activations already in `gates`)
+/// of the first `bt` of `b` sequences, fused per sequence ([`lstm_cell`]).
+#[inline(always)]
 fn lstm_step(
     cc: &mut CoreCache,
     t: usize,
-    b: usize,
+    bt: usize,
     h: usize,
     keep: &[f32],
     c0: Option<&[f32]>,
     zero: &[f32],
 ) {
-    let (r0, r1) = (t * b * h, (t + 1) * b * h);
+    let o = cc.off[t];
+    let (r0, r1) = (o * h, (o + bt) * h);
     let src = if t == 0 {
-        c0.unwrap_or(zero)
+        &c0.unwrap_or(zero)[..bt * h]
     } else {
-        &cc.c[r0 - b * h..r0]
+        let q = cc.off[t - 1];
+        &cc.c[q * h..(q + bt) * h]
     };
     masked_copy(&mut cc.c_prev[r0..r1], src, keep, h);
     let gh = 4 * h;
-    let pre = &mut cc.gates[t * b * gh..(t + 1) * b * gh];
-    for row in pre.chunks_exact_mut(gh) {
-        sigmoid_inplace(&mut row[..2 * h]);
-        tanh_inplace(&mut row[2 * h..3 * h]);
-        sigmoid_inplace(&mut row[3 * h..]);
-    }
-    for bi in 0..b {
-        let row = &pre[bi * gh..(bi + 1) * gh];
-        let o0 = r0 + bi * h;
-        for j in 0..h {
-            let c = row[h + j] * cc.c_prev[o0 + j] + row[j] * row[2 * h + j];
-            cc.c[o0 + j] = c;
-        }
-        cc.tc[o0..o0 + h].copy_from_slice(&cc.c[o0..o0 + h]);
-        tanh_inplace(&mut cc.tc[o0..o0 + h]);
-        for j in 0..h {
-            cc.h[o0 + j] = row[3 * h + j] * cc.tc[o0 + j];
-        }
+    let pre = &mut cc.gates[o * gh..(o + bt) * gh];
+    let rows = pre
+        .chunks_exact_mut(gh)
+        .zip(cc.c_prev[r0..r1].chunks_exact(h))
+        .zip(cc.c[r0..r1].chunks_exact_mut(h))
+        .zip(cc.tc[r0..r1].chunks_exact_mut(h))
+        .zip(cc.h[r0..r1].chunks_exact_mut(h));
+    for ((((g, cp), c), tc), hv) in rows {
+        lstm_cell(g, cp, c, tc, hv);
     }
 }
 
 /// Back-propagation through time from `dlat = ∂L/∂h_t` `[N, H]`: accumulates the
 /// recurrent weight (and GRU bias, CTRNN τ) gradients into `grad` at the blocks `rec`
 /// and `tau`, and leaves `∂L/∂(x W_in + b_in)` in the cache ([`CoreCache::dxw`]).
+#[inline(always)]
 pub(super) fn backward(
     p: &CoreParams<'_>,
     cc: &mut CoreCache,
@@ -283,7 +345,7 @@ pub(super) fn backward(
     let (h, g) = (p.hidden, p.kind.gates());
     let gh = g * h;
     let (t_len, b) = (cc.steps, cc.batch);
-    let n = t_len * b;
+    let n = cc.rows;
     resize(&mut cc.dxw, n * gh);
     let gru = p.kind == CoreKind::Gru;
     if gru {
@@ -292,22 +354,28 @@ pub(super) fn backward(
     resize(&mut cc.dh, b * h);
     resize(&mut cc.dh_carry, b * h);
     resize(&mut cc.dc_carry, b * h);
-    transpose_into(Mat::new(p.w_rec, h, gh), &mut cc.w_rec_t);
+    cc.wt_pack.pack(Mat::new(p.w_rec, h, gh), true);
     let (alpha, dalpha_dtau) = p.alpha();
     let mut dalpha = vec![0f64; alpha.len()];
     for t in (0..t_len).rev() {
-        let (r0, r1) = (t * b * h, (t + 1) * b * h);
-        for ((d, &l), &c) in cc.dh.iter_mut().zip(&dlat[r0..r1]).zip(&cc.dh_carry) {
+        let (bt, o) = (cc.active_rows[t], cc.off[t]);
+        let (r0, r1) = (o * h, (o + bt) * h);
+        for ((d, &l), &c) in cc.dh[..bt * h]
+            .iter_mut()
+            .zip(&dlat[r0..r1])
+            .zip(&cc.dh_carry)
+        {
             *d = l + c;
         }
-        let gates = &cc.gates[t * b * gh..(t + 1) * b * gh];
-        let dx = &mut cc.dxw[t * b * gh..(t + 1) * b * gh];
+        let gates = &cc.gates[o * gh..(o + bt) * gh];
+        let dx = &mut cc.dxw[o * gh..(o + bt) * gh];
         let hp = &cc.h_prev[r0..r1];
-        // `direct`: the part of ∂L/∂h̃ that does not pass through W_rec.
+        // `direct`: the part of ∂L/∂h̃ that does not pass through W_rec. Rows past the
+        // active ones stay zero (their sequences have ended: no gradient flows back).
         cc.dh_carry.fill(0.0);
         match p.kind {
             CoreKind::Lstm => {
-                for bi in 0..b {
+                for bi in 0..bt {
                     let gr = &gates[bi * gh..(bi + 1) * gh];
                     let dr = &mut dx[bi * gh..(bi + 1) * gh];
                     let o0 = r0 + bi * h;
@@ -325,8 +393,8 @@ pub(super) fn backward(
                 }
             }
             CoreKind::Gru => {
-                let dhw = &mut cc.dhw[t * b * gh..(t + 1) * b * gh];
-                for bi in 0..b {
+                let dhw = &mut cc.dhw[o * gh..(o + bt) * gh];
+                for bi in 0..bt {
                     let gr = &gates[bi * gh..(bi + 1) * gh];
                     let o0 = r0 + bi * h;
                     for j in 0..h {
@@ -362,12 +430,12 @@ pub(super) fn backward(
         }
         // ∂L/∂h̃ = direct + (∂L/∂r_t) W_recᵀ, then through the episode-start mask.
         let dr = if gru {
-            Mat::new(&cc.dhw[t * b * gh..(t + 1) * b * gh], b, gh)
+            Mat::new(&cc.dhw[o * gh..(o + bt) * gh], bt, gh)
         } else {
-            Mat::new(&cc.dxw[t * b * gh..(t + 1) * b * gh], b, gh)
+            Mat::new(&cc.dxw[o * gh..(o + bt) * gh], bt, gh)
         };
-        matmul(dr, Mat::new(&cc.w_rec_t, gh, h), &mut cc.dh_carry, h, true);
-        let keep = &cc.keep[t * b..(t + 1) * b];
+        matmul_packed(dr, &cc.wt_pack, &mut cc.dh_carry, h, true);
+        let keep = &cc.keep[o..o + bt];
         for (bi, &k) in keep.iter().enumerate() {
             if k != 1.0 {
                 cc.dh_carry[bi * h..(bi + 1) * h]
@@ -378,6 +446,9 @@ pub(super) fn backward(
                     .for_each(|v| *v *= k);
             }
         }
+    }
+    if !p.grads {
+        return;
     }
     let drec = if gru { &cc.dhw } else { &cc.dxw };
     let drec = Mat::new(drec, n, gh);

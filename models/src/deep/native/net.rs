@@ -3,7 +3,7 @@
 
 use super::core::{self, CoreCache};
 use super::kernels::{
-    Mat, add_bias, add_col_sums, matmul, matmul_nt, matmul_tn, relu_inplace, tanh_inplace,
+    Isa, Mat, add_bias, add_col_sums, matmul, matmul_nt, matmul_tn, relu_inplace, tanh_inplace,
 };
 use super::{Block, Layout};
 use crate::PolicyConfig;
@@ -23,6 +23,11 @@ pub struct SeqBatch<'a> {
     pub h0: &'a [f32],
     /// Initial LSTM cell state `[B, H]` (`None` for the other models).
     pub c0: Option<&'a [f32]>,
+    /// `[T]`: how many sequences are real at step `t` — a prefix of the batch, never
+    /// growing with `t` (sequences sorted longest first, padding after each one's end).
+    /// The core steps only those; the rows of ended sequences get zero state and must
+    /// have zero output gradients. `None`: every sequence runs every step.
+    pub active: Option<&'a [usize]>,
 }
 
 /// Activations of the last forward pass (kept for the backward pass) and reusable
@@ -30,7 +35,16 @@ pub struct SeqBatch<'a> {
 /// [`Cache::final_state`].
 #[derive(Debug, Default, Clone)]
 pub struct Cache {
+    /// Rows computed: `T·B`, or the real rows only when padding is left out.
     rows: usize,
+    /// Padded rows `T·B` of the outputs.
+    padded: usize,
+    /// Padded-layout index of each computed row (empty when every row is computed).
+    real: Vec<usize>,
+    keep: Vec<f32>,
+    /// Outputs and output gradients of the computed rows (packed layout only).
+    logits_p: Vec<f32>,
+    values_p: Vec<f32>,
     steps: usize,
     batch: usize,
     x: Vec<f32>,
@@ -53,7 +67,9 @@ pub struct Cache {
 }
 
 impl Cache {
-    /// The latent fed to the heads `[T·B, L]` (core output, or trunk features for CNN-MLP).
+    /// The latent fed to the heads `[T·B, L]` (core output, or trunk features for CNN-MLP);
+    /// with sequences that end early ([`SeqBatch::active`]) only their real rows, step
+    /// after step.
     pub fn latent(&self) -> &[f32] {
         if self.core.is_empty() {
             &self.f
@@ -64,7 +80,7 @@ impl Cache {
 
     /// State after the last step: `(h [B, H], c [B, H] for the LSTM)` (empty for CNN-MLP).
     pub fn final_state(&self) -> (&[f32], Option<&[f32]>) {
-        self.core.final_state(self.steps, self.batch)
+        self.core.final_state()
     }
 }
 
@@ -79,6 +95,7 @@ pub struct NativePolicy {
     cfg: PolicyConfig,
     layout: Layout,
     detach_critic: bool,
+    frozen_core: bool,
 }
 
 impl NativePolicy {
@@ -88,7 +105,17 @@ impl NativePolicy {
             cfg: *cfg,
             layout: Layout::new(cfg),
             detach_critic: false,
+            frozen_core: false,
         }
+    }
+
+    /// The same engine for a core that is never trained (a reservoir): the backward
+    /// pass still carries the gradient through the core to the trunk but leaves the
+    /// core's own parameter gradients (input projection, `W_rec`, biases, τ) at zero and
+    /// skips their products.
+    pub fn with_frozen_core(mut self, frozen: bool) -> Self {
+        self.frozen_core = frozen;
+        self
     }
 
     /// The same engine whose critic reads a *detached* copy of the recurrent core's
@@ -121,6 +148,25 @@ impl NativePolicy {
     /// Forward pass of `batch` with parameters `theta`; fills `cache` (outputs and what
     /// [`NativePolicy::backward`] needs).
     pub fn forward(&self, theta: &[f32], batch: &SeqBatch<'_>, cache: &mut Cache) {
+        match Isa::detect() {
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: the CPU supports AVX-512F, AVX2 and FMA (detected).
+            Isa::Avx512 => unsafe { self.forward_avx512(theta, batch, cache) },
+            _ => self.forward_impl(theta, batch, cache),
+        }
+    }
+
+    /// [`NativePolicy::forward`] with its element-wise loops (masks, gates, CTRNN leak,
+    /// ReLU, biases) compiled for AVX-512; the same IEEE operations (no contraction into
+    /// FMA), so the same results.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx512f,avx2,fma")]
+    fn forward_avx512(&self, theta: &[f32], batch: &SeqBatch<'_>, cache: &mut Cache) {
+        self.forward_impl(theta, batch, cache);
+    }
+
+    #[inline(always)]
+    fn forward_impl(&self, theta: &[f32], batch: &SeqBatch<'_>, cache: &mut Cache) {
         assert_eq!(theta.len(), self.layout.total, "parameter vector length");
         let t = &self.cfg.trunk;
         let l = &self.layout;
@@ -131,6 +177,20 @@ impl NativePolicy {
             "observation length"
         );
         assert_eq!(batch.keep.len(), n, "keep mask length");
+        // Sequences that end early (`active`): only their real rows are computed, step
+        // after step (the recurrent core's packed layout), outputs scattered back.
+        cache.real.clear();
+        if let Some(a) = batch.active
+            && a.iter().sum::<usize>() < n
+        {
+            let b = batch.batch;
+            for (t, &bt) in a.iter().enumerate() {
+                cache.real.extend((0..bt.min(b)).map(|j| t * b + j));
+            }
+        }
+        let packed = !cache.real.is_empty();
+        cache.padded = n;
+        let n = if packed { cache.real.len() } else { n };
         cache.rows = n;
         cache.steps = batch.steps;
         cache.batch = batch.batch;
@@ -142,7 +202,16 @@ impl NativePolicy {
         }
         let nc = n * t.cells;
         cache.x.clear();
-        cache.x.extend_from_slice(batch.obs);
+        if packed {
+            let w = t.cells * t.channels;
+            for &r in &cache.real {
+                cache.x.extend_from_slice(&batch.obs[r * w..(r + 1) * w]);
+            }
+            cache.keep.clear();
+            cache.keep.extend(cache.real.iter().map(|&r| batch.keep[r]));
+        } else {
+            cache.x.extend_from_slice(batch.obs);
+        }
         // conv1 (per cell) + ReLU.
         resize(&mut cache.a1, nc * t.conv1);
         let x = Mat::new(&cache.x, nc, t.channels);
@@ -168,7 +237,11 @@ impl NativePolicy {
             resize(&mut cache.xw, n * gh);
             let f = Mat::new(&cache.f, n, t.features);
             linear(f, theta, inp, gh, &mut cache.xw);
-            core::forward(&params, &cache.xw, batch, &mut cache.core);
+            let core_batch = SeqBatch {
+                keep: if packed { &cache.keep } else { batch.keep },
+                ..*batch
+            };
+            core::forward(&params, &cache.xw, &core_batch, packed, &mut cache.core);
         } else {
             cache.core.clear();
         }
@@ -190,12 +263,27 @@ impl NativePolicy {
         );
         tanh_inplace(&mut cache.z);
         let a_n = self.cfg.actions;
-        resize(&mut cache.logits, n * a_n);
+        let (lg, vl) = if packed {
+            (&mut cache.logits_p, &mut cache.values_p)
+        } else {
+            (&mut cache.logits, &mut cache.values)
+        };
+        resize(lg, n * a_n);
         let z_pi = Mat::strided(&cache.z, n, hh, 2 * hh);
-        linear(z_pi, theta, l.pi, a_n, &mut cache.logits);
-        resize(&mut cache.values, n);
+        linear(z_pi, theta, l.pi, a_n, lg);
+        resize(vl, n);
         let z_vf = Mat::strided(&cache.z[hh..], n, hh, 2 * hh);
-        linear(z_vf, theta, l.vf, 1, &mut cache.values);
+        linear(z_vf, theta, l.vf, 1, vl);
+        if packed {
+            // Padding rows: zero outputs (their loss weight is zero).
+            resize(&mut cache.logits, cache.padded * a_n);
+            resize(&mut cache.values, cache.padded);
+            for (i, &r) in cache.real.iter().enumerate() {
+                cache.logits[r * a_n..(r + 1) * a_n]
+                    .copy_from_slice(&cache.logits_p[i * a_n..(i + 1) * a_n]);
+                cache.values[r] = cache.values_p[i];
+            }
+        }
     }
 
     /// Gradient of `Σ d_logits·logits + Σ d_values·values` with respect to every parameter
@@ -209,12 +297,61 @@ impl NativePolicy {
         d_values: &[f32],
         grad: &mut [f32],
     ) {
+        match Isa::detect() {
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: the CPU supports AVX-512F, AVX2 and FMA (detected).
+            Isa::Avx512 => unsafe { self.backward_avx512(theta, cache, d_logits, d_values, grad) },
+            _ => self.backward_impl(theta, cache, d_logits, d_values, grad),
+        }
+    }
+
+    /// [`NativePolicy::backward`] with its element-wise loops compiled for AVX-512 (same
+    /// IEEE operations, same results).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx512f,avx2,fma")]
+    fn backward_avx512(
+        &self,
+        theta: &[f32],
+        cache: &mut Cache,
+        d_logits: &[f32],
+        d_values: &[f32],
+        grad: &mut [f32],
+    ) {
+        self.backward_impl(theta, cache, d_logits, d_values, grad);
+    }
+
+    #[inline(always)]
+    fn backward_impl(
+        &self,
+        theta: &[f32],
+        cache: &mut Cache,
+        d_logits: &[f32],
+        d_values: &[f32],
+        grad: &mut [f32],
+    ) {
         let n = cache.rows;
         let (t, l) = (&self.cfg.trunk, &self.layout);
         let (hh, a_n, lat_dim) = (self.cfg.head_hidden, self.cfg.actions, self.latent_dim());
         assert_eq!(grad.len(), l.total, "gradient vector length");
-        assert_eq!(d_logits.len(), n * a_n, "logit gradient length");
-        assert_eq!(d_values.len(), n, "value gradient length");
+        assert_eq!(d_logits.len(), cache.padded * a_n, "logit gradient length");
+        assert_eq!(d_values.len(), cache.padded, "value gradient length");
+        // Packed layout: the output gradients of the computed rows (the forward pass's
+        // packed outputs are not needed any more; their buffers are reused).
+        let (mut dl_p, mut dv_p) = (
+            std::mem::take(&mut cache.logits_p),
+            std::mem::take(&mut cache.values_p),
+        );
+        let (d_logits, d_values) = if cache.real.is_empty() {
+            (d_logits, d_values)
+        } else {
+            dl_p.clear();
+            dv_p.clear();
+            for &r in &cache.real {
+                dl_p.extend_from_slice(&d_logits[r * a_n..(r + 1) * a_n]);
+                dv_p.push(d_values[r]);
+            }
+            (&dl_p[..], &dv_p[..])
+        };
         grad.fill(0.0);
         if n == 0 {
             return;
@@ -277,15 +414,21 @@ impl NativePolicy {
         if let (Some((params, inp)), Some(rec)) = (self.core_params(theta), l.core_rec) {
             core::backward(&params, &mut cache.core, &cache.dlat, grad, rec, l.tau, s);
             let gh = params.kind.gates() * params.hidden;
-            linear_backward(
-                Mat::new(&cache.f, n, t.features),
-                Mat::new(cache.core.dxw(), n, gh),
-                theta,
-                inp,
-                grad,
-                Some((&mut cache.df, t.features)),
-                s,
-            );
+            let dxw = Mat::new(cache.core.dxw(), n, gh);
+            if self.frozen_core {
+                let w = Mat::new(inp.0.of(theta), t.features, gh);
+                matmul_nt(dxw, w, &mut cache.df, t.features, false, s);
+            } else {
+                linear_backward(
+                    Mat::new(&cache.f, n, t.features),
+                    dxw,
+                    theta,
+                    inp,
+                    grad,
+                    Some((&mut cache.df, t.features)),
+                    s,
+                );
+            }
         } else {
             cache.df.copy_from_slice(&cache.dlat);
         }
@@ -322,6 +465,7 @@ impl NativePolicy {
             None,
             s,
         );
+        (cache.logits_p, cache.values_p) = (dl_p, dv_p);
     }
 
     /// The core's parameters in `theta` and its input-projection blocks (`None` for CNN-MLP).
@@ -335,6 +479,7 @@ impl NativePolicy {
             b_rec: rec.1.map(|b| b.of(theta)),
             tau: l.tau.map(|b| b.of(theta)),
             dt: self.cfg.ctrnn_dt,
+            grads: !self.frozen_core,
         };
         Some((params, inp))
     }
@@ -360,6 +505,7 @@ fn linear_backward(
 }
 
 /// Zeroes `d` where the ReLU output `y` is 0 (its derivative).
+#[inline(always)]
 fn relu_backward(d: &mut [f32], y: &[f32]) {
     for (d, &y) in d.iter_mut().zip(y) {
         if y <= 0.0 {

@@ -93,7 +93,9 @@ impl Trainer {
         // The native engine reads the module's parameters through the same specification.
         check_shapes(&spec, &param_shapes(&model)).map_err(TrainError::SpecMismatch)?;
         let theta = flat_params(&model);
-        let native = NativePolicy::new(&policy_cfg).with_detached_critic(p.detach_critic);
+        let native = NativePolicy::new(&policy_cfg)
+            .with_detached_critic(p.detach_critic)
+            .with_frozen_core(cfg.model.reservoir && !p.reservoir_grad_in_norm);
         let adam = Adam::new(
             theta.len(),
             AdamParams {
