@@ -24,12 +24,7 @@ pub fn zoo_agents() -> PyResult<String> {
     let agents = agent_zoo::list_agents(&root).map_err(|e| value_err(e.to_string()))?;
     let v = serde_json::json!({
         "root": root,
-        "agents": agents.iter().map(|a| serde_json::json!({
-            "name": format!("zoo:{}", a.provenance.name),
-            "dir": a.dir,
-            "bytes": a.bytes,
-            "provenance": a.provenance,
-        })).collect::<Vec<_>>(),
+        "agents": agents.iter().map(agent_zoo::ZooAgent::listing_json).collect::<Vec<_>>(),
     });
     Ok(v.to_string())
 }

@@ -53,12 +53,7 @@ pub fn agents_listing() -> Result<(Vec<String>, serde_json::Value)> {
     let json = serde_json::json!({
         "root": root,
         "bytes": total,
-        "agents": agents.iter().map(|a| serde_json::json!({
-            "name": format!("zoo:{}", a.provenance.name),
-            "dir": a.dir,
-            "bytes": a.bytes,
-            "provenance": a.provenance,
-        })).collect::<Vec<_>>(),
+        "agents": agents.iter().map(agent_zoo::ZooAgent::listing_json).collect::<Vec<_>>(),
     });
     Ok((lines, json))
 }

@@ -161,6 +161,19 @@ pub struct ZooAgent {
     pub bytes: u64,
 }
 
+impl ZooAgent {
+    /// Its listing as JSON: `name` (`zoo:<model>/<task>`), `dir`, `bytes`, `provenance`
+    /// (`zoo list --json` and the Python package's `zoo.agents()`).
+    pub fn listing_json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "name": format!("zoo:{}", self.provenance.name),
+            "dir": self.dir,
+            "bytes": self.bytes,
+            "provenance": self.provenance,
+        })
+    }
+}
+
 /// Reads the zoo's index.
 pub fn read_index(root: &Path) -> Result<ZooIndex, ZooError> {
     let p = root.join(INDEX);
