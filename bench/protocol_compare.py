@@ -2,7 +2,7 @@
 of this core's single-thread SGEMM rate for every model at sizes 8/125/256, and SB3 PPO /
 sb3-contrib RecurrentPPO (shared LSTM, the paper's layout) on the lab's Rust-backed env.
 
-    /work/venv-sb3/bin/python bench/protocol_compare.py [--rounds 2] [--updates 3]
+    $SB3_VENV/bin/python bench/protocol_compare.py [--rounds 2] [--updates 3]
 
 Runs from the repository root with the venv of `bench/requirements-sb3.txt` plus the
 `chronocooked` Python package. Each round measures, one after the other: numpy's
