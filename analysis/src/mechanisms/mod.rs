@@ -59,7 +59,7 @@ pub const FEATURES: [&str; 12] = [
 
 /// Populations that read the model's timing out rather than keep time (excluded from the
 /// unit categories): the learner's value and reward-prediction error, the learned drift.
-const READOUTS: [&str; 3] = ["value", "rpe", "drift"];
+pub(crate) const READOUTS: [&str; 3] = ["value", "rpe", "drift"];
 
 /// Why the fingerprints could not be made.
 #[derive(Debug, thiserror::Error)]

@@ -1,0 +1,202 @@
+//! The leaderboard's "Mechanisms" section: one signature card per model with recorded
+//! fixed-interval runs, the fingerprint figure and each agent's nearest timing mechanism.
+//!
+//! A card shows the model's timing population (its largest population that is not a
+//! read-out — value, RPE, learned drift) on peak-interval probe trials (`record --probe`,
+//! windows of `2 × TD` steps after oven-on):
+//!
+//! * a heat map at the longest recorded TD, units min–max normalised and sorted by peak;
+//! * three example units, one per category where it has them (time field, ramp,
+//!   oscillating, mixed, untuned), as trial averages;
+//! * the population's power spectrum (each unit's single-trial periodogram normalised to
+//!   unit power without the mean, then averaged);
+//! * the temporal scaling between the shortest and the longest TD: the fit of the
+//!   population geometry read at stretched times against the stretch factor
+//!   ([`crate::neural::geometry`]; a peak at 1 = a fixed clock, at the TD ratio = activity
+//!   that stretches with the interval);
+//! * the unit categories as a bar (counts of the five exclusive categories).
+//!
+//! The fingerprint (features of [`crate::mechanisms`]) comes from the same runs: each
+//! row's evaluation metrics, its neural summaries and the scaling index of each seed's
+//! fixed-interval runs recorded at the shortest and the longest TD.
+
+mod card;
+mod card_html;
+#[cfg(test)]
+mod tests;
+
+use crate::mechanisms::{JobFiles, MECHANISMS, Signature, assemble, compare};
+use crate::report::leaderboard::Row;
+use crate::report::{escape, figure_markup};
+use card::card_and_scaling;
+use card_html::card_html;
+use std::path::{Path, PathBuf};
+
+/// One evaluation folder of a row: its task, seed and job folder.
+pub(super) struct RunInfo {
+    pub(super) eval: PathBuf,
+    pub(super) task: String,
+    pub(super) seed: u64,
+}
+
+fn run_info(eval: &Path) -> RunInfo {
+    let info: serde_json::Value = std::fs::read_to_string(eval.join("eval.json"))
+        .ok()
+        .and_then(|t| serde_json::from_str(&t).ok())
+        .unwrap_or_default();
+    RunInfo {
+        eval: eval.to_path_buf(),
+        task: info["task"].as_str().unwrap_or_default().to_string(),
+        seed: info["seed"].as_u64().unwrap_or(0),
+    }
+}
+
+/// The eval folders of every row as the fingerprint's job files.
+fn job_files(rows: &[Row]) -> (Vec<JobFiles>, Vec<Vec<RunInfo>>) {
+    let mut jobs = Vec::new();
+    let mut infos = Vec::new();
+    for row in rows {
+        let runs: Vec<RunInfo> = row.runs.iter().map(|e| run_info(e)).collect();
+        for r in &runs {
+            jobs.push(JobFiles {
+                model: row.model.clone(),
+                seed: r.seed,
+                task: r.task.clone(),
+                metrics: r.eval.join("metrics.json"),
+                summary: r
+                    .eval
+                    .parent()
+                    .map_or_else(PathBuf::new, |p| p.join("activity.summary.json")),
+            });
+        }
+        infos.push(runs);
+    }
+    (jobs, infos)
+}
+
+/// The nearest-mechanism table (HTML, Markdown) of the agents among `sigs`.
+fn nearest_tables(sigs: &[Signature]) -> (String, String) {
+    let comparisons = compare(sigs, &MECHANISMS, 1000, 0);
+    let mut agents: Vec<&str> = comparisons.iter().map(|c| c.agent.as_str()).collect();
+    agents.dedup();
+    if agents.is_empty() {
+        return (String::new(), String::new());
+    }
+    let mechs: Vec<&str> = MECHANISMS
+        .iter()
+        .copied()
+        .filter(|m| comparisons.iter().any(|c| c.mechanism == *m))
+        .collect();
+    let mut html = String::from("<table>\n<tr><th>agent</th><th>seeds</th>");
+    let mut md = String::from("| agent | seeds |");
+    for m in &mechs {
+        html += &format!("<th>{}</th>", escape(m));
+        md += &format!(" {m} |");
+    }
+    html += "<th>nearest (bootstrap share)</th></tr>\n";
+    md += &format!(" nearest |\n|---|---|{}---|\n", "---|".repeat(mechs.len()));
+    for a in agents {
+        let mine: Vec<_> = comparisons.iter().filter(|c| c.agent == a).collect();
+        let seeds = mine.first().map_or(0, |c| c.seeds.0);
+        html += &format!("<tr><td>{}</td><td>{seeds}</td>", escape(a));
+        md += &format!("| {a} | {seeds} |");
+        for m in &mechs {
+            let d = mine
+                .iter()
+                .find(|c| c.mechanism == *m)
+                .map_or(f64::NAN, |c| c.distance);
+            let cell = if d.is_finite() {
+                format!("{d:.2}")
+            } else {
+                "–".into()
+            };
+            html += &format!("<td>{cell}</td>");
+            md += &format!(" {cell} |");
+        }
+        let nearest = crate::mechanisms::nearest_label(&mine);
+        html += &format!("<td>{}</td></tr>\n", escape(&nearest));
+        md += &format!(" {nearest} |\n");
+    }
+    (html + "</table>\n", md)
+}
+
+/// The "Mechanisms" section of the leaderboard (HTML, Markdown) for `rows`; its figures go
+/// to `<out>/mechanisms/`. Empty strings when no row has recorded fixed-interval runs.
+pub fn mechanisms_section(rows: &[Row], out: &Path) -> Result<(String, String), String> {
+    let dir = out.join("mechanisms");
+    let (jobs, infos) = job_files(rows);
+    let mut cards = Vec::new();
+    let mut scaling = Vec::new();
+    for (row, runs) in rows.iter().zip(&infos) {
+        let (card, s) = card_and_scaling(row, runs)?;
+        cards.extend(card);
+        scaling.extend(s);
+    }
+    if cards.is_empty() {
+        return Ok((String::new(), String::new()));
+    }
+    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    // Fingerprints of the models with a card (recorded neural activity): the oracle and
+    // the random agent are bounds, not mechanisms to place.
+    let carded: Vec<JobFiles> = jobs
+        .into_iter()
+        .filter(|j| cards.iter().any(|c| c.model == j.model))
+        .collect();
+    let sigs = assemble(&carded, &scaling).map_err(|e| e.to_string())?;
+    let mut html = String::from(
+        "<h2>Mechanisms</h2>\n<p>How each model keeps time, on peak-interval probe trials \
+         (soup withheld, windows of 2 × TD steps after oven-on): its timing population's \
+         unit categories (bar: counts of the exclusive categories ramp, time field, \
+         oscillating, mixed, untuned), heat map, example units, power spectrum and temporal \
+         scaling between its shortest and longest TD (a peak at s = 1: a clock at a fixed \
+         speed; at the TD ratio: activity that stretches with the interval). Below the \
+         cards: each model's fingerprint and each agent's distance to every timing \
+         mechanism.</p>\n",
+    );
+    let mut md = String::from("\n## Mechanisms\n\n");
+    for card in &cards {
+        html += &card_html(card, &dir)?;
+    }
+    let (table_html, table_md) = nearest_tables(&sigs);
+    let fig = crate::mechanisms::fingerprint_figure(&sigs, &dir.join("fingerprints"))
+        .map_err(|e| e.to_string())?;
+    if let Some(svg) = fig
+        .iter()
+        .find(|p| p.extension().is_some_and(|e| e == "svg"))
+    {
+        let names: Vec<String> = crate::mechanisms::FEATURES
+            .iter()
+            .enumerate()
+            .map(|(i, f)| format!("{i} {f}"))
+            .collect();
+        html += &figure_markup(
+            svg,
+            &format!(
+                "fingerprints: each model's features (seed means) in SDs from the mean of \
+                 all signatures; features: {}",
+                names.join(", ")
+            ),
+        )?
+        .replace("<figure>", "<figure class=\"half\">");
+    }
+    if !table_html.is_empty() {
+        html += "<h3>Nearest timing mechanism</h3>\n<p>Distance: RMS over the shared \
+                 features of the difference in units of each feature's SD over all \
+                 signatures (models × seeds); nearest: the share of 1,000 bootstrap \
+                 resamples of the seeds in which it is the nearest. With one seed per \
+                 model the share is 1 by construction: run more seeds for a test.</p>\n";
+        html += &table_html;
+        md += "Nearest timing mechanism (distance in feature SDs):\n\n";
+        md += &table_md;
+    }
+    md += "\n| model | population | scaling index |\n|---|---|---|\n";
+    for c in &cards {
+        md += &format!(
+            "| {} | {} | {} |\n",
+            c.model,
+            c.population,
+            c.scaling_index.map_or("–".into(), |i| format!("{i:.2}"))
+        );
+    }
+    Ok((html, md))
+}
