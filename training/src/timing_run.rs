@@ -36,7 +36,7 @@ pub struct TimingRunConfig {
     pub train: TimingTrainConfig,
     /// Agent overrides applied after construction (`key=value`: `alpha`, `gamma`,
     /// `lambda`, `response_cost`, `probe`, `opportunity_cost`, `overdue_factor`,
-    /// `wait_at_oven`, `q_init`,
+    /// `wait_at_oven`, `break_and_run`, `q_init`,
     /// `noise`, `memory_noise`, `clock_noise`, `decision_rule`).
     pub agent: Vec<String>,
 }
@@ -53,7 +53,7 @@ pub const UNCERTAINTY_EPISODES: usize = 40_000;
 pub const MAX_EPISODES: usize = 10_000_000;
 
 /// Every `--set` key of a timing run.
-pub const TIMING_KEYS: &str = "episodes, epsilon_start, epsilon_end, anneal_fraction, eval_every, stop_at_success, alpha, gamma, lambda, response_cost, probe, opportunity_cost, overdue_factor, wait_at_oven (true, false), q_init, noise (ddm), memory_noise, clock_noise (sbf, timecells-*), decision_rule (ratio, difference, likelihood, learned), env.<task parameter>";
+pub const TIMING_KEYS: &str = "episodes, epsilon_start, epsilon_end, anneal_fraction, eval_every, stop_at_success, alpha, gamma, lambda, response_cost, probe, opportunity_cost, overdue_factor, wait_at_oven (true, false), break_and_run (true, false), q_init, noise (ddm), memory_noise, clock_noise (sbf, timecells-*), decision_rule (ratio, difference, likelihood, learned), env.<task parameter>";
 
 /// The allowed range of an agent override `key` when `v` lies outside it.
 fn agent_value_range(key: &str, v: f64) -> Option<&'static str> {
@@ -76,7 +76,7 @@ fn agent_value_range(key: &str, v: f64) -> Option<&'static str> {
 
 /// Parses an agent override's value and checks its range (typed error naming the key).
 fn check_agent_value(key: &str, value: &str) -> Result<(), TrainError> {
-    if key == "wait_at_oven" {
+    if key == "wait_at_oven" || key == "break_and_run" {
         return parse::<bool>(key, value, "true or false").map(|_| ());
     }
     if key == "decision_rule" {
@@ -147,7 +147,7 @@ impl TimingRunConfig {
             }
             "alpha" | "gamma" | "lambda" | "response_cost" | "probe" | "opportunity_cost"
             | "overdue_factor" | "q_init" | "noise" | "memory_noise" | "clock_noise"
-            | "decision_rule" | "wait_at_oven" => {
+            | "decision_rule" | "wait_at_oven" | "break_and_run" => {
                 check_agent_value(key, value)?;
                 self.agent.push(format!("{key}={value}"));
             }
@@ -250,6 +250,10 @@ impl TimingRunConfig {
             }
             if k == "wait_at_oven" {
                 agent.config.wait_at_oven = parse(k, v, "true or false")?;
+                continue;
+            }
+            if k == "break_and_run" {
+                agent.config.break_and_run = parse(k, v, "true or false")?;
                 continue;
             }
             let v: f64 = parse(k, v, "a number")?;

@@ -352,6 +352,12 @@ fn timing_parameters(name: &str) -> Vec<ZooParam> {
          checks, never walks (a fixed walking route would be a clock of its own)",
     ));
     ps.push(p(
+        "break_and_run",
+        agent.config.break_and_run,
+        "while waiting at the oven: once a check has failed, keep checking unless waiting is \
+         worth more by over one response cost (a run of responses, one start and one stop)",
+    ));
+    ps.push(p(
         "overdue_factor",
         agent.config.overdue_factor,
         if agent.timer.has_gate() {

@@ -101,6 +101,22 @@ pub struct TimingAgentConfig {
     /// load with `false` (their behaviour unchanged).
     #[serde(default)]
     pub wait_at_oven: bool,
+    /// Break-and-run responding while waiting at the oven (with [`Self::wait_at_oven`], in
+    /// the same tasks): once the agent has checked the running oven in this interval, it
+    /// keeps checking unless its TD readout values waiting above checking by more than one
+    /// response cost (`Q(wait) − Q(check) > response_cost`) — a start needs only that a
+    /// check is worth more than waiting, a stop needs evidence beyond the cost of one more
+    /// response. Fixed-interval responding is a pause followed by an abrupt transition to a
+    /// steady high rate that lasts until reinforcement (Schneider 1969; Gallistel, Fairhurst
+    /// & Balsam 2004), and a peak-procedure trial has a single run, one start and one stop
+    /// (Church, Meck & Gibbon 1994). Without it the greedy readout, whose check-vs-wait
+    /// margin near the expected time is about one response cost, alternated checks and
+    /// waits in 45–92% of delay-line and drift-diffusion trials, and the paper's first oven
+    /// check — the start of the unbroken run of interacts that ends in the pickup — then
+    /// measured the last burst, not the start of responding. Agents saved before the
+    /// setting load with `false` (their behaviour unchanged).
+    #[serde(default)]
+    pub break_and_run: bool,
 }
 
 /// Episodes per start cell and condition in the reference protocol for a timing agent with
@@ -122,6 +138,7 @@ impl Default for TimingAgentConfig {
             opportunity_cost: 0.0,
             overdue_factor: OVERDUE_FACTOR,
             wait_at_oven: true,
+            break_and_run: true,
         }
     }
 }
@@ -428,7 +445,17 @@ impl Agent for TimingAgent {
         } else {
             0.0
         };
-        let a = self.learner.choose(&q, &allowed, eps, &mut self.rng);
+        // Break-and-run (see `TimingAgentConfig::break_and_run`): within a run of checks, a
+        // check is preferred unless waiting is worth more by over one response cost. The
+        // learner still learns from the unbiased values.
+        let run = self.config.break_and_run && hold && self.ep.last_was_check;
+        let a = if run {
+            let mut biased = q.clone();
+            biased[Action::Interact.code() as usize] += self.config.response_cost;
+            self.learner.choose(&biased, &allowed, eps, &mut self.rng)
+        } else {
+            self.learner.choose(&q, &allowed, eps, &mut self.rng)
+        };
         self.learn(Some(q[a]));
         self.ep.value = q[a];
         if self.training {
