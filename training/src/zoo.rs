@@ -348,7 +348,7 @@ fn timing_parameters(name: &str) -> Vec<ZooParam> {
     ps.push(p(
         "wait_at_oven",
         agent.config.wait_at_oven,
-        "FI/PI/multi-timer: while the oven runs, an empty-handed agent next to it waits or \
+        "FI/PI/multi-timer/bisection: while the oven runs, an empty-handed agent next to it waits or \
          checks, never walks (a fixed walking route would be a clock of its own)",
     ));
     ps.push(p(
