@@ -102,7 +102,10 @@ fn probes_far_below_the_short_anchor_are_judged_short() {
     let b = m.bisection.unwrap();
     let p: Vec<f64> = b.p_long.iter().copied().filter(|v| v.is_finite()).collect();
     assert!(p.len() >= 10, "{:?}", b.p_long);
-    assert!(p[0] <= 0.1 && p[1] <= 0.1, "short probes judged long: {p:?}");
+    assert!(
+        p[0] <= 0.1 && p[1] <= 0.1,
+        "short probes judged long: {p:?}"
+    );
     let worst_drop = p.windows(2).map(|w| w[0] - w[1]).fold(0.0, f64::max);
     assert!(worst_drop <= 0.25, "non-monotone: {p:?}");
 }

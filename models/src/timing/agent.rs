@@ -105,8 +105,12 @@ pub struct TimingAgentConfig {
     /// the setting load with `false` (their behaviour unchanged).
     #[serde(default)]
     pub wait_at_oven: bool,
-    /// Break-and-run responding while waiting at the oven (with [`Self::wait_at_oven`], in
-    /// the same tasks except those with a ready cue, where a check never pays): once the agent has checked the running oven in this interval, it
+    /// Break-and-run responding of the time-cell agents while waiting at the oven (with
+    /// [`Self::wait_at_oven`], in the same tasks except those with a ready cue, where a
+    /// check never pays). Drift-diffusion and SBF have a response state of their own — the
+    /// gate, open from the threshold crossing to the stop — so this rule is theirs already
+    /// (applied on top of the gate it changed SBF's multi-timer training: TD 12 0.38 → 0.00
+    /// on seed 0). Time cells have no such state: once the agent has checked the running oven in this interval, it
     /// keeps checking unless its TD readout values waiting above checking by more than one
     /// response cost (`Q(wait) − Q(check) > response_cost`) — a start needs only that a
     /// check is worth more than waiting, a stop needs evidence beyond the cost of one more
@@ -115,7 +119,7 @@ pub struct TimingAgentConfig {
     /// & Balsam 2004), and a peak-procedure trial has a single run, one start and one stop
     /// (Church, Meck & Gibbon 1994). Without it the greedy readout, whose check-vs-wait
     /// margin near the expected time is about one response cost, alternated checks and
-    /// waits in 45–92% of delay-line and drift-diffusion trials, and the paper's first oven
+    /// waits in 45–92% of delay-line trials at TD 5 and 20, and the paper's first oven
     /// check — the start of the unbroken run of interacts that ends in the pickup — then
     /// measured the last burst, not the start of responding. Agents saved before the
     /// setting load with `false` (their behaviour unchanged).
@@ -451,7 +455,11 @@ impl Agent for TimingAgent {
         // Break-and-run (see `TimingAgentConfig::break_and_run`): within a run of checks, a
         // check is preferred unless waiting is worth more by over one response cost. The
         // learner still learns from the unbiased values.
-        let run = self.config.break_and_run && hold && !self.shows_ready && self.ep.last_was_check;
+        let run = self.config.break_and_run
+            && hold
+            && !self.shows_ready
+            && !self.timer.has_gate()
+            && self.ep.last_was_check;
         let a = if run {
             let mut biased = q.clone();
             biased[Action::Interact.code() as usize] += self.config.response_cost;
