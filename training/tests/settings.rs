@@ -216,7 +216,7 @@ fn every_field_of_the_configurations_is_a_setting_or_a_named_exception() {
         );
     }
     remove_fields(&mut fields, &["kind", "task", "model", "seed", "env"]);
-    assert!(fields.remove(&["agent", "timer", "family"].map(String::from).to_vec()));
+    assert!(fields.remove(["agent", "timer", "family"].map(String::from).as_slice()));
     assert_eq!(fields, spec_paths(TIMING_SETTINGS));
 }
 
