@@ -17,7 +17,7 @@ pub enum TrainError {
     },
     /// An override names no setting of the configuration.
     #[error(
-        "unknown setting `{key}` (settings: {allowed}; `chronocooked zoo show MODEL` lists them with their values)"
+        "unknown setting `{key}` (allowed: {allowed}; `chronocooked zoo show MODEL` lists them with their values)"
     )]
     UnknownKey {
         /// Key given.
