@@ -22,6 +22,7 @@ pub mod error;
 pub mod evaluate;
 pub mod ppo;
 pub mod run_dir;
+pub mod settings;
 pub mod sweep;
 pub mod timing_check;
 pub mod timing_run;
