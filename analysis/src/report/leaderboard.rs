@@ -373,14 +373,6 @@ pub fn neural_figures(folder: &Path) -> Vec<PathBuf> {
     all
 }
 
-/// Every figure file (`.svg`) that belongs to an evaluation folder: its behaviour figures,
-/// then its neural figures.
-pub fn run_figures(folder: &Path) -> Vec<PathBuf> {
-    let mut all = behaviour_figures(folder);
-    all.extend(neural_figures(folder));
-    all
-}
-
 /// Caption of a figure file: its name, prefixed by its population folder when it sits in
 /// one (`accumulator/by_td`, `lstm/decoding`).
 pub fn figure_caption(svg: &Path) -> String {
