@@ -15,6 +15,10 @@ if [[ ! -x .venv/bin/python ]]; then
 fi
 .venv/bin/python -m pip install --quiet --upgrade pip
 .venv/bin/python -m pip install --quiet -r python/requirements-test.txt
-# Builds the extension (release, abi3) with maturin and installs it.
-.venv/bin/python -m pip install --quiet ./python
-CHRONOCOOKED_BIN="$PWD/target/release/chronocooked" .venv/bin/python -m pytest -q python/tests
+# Builds the wheel (release, abi3, stripped extension) with maturin and installs it.
+rm -rf target/wheel && .venv/bin/python -m pip wheel --quiet --no-deps ./python -w target/wheel
+wheel=$(ls target/wheel/chronocooked-*.whl)
+.venv/bin/python -m pip install --quiet --no-deps --force-reinstall "$wheel"
+.venv/bin/python -m pip install --quiet "$wheel"
+CHRONOCOOKED_BIN="$PWD/target/release/chronocooked" CHRONOCOOKED_WHEEL="$PWD/$wheel" \
+    .venv/bin/python -m pytest -q python/tests

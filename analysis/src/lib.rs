@@ -8,6 +8,7 @@
 //! * [`neural`] — neural metrics: ramping units, time cells, sequentiality, temporal
 //!   information, scaling; elapsed-time decoders (`decode`), spectra and phase coherence
 //!   (`oscillation`), the per-model neural summary (`summary`);
+//! * [`records`] — evaluation records: conditions and evaluated episodes (`records.jsonl`);
 //! * [`evaluation`] — the evaluation protocol (`protocol`: conditions per task, the runner
 //!   for any agent) and the evaluation folder it writes (`folder`);
 //! * [`report`] — the leaderboard (HTML with inline SVG, Markdown, CSV; `leaderboard`) and
@@ -27,6 +28,7 @@ pub mod export;
 pub mod mechanisms;
 pub mod neural;
 pub mod paper;
+pub mod records;
 pub mod report;
 pub mod stats;
 
@@ -36,9 +38,7 @@ pub use behaviour::foc::{
 };
 pub use behaviour::metrics::{Metrics, compute_metrics};
 pub use behaviour::psychometric::{FitError, LogisticFit, ProbeCounts, fit_logistic, fit_with_ci};
-pub use evaluation::protocol::{
-    Condition, ConditionKind, EvalRecord, Mode, reference_conditions, run_protocol,
-    run_protocol_recorded,
-};
+pub use evaluation::protocol::{Mode, reference_conditions, run_protocol, run_protocol_recorded};
 pub use neural::decode::{DecodeResult, Decoder, decode_time};
 pub use neural::{Cube, classify_ramps, sequentiality_index, temporal_information, time_cells};
+pub use records::{Condition, ConditionKind, EvalRecord};

@@ -2,9 +2,11 @@
 
 use crate::error::EnvError;
 use serde::{Deserialize, Serialize};
+use strum::IntoStaticStr;
 
 /// One agent action; the discriminant is the reference action code (`Discrete(6)`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, IntoStaticStr)]
+#[strum(serialize_all = "lowercase")]
 #[repr(u8)]
 pub enum Action {
     /// 0: do nothing.
@@ -62,14 +64,7 @@ impl Action {
 
     /// Short lowercase name (`wait`, `down`, …).
     pub fn name(self) -> &'static str {
-        match self {
-            Action::Wait => "wait",
-            Action::Down => "down",
-            Action::Up => "up",
-            Action::Right => "right",
-            Action::Left => "left",
-            Action::Interact => "interact",
-        }
+        self.into()
     }
 }
 

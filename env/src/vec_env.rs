@@ -254,14 +254,6 @@ impl VecEnv {
         }
     }
 
-    /// Writes the one-hot encoding of env `i`'s terminal observation into `out`.
-    pub fn final_onehot(&self, i: usize, out: &mut [f32]) {
-        self.encoder.encode(
-            &self.final_obs[i * self.obs_len..(i + 1) * self.obs_len],
-            out,
-        );
-    }
-
     /// Multi-timer curricula: sets the active TD count of every env.
     pub fn set_num_timers(&mut self, n: usize) -> Result<(), EnvError> {
         for k in &mut self.kitchens {

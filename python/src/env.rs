@@ -10,7 +10,8 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 /// Observation encoding handed to Python.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, strum::EnumString, strum::IntoStaticStr)]
+#[strum(serialize_all = "lowercase")]
 pub enum ObsMode {
     /// The reference codes, `uint8 [R, C, 6]`.
     Codes,
@@ -21,21 +22,16 @@ pub enum ObsMode {
 impl ObsMode {
     /// Parses `"codes"` or `"onehot"`.
     pub fn parse(s: &str) -> PyResult<Self> {
-        match s {
-            "codes" => Ok(ObsMode::Codes),
-            "onehot" => Ok(ObsMode::OneHot),
-            other => Err(value_err(format!(
-                "invalid value for `obs_mode`: {other:?} (allowed: \"codes\", \"onehot\")"
-            ))),
-        }
+        s.parse().map_err(|_| {
+            value_err(format!(
+                "invalid value for `obs_mode`: {s:?} (allowed: \"codes\", \"onehot\")"
+            ))
+        })
     }
 
     /// `"codes"` or `"onehot"`.
     pub fn name(self) -> &'static str {
-        match self {
-            ObsMode::Codes => "codes",
-            ObsMode::OneHot => "onehot",
-        }
+        self.into()
     }
 }
 

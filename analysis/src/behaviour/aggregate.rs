@@ -2,7 +2,7 @@
 //! the adaptation measure of the uncertainty experiment.
 
 use crate::behaviour::metrics::Metrics;
-use crate::evaluation::protocol::ConditionKind;
+use crate::records::ConditionKind;
 use std::collections::BTreeMap;
 
 pub use crate::stats::Spread;

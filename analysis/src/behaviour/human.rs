@@ -1,7 +1,7 @@
 //! Recorded human play (`env play` JSON lines, the replay trace shape) as evaluation
 //! records, so people and agents go through the same metrics.
 
-use crate::evaluation::protocol::{Condition, ConditionKind, EvalRecord};
+use crate::records::{Condition, ConditionKind, EvalRecord};
 use chronocooked_env::trace::TraceLine;
 use chronocooked_env::{TaskConfig, TaskParams};
 use chronocooked_models::EpisodeRecord;

@@ -5,7 +5,7 @@ use crate::behaviour::foc::{FocStats, ScalarProperty, episode_foc, foc_stats, sc
 use crate::behaviour::psychometric::{
     LogisticFit, ProbeCounts, bp_relative, check_transition, fit_with_ci,
 };
-use crate::evaluation::protocol::{ConditionKind, EvalRecord};
+use crate::records::{ConditionKind, EvalRecord};
 use chronocooked_env::{Counter, Events, TaskParams, make_config};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;

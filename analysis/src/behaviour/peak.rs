@@ -29,30 +29,11 @@ fn rss(p: &[f64; 4], pts: &[(f64, f64)]) -> f64 {
     pts.iter().map(|&(t, y)| (y - model(p, t)).powi(2)).sum()
 }
 
-/// Solves a 4×4 linear system (Gaussian elimination with partial pivoting).
-fn solve4(mut a: [[f64; 4]; 4], mut b: [f64; 4]) -> Option<[f64; 4]> {
-    for c in 0..4 {
-        let piv = (c..4).max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))?;
-        if a[piv][c].abs() < 1e-300 {
-            return None;
-        }
-        a.swap(c, piv);
-        b.swap(c, piv);
-        let pivot_row = a[c];
-        for r in c + 1..4 {
-            let f = a[r][c] / pivot_row[c];
-            for (x, p) in a[r].iter_mut().zip(pivot_row.iter()).skip(c) {
-                *x -= f * p;
-            }
-            b[r] -= f * b[c];
-        }
-    }
-    let mut x = [0.0; 4];
-    for r in (0..4).rev() {
-        let s: f64 = (r + 1..4).map(|k| a[r][k] * x[k]).sum();
-        x[r] = (b[r] - s) / a[r][r];
-    }
-    Some(x)
+/// Solves a 4×4 linear system (LU with partial pivoting); `None` when it is singular.
+fn solve4(a: [[f64; 4]; 4], b: [f64; 4]) -> Option<[f64; 4]> {
+    let m = nalgebra::Matrix4::from_fn(|r, c| a[r][c]);
+    let x = m.lu().solve(&nalgebra::Vector4::from(b))?;
+    Some(x.into())
 }
 
 /// Levenberg–Marquardt least-squares fit of a Gaussian plus baseline to `rate[t]`

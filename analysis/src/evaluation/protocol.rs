@@ -16,107 +16,12 @@ use chronocooked_env::{
     ChronoEnv, EnvError, ResetOptions, TaskConfig, TaskParams, derive_seed, make_config,
 };
 use chronocooked_models::activity::TrialRecorder;
-use chronocooked_models::{Agent, EpisodeRecord, run_episode};
+use chronocooked_models::{Agent, run_episode};
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use serde::{Deserialize, Serialize};
 
-/// What an evaluation condition measures (serialised in snake case: `fi`, `pi`,
-/// `bisection`, `multi_timer`, `buffer`, `dual`, `uncertainty`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum ConditionKind {
-    /// Fixed interval at the trained TD.
-    Fi,
-    /// Peak-interval probe (soup released late or never).
-    Pi,
-    /// Bisection probe duration.
-    Bisection,
-    /// Multi-timer TD (trained or out of distribution).
-    MultiTimer,
-    /// Multi-timer exact-window buffer probe.
-    Buffer,
-    /// Dual task at the trained TD.
-    Dual,
-    /// Uncertainty task (normal or never-ready ovens).
-    Uncertainty,
-}
-
-impl ConditionKind {
-    /// Every kind, in the order of the NPZ export's `condition` codes.
-    pub const ALL: [ConditionKind; 7] = [
-        ConditionKind::Fi,
-        ConditionKind::Pi,
-        ConditionKind::Bisection,
-        ConditionKind::MultiTimer,
-        ConditionKind::Buffer,
-        ConditionKind::Dual,
-        ConditionKind::Uncertainty,
-    ];
-
-    /// The serialised name (`fi`, `multi_timer`, …).
-    pub fn as_str(self) -> &'static str {
-        match self {
-            ConditionKind::Fi => "fi",
-            ConditionKind::Pi => "pi",
-            ConditionKind::Bisection => "bisection",
-            ConditionKind::MultiTimer => "multi_timer",
-            ConditionKind::Buffer => "buffer",
-            ConditionKind::Dual => "dual",
-            ConditionKind::Uncertainty => "uncertainty",
-        }
-    }
-}
-
-impl std::fmt::Display for ConditionKind {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.as_str())
-    }
-}
-
-impl std::str::FromStr for ConditionKind {
-    type Err = String;
-
-    /// Parses a serialised name; the error lists the allowed ones.
-    fn from_str(s: &str) -> Result<Self, String> {
-        ConditionKind::ALL
-            .into_iter()
-            .find(|k| k.as_str() == s)
-            .ok_or_else(|| {
-                let names: Vec<&str> = ConditionKind::ALL.iter().map(|k| k.as_str()).collect();
-                format!(
-                    "unknown condition kind `{s}` (allowed: {})",
-                    names.join(", ")
-                )
-            })
-    }
-}
-
-/// One evaluation condition.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Condition {
-    /// What this condition measures.
-    pub kind: ConditionKind,
-    /// Task id played.
-    pub task: String,
-    /// Task overrides.
-    pub env: Vec<String>,
-    /// Target duration of the episodes (steps).
-    pub td: u32,
-    /// Uncertainty: force never-ready episodes (true) or normal ones (false).
-    pub never_ready: Option<bool>,
-    /// PI: release factor; multi-timer buffers: buffer as a fraction of TD.
-    pub factor: Option<f64>,
-}
-
-/// One evaluated episode with its condition.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct EvalRecord {
-    /// Condition.
-    pub condition: Condition,
-    /// Episode.
-    pub episode: EpisodeRecord,
-}
+pub use crate::records::{Condition, ConditionKind, EvalRecord, read_records};
 
 fn cond(kind: ConditionKind, task: &str, env: Vec<String>, td: u32) -> Condition {
     Condition {
@@ -127,32 +32,6 @@ fn cond(kind: ConditionKind, task: &str, env: Vec<String>, td: u32) -> Condition
         never_ready: None,
         factor: None,
     }
-}
-
-/// Reads the per-episode records (`records.jsonl`) of an `eval` output folder, each checked
-/// ([`EpisodeRecord::validate`](chronocooked_models::EpisodeRecord::validate)); errors name
-/// the file (and the line and field of a malformed record). A file without any record is an
-/// error ("no episodes"), never an empty evaluation.
-pub fn read_records(folder: &std::path::Path) -> Result<Vec<EvalRecord>, String> {
-    let path = folder.join("records.jsonl");
-    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let records: Vec<EvalRecord> = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| {
-            let at = || format!("{} line {}", path.display(), i + 1);
-            let r: EvalRecord = serde_json::from_str(l).map_err(|e| format!("{}: {e}", at()))?;
-            r.episode.validate().map_err(|e| format!("{}: {e}", at()))?;
-            Ok(r)
-        })
-        .collect::<Result<_, String>>()?;
-    if records.is_empty() {
-        return Err(format!(
-            "{}: no episodes (an evaluation has at least one record)",
-            path.display()
-        ));
-    }
-    Ok(records)
 }
 
 /// The reference conditions for an agent trained on `task` with overrides `env`.

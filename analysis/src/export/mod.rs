@@ -6,8 +6,8 @@
 
 pub mod npz;
 
-use crate::evaluation::protocol::{ConditionKind, EvalRecord};
 use crate::export::npz::{NpyArray, NpyData, npz_bytes};
+use crate::records::{ConditionKind, EvalRecord};
 use chronocooked_models::{ActivityDataset, Marker};
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};

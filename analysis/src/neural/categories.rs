@@ -10,7 +10,7 @@
 //!    destroyed). `p = (1 + #{S* ≥ S}) / (1 + surrogates)`; tuned when `p ≤ alpha`. Under
 //!    the null (activity not locked to the event) this is a permutation test: its
 //!    false-positive rate is `alpha` (5%; measured on white and AR(1) noise in
-//!    `tests/neural_categories.rs`).
+//!    `analysis/tests/neural_categories.rs`).
 //! 2. Shape tests on the trial average of a tuned unit:
 //!    * **ramp**: its best monotone (isotonic) fit explains ≥ `monotone_r2` (90%) of the
 //!      variance — rising or falling through the window, extreme at an edge;
@@ -52,8 +52,9 @@ use serde::{Deserialize, Serialize};
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 
 /// A unit's category (mutually exclusive).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, strum::IntoStaticStr)]
 #[serde(rename_all = "snake_case")]
+#[strum(serialize_all = "snake_case")]
 pub enum Category {
     /// Monotone over the window.
     Ramp,
@@ -79,13 +80,7 @@ pub const CATEGORIES: [Category; 5] = [
 impl Category {
     /// The JSON / column name (`ramp`, `time_field`, `oscillating`, `mixed`, `untuned`).
     pub fn name(self) -> &'static str {
-        match self {
-            Category::Ramp => "ramp",
-            Category::TimeField => "time_field",
-            Category::Oscillating => "oscillating",
-            Category::Mixed => "mixed",
-            Category::Untuned => "untuned",
-        }
+        self.into()
     }
 }
 

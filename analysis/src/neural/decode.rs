@@ -46,41 +46,12 @@ fn samples(cube: &Cube, trials: &[usize]) -> (Vec<Vec<f64>>, Vec<usize>) {
     (x, y)
 }
 
-/// Solves the symmetric positive-definite system `a x = b` (Cholesky, in place).
-fn solve_spd(mut a: Vec<f64>, mut b: Vec<f64>, n: usize) -> Option<Vec<f64>> {
-    for j in 0..n {
-        let mut d = a[j * n + j];
-        for k in 0..j {
-            d -= a[j * n + k] * a[j * n + k];
-        }
-        if d <= 0.0 {
-            return None;
-        }
-        let d = d.sqrt();
-        a[j * n + j] = d;
-        for i in j + 1..n {
-            let mut s = a[i * n + j];
-            for k in 0..j {
-                s -= a[i * n + k] * a[j * n + k];
-            }
-            a[i * n + j] = s / d;
-        }
-    }
-    for i in 0..n {
-        let mut s = b[i];
-        for k in 0..i {
-            s -= a[i * n + k] * b[k];
-        }
-        b[i] = s / a[i * n + i];
-    }
-    for i in (0..n).rev() {
-        let mut s = b[i];
-        for k in i + 1..n {
-            s -= a[k * n + i] * b[k];
-        }
-        b[i] = s / a[i * n + i];
-    }
-    Some(b)
+/// Solves the symmetric positive-definite system `a x = b` (`a` row-major `[n, n]`) by a
+/// Cholesky factorisation; `None` when `a` is not positive definite.
+fn solve_spd(a: Vec<f64>, b: Vec<f64>, n: usize) -> Option<Vec<f64>> {
+    let a = nalgebra::DMatrix::from_row_slice(n, n, &a);
+    let x = a.cholesky()?.solve(&nalgebra::DVector::from_vec(b));
+    Some(x.data.into())
 }
 
 fn fit_ridge(x: &[Vec<f64>], y: &[usize], lambda: f64) -> Option<impl Fn(&[f64]) -> f64> {

@@ -8,7 +8,7 @@ use super::collect::CompactJob;
 use super::lsq::{LsqFit, fit_paper};
 use crate::behaviour::aggregate::Spread;
 use crate::behaviour::psychometric::{LogisticFit, ProbeCounts, fit_logistic};
-use crate::evaluation::protocol::ConditionKind;
+use crate::records::ConditionKind;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 

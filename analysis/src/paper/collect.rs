@@ -5,7 +5,7 @@
 //! (`metrics.json`) and, for recorded jobs, the neural summary (`activity.summary.json`).
 
 use crate::behaviour::foc::{FocConvention, first_oven_check_with};
-use crate::evaluation::protocol::{ConditionKind, EvalRecord, read_records};
+use crate::records::{ConditionKind, EvalRecord, read_records};
 use chronocooked_env::Counter;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};

@@ -5,7 +5,7 @@
 use super::collect::{CompactJob, EpisodeRow};
 use crate::behaviour::aggregate::Spread;
 use crate::behaviour::foc::{FocStats, ScalarProperty, foc_stats, scalar_property};
-use crate::evaluation::protocol::ConditionKind;
+use crate::records::ConditionKind;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 

@@ -6,7 +6,7 @@
 
 use super::collect::CompactJob;
 use crate::behaviour::aggregate::Spread;
-use crate::evaluation::protocol::ConditionKind;
+use crate::records::ConditionKind;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 

@@ -16,7 +16,7 @@
 //! towards `uniform`).
 
 use super::collect::{CollectError, CompactJob, err};
-use crate::evaluation::protocol::ConditionKind;
+use crate::records::ConditionKind;
 use serde::{Deserialize, Serialize};
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 use std::path::Path;

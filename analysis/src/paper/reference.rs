@@ -20,27 +20,37 @@ pub struct PaperNumber {
 }
 
 /// Where a published number is printed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    PartialOrd,
+    Ord,
+    Hash,
+    Serialize,
+    Deserialize,
+    strum::IntoStaticStr,
+)]
 #[serde(rename_all = "lowercase")]
+#[strum(serialize_all = "lowercase")]
 pub enum Source {
     /// A table of the paper (`chronocooked-paper.tex`).
     Paper,
-    /// Only the output cells of the authors' notebooks (`paper-protocol.md` §4).
+    /// Only the output cells of the authors' notebooks (`docs/paper-protocol.md` §4).
     Notebook,
 }
 
 impl Source {
     /// `paper` or `notebook` (the `source` column of `comparison.csv`).
     pub fn as_str(self) -> &'static str {
-        match self {
-            Source::Paper => "paper",
-            Source::Notebook => "notebook",
-        }
+        self.into()
     }
 }
 
 /// Training runs behind each of the paper's per-run means and SDs (WF, DL): logs 1–4 of
-/// the authors' scripts (`paper-protocol.md` §2.2; the paper does not print how many of
+/// the authors' scripts (`docs/paper-protocol.md` §2.2; the paper does not print how many of
 /// them survived its exclusion rule, so 4 is an upper bound).
 pub const PAPER_RUNS: usize = 4;
 
@@ -228,7 +238,7 @@ pub fn numbers() -> Vec<PaperNumber> {
     // Multi-timer notebook (TDs 3, 6, …, 15): CTRNN125 exact "never left env0" (4 runs);
     // no LSTM125 exact run reached the 5-timer level. The exact CTRNN script starts training
     // at env1 (one timer, undercooking possible) while its level counter starts at 0
-    // (`paper-protocol.md` §5.10), so its "env0" is the one-timer level: level 1 in the
+    // (`docs/paper-protocol.md` §5.10), so its "env0" is the one-timer level: level 1 in the
     // code's env numbering, which the lab's levels follow (0 = warm-up).
     v.extend(rows(
         Notebook,
@@ -249,7 +259,7 @@ pub fn numbers() -> Vec<PaperNumber> {
 
 /// The size-8 numbers: the appendix's WF and DL tables (`tab:wf_supp`, `tab:dl_supp`:
 /// every CTRNN8 and LSTM8 entry is printed as NaN) and the FI notebook's pooled FOC means
-/// and R² of LSTM8 and CTRNN8 (`paper-protocol.md` §4; "–" there = NaN here). Used only by
+/// and R² of LSTM8 and CTRNN8 (`docs/paper-protocol.md` §4; "–" there = NaN here). Used only by
 /// the negative control of `agreement.json` (paper size 8 against the lab's size 125, the
 /// stand-in for size 256 until that runs).
 pub fn size8_numbers() -> Vec<PaperNumber> {

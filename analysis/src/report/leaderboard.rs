@@ -61,7 +61,7 @@ pub fn load_metrics(folder: &Path) -> Result<Metrics, String> {
     };
     let info: serde_json::Value = serde_json::from_str(&read("eval.json")?)
         .map_err(|e| format!("{}: {e}", folder.join("eval.json").display()))?;
-    let records = crate::evaluation::protocol::read_records(folder)
+    let records = crate::records::read_records(folder)
         .map_err(|e| format!("{e} (not an `eval` output folder)"))?;
     Ok(crate::behaviour::metrics::compute_metrics(
         info["model"].as_str().unwrap_or("unknown"),
@@ -370,14 +370,6 @@ pub fn neural_figures(folder: &Path) -> Vec<PathBuf> {
             all.push(p);
         }
     }
-    all
-}
-
-/// Every figure file (`.svg`) that belongs to an evaluation folder: its behaviour figures,
-/// then its neural figures.
-pub fn run_figures(folder: &Path) -> Vec<PathBuf> {
-    let mut all = behaviour_figures(folder);
-    all.extend(neural_figures(folder));
     all
 }
 

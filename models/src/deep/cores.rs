@@ -12,7 +12,6 @@ use burn::nn::Linear;
 use burn::tensor::activation::{sigmoid, softplus};
 use burn::tensor::{Device, Tensor};
 use serde::{Deserialize, Serialize};
-use std::fmt;
 use std::str::FromStr;
 
 /// CTRNN leak of one unit: `α = min(dt / softplus(τ_raw), 1)` and `dα/dτ_raw`
@@ -36,8 +35,20 @@ pub fn ctrnn_alpha(tau_raw: f64, dt: f64) -> (f64, f64) {
 }
 
 /// Which recurrence a core implements.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Hash,
+    Serialize,
+    Deserialize,
+    strum::IntoStaticStr,
+    strum::Display,
+)]
 #[serde(rename_all = "lowercase")]
+#[strum(serialize_all = "lowercase")]
 pub enum CoreKind {
     /// Long short-term memory (Hochreiter & Schmidhuber 1997), PyTorch gate order i, f, g, o.
     Lstm,
@@ -60,12 +71,7 @@ impl CoreKind {
 
     /// Lower-case name (`lstm`, `gru`, `rnn`, `ctrnn`).
     pub fn name(self) -> &'static str {
-        match self {
-            CoreKind::Lstm => "lstm",
-            CoreKind::Gru => "gru",
-            CoreKind::Rnn => "rnn",
-            CoreKind::Ctrnn => "ctrnn",
-        }
+        self.into()
     }
 
     /// Gate blocks per unit (columns of the projections are `gates · H`).
@@ -78,19 +84,16 @@ impl CoreKind {
     }
 }
 
-impl fmt::Display for CoreKind {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
 impl FromStr for CoreKind {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         CoreKind::ALL
             .into_iter()
             .find(|k| k.name() == s.to_ascii_lowercase())
-            .ok_or_else(|| format!("unknown core `{s}` (allowed: lstm, gru, rnn, ctrnn)"))
+            .ok_or_else(|| {
+                let names: Vec<&str> = CoreKind::ALL.iter().map(|k| k.name()).collect();
+                format!("unknown core `{s}` (allowed: {})", names.join(", "))
+            })
     }
 }
 

@@ -58,11 +58,6 @@ impl DriftDiffusion {
         self.threshold / self.drift
     }
 
-    /// Coefficient of variation of the first-passage time, `m/√z`.
-    pub fn cv_first_passage(&self) -> f64 {
-        self.noise / self.threshold.sqrt()
-    }
-
     /// Restarts the accumulator at 0 (the timed event).
     pub fn reset(&mut self) {
         self.x = 0.0;

@@ -84,12 +84,6 @@ impl BeatFrequency {
         out.extend(self.freqs.iter().map(|f| (w * f).cos()));
     }
 
-    /// Coincidence-detector weights of a pattern stored at `t` s: `x(t)` at normal speed.
-    pub fn stored_pattern_into(&self, t: f64, out: &mut Vec<f64>) {
-        out.clear();
-        out.extend(self.pattern_at(t));
-    }
-
     /// Oscillator pattern at `t` seconds *as learned* (normal clock speed).
     fn pattern_at(&self, t: f64) -> impl Iterator<Item = f64> + '_ {
         let w = 2.0 * std::f64::consts::PI * t;

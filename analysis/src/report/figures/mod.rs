@@ -6,7 +6,7 @@
 mod draw;
 pub mod grid;
 
-use crate::evaluation::protocol::ConditionKind;
+use crate::records::ConditionKind;
 use draw::err;
 pub use draw::{
     Chart, FigureError, Series, write_chart, write_chart_sized, write_heatmap, write_heatmap_sized,
@@ -20,7 +20,7 @@ use std::path::{Path, PathBuf};
 pub fn eval_figures(
     dir: &Path,
     metrics: &crate::behaviour::metrics::Metrics,
-    records: &[crate::evaluation::protocol::EvalRecord],
+    records: &[crate::records::EvalRecord],
 ) -> Result<Vec<PathBuf>, FigureError> {
     let mut out = Vec::new();
     let model = &metrics.model;

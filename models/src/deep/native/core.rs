@@ -5,11 +5,10 @@
 //! Notation per step: `x_t = x W_in + b_in` (given, `[B, G·H]`), `h̃ = keep·h_{t−1}` (the
 //! masked incoming state), `r_t = h̃ W_rec (+ b_rec)`.
 
-use super::Block;
 use super::kernels::{
     Mat, Packed, lstm_cell, matmul, matmul_packed, matmul_tn, sigmoid_inplace, tanh_inplace,
 };
-use super::net::SeqBatch;
+use super::{Block, SeqBatch};
 use crate::CoreKind;
 
 /// Read-only parameters of a core.

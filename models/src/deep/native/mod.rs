@@ -15,7 +15,7 @@ mod core;
 pub mod kernels;
 mod net;
 
-pub use net::{Cache, NativePolicy, SeqBatch};
+pub use net::{Cache, NativePolicy};
 
 use crate::PolicyConfig;
 
@@ -38,6 +38,28 @@ impl Block {
     pub fn of_mut<'a>(&self, grad: &'a mut [f32]) -> &'a mut [f32] {
         &mut grad[self.offset..self.offset + self.len]
     }
+}
+
+/// A batch of `B` sequences of `T` steps, time-major (row `t·B + b`).
+#[derive(Debug, Clone, Copy)]
+pub struct SeqBatch<'a> {
+    /// Observations `[T, B, cells, C]`.
+    pub obs: &'a [f32],
+    /// Steps `T`.
+    pub steps: usize,
+    /// Sequences `B`.
+    pub batch: usize,
+    /// `[T, B]`: 0 where an episode starts (the incoming state is zeroed), else 1.
+    pub keep: &'a [f32],
+    /// Initial hidden state `[B, H]` (empty for CNN-MLP).
+    pub h0: &'a [f32],
+    /// Initial LSTM cell state `[B, H]` (`None` for the other models).
+    pub c0: Option<&'a [f32]>,
+    /// `[T]`: how many sequences are real at step `t` — a prefix of the batch, never
+    /// growing with `t` (sequences sorted longest first, padding after each one's end).
+    /// The core steps only those; the rows of ended sequences get zero state and must
+    /// have zero output gradients. `None`: every sequence runs every step.
+    pub active: Option<&'a [usize]>,
 }
 
 /// Where each parameter lives in the flat vector, in the order and shapes of

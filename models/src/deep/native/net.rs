@@ -5,30 +5,8 @@ use super::core::{self, CoreCache};
 use super::kernels::{
     Isa, Mat, add_bias, add_col_sums, matmul, matmul_nt, matmul_tn, relu_inplace, tanh_inplace,
 };
-use super::{Block, Layout};
+use super::{Block, Layout, SeqBatch};
 use crate::PolicyConfig;
-
-/// A batch of `B` sequences of `T` steps, time-major (row `t·B + b`).
-#[derive(Debug, Clone, Copy)]
-pub struct SeqBatch<'a> {
-    /// Observations `[T, B, cells, C]`.
-    pub obs: &'a [f32],
-    /// Steps `T`.
-    pub steps: usize,
-    /// Sequences `B`.
-    pub batch: usize,
-    /// `[T, B]`: 0 where an episode starts (the incoming state is zeroed), else 1.
-    pub keep: &'a [f32],
-    /// Initial hidden state `[B, H]` (empty for CNN-MLP).
-    pub h0: &'a [f32],
-    /// Initial LSTM cell state `[B, H]` (`None` for the other models).
-    pub c0: Option<&'a [f32]>,
-    /// `[T]`: how many sequences are real at step `t` — a prefix of the batch, never
-    /// growing with `t` (sequences sorted longest first, padding after each one's end).
-    /// The core steps only those; the rows of ended sequences get zero state and must
-    /// have zero output gradients. `None`: every sequence runs every step.
-    pub active: Option<&'a [usize]>,
-}
 
 /// Activations of the last forward pass (kept for the backward pass) and reusable
 /// work buffers; outputs are read from [`Cache::logits`], [`Cache::values`] and

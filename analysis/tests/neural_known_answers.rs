@@ -197,7 +197,7 @@ fn pure_noise_is_untuned_and_decodes_at_chance() {
     let s = summary(&dataset(4), "noise");
     let c = counts(&s);
     // Each unit is a false positive with probability alpha = 0.05 (measured on 600 units
-    // in tests/neural_categories.rs); 8 units: at most one.
+    // in analysis/tests/neural_categories.rs); 8 units: at most one.
     assert!(c.untuned >= UNITS - 1, "{c:?}");
     assert_eq!(c.total(), UNITS);
     // Chance: guessing the middle of a uniform window errs by WINDOW/4 on average.

@@ -1,4 +1,4 @@
-//! The paper's training conventions (see `paper-protocol` notes in the README): the critic
+//! The paper's training conventions (`docs/paper-protocol.md` §1.0): the critic
 //! reads a detached copy of the recurrent output, reservoir cores never change, and
 //! recurrent minibatches are sb3-contrib's rotated windows cut into sequences.
 

@@ -357,7 +357,7 @@ fn every_timing_model_plays_every_task() {
 fn neural_summaries_tell_ramps_sequences_and_oscillations_apart() {
     use chronocooked_analysis::neural::summary::{SummaryOptions, neural_summary};
     // Fixed-interval trials at TD 18 over the first 16 steps after oven-on (the full
-    // probe-trial analysis, 2 x TD windows at two TDs, is tests/neural_model_signatures.rs).
+    // probe-trial analysis, 2 x TD windows at two TDs, is pipeline/tests/neural_model_signatures.rs).
     let summarise = |model: &str, population: &str| {
         let mut cfg = TimingRunConfig::new("FixedInterval-v0", model, 0);
         cfg.set("env.td=18").unwrap();

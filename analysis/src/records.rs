@@ -1,0 +1,131 @@
+//! Evaluation records: the conditions a task is tested under ([`Condition`],
+//! [`ConditionKind`]) and one evaluated episode with its condition ([`EvalRecord`], a line
+//! of `records.jsonl`, read back by [`read_records`]). The protocol
+//! ([`crate::evaluation::protocol`]) writes them; the behavioural metrics, the report,
+//! exports and the paper's analyses read them.
+
+use chronocooked_models::EpisodeRecord;
+use serde::{Deserialize, Serialize};
+
+/// What an evaluation condition measures (serialised in snake case: `fi`, `pi`,
+/// `bisection`, `multi_timer`, `buffer`, `dual`, `uncertainty`).
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Hash,
+    PartialOrd,
+    Ord,
+    Serialize,
+    Deserialize,
+    strum::IntoStaticStr,
+    strum::Display,
+)]
+#[serde(rename_all = "snake_case")]
+#[strum(serialize_all = "snake_case")]
+pub enum ConditionKind {
+    /// Fixed interval at the trained TD.
+    Fi,
+    /// Peak-interval probe (soup released late or never).
+    Pi,
+    /// Bisection probe duration.
+    Bisection,
+    /// Multi-timer TD (trained or out of distribution).
+    MultiTimer,
+    /// Multi-timer exact-window buffer probe.
+    Buffer,
+    /// Dual task at the trained TD.
+    Dual,
+    /// Uncertainty task (normal or never-ready ovens).
+    Uncertainty,
+}
+
+impl ConditionKind {
+    /// Every kind, in the order of the NPZ export's `condition` codes.
+    pub const ALL: [ConditionKind; 7] = [
+        ConditionKind::Fi,
+        ConditionKind::Pi,
+        ConditionKind::Bisection,
+        ConditionKind::MultiTimer,
+        ConditionKind::Buffer,
+        ConditionKind::Dual,
+        ConditionKind::Uncertainty,
+    ];
+
+    /// The serialised name (`fi`, `multi_timer`, …).
+    pub fn as_str(self) -> &'static str {
+        self.into()
+    }
+}
+
+impl std::str::FromStr for ConditionKind {
+    type Err = String;
+
+    /// Parses a serialised name; the error lists the allowed ones.
+    fn from_str(s: &str) -> Result<Self, String> {
+        ConditionKind::ALL
+            .into_iter()
+            .find(|k| k.as_str() == s)
+            .ok_or_else(|| {
+                let names: Vec<&str> = ConditionKind::ALL.iter().map(|k| k.as_str()).collect();
+                format!(
+                    "unknown condition kind `{s}` (allowed: {})",
+                    names.join(", ")
+                )
+            })
+    }
+}
+
+/// One evaluation condition.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Condition {
+    /// What this condition measures.
+    pub kind: ConditionKind,
+    /// Task id played.
+    pub task: String,
+    /// Task overrides.
+    pub env: Vec<String>,
+    /// Target duration of the episodes (steps).
+    pub td: u32,
+    /// Uncertainty: force never-ready episodes (true) or normal ones (false).
+    pub never_ready: Option<bool>,
+    /// PI: release factor; multi-timer buffers: buffer as a fraction of TD.
+    pub factor: Option<f64>,
+}
+
+/// One evaluated episode with its condition.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EvalRecord {
+    /// Condition.
+    pub condition: Condition,
+    /// Episode.
+    pub episode: EpisodeRecord,
+}
+
+/// Reads the per-episode records (`records.jsonl`) of an `eval` output folder, each checked
+/// ([`EpisodeRecord::validate`](chronocooked_models::EpisodeRecord::validate)); errors name
+/// the file (and the line and field of a malformed record). A file without any record is an
+/// error ("no episodes"), never an empty evaluation.
+pub fn read_records(folder: &std::path::Path) -> Result<Vec<EvalRecord>, String> {
+    let path = folder.join("records.jsonl");
+    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let records: Vec<EvalRecord> = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| {
+            let at = || format!("{} line {}", path.display(), i + 1);
+            let r: EvalRecord = serde_json::from_str(l).map_err(|e| format!("{}: {e}", at()))?;
+            r.episode.validate().map_err(|e| format!("{}: {e}", at()))?;
+            Ok(r)
+        })
+        .collect::<Result<_, String>>()?;
+    if records.is_empty() {
+        return Err(format!(
+            "{}: no episodes (an evaluation has at least one record)",
+            path.display()
+        ));
+    }
+    Ok(records)
+}
