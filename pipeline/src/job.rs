@@ -5,9 +5,9 @@
 
 use crate::PipelineError;
 use crate::stages::{self, AdaptRequest, EvalRequest, EvalSubject, RecordRequest, TrainRequest};
+use crate::sweep::{Job, Stage, SweepFile, finished_stages, job_dir, mark_stage};
 use chronocooked_analysis::Mode;
 use chronocooked_training::adapt::{self, AdaptConfig};
-use chronocooked_training::sweep::{Job, Stage, SweepFile, finished_stages, job_dir, mark_stage};
 use chronocooked_training::zoo::Family;
 use std::path::Path;
 use std::time::Instant;

@@ -5,7 +5,7 @@
 
 use anyhow::Result;
 use chronocooked_training::run_dir::write_atomic;
-use chronocooked_training::sweep::SweepFile;
+use chronocooked_pipeline::sweep::SweepFile;
 use clap::Args;
 use std::path::PathBuf;
 
