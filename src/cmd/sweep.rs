@@ -3,11 +3,11 @@
 //! `sweep-job`: run one job's stages in this process (what workers and Slurm tasks call).
 
 use anyhow::{Context, Result, bail};
+use chronocooked_env::fs::write_atomic;
 use chronocooked_pipeline::LogObserver;
 use chronocooked_pipeline::sweep::{
     Job, SweepFile, finished_stages, job_dir, job_done, slurm_script,
 };
-use chronocooked_training::run_dir::write_atomic;
 use chronocooked_training::zoo::Family;
 use clap::Args;
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};

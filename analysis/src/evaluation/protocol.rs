@@ -134,7 +134,7 @@ fn cond(kind: ConditionKind, task: &str, env: Vec<String>, td: u32) -> Condition
 /// the file (and the line and field of a malformed record). A file without any record is an
 /// error ("no episodes"), never an empty evaluation.
 pub fn read_records(folder: &std::path::Path) -> Result<Vec<EvalRecord>, String> {
-    let path = folder.join("records.jsonl");
+    let path = folder.join(crate::evaluation::folder::RECORDS);
     let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
     let records: Vec<EvalRecord> = text
         .lines()

@@ -16,6 +16,7 @@
 //! towards `uniform`).
 
 use super::collect::{CollectError, CompactJob, err};
+use crate::evaluation::folder::METRICS;
 use crate::evaluation::protocol::ConditionKind;
 use serde::{Deserialize, Serialize};
 use statrs::distribution::{ChiSquared, ContinuousCDF};
@@ -210,7 +211,7 @@ pub fn analyse_pi(root: &Path, jobs: &[CompactJob]) -> Result<Vec<PiRow>, Collec
         .iter()
         .filter(|j| j.job.task.starts_with("FixedInterval"))
     {
-        let p = root.join("jobs").join(&j.job.id).join("metrics.json");
+        let p = root.join("jobs").join(&j.job.id).join(METRICS);
         if !p.is_file() {
             continue;
         }

@@ -48,7 +48,8 @@ pub fn mark_stage(
     }
     p.done = done;
     let json = serde_json::to_string_pretty(&p).unwrap_or_default();
-    chronocooked_training::run_dir::write_atomic(&job_dir.join("progress.json"), json.as_bytes())
+    chronocooked_env::fs::write_atomic(&job_dir.join("progress.json"), json.as_bytes())?;
+    Ok(())
 }
 
 /// Whether the job in `job_dir` is completely finished.
