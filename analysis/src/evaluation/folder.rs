@@ -17,8 +17,7 @@ use chronocooked_env::fs::write_atomic;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
-/// File name of the per-episode records (JSON lines of [`EvalRecord`]).
-pub const RECORDS: &str = "records.jsonl";
+pub use crate::evaluation::protocol::RECORDS;
 /// File name of the evaluation's description ([`EvalInfo`]).
 pub const EVAL_INFO: &str = "eval.json";
 /// File name of the metrics computed from the records ([`Metrics`]).

@@ -55,6 +55,13 @@ pub struct RunResult {
 /// Recomputes the metrics of an `eval` folder from its `records.jsonl` and `eval.json`
 /// (the records are the source of truth; metrics JSON writes NaN as null).
 pub fn load_metrics(folder: &Path) -> Result<Metrics, String> {
+    let path = folder.join(EVAL_INFO);
+    if !path.is_file() {
+        return Err(format!(
+            "{}: no such file (not an `eval` output folder)",
+            path.display()
+        ));
+    }
     let info = read_eval_info(folder)?;
     let records = crate::evaluation::protocol::read_records(folder)
         .map_err(|e| format!("{e} (not an `eval` output folder)"))?;
