@@ -272,16 +272,20 @@ fn fields(p: &Probe, population: &str, td: u32) -> (Vec<(f64, f64)>, f64, usize)
     (f, frac, tests.len())
 }
 
-/// No unit of a time-cell population oscillates or is mixed: each is a time field or,
-/// when its field lies at or beyond an edge of the window, a ramp.
+/// No unit of a time-cell population oscillates: each is a time field or, when its field
+/// lies at or beyond an edge of the window, a ramp — or, for a field that peaks in the
+/// window's first two samples (its rise is one sample; with a noisy clock the trial average
+/// blurs it), neither shape alone: mixed.
 fn assert_fields_or_edge_ramps(p: &Probe, td: u32) {
     let (_, tests) = p.classify("time_cells", td);
     for u in &tests {
+        let early_edge = u.category == Category::Mixed && u.peak_time <= 1;
         assert!(
-            matches!(
-                u.category,
-                Category::TimeField | Category::Ramp | Category::Untuned
-            ),
+            early_edge
+                || matches!(
+                    u.category,
+                    Category::TimeField | Category::Ramp | Category::Untuned
+                ),
             "{} TD {td}: {u:?}",
             p.label
         );

@@ -39,7 +39,13 @@ fn default_drift_diffusion_and_delay_line_time_with_scalar_variability() {
     // cells: a per-trial clock-speed factor with log-SD 0.15 moves every response in
     // proportion to TD. With 4 noise draws × 12 start cells = 48 episodes per TD, a CV's
     // sampling error is ≈ 10% of it; the bands allow that and the one-step quantisation.
-    for (model, lo, hi) in [("ddm", 0.09, 0.25), ("timecells-csc", 0.09, 0.25)] {
+    // Laplace time cells share the clock noise since their speed factor scales only time
+    // (session 15: it had scaled every cell's amplitude by r^{−k} as well).
+    for (model, lo, hi) in [
+        ("ddm", 0.09, 0.25),
+        ("timecells-csc", 0.09, 0.25),
+        ("timecells-laplace", 0.09, 0.25),
+    ] {
         let mut cvs = Vec::new();
         for td in [6u32, 18] {
             let (m, n) = trained_metrics(model, "FixedInterval-v0", &[&format!("env.td={td}")], 0);
@@ -77,6 +83,31 @@ fn default_bisection_has_an_animal_like_weber_fraction() {
     assert!(b.anchor_accuracy >= 0.9, "anchors {}", b.anchor_accuracy);
     let gm = 50f64.sqrt();
     assert!((0.85..=1.25).contains(&(fit.bp / gm)), "BP {}", fit.bp);
+}
+
+#[test]
+fn probes_far_below_the_short_anchor_are_judged_short() {
+    // Microstimuli seed 2 on 6-12 is the measured case: walking while the oven ran, it stood
+    // at different cells when the short and the long anchor ended, chose the counter by its
+    // cell, and sent the 1- and 2-step probes (picked up from the cell where it had put the
+    // onion) to the long counter — P(long) 1.00, 1.00, then 0.00: not a psychometric curve.
+    // Waiting at the oven, its choice follows its clock's judgment: P(long) rises with the
+    // probe (no drop between neighbouring probes beyond sampling noise, 32 episodes each).
+    let (m, _) = trained_metrics(
+        "timecells-ms",
+        "Bisection-v0",
+        &["env.short=6", "env.long=12"],
+        2,
+    );
+    let b = m.bisection.unwrap();
+    let p: Vec<f64> = b.p_long.iter().copied().filter(|v| v.is_finite()).collect();
+    assert!(p.len() >= 10, "{:?}", b.p_long);
+    assert!(
+        p[0] <= 0.1 && p[1] <= 0.1,
+        "short probes judged long: {p:?}"
+    );
+    let worst_drop = p.windows(2).map(|w| w[0] - w[1]).fold(0.0, f64::max);
+    assert!(worst_drop <= 0.25, "non-monotone: {p:?}");
 }
 
 #[test]

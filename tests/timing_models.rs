@@ -246,6 +246,40 @@ fn microstimuli_peak_times_and_heights_match_closed_form() {
 }
 
 #[test]
+fn laplace_time_cells_on_a_fast_or_slow_clock_are_the_same_cells_at_the_scaled_time() {
+    // A per-trial clock-speed factor r runs the representation at represented time u = r t:
+    // every cell must equal the analytic Laplace cell s^{k+1} u^k e^{−s u}/k! there — the
+    // same shape and the same peak height, only earlier or later (not r^{−k} × as high).
+    let (cells, tau_min, tau_max, k) = (10, 1.0, 64.0, 8);
+    let fact: f64 = (1..=k).map(|v| v as f64).product();
+    let taus = laplace_peak_times(cells, tau_min, tau_max);
+    for r in [0.8, 0.95, 1.1, 1.3] {
+        let mut tc = TimeCells::new(Representation::Laplace {
+            cells,
+            tau_min,
+            tau_max,
+            order: k,
+        });
+        tc.onset_with_speed(r);
+        let mut units = Vec::new();
+        for t in 1..=60u32 {
+            tc.tick();
+            tc.units_into(&mut units);
+            let u = r * t as f64;
+            for (j, &tau) in taus.iter().enumerate() {
+                let s = k as f64 / tau;
+                let exact = s.powi(k as i32 + 1) * u.powi(k as i32) * (-s * u).exp() / fact;
+                assert!(
+                    (units[j] - exact).abs() <= 1e-9 * exact.max(1e-6),
+                    "r {r} t {t} cell {j}: {} vs {exact}",
+                    units[j]
+                );
+            }
+        }
+    }
+}
+
+#[test]
 fn laplace_time_cells_peak_at_tau_star_with_cv_one_over_sqrt_k_plus_one() {
     let (cells, tau_min, tau_max, k) = (12, 4.0, 80.0, 8);
     let mut tc = TimeCells::new(Representation::Laplace {

@@ -193,3 +193,37 @@ fn timing_agents_wait_at_the_oven_while_timing_unless_told_otherwise() {
     let err = cfg.set("wait_at_oven=maybe").unwrap_err().to_string();
     assert!(err.contains("true or false"), "{err}");
 }
+
+#[test]
+fn timing_agents_respond_in_one_unbroken_run_from_the_first_check_to_the_pickup() {
+    // Break-and-run (the default): once a check of the running oven has failed, the agent
+    // keeps checking until the soup comes out — so the paper's first oven check (the start
+    // of the unbroken run of interacts that ends in the pickup) is the agent's first check.
+    // The delay line, seed 1 at TD 20, is the case measured alternating checks and waits
+    // (in 92% of trials) before the setting.
+    let mut cfg = TimingRunConfig::new("FixedInterval-v0", "timecells-csc", 1);
+    cfg.set("env.td=20").unwrap();
+    let eps = interval_actions(&cfg, "run-on");
+    assert!(eps.len() >= 40, "{} episodes with a pickup", eps.len());
+    let gappy = |a: &Vec<u8>| {
+        let first = a
+            .iter()
+            .position(|&x| x == 5)
+            .expect("a pickup is an interact");
+        a[first..].iter().any(|&x| x != 5)
+    };
+    for a in &eps {
+        assert!(!gappy(a), "a wait inside the run: {a:?}");
+    }
+    // Off, the same seed's greedy choices alternate within the run (the setting is applied).
+    cfg.set("break_and_run=false").unwrap();
+    let off = interval_actions(&cfg, "run-off");
+    let broken = off.iter().filter(|a| gappy(a)).count();
+    assert!(
+        broken * 4 >= off.len(),
+        "with break_and_run=false only {broken} of {} runs are broken",
+        off.len()
+    );
+    let err = cfg.set("break_and_run=maybe").unwrap_err().to_string();
+    assert!(err.contains("true or false"), "{err}");
+}

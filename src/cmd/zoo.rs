@@ -4,7 +4,7 @@
 use anyhow::Result;
 use chronocooked_models::Architecture;
 use chronocooked_training::zoo::{Family, zoo, zoo_entry};
-use chronocooked_training::{PRESETS, preset_settings, resolve};
+use chronocooked_training::{PRESETS, TimingRunConfig, preset_settings, resolve};
 use clap::Subcommand;
 
 /// `zoo` subcommands.
@@ -76,7 +76,7 @@ pub fn run_zoo(cmd: ZooCommand) -> Result<()> {
             preset,
             json,
         } => {
-            let entry = zoo_entry(&model)?;
+            let mut entry = zoo_entry(&model)?;
             let settings = if entry.family == Family::DeepRl {
                 let arch: Architecture = model.parse().map_err(anyhow::Error::msg)?;
                 let pairs = preset_settings(&task, arch, &preset)?;
@@ -84,6 +84,14 @@ pub fn run_zoo(cmd: ZooCommand) -> Result<()> {
                 Some((pairs, cfg))
             } else {
                 None
+            };
+            // The settings on this task (and preset): every one a `--set` key.
+            entry.parameters = match &settings {
+                Some((_, cfg)) => cfg.listing(),
+                None if entry.family == Family::Timing => {
+                    TimingRunConfig::new(&task, &model, 0).listing()
+                }
+                None => entry.parameters,
             };
             if json {
                 let v = serde_json::json!({
@@ -102,10 +110,17 @@ pub fn run_zoo(cmd: ZooCommand) -> Result<()> {
                 entry.family.label(),
                 entry.description
             );
-            if !entry.parameters.is_empty() {
-                println!("parameters:");
-                for p in &entry.parameters {
+            if !entry.structure.is_empty() {
+                println!("structure (fixed by the model):");
+                for p in &entry.structure {
                     println!("  {:<18} {:<10} {}", p.name, p.value, p.meaning);
+                }
+                println!();
+            }
+            if !entry.parameters.is_empty() {
+                println!("settings (--set key=value; and env.<task parameter>=value):");
+                for s in &entry.parameters {
+                    println!("  {:<22} {:<10} {} ({})", s.key, s.value, s.doc, s.allowed);
                 }
                 println!();
             }

@@ -15,11 +15,16 @@ pub enum TrainError {
         /// What is accepted.
         allowed: String,
     },
-    /// An override names no setting.
+    /// An override names no setting of the configuration.
     #[error(
-        "unknown setting `{0}` (see `chronocooked zoo list` for presets; settings: seed, total_steps, obs, n_envs, n_steps, batch_size, n_epochs, bptt_len, recurrent_batches, detach_critic, reservoir_grad_in_norm, engine, gamma, gae_lambda, clip_range, clip_range_vf, ent_coef, vf_coef, max_grad_norm, learning_rate, lr_schedule, adam_eps, target_kl, normalize_advantage, checkpoint_every, keep_checkpoints, eval_every, stop_at_success, stats_window, curriculum, curriculum_thresholds, curriculum_window, curriculum_warmup, never_ready_start/end/ramp, core_init, init_from, env.<task parameter>)"
+        "unknown setting `{key}` (allowed: {allowed}; `chronocooked zoo show MODEL` lists them with their values)"
     )]
-    UnknownKey(String),
+    UnknownKey {
+        /// Key given.
+        key: String,
+        /// The configuration's keys.
+        allowed: String,
+    },
     /// An override is not `key=value`.
     #[error("override `{0}` is not of the form key=value")]
     BadOverride(String),

@@ -19,6 +19,7 @@ pub mod error;
 pub mod evaluate;
 pub mod ppo;
 pub mod run_dir;
+pub mod settings;
 pub mod timing_check;
 pub mod timing_run;
 pub mod zoo;

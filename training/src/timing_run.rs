@@ -9,11 +9,14 @@
 
 use crate::error::TrainError;
 use crate::evaluate::eval_tds;
+use crate::ppo::config::ENV_KEY;
+use crate::settings::{
+    self, timing::TIMING_SETTINGS, timing::TimerSettings, timing::TimingAgentSettings,
+};
 use chronocooked_env::fs::write_atomic;
 use chronocooked_env::{ChronoEnv, TaskFamily, integrity, make_config};
 use chronocooked_models::run_folder;
 use chronocooked_models::timing::agent::TimingAgent;
-use chronocooked_models::timing::judgment::DecisionRule;
 use chronocooked_models::timing::zoo::make_timing_agent;
 use chronocooked_models::{TimingCurvePoint, TimingTrainConfig, train_timing_agent};
 use serde::{Deserialize, Serialize};
@@ -21,7 +24,7 @@ use std::path::{Path, PathBuf};
 
 /// Everything that defines a timing-agent run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(try_from = "StoredTimingRunConfig")]
 pub struct TimingRunConfig {
     /// Always `"timing"` (tells run folders apart from PPO ones).
     pub kind: String,
@@ -35,12 +38,77 @@ pub struct TimingRunConfig {
     pub seed: u64,
     /// Training schedule.
     pub train: TimingTrainConfig,
-    /// Agent overrides applied after construction (`key=value`: `alpha`, `gamma`,
-    /// `lambda`, `response_cost`, `probe`, `opportunity_cost`, `overdue_factor`,
-    /// `wait_at_oven`, `q_init`,
-    /// `noise`, `memory_noise`, `clock_noise`, `decision_rule`).
-    pub agent: Vec<String>,
+    /// Overrides of the agent's parameters, applied after construction (typed per model
+    /// family; the keys and their ranges: [`TIMING_SETTINGS`]).
+    pub agent: TimingAgentSettings,
 }
+
+/// `config.json` as stored: `agent` is the typed [`TimingAgentSettings`], or in folders
+/// written before it the list of `key=value` overrides.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct StoredTimingRunConfig {
+    kind: String,
+    task: String,
+    env: Vec<String>,
+    model: String,
+    seed: u64,
+    train: TimingTrainConfig,
+    agent: serde_json::Value,
+}
+
+impl TryFrom<StoredTimingRunConfig> for TimingRunConfig {
+    type Error = TrainError;
+
+    fn try_from(s: StoredTimingRunConfig) -> Result<Self, TrainError> {
+        let mut cfg = TimingRunConfig {
+            agent: no_overrides(&s.model),
+            kind: s.kind,
+            task: s.task,
+            env: s.env,
+            model: s.model,
+            seed: s.seed,
+            train: s.train,
+        };
+        match s.agent {
+            serde_json::Value::Array(list) => {
+                for kv in list {
+                    let kv = kv.as_str().unwrap_or_default();
+                    let (key, value) = kv
+                        .split_once('=')
+                        .ok_or_else(|| TrainError::BadOverride(kv.into()))?;
+                    match settings::find(TIMING_SETTINGS, key.trim()) {
+                        Some(spec) if spec.path.first() == Some(&"agent") => {
+                            settings::set_field(&mut cfg, spec, key.trim(), value)?
+                        }
+                        _ => return Err(TrainError::param("agent", kv, "agent settings")),
+                    }
+                }
+            }
+            typed => {
+                cfg.agent = serde_json::from_value(typed)
+                    .map_err(|e| TrainError::param("agent", "", &e.to_string()))?
+            }
+        }
+        Ok(cfg)
+    }
+}
+
+/// No override, for the family of timing model `model` (ddm when it is no timing model:
+/// [`TimingRunConfig::validate`] refuses it).
+fn no_overrides(model: &str) -> TimingAgentSettings {
+    let fi = make_config("FixedInterval-v0", &[] as &[&str]).expect("FI is registered");
+    let env = ChronoEnv::new(&fi).expect("FI builds");
+    match make_timing_agent(model, &env, 0) {
+        Ok(agent) => TimingAgentSettings::none(TimerSettings::family_of(&agent.timer)),
+        Err(_) => TimingAgentSettings::none(TimerSettings::Ddm {
+            noise: None,
+            memory_noise: None,
+        }),
+    }
+}
+
+pub use crate::settings::timing::MAX_EPISODES;
 
 /// Default training episodes on the uncertainty task: the never-ready ovens (20% of the
 /// episodes) are where the time-out response is learned, so the task needs more episodes
@@ -48,65 +116,6 @@ pub struct TimingRunConfig {
 /// microstimulus and Laplace agents at 0%; at 40,000 microstimulus, Laplace and CSC agents
 /// reach 100% on every seed, 20,000 gave microstimuli 1 seed of 4).
 pub const UNCERTAINTY_EPISODES: usize = 40_000;
-
-/// Most training episodes of a timing run (40,000 take seconds; 10^7 about hours): a
-/// larger value is a typo or a corrupt `config.json`, not a run anyone waits for.
-pub const MAX_EPISODES: usize = 10_000_000;
-
-/// Every `--set` key of a timing run.
-pub const TIMING_KEYS: &str = "episodes, epsilon_start, epsilon_end, anneal_fraction, eval_every, stop_at_success, alpha, gamma, lambda, response_cost, probe, opportunity_cost, overdue_factor, wait_at_oven (true, false), q_init, noise (ddm), memory_noise, clock_noise (sbf, timecells-*), decision_rule (ratio, difference, likelihood, learned), env.<task parameter>";
-
-/// The allowed range of an agent override `key` when `v` lies outside it.
-fn agent_value_range(key: &str, v: f64) -> Option<&'static str> {
-    match key {
-        "q_init" if !v.is_finite() => Some("a finite number (initial Q of unvisited pairs)"),
-        "alpha" if !(v > 0.0 && v <= 1.0) => Some("a step size in (0, 1]"),
-        "gamma" | "lambda" if !(0.0..=1.0).contains(&v) => Some("a number in [0, 1]"),
-        "response_cost" if !(v >= 0.0 && v.is_finite()) => Some("a finite cost >= 0"),
-        "probe" if !(0.0..1.0).contains(&v) => Some("a fraction in [0, 1)"),
-        "opportunity_cost" if !(0.0..1.0).contains(&v) => Some("a step size in [0, 1) (0 = off)"),
-        "overdue_factor" if !(v == 0.0 || (v >= 1.0 && v.is_finite())) => {
-            Some("a number >= 1 (a multiple of the expected time), or 0 = off")
-        }
-        k if k.ends_with("noise") && !(v >= 0.0 && v.is_finite()) => {
-            Some("a number >= 0 (0 = noise-free)")
-        }
-        _ => None,
-    }
-}
-
-/// Parses an agent override's value and checks its range (typed error naming the key).
-fn check_agent_value(key: &str, value: &str) -> Result<(), TrainError> {
-    if key == "wait_at_oven" {
-        return parse::<bool>(key, value, "true or false").map(|_| ());
-    }
-    if key == "decision_rule" {
-        return DecisionRule::from_name(value)
-            .map(|_| ())
-            .map_err(|allowed| TrainError::InvalidParam {
-                field: key.into(),
-                value: value.into(),
-                allowed,
-            });
-    }
-    let v: f64 = parse(key, value, "a number")?;
-    match agent_value_range(key, v) {
-        Some(allowed) => Err(TrainError::InvalidParam {
-            field: key.into(),
-            value: value.into(),
-            allowed: allowed.into(),
-        }),
-        None => Ok(()),
-    }
-}
-
-fn parse<T: std::str::FromStr>(key: &str, value: &str, allowed: &str) -> Result<T, TrainError> {
-    value.parse().map_err(|_| TrainError::InvalidParam {
-        field: key.into(),
-        value: value.into(),
-        allowed: allowed.into(),
-    })
-}
 
 impl TimingRunConfig {
     /// Defaults for `model` on `task`.
@@ -123,106 +132,59 @@ impl TimingRunConfig {
             model: model.into(),
             seed,
             train,
-            agent: Vec::new(),
+            agent: no_overrides(model),
         }
     }
 
-    /// Applies one `key=value` override (typed errors name the field and allowed values).
+    /// Applies one `key=value` override (the keys of [`TIMING_SETTINGS`] this model's family
+    /// has, or `env.<task parameter>`), then [`TimingRunConfig::validate`]; typed errors
+    /// name the key and the allowed values.
     pub fn set(&mut self, kv: &str) -> Result<(), TrainError> {
         let (key, value) = kv
             .split_once('=')
             .ok_or_else(|| TrainError::BadOverride(kv.into()))?;
         let (key, value) = (key.trim(), value.trim());
-        let t = &mut self.train;
-        match key {
-            "episodes" => t.episodes = parse(key, value, "a positive integer (at most 10^7)")?,
-            "epsilon_start" => t.epsilon_start = parse(key, value, "a number in [0, 1]")?,
-            "epsilon_end" => t.epsilon_end = parse(key, value, "a number in [0, 1]")?,
-            "anneal_fraction" => t.anneal_fraction = parse(key, value, "a number in (0, 1]")?,
-            "eval_every" => t.eval_every = parse(key, value, "episodes, 0 = only at the end")?,
-            "stop_at_success" => {
-                t.stop_at_success = match value {
-                    "none" | "null" => None,
-                    v => Some(parse(key, v, "a success rate in (0, 1], or none")?),
-                }
-            }
-            "alpha" | "gamma" | "lambda" | "response_cost" | "probe" | "opportunity_cost"
-            | "overdue_factor" | "q_init" | "noise" | "memory_noise" | "clock_noise"
-            | "decision_rule" | "wait_at_oven" => {
-                check_agent_value(key, value)?;
-                self.agent.push(format!("{key}={value}"));
-            }
-            k if k.starts_with("env.") => {
-                self.env.push(format!("{}={value}", &k[4..]));
-                make_config(&self.task, &self.env)?;
-            }
-            _ => {
-                return Err(TrainError::InvalidParam {
-                    field: "--set".into(),
-                    value: key.into(),
-                    allowed: TIMING_KEYS.into(),
-                });
-            }
+        if let Some(name) = key.strip_prefix("env.") {
+            self.env.push(format!("{name}={value}"));
+            make_config(&self.task, &self.env)?;
+        } else {
+            let Some(spec) = settings::find(TIMING_SETTINGS, key) else {
+                return Err(settings::unknown(TIMING_SETTINGS, self, key, ENV_KEY));
+            };
+            settings::set_field(self, spec, key, value)?;
         }
         self.validate()
+    }
+
+    /// Whether this model's settings have `key` (its family's timer keys included).
+    pub fn has_setting(&self, key: &str) -> bool {
+        settings::has(TIMING_SETTINGS, self, key)
+    }
+
+    /// Every setting of this run with its value (the model's default where not overridden),
+    /// type, accepted values and meaning: what `zoo show` lists.
+    pub fn listing(&self) -> Vec<settings::Setting> {
+        let mut resolved = self.clone();
+        if let Ok(agent) = self.build_agent() {
+            resolved.agent = TimingAgentSettings::of(&agent);
+        }
+        settings::listing(TIMING_SETTINGS, &resolved)
     }
 
     /// Checks ranges and the task with its overrides (also applied to a loaded
     /// `config.json`).
     pub fn validate(&self) -> Result<(), TrainError> {
-        let t = &self.train;
-        let bad = |field: &str, value: String, allowed: &str| {
-            Err(TrainError::InvalidParam {
-                field: field.into(),
-                value,
-                allowed: allowed.into(),
-            })
-        };
         if !chronocooked_models::timing::zoo::is_timing_model(&self.model) {
-            return bad(
+            return Err(TrainError::param(
                 "model",
-                self.model.clone(),
+                &self.model,
                 "a timing model (see `chronocooked zoo list`)",
-            );
+            ));
         }
         if self.kind != "timing" {
-            return bad("kind", self.kind.clone(), "timing");
+            return Err(TrainError::param("kind", &self.kind, "timing"));
         }
-        if t.episodes == 0 || t.episodes > MAX_EPISODES {
-            return bad(
-                "episodes",
-                t.episodes.to_string(),
-                &format!("1..={MAX_EPISODES}"),
-            );
-        }
-        for (f, v) in [
-            ("epsilon_start", t.epsilon_start),
-            ("epsilon_end", t.epsilon_end),
-        ] {
-            if !(0.0..=1.0).contains(&v) {
-                return bad(f, v.to_string(), "a number in [0, 1]");
-            }
-        }
-        if let Some(v) = t.stop_at_success
-            && !(v > 0.0 && v <= 1.0)
-        {
-            return bad(
-                "stop_at_success",
-                v.to_string(),
-                "a success rate in (0, 1], or none",
-            );
-        }
-        if !(t.anneal_fraction > 0.0 && t.anneal_fraction <= 1.0) {
-            return bad(
-                "anneal_fraction",
-                t.anneal_fraction.to_string(),
-                "a number in (0, 1]",
-            );
-        }
-        for kv in &self.agent {
-            let (key, value) = kv.split_once('=').unwrap_or((kv, ""));
-            check_agent_value(key, value)?;
-        }
+        settings::check(TIMING_SETTINGS, self)?;
         make_config(&self.task, &self.env)?;
         Ok(())
     }
@@ -237,57 +199,7 @@ impl TimingRunConfig {
                 allowed: e,
             }
         })?;
-        for kv in &self.agent {
-            let (k, v) = kv.split_once('=').unwrap_or((kv, "0"));
-            if k == "decision_rule" {
-                check_agent_value(k, v)?;
-                agent.timer.decision_mut().rule =
-                    DecisionRule::from_name(v).map_err(|allowed| TrainError::InvalidParam {
-                        field: k.into(),
-                        value: v.into(),
-                        allowed,
-                    })?;
-                continue;
-            }
-            if k == "wait_at_oven" {
-                agent.config.wait_at_oven = parse(k, v, "true or false")?;
-                continue;
-            }
-            let v: f64 = parse(k, v, "a number")?;
-            match k {
-                "alpha" => agent.learner.config.alpha = v,
-                "gamma" => agent.learner.config.gamma = v,
-                "lambda" => agent.learner.config.lambda = v,
-                "response_cost" => agent.config.response_cost = v,
-                "probe" => agent.config.probe = v,
-                "opportunity_cost" => agent.config.opportunity_cost = v,
-                "overdue_factor" => agent.config.overdue_factor = v,
-                "q_init" => agent.learner.q_init = v,
-                "noise" => match &mut agent.timer {
-                    chronocooked_models::timing::timers::Timer::Ddm(d) => d.acc.noise = v,
-                    _ => return Err(TrainError::UnknownKey("noise (ddm only)".into())),
-                },
-                "memory_noise" => match &mut agent.timer {
-                    chronocooked_models::timing::timers::Timer::Sbf(s) => s.model.memory_noise = v,
-                    chronocooked_models::timing::timers::Timer::Ddm(d) => d.memory_noise = v,
-                    chronocooked_models::timing::timers::Timer::TimeCells(tc) => {
-                        tc.memory_noise = v
-                    }
-                },
-                "clock_noise" => match &mut agent.timer {
-                    chronocooked_models::timing::timers::Timer::TimeCells(tc) => {
-                        tc.cells.speed_noise = v
-                    }
-                    chronocooked_models::timing::timers::Timer::Sbf(s) => s.clock_noise = v,
-                    _ => {
-                        return Err(TrainError::UnknownKey(
-                            "clock_noise (sbf, timecells-* only)".into(),
-                        ));
-                    }
-                },
-                _ => return Err(TrainError::UnknownKey(k.into())),
-            }
-        }
+        self.agent.apply(&mut agent)?;
         Ok(agent)
     }
 }

@@ -6,6 +6,7 @@ use crate::error::TrainError;
 use crate::ppo::config::ObsEncoding;
 use crate::ppo::obs::ObsEncoder;
 use crate::ppo::presets::PRESETS;
+use crate::settings::Setting;
 use chronocooked_env::{Action, Autoreset, VecEnv, make_config};
 use chronocooked_models::{Architecture, PolicyConfig};
 use serde::{Deserialize, Serialize};
@@ -33,12 +34,13 @@ impl Family {
     }
 }
 
-/// One parameter of a model: name, default value, meaning (with units).
+/// One fixed property of a model (set by its name or construction, not a `--set` key):
+/// name, value, meaning (with units).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ZooParam {
-    /// Parameter name (the `--set` key where it can be overridden).
+    /// Property name.
     pub name: String,
-    /// Default value.
+    /// Value.
     pub value: String,
     /// Meaning and units.
     pub meaning: String,
@@ -53,8 +55,15 @@ pub struct ZooEntry {
     pub family: Family,
     /// One-line description.
     pub description: String,
-    /// Parameters with defaults.
-    pub parameters: Vec<ZooParam>,
+    /// Settings with their defaults (deep RL: the `reference` preset on FixedInterval-v0;
+    /// timing models: the model's defaults on FixedInterval-v0): every one a `--set` key
+    /// and every `--set` key of the model here ([`crate::settings`]), besides the task
+    /// parameters (`env.<task parameter>`).
+    pub parameters: Vec<Setting>,
+    /// Fixed properties (architecture, sizes fixed by the name or drawn at construction):
+    /// not settings.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub structure: Vec<ZooParam>,
     /// Hyperparameter presets (deep RL only).
     pub presets: Vec<String>,
     /// How to get a trained instance.
@@ -129,9 +138,21 @@ pub fn parameter_count(arch: Architecture) -> usize {
         .sum()
 }
 
+/// The settings of a PPO run of `arch` with the `reference` preset on FixedInterval-v0.
+fn deep_settings(arch: Architecture) -> Vec<Setting> {
+    crate::ppo::presets::resolve::<&str>("FixedInterval-v0", arch, "reference", 0, &[])
+        .map(|cfg| cfg.listing())
+        .unwrap_or_default()
+}
+
+/// The settings of timing model `name` with its defaults on FixedInterval-v0.
+fn timing_settings(name: &str) -> Vec<Setting> {
+    crate::timing_run::TimingRunConfig::new("FixedInterval-v0", name, 0).listing()
+}
+
 fn deep_entry(arch: Architecture) -> ZooEntry {
     let trunk = "Conv1x1 6->8, ReLU, Conv1x1 8->6, ReLU, flatten, Linear->64, ReLU";
-    let (description, mut parameters) = match arch.core {
+    let (description, mut structure) = match arch.core {
         None => (
             "CNN trunk + heads pi=[64], vf=[64]; no memory".to_string(),
             vec![],
@@ -172,7 +193,7 @@ fn deep_entry(arch: Architecture) -> ZooEntry {
             )
         }
     };
-    parameters.insert(
+    structure.insert(
         0,
         p(
             "parameters",
@@ -180,12 +201,13 @@ fn deep_entry(arch: Architecture) -> ZooEntry {
             "trainable weights on the reference 5x3 grid",
         ),
     );
-    parameters.insert(1, p("trunk", "cnn", trunk));
+    structure.insert(1, p("trunk", "cnn", trunk));
     ZooEntry {
         name: arch.name(),
         family: Family::DeepRl,
         description,
-        parameters,
+        parameters: deep_settings(arch),
+        structure,
         presets: PRESETS.iter().map(|s| s.to_string()).collect(),
         usage: format!(
             "chronocooked train --model {} --task ID [--preset reference|fast] [--steps N] [--set key=value]",
@@ -195,9 +217,9 @@ fn deep_entry(arch: Architecture) -> ZooEntry {
     }
 }
 
-/// Parameters of timing model `name`, read from a freshly built agent (so they always match
-/// the code).
-fn timing_parameters(name: &str) -> Vec<ZooParam> {
+/// Fixed properties of timing model `name` (set at its construction, not settings), read
+/// from a freshly built agent (so they always match the code).
+fn timing_structure(name: &str) -> Vec<ZooParam> {
     use chronocooked_models::timing::Representation;
     use chronocooked_models::timing::timers::Timer;
     let task = make_config("FixedInterval-v0", &[] as &[&str]).expect("FI is registered");
@@ -205,14 +227,9 @@ fn timing_parameters(name: &str) -> Vec<ZooParam> {
     let Ok(agent) = chronocooked_models::timing::zoo::make_timing_agent(name, &env, 0) else {
         return vec![];
     };
-    let mut ps = match &agent.timer {
+    match &agent.timer {
         Timer::Ddm(d) => vec![
             p("threshold", d.acc.threshold, "accumulator threshold z"),
-            p(
-                "noise",
-                d.acc.noise,
-                "diffusion noise m (CV of the crossing time = m/sqrt(z A))",
-            ),
             p(
                 "initial_interval",
                 d.initial_interval,
@@ -224,11 +241,6 @@ fn timing_parameters(name: &str) -> Vec<ZooParam> {
                 "drift learning rate after a reinforced interval",
             ),
             p("start", d.start, "response threshold as a fraction of z"),
-            p(
-                "memory_noise",
-                d.memory_noise,
-                "bisection: SD of the log of a per-trial factor on each remembered anchor drift",
-            ),
         ],
         Timer::Sbf(s) => {
             let (lo, hi) = s
@@ -247,16 +259,6 @@ fn timing_parameters(name: &str) -> Vec<ZooParam> {
                     "seconds_per_step",
                     s.seconds_per_step,
                     "model seconds per env step",
-                ),
-                p(
-                    "memory_noise",
-                    s.model.memory_noise,
-                    "CV of the stored duration (kappa)",
-                ),
-                p(
-                    "clock_noise",
-                    s.clock_noise,
-                    "SD of the log of a per-trial oscillator-frequency factor (0 = nominal)",
                 ),
                 p(
                     "learning_rate",
@@ -303,66 +305,7 @@ fn timing_parameters(name: &str) -> Vec<ZooParam> {
                 p("k", order, "order of the inverse-Laplace approximation"),
             ],
         },
-    };
-    let sarsa = &agent.learner.config;
-    ps.extend([
-        p("alpha", sarsa.alpha, "SARSA(lambda) learning rate"),
-        p("gamma", sarsa.gamma, "discount per step"),
-        p(
-            "lambda",
-            sarsa.lambda,
-            "eligibility-trace decay (replacing traces)",
-        ),
-        p(
-            "response_cost",
-            agent.config.response_cost,
-            "internal cost of one interact",
-        ),
-        p(
-            "episodes",
-            chronocooked_models::TimingTrainConfig::default().episodes,
-            "training episodes (--set episodes=N)",
-        ),
-    ]);
-    if let Timer::TimeCells(tc) = &agent.timer
-        && !matches!(tc.cells.repr, Representation::Presence)
-    {
-        ps.push(p(
-            "clock_noise",
-            tc.cells.speed_noise,
-            "SD of the log of a per-trial clock-speed factor (scalar variability; 0 = deterministic)",
-        ));
-        ps.push(p(
-            "memory_noise",
-            tc.memory_noise,
-            "bisection: SD of the log of a factor on each stored anchor estimate",
-        ));
     }
-    ps.push(p(
-        "decision_rule",
-        agent.timer.decision().rule.name(),
-        "bisection criterion between the remembered anchors S*, L*: ratio = geometric mean BY \
-         CONSTRUCTION (the default; SET), difference = arithmetic mean, likelihood = harmonic \
-         mean, learned = moved by feedback until errors on both anchors balance (BP measured)",
-    ));
-    ps.push(p(
-        "wait_at_oven",
-        agent.config.wait_at_oven,
-        "FI/PI/multi-timer: while the oven runs, an empty-handed agent next to it waits or \
-         checks, never walks (a fixed walking route would be a clock of its own)",
-    ));
-    ps.push(p(
-        "overdue_factor",
-        agent.config.overdue_factor,
-        if agent.timer.has_gate() {
-            "cue tasks: past this multiple of the expected time a missing ready cue is a \
-             category; after the cue the clock is off (0: both off)"
-        } else {
-            "cue tasks: after the ready cue the clock is off (0: kept frozen; no single \
-             expected time, so never overdue)"
-        },
-    ));
-    ps
 }
 
 /// Every model of the zoo, in display order: deep RL, timing models, baselines.
@@ -375,7 +318,8 @@ pub fn zoo() -> Vec<ZooEntry> {
                 name: m.name.into(),
                 family: Family::Timing,
                 description: m.description.into(),
-                parameters: timing_parameters(m.name),
+                parameters: timing_settings(m.name),
+                structure: timing_structure(m.name),
                 presets: vec![],
                 usage: format!(
                     "chronocooked train --model {} --task ID [--set episodes=N] [--set alpha=0.05]",
@@ -389,6 +333,7 @@ pub fn zoo() -> Vec<ZooEntry> {
         family: Family::Baseline,
         description: (*what).into(),
         parameters: vec![],
+        structure: vec![],
         presets: vec![],
         usage: format!("chronocooked eval --agent {name} --task ID --out DIR"),
         tasks: vec![],

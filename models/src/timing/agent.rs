@@ -90,17 +90,41 @@ pub struct TimingAgentConfig {
     #[serde(default)]
     pub overdue_factor: f64,
     /// Wait at the oven while timing: in tasks where nothing but the soup pays during the
-    /// interval (no ready cue, no reward sink, no oven button — fixed and peak interval,
-    /// multi-timer), an empty-handed agent next to the running oven may only wait or check,
+    /// interval (no reward sink, no oven button — fixed and peak interval, multi-timer,
+    /// bisection), an empty-handed agent next to the running oven may only wait or check,
     /// not walk. Otherwise the TD learner can time the interval with a fixed walking route
     /// (a mediating behaviour whose length is a clock of its own) and the model's
-    /// mechanism no longer sets the first check: measured with `false`, drift-diffusion
+    /// mechanism no longer sets the behaviour: measured with `false`, drift-diffusion
     /// seed 3 at TD 5 and microstimuli seed 2 at TD 8 checked at exactly TD every trial
-    /// (CV 0.00 and 0.02) after such a route. A gated model whose responding has stopped
-    /// (drift-diffusion, SBF past their stop) may leave. Agents saved before the setting
-    /// load with `false` (their behaviour unchanged).
+    /// (CV 0.00 and 0.02) after such a route; on bisection 6-12 (waiting only on the
+    /// cue-less tasks, session 14) microstimuli seed 2 stood at different cells when the
+    /// short and the long anchor ended, chose the counter by where it stood, and sent
+    /// probes of 1 and 2 steps — picked up from the cell it put the onion from — to the
+    /// long counter (P(long) 1.00, a non-monotone curve). A gated model whose responding
+    /// has stopped (drift-diffusion, SBF past their stop) may leave. Agents saved before
+    /// the setting load with `false` (their behaviour unchanged).
     #[serde(default)]
     pub wait_at_oven: bool,
+    /// Break-and-run responding of the time-cell agents while waiting at the oven (with
+    /// [`Self::wait_at_oven`], in the same tasks except those with a ready cue, where a
+    /// check never pays). Drift-diffusion and SBF have a response state of their own — the
+    /// gate, open from the threshold crossing to the stop — so this rule is theirs already
+    /// (applied on top of the gate it changed SBF's multi-timer training: TD 12 0.38 → 0.00
+    /// on seed 0). Time cells have no such state: once the agent has checked the running oven in this interval, it
+    /// keeps checking unless its TD readout values waiting above checking by more than one
+    /// response cost (`Q(wait) − Q(check) > response_cost`) — a start needs only that a
+    /// check is worth more than waiting, a stop needs evidence beyond the cost of one more
+    /// response. Fixed-interval responding is a pause followed by an abrupt transition to a
+    /// steady high rate that lasts until reinforcement (Schneider 1969; Gallistel, Fairhurst
+    /// & Balsam 2004), and a peak-procedure trial has a single run, one start and one stop
+    /// (Church, Meck & Gibbon 1994). Without it the greedy readout, whose check-vs-wait
+    /// margin near the expected time is about one response cost, alternated checks and
+    /// waits in 45–92% of delay-line trials at TD 5 and 20, and the paper's first oven
+    /// check — the start of the unbroken run of interacts that ends in the pickup — then
+    /// measured the last burst, not the start of responding. Agents saved before the
+    /// setting load with `false` (their behaviour unchanged).
+    #[serde(default)]
+    pub break_and_run: bool,
 }
 
 /// Episodes per start cell and condition in the reference protocol for a timing agent with
@@ -122,6 +146,7 @@ impl Default for TimingAgentConfig {
             opportunity_cost: 0.0,
             overdue_factor: OVERDUE_FACTOR,
             wait_at_oven: true,
+            break_and_run: true,
         }
     }
 }
@@ -413,7 +438,6 @@ impl Agent for TimingAgent {
         // interval is long past its expected time) is timing nothing: it may leave.
         let stopped = self.timer.has_gate() && self.ep.started.is_some() && !self.ep.responding;
         let hold = self.config.wait_at_oven
-            && !self.shows_ready
             && !self.side_task
             && self.ep.running
             && !stopped
@@ -428,7 +452,21 @@ impl Agent for TimingAgent {
         } else {
             0.0
         };
-        let a = self.learner.choose(&q, &allowed, eps, &mut self.rng);
+        // Break-and-run (see `TimingAgentConfig::break_and_run`): within a run of checks, a
+        // check is preferred unless waiting is worth more by over one response cost. The
+        // learner still learns from the unbiased values.
+        let run = self.config.break_and_run
+            && hold
+            && !self.shows_ready
+            && !self.timer.has_gate()
+            && self.ep.last_was_check;
+        let a = if run {
+            let mut biased = q.clone();
+            biased[Action::Interact.code() as usize] += self.config.response_cost;
+            self.learner.choose(&biased, &allowed, eps, &mut self.rng)
+        } else {
+            self.learner.choose(&q, &allowed, eps, &mut self.rng)
+        };
         self.learn(Some(q[a]));
         self.ep.value = q[a];
         if self.training {

@@ -282,12 +282,17 @@ impl TimeCells {
                 self.propagators = laplace_peak_times(*cells, *tau_min, *tau_max)
                     .into_iter()
                     .map(|tau| {
-                        let decay = (-(*order as f64) * self.speed / tau).exp();
+                        // One step of real time is `h = speed` steps of represented time:
+                        // `Gₙ(t+h) = e^{−sh} Σₘ C(n,m) (−h)^{n−m} Gₘ(t)`. (Until session 15
+                        // the `h^{n−m}` factor was missing, which scaled every cell's
+                        // amplitude by `speed^{−k}` on a noisy trial.)
+                        let h = self.speed;
+                        let decay = (-(*order as f64) * h / tau).exp();
                         let mut p = vec![0.0; k1 * k1];
                         for n in 0..k1 {
                             for m in 0..=n {
-                                let sign = if (n - m) % 2 == 0 { 1.0 } else { -1.0 };
-                                p[n * k1 + m] = decay * binomial(n, m) * sign;
+                                let power = (-h).powi((n - m) as i32);
+                                p[n * k1 + m] = decay * binomial(n, m) * power;
                             }
                         }
                         p

@@ -44,7 +44,7 @@ pub const TIMING_MODELS: [TimingModelSpec; 7] = [
     },
     TimingModelSpec {
         name: "timecells-laplace",
-        description: "scale-invariant Laplace time cells (24 cells, tau* 1-64 steps, k 8), clock noise 0.05, memory noise 0.2 + SARSA(lambda)",
+        description: "scale-invariant Laplace time cells (24 cells, tau* 1-64 steps, k 8), clock noise 0.15, memory noise 0.2 + SARSA(lambda)",
     },
 ];
 
@@ -90,15 +90,12 @@ pub const TIME_CELL_MEMORY_NOISE: f64 = 0.2;
 /// variance, Gibbon 1977; Gibbon, Church & Meck 1984; neither Ludvig, Sutton & Kehoe 2008
 /// nor Shankar & Howard 2012 give their representations trial-to-trial variability, so the
 /// value is the behavioural CV the other models are given). `--set clock_noise=0` restores
-/// the deterministic representations.
+/// the deterministic representations. Laplace time cells had 0.05 until session 15, when
+/// their clock-speed factor scaled every cell's amplitude by `r^{−k}` as well as its time
+/// (a missing factor in the propagator, `TimeCells::tick`): at 0.15 that made FI first
+/// checks non-scalar (CV 0.24–0.72). With the factor fixed, the shared 0.15 gives FI first-check
+/// CV 0.14–0.17 at TD 5 and 20 (seeds 0–5; RESULTS.md "Literature-calibrated variability").
 pub const TIME_CELL_CLOCK_NOISE: f64 = 0.15;
-
-/// Default clock noise of the `timecells-laplace` agent, lower than the other time cells'
-/// [`TIME_CELL_CLOCK_NOISE`]: a scale-invariant representation blurs time by itself (each
-/// cell's width grows with its peak time, CV `1/√(k+1)`), and its TD readout turns that
-/// blur into response variability — measured FI first-check CV 0.12–0.28 at clock noise
-/// 0.05, 0.24–0.72 (not scalar) at 0.15 (RESULTS.md "Timing models").
-pub const LAPLACE_CLOCK_NOISE: f64 = 0.05;
 
 /// Default internal cost of one interact for the time-cell agents (reward units; 0.01 for
 /// the other models). Time cells have no native response gate, so whether to check the
@@ -115,8 +112,9 @@ pub const LAPLACE_CLOCK_NOISE: f64 = 0.05;
 pub const TIME_CELL_RESPONSE_COST: f64 = 0.03;
 
 /// Internal check cost of the `timecells-laplace` agent (see [`TIME_CELL_RESPONSE_COST`]):
-/// at 0.03 its first checks at TD 4 and 6 came at 0.5 and 0.67 × TD (CV 0.96, 0.63), at 0.05
-/// at 0.95–1.04 × TD over TD 4–24 (CV 0.16–0.22).
+/// with clock noise 0.15, at 0.03 its FI first-check runs came at 0.80–0.91 × TD at TD 20 and
+/// 38–48% of TD-5 trials had an isolated check in the first two steps; at 0.05 at 0.84–1.13 × TD
+/// (CV 0.14–0.17) at TD 5 and 20, seeds 0–5 (`python3 scripts/fi-seeds.py`, session 15).
 pub const LAPLACE_RESPONSE_COST: f64 = 0.05;
 
 /// Initial value of every unvisited state–action pair of the `timecells-csc` agent
@@ -161,10 +159,7 @@ pub fn make_timing_agent(name: &str, env: &ChronoEnv, seed: u64) -> Result<Timin
     }
     match &mut agent.timer {
         Timer::TimeCells(tc) if !matches!(tc.cells.repr, Representation::Presence) => {
-            tc.cells.speed_noise = match tc.cells.repr {
-                Representation::Laplace { .. } => LAPLACE_CLOCK_NOISE,
-                _ => TIME_CELL_CLOCK_NOISE,
-            };
+            tc.cells.speed_noise = TIME_CELL_CLOCK_NOISE;
             tc.memory_noise = TIME_CELL_MEMORY_NOISE;
             agent.config.response_cost = match tc.cells.repr {
                 Representation::Laplace { .. } => LAPLACE_RESPONSE_COST,

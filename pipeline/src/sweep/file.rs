@@ -113,25 +113,23 @@ fn bad(field: &str, value: impl ToString, allowed: &str) -> TrainError {
 }
 
 /// Whether a `key=value` setting applies to `model` (of `family`) on `task`: task settings
-/// (`env.*`) apply to every model; others to the family that knows the key (PPO settings to
-/// deep-RL models, timing settings to timing models, none to baselines).
+/// (`env.*`) apply to every model; others to a model whose settings have the key (PPO
+/// settings to deep-RL models, a timing model's family's settings to it, none to
+/// baselines). Values are checked with each job's resolved settings.
 pub fn applies(family: Family, task: &str, model: &str, kv: &str) -> bool {
     if kv.starts_with("env.") {
         return true;
     }
+    let key = kv.split_once('=').map_or(kv, |(k, _)| k).trim();
     match family {
-        Family::DeepRl => {
-            let Ok(arch) = model.parse() else {
-                return false;
-            };
-            let (k, v) = kv.split_once('=').unwrap_or((kv, ""));
-            chronocooked_training::ppo::config::TrainConfig::base(task, arch)
-                .set(k, v)
-                .is_ok()
+        Family::DeepRl => chronocooked_training::settings::find(
+            chronocooked_training::settings::ppo::PPO_SETTINGS,
+            key,
+        )
+        .is_some(),
+        Family::Timing => {
+            chronocooked_training::timing_run::TimingRunConfig::new(task, model, 0).has_setting(key)
         }
-        Family::Timing => chronocooked_training::timing_run::TimingRunConfig::new(task, model, 0)
-            .set(kv)
-            .is_ok(),
         Family::Baseline => false,
     }
 }

@@ -1,6 +1,7 @@
 //! Training configuration: PPO hyperparameters, run settings and `key=value` overrides.
 
 use crate::error::TrainError;
+use crate::settings::{self, ppo::PPO_SETTINGS};
 use chronocooked_models::Architecture;
 use serde::{Deserialize, Serialize};
 
@@ -182,6 +183,29 @@ pub enum Curriculum {
     },
 }
 
+impl Curriculum {
+    /// The curriculum `name` (`none`, `multi_timer`, `uncertainty`) with its defaults.
+    pub fn named(name: &str) -> Option<Curriculum> {
+        match name {
+            "none" => Some(Curriculum::None),
+            "multi_timer" => Some(Curriculum::MultiTimer {
+                thresholds: vec![0.95, 0.95, 0.9, 0.9, 0.9],
+                window: 100,
+                warmup: false,
+            }),
+            "uncertainty" => Some(Curriculum::Uncertainty {
+                start: 0.0,
+                end: 0.2,
+                ramp_fraction: 0.5,
+            }),
+            _ => None,
+        }
+    }
+}
+
+/// How task parameters are set (named in unknown-key errors).
+pub const ENV_KEY: &str = "env.<task parameter>";
+
 /// Most transitions of one rollout (`n_envs · n_steps`).
 pub const MAX_ROLLOUT: usize = 1 << 20;
 
@@ -261,176 +285,28 @@ impl TrainConfig {
         }
     }
 
-    /// Applies one `key=value` override (the keys of presets and `--set`).
+    /// Applies one `key=value` override (the keys of presets and `--set`, listed with their
+    /// accepted values in [`crate::settings::ppo::PPO_SETTINGS`]): the value is parsed by the
+    /// key's rule and written into the field through the serialised configuration.
+    /// `curriculum=NAME` starts the named curriculum with its defaults; `env.<param>=v`
+    /// replaces a task parameter (checked with the task in [`TrainConfig::validate`]).
     pub fn set(&mut self, key: &str, value: &str) -> Result<(), TrainError> {
-        let v = value.trim();
-        let p = &mut self.ppo;
-        match key.trim() {
-            "seed" => self.seed = parse(key, v, "integer >= 0")?,
-            "total_steps" | "steps" => self.total_steps = parse_pos(key, v)?,
-            "obs" => {
-                self.obs = match v {
-                    "codes" => ObsEncoding::Codes,
-                    "onehot" => ObsEncoding::Onehot,
-                    _ => return Err(TrainError::param(key, v, "codes|onehot")),
-                }
-            }
-            "checkpoint_every" => self.checkpoint_every = parse(key, v, "integer >= 0")?,
-            "keep_checkpoints" => self.keep_checkpoints = parse_pos(key, v)?,
-            "eval_every" => self.eval_every = parse(key, v, "integer >= 0")?,
-            "stats_window" => self.stats_window = parse_pos(key, v)?,
-            "core_init" => {
-                self.core_init = match v {
-                    "lab" => chronocooked_models::CoreInit::Lab,
-                    "torch" => chronocooked_models::CoreInit::Torch,
-                    _ => return Err(TrainError::param(key, v, "lab|torch")),
-                }
-            }
-            "init_from" => {
-                self.init_from = match v {
-                    "none" | "" => None,
-                    _ => Some(v.to_string()),
-                }
-            }
-            "stop_at_success" => {
-                self.stop_at_success = match v {
-                    "none" | "" => None,
-                    _ => Some(parse_unit(key, v)?),
-                }
-            }
-            "n_envs" => p.n_envs = parse_range(key, v, 1, 4096)?,
-            "n_steps" => p.n_steps = parse_range(key, v, 1, 1_000_000)?,
-            "batch_size" => p.batch_size = parse_range(key, v, 1, 10_000_000)?,
-            "n_epochs" => p.n_epochs = parse_range(key, v, 1, 1000)?,
-            "bptt_len" => p.bptt_len = parse(key, v, "integer >= 0 (0 = whole sequences)")?,
-            "engine" => {
-                p.engine = match v {
-                    "native" => Engine::Native,
-                    "burn" => Engine::Burn,
-                    _ => return Err(TrainError::param(key, v, "native|burn")),
-                }
-            }
-            "recurrent_batches" => {
-                p.recurrent_batches = match v {
-                    "chunks" => RecurrentBatches::Chunks,
-                    "sequences" => RecurrentBatches::Sequences,
-                    _ => return Err(TrainError::param(key, v, "chunks|sequences")),
-                }
-            }
-            "detach_critic" => p.detach_critic = parse(key, v, "true|false")?,
-            "reservoir_grad_in_norm" => p.reservoir_grad_in_norm = parse(key, v, "true|false")?,
-            "gamma" => p.gamma = parse_unit(key, v)? as f32,
-            "gae_lambda" => p.gae_lambda = parse_unit(key, v)? as f32,
-            "clip_range" => p.clip_range = parse_positive_f(key, v)? as f32,
-            "clip_range_vf" => {
-                p.clip_range_vf = match v {
-                    "none" | "" => None,
-                    _ => Some(parse_positive_f(key, v)? as f32),
-                }
-            }
-            "ent_coef" => p.ent_coef = parse_nonneg_f(key, v)? as f32,
-            "vf_coef" => p.vf_coef = parse_nonneg_f(key, v)? as f32,
-            "max_grad_norm" => p.max_grad_norm = parse_positive_f(key, v)? as f32,
-            "learning_rate" | "lr" => p.learning_rate = parse_positive_f(key, v)?,
-            "lr_schedule" => {
-                p.lr_schedule = match v {
-                    "constant" => LrSchedule::Constant,
-                    "linear" => LrSchedule::Linear,
-                    _ => return Err(TrainError::param(key, v, "constant|linear")),
-                }
-            }
-            "adam_eps" => p.adam_eps = parse_positive_f(key, v)?,
-            "target_kl" => {
-                p.target_kl = match v {
-                    "none" | "" => None,
-                    _ => Some(parse_positive_f(key, v)? as f32),
-                }
-            }
-            "normalize_advantage" => {
-                p.normalize_advantage = parse(key, v, "true|false")?;
-            }
-            "curriculum" => {
-                self.curriculum = match v {
-                    "none" => Curriculum::None,
-                    "multi_timer" => Curriculum::MultiTimer {
-                        thresholds: vec![0.95, 0.95, 0.9, 0.9, 0.9],
-                        window: 100,
-                        warmup: false,
-                    },
-                    "uncertainty" => Curriculum::Uncertainty {
-                        start: 0.0,
-                        end: 0.2,
-                        ramp_fraction: 0.5,
-                    },
-                    _ => return Err(TrainError::param(key, v, "none|multi_timer|uncertainty")),
-                }
-            }
-            "curriculum_thresholds" => match &mut self.curriculum {
-                Curriculum::MultiTimer { thresholds, .. } => {
-                    *thresholds = v
-                        .split(',')
-                        .map(|x| parse_unit(key, x).map(|f| f as f32))
-                        .collect::<Result<_, _>>()?;
-                }
-                _ => {
-                    return Err(TrainError::param(
-                        key,
-                        v,
-                        "only with curriculum=multi_timer",
-                    ));
-                }
-            },
-            "curriculum_warmup" => match &mut self.curriculum {
-                Curriculum::MultiTimer { warmup, .. } => *warmup = parse(key, v, "true|false")?,
-                _ => {
-                    return Err(TrainError::param(
-                        key,
-                        v,
-                        "only with curriculum=multi_timer",
-                    ));
-                }
-            },
-            "curriculum_window" => match &mut self.curriculum {
-                Curriculum::MultiTimer { window, .. } => *window = parse_pos(key, v)?,
-                _ => {
-                    return Err(TrainError::param(
-                        key,
-                        v,
-                        "only with curriculum=multi_timer",
-                    ));
-                }
-            },
-            "never_ready_start" | "never_ready_end" | "never_ready_ramp" => {
-                match &mut self.curriculum {
-                    Curriculum::Uncertainty {
-                        start,
-                        end,
-                        ramp_fraction,
-                    } => {
-                        let x = parse_unit(key, v)?;
-                        match key {
-                            "never_ready_start" => *start = x,
-                            "never_ready_end" => *end = x,
-                            _ => *ramp_fraction = x,
-                        }
-                    }
-                    _ => {
-                        return Err(TrainError::param(
-                            key,
-                            v,
-                            "only with curriculum=uncertainty",
-                        ));
-                    }
-                }
-            }
-            k if k.starts_with("env.") => {
-                let name = &k[4..];
-                self.env.retain(|e| e.split('=').next() != Some(name));
-                self.env.push(format!("{name}={v}"));
-            }
-            other => return Err(TrainError::UnknownKey(other.to_string())),
+        let (key, value) = (key.trim(), value.trim());
+        if let Some(name) = key.strip_prefix("env.") {
+            self.env.retain(|e| e.split('=').next() != Some(name));
+            self.env.push(format!("{name}={value}"));
+            return Ok(());
         }
-        Ok(())
+        let specs = PPO_SETTINGS;
+        let Some(spec) = settings::find(specs, key) else {
+            return Err(settings::unknown(specs, self, key, ENV_KEY));
+        };
+        if spec.key == "curriculum" {
+            self.curriculum = Curriculum::named(value)
+                .ok_or_else(|| TrainError::param(key, value, &spec.rule.allowed()))?;
+            return Ok(());
+        }
+        settings::set_field(self, spec, key, value)
     }
 
     /// Applies `key=value` strings (from `--set`).
@@ -445,121 +321,32 @@ impl TrainConfig {
         Ok(())
     }
 
+    /// Every setting with its current value, type, accepted values and meaning (what
+    /// `zoo show` lists; the curriculum's parameters only for the curriculum it has).
+    pub fn listing(&self) -> Vec<settings::Setting> {
+        settings::listing(PPO_SETTINGS, self)
+    }
+
     /// Every setting as the `key=value` pair [`TrainConfig::set`] takes (the resolved
     /// configuration in the CLI's own terms; curriculum parameters after the curriculum).
     pub fn settings(&self) -> Vec<(&'static str, String)> {
-        let p = &self.ppo;
-        let opt = |o: Option<f64>| o.map_or_else(|| "none".to_string(), |x| x.to_string());
-        let opt32 = |o: Option<f32>| o.map_or_else(|| "none".to_string(), |x| x.to_string());
-        let mut v = vec![
-            ("seed", self.seed.to_string()),
-            ("total_steps", self.total_steps.to_string()),
-            (
-                "obs",
-                match self.obs {
-                    ObsEncoding::Codes => "codes",
-                    ObsEncoding::Onehot => "onehot",
-                }
-                .into(),
-            ),
-            ("checkpoint_every", self.checkpoint_every.to_string()),
-            ("keep_checkpoints", self.keep_checkpoints.to_string()),
-            ("eval_every", self.eval_every.to_string()),
-            ("stats_window", self.stats_window.to_string()),
-            (
-                "core_init",
-                match self.core_init {
-                    chronocooked_models::CoreInit::Lab => "lab",
-                    chronocooked_models::CoreInit::Torch => "torch",
-                }
-                .into(),
-            ),
-            (
-                "init_from",
-                self.init_from.clone().unwrap_or_else(|| "none".into()),
-            ),
-            ("stop_at_success", opt(self.stop_at_success)),
-            ("n_envs", p.n_envs.to_string()),
-            ("n_steps", p.n_steps.to_string()),
-            ("batch_size", p.batch_size.to_string()),
-            ("n_epochs", p.n_epochs.to_string()),
-            ("bptt_len", p.bptt_len.to_string()),
-            (
-                "engine",
-                match p.engine {
-                    Engine::Native => "native",
-                    Engine::Burn => "burn",
-                }
-                .into(),
-            ),
-            ("recurrent_batches", p.recurrent_batches.name().into()),
-            ("detach_critic", p.detach_critic.to_string()),
-            (
-                "reservoir_grad_in_norm",
-                p.reservoir_grad_in_norm.to_string(),
-            ),
-            ("gamma", p.gamma.to_string()),
-            ("gae_lambda", p.gae_lambda.to_string()),
-            ("clip_range", p.clip_range.to_string()),
-            ("clip_range_vf", opt32(p.clip_range_vf)),
-            ("ent_coef", p.ent_coef.to_string()),
-            ("vf_coef", p.vf_coef.to_string()),
-            ("max_grad_norm", p.max_grad_norm.to_string()),
-            ("learning_rate", p.learning_rate.to_string()),
-            (
-                "lr_schedule",
-                match p.lr_schedule {
-                    LrSchedule::Constant => "constant",
-                    LrSchedule::Linear => "linear",
-                }
-                .into(),
-            ),
-            ("adam_eps", p.adam_eps.to_string()),
-            ("target_kl", opt32(p.target_kl)),
-            ("normalize_advantage", p.normalize_advantage.to_string()),
-        ];
-        match &self.curriculum {
-            Curriculum::None => v.push(("curriculum", "none".into())),
-            Curriculum::MultiTimer {
-                thresholds,
-                window,
-                warmup,
-            } => v.extend([
-                ("curriculum", "multi_timer".into()),
-                (
-                    "curriculum_thresholds",
-                    thresholds
-                        .iter()
-                        .map(|t| t.to_string())
-                        .collect::<Vec<_>>()
-                        .join(","),
-                ),
-                ("curriculum_window", window.to_string()),
-                ("curriculum_warmup", warmup.to_string()),
-            ]),
-            Curriculum::Uncertainty {
-                start,
-                end,
-                ramp_fraction,
-            } => v.extend([
-                ("curriculum", "uncertainty".into()),
-                ("never_ready_start", start.to_string()),
-                ("never_ready_end", end.to_string()),
-                ("never_ready_ramp", ramp_fraction.to_string()),
-            ]),
-        }
-        v
+        let v = self.listing();
+        PPO_SETTINGS
+            .iter()
+            .filter_map(|s| {
+                v.iter()
+                    .find(|x| x.key == s.key)
+                    .map(|x| (s.key, x.value.clone()))
+            })
+            .collect()
     }
 
     /// The one check of a configuration, however it was made (presets, `--set`, a
-    /// hand-edited or resumed `config.json`): every setting's value is replayed through
-    /// [`TrainConfig::set`] (so each field has one range rule, the CLI's), then the
-    /// cross-field constraints and the task and overrides (a valid env).
+    /// hand-edited or resumed `config.json`): every setting's value against its rule in
+    /// [`PPO_SETTINGS`] (the rule `--set` parses with), then the cross-field constraints
+    /// and the task and overrides (a valid env).
     pub fn validate(&self) -> Result<(), TrainError> {
-        let mut replay = self.clone();
-        for (k, v) in self.settings() {
-            replay.set(k, &v)?;
-        }
+        settings::check(PPO_SETTINGS, self)?;
         chronocooked_env::make_config(&self.task, &self.env)?;
         // The rollout buffer holds n_envs · n_steps transitions: bounded so that a
         // hand-edited config.json cannot ask for more memory than any machine has.
@@ -579,47 +366,4 @@ impl TrainConfig {
         }
         Ok(())
     }
-}
-
-fn parse<T: std::str::FromStr>(key: &str, v: &str, allowed: &str) -> Result<T, TrainError> {
-    v.parse().map_err(|_| TrainError::param(key, v, allowed))
-}
-
-fn parse_pos<T: std::str::FromStr + PartialOrd + Default>(
-    key: &str,
-    v: &str,
-) -> Result<T, TrainError> {
-    parse::<T>(key, v, "integer >= 1")
-        .ok()
-        .filter(|x| *x > T::default())
-        .ok_or_else(|| TrainError::param(key, v, "integer >= 1"))
-}
-
-fn parse_range(key: &str, v: &str, lo: usize, hi: usize) -> Result<usize, TrainError> {
-    let allowed = format!("integer {lo}..={hi}");
-    parse::<usize>(key, v, &allowed)
-        .ok()
-        .filter(|x| (lo..=hi).contains(x))
-        .ok_or_else(|| TrainError::param(key, v, &allowed))
-}
-
-fn parse_unit(key: &str, v: &str) -> Result<f64, TrainError> {
-    parse::<f64>(key, v.trim(), "number in [0, 1]")
-        .ok()
-        .filter(|x| (0.0..=1.0).contains(x))
-        .ok_or_else(|| TrainError::param(key, v, "number in [0, 1]"))
-}
-
-fn parse_positive_f(key: &str, v: &str) -> Result<f64, TrainError> {
-    parse::<f64>(key, v, "number > 0")
-        .ok()
-        .filter(|x| *x > 0.0 && x.is_finite())
-        .ok_or_else(|| TrainError::param(key, v, "number > 0"))
-}
-
-fn parse_nonneg_f(key: &str, v: &str) -> Result<f64, TrainError> {
-    parse::<f64>(key, v, "number >= 0")
-        .ok()
-        .filter(|x| *x >= 0.0 && x.is_finite())
-        .ok_or_else(|| TrainError::param(key, v, "number >= 0"))
 }

@@ -1,0 +1,289 @@
+//! The settings of a deep-RL (PPO) run: every `--set` key of [`crate::TrainConfig`] and
+//! of its [`crate::PpoConfig`] and [`crate::Curriculum`], with its accepted values.
+
+use super::{COUNT, NON_NEGATIVE, POSITIVE, POSITIVE_COUNT, Rule, Spec, UNIT};
+
+const fn spec(
+    key: &'static str,
+    path: &'static [&'static str],
+    rule: Rule,
+    doc: &'static str,
+) -> Spec {
+    Spec {
+        key,
+        aliases: &[],
+        path,
+        rule,
+        doc,
+        only_with: None,
+    }
+}
+
+const fn multi_timer(
+    key: &'static str,
+    path: &'static [&'static str],
+    rule: Rule,
+    doc: &'static str,
+) -> Spec {
+    Spec {
+        only_with: Some("curriculum=multi_timer"),
+        ..spec(key, path, rule, doc)
+    }
+}
+
+const fn uncertainty(key: &'static str, path: &'static [&'static str], doc: &'static str) -> Spec {
+    Spec {
+        only_with: Some("curriculum=uncertainty"),
+        ..spec(key, path, UNIT, doc)
+    }
+}
+
+/// Names of the curricula (`curriculum=NAME` starts the named one with its defaults).
+pub const CURRICULA: &[&str] = &["none", "multi_timer", "uncertainty"];
+
+/// Every setting of a PPO run, in display order. Not settings: `task` and `model`
+/// (`--task`, `--model`), `preset` (`--preset`) and the task parameters, set as
+/// `env.<task parameter>=v`.
+pub const PPO_SETTINGS: &[Spec] = &[
+    spec(
+        "seed",
+        &["seed"],
+        COUNT,
+        "seed of everything random in the run",
+    ),
+    Spec {
+        aliases: &["steps"],
+        ..spec(
+            "total_steps",
+            &["total_steps"],
+            POSITIVE_COUNT,
+            "env-step budget (all envs together)",
+        )
+    },
+    spec(
+        "obs",
+        &["obs"],
+        Rule::Choice(&["codes", "onehot"]),
+        "observation encoding: the 6 integer code channels (the paper's input) or one-hot channels",
+    ),
+    spec(
+        "checkpoint_every",
+        &["checkpoint_every"],
+        COUNT,
+        "env steps between checkpoints, rounded up to whole updates (0 = only at the end)",
+    ),
+    spec(
+        "keep_checkpoints",
+        &["keep_checkpoints"],
+        POSITIVE_COUNT,
+        "newest checkpoints kept in checkpoints/",
+    ),
+    spec(
+        "eval_every",
+        &["eval_every"],
+        COUNT,
+        "env steps between deterministic evaluations from every start cell (0 = only at the end)",
+    ),
+    spec(
+        "stats_window",
+        &["stats_window"],
+        POSITIVE_COUNT,
+        "episodes in the training success-rate window",
+    ),
+    spec(
+        "core_init",
+        &["core_init"],
+        Rule::Choice(&["lab", "torch"]),
+        "initial weights of the recurrent core: the lab's or PyTorch's defaults (the paper's code)",
+    ),
+    spec(
+        "init_from",
+        &["init_from"],
+        Rule::Optional(&Rule::Text),
+        "run folder whose final policy initialises the weights (fine-tuning; same architecture)",
+    ),
+    spec(
+        "stop_at_success",
+        &["stop_at_success"],
+        Rule::Optional(&UNIT),
+        "stop once the deterministic evaluation reaches this success rate",
+    ),
+    spec(
+        "n_envs",
+        &["ppo", "n_envs"],
+        Rule::Int { lo: 1, hi: 4096 },
+        "parallel environments N",
+    ),
+    spec(
+        "n_steps",
+        &["ppo", "n_steps"],
+        Rule::Int {
+            lo: 1,
+            hi: 1_000_000,
+        },
+        "steps per env per rollout T (buffer = N*T transitions, at most 2^20)",
+    ),
+    spec(
+        "batch_size",
+        &["ppo", "batch_size"],
+        Rule::Int {
+            lo: 1,
+            hi: 10_000_000,
+        },
+        "transitions per minibatch (recurrent: whole chunks of bptt_len)",
+    ),
+    spec(
+        "n_epochs",
+        &["ppo", "n_epochs"],
+        Rule::Int { lo: 1, hi: 1000 },
+        "passes over the buffer per update",
+    ),
+    spec(
+        "bptt_len",
+        &["ppo", "bptt_len"],
+        COUNT,
+        "recurrent: BPTT chunk length in steps (0 = whole rollout sequences)",
+    ),
+    spec(
+        "engine",
+        &["ppo", "engine"],
+        Rule::Choice(&["native", "burn"]),
+        "implementation of the network in training: hand-written fused (native) or burn autodiff",
+    ),
+    spec(
+        "recurrent_batches",
+        &["ppo", "recurrent_batches"],
+        Rule::Choice(&["chunks", "sequences"]),
+        "recurrent minibatches: shuffled bptt_len chunks, or sb3-contrib's sequence windows",
+    ),
+    spec(
+        "detach_critic",
+        &["ppo", "detach_critic"],
+        Rule::Bool,
+        "recurrent: the value loss trains only the value head (sb3-contrib shared_lstm)",
+    ),
+    spec(
+        "reservoir_grad_in_norm",
+        &["ppo", "reservoir_grad_in_norm"],
+        Rule::Bool,
+        "reservoir cores: their never-applied gradients enter the grad-norm clip (the paper's code)",
+    ),
+    spec("gamma", &["ppo", "gamma"], UNIT, "discount per step"),
+    spec("gae_lambda", &["ppo", "gae_lambda"], UNIT, "GAE lambda"),
+    spec(
+        "clip_range",
+        &["ppo", "clip_range"],
+        POSITIVE,
+        "policy clip range epsilon",
+    ),
+    spec(
+        "clip_range_vf",
+        &["ppo", "clip_range_vf"],
+        Rule::Optional(&POSITIVE),
+        "value clip range (none: unclipped value loss)",
+    ),
+    spec(
+        "ent_coef",
+        &["ppo", "ent_coef"],
+        NON_NEGATIVE,
+        "entropy bonus coefficient",
+    ),
+    spec(
+        "vf_coef",
+        &["ppo", "vf_coef"],
+        NON_NEGATIVE,
+        "value loss coefficient",
+    ),
+    spec(
+        "max_grad_norm",
+        &["ppo", "max_grad_norm"],
+        POSITIVE,
+        "global gradient-norm clip",
+    ),
+    Spec {
+        aliases: &["lr"],
+        ..spec(
+            "learning_rate",
+            &["ppo", "learning_rate"],
+            POSITIVE,
+            "Adam learning rate",
+        )
+    },
+    spec(
+        "lr_schedule",
+        &["ppo", "lr_schedule"],
+        Rule::Choice(&["constant", "linear"]),
+        "learning-rate schedule (linear: to 0 at the end of the budget)",
+    ),
+    spec("adam_eps", &["ppo", "adam_eps"], POSITIVE, "Adam epsilon"),
+    spec(
+        "target_kl",
+        &["ppo", "target_kl"],
+        Rule::Optional(&POSITIVE),
+        "stop an update's epochs once approx-KL exceeds 1.5 * target_kl",
+    ),
+    spec(
+        "normalize_advantage",
+        &["ppo", "normalize_advantage"],
+        Rule::Bool,
+        "normalise advantages per minibatch",
+    ),
+    spec(
+        "curriculum",
+        &["curriculum", "kind"],
+        Rule::Choice(CURRICULA),
+        "curriculum (setting it starts the named one with its defaults)",
+    ),
+    multi_timer(
+        "curriculum_thresholds",
+        &["curriculum", "thresholds"],
+        Rule::List(&UNIT),
+        "mean reward that ends each level",
+    ),
+    multi_timer(
+        "curriculum_window",
+        &["curriculum", "window"],
+        POSITIVE_COUNT,
+        "episodes averaged for the thresholds",
+    ),
+    multi_timer(
+        "curriculum_warmup",
+        &["curriculum", "warmup"],
+        Rule::Bool,
+        "level 0: one lower-bounded timer with reduced reward before the first TD",
+    ),
+    uncertainty(
+        "never_ready_start",
+        &["curriculum", "start"],
+        "initial never-ready probability",
+    ),
+    uncertainty(
+        "never_ready_end",
+        &["curriculum", "end"],
+        "final never-ready probability",
+    ),
+    uncertainty(
+        "never_ready_ramp",
+        &["curriculum", "ramp_fraction"],
+        "fraction of the budget over which it ramps",
+    ),
+];
+
+/// The README's table of PPO settings: every key with its default before any preset (a
+/// curriculum's parameters with that curriculum's defaults).
+pub fn markdown() -> String {
+    let mut rows: Vec<super::Setting> = Vec::new();
+    for name in CURRICULA {
+        let model = "cnn-mlp".parse().expect("cnn-mlp is a model");
+        let mut cfg = crate::TrainConfig::base("FixedInterval-v0", model);
+        cfg.curriculum = crate::Curriculum::named(name).expect("a curriculum name");
+        for s in cfg.listing() {
+            if !rows.iter().any(|r| r.key == s.key) {
+                rows.push(s);
+            }
+        }
+    }
+    let order = |key: &str| PPO_SETTINGS.iter().position(|s| s.key == key);
+    rows.sort_by_key(|r| order(&r.key));
+    super::markdown_table(&rows)
+}

@@ -1,0 +1,351 @@
+//! Settings: what `zoo show` lists is exactly what `--set` accepts, for every registered
+//! model; errors name the key and what it accepts; the README's tables are the tables the
+//! code declares; run folders written before the typed timing settings still load.
+
+use chronocooked_training::settings::ppo::PPO_SETTINGS;
+use chronocooked_training::settings::timing::{TIMING_SETTINGS, TimerSettings};
+use chronocooked_training::settings::{Rule, Spec};
+use chronocooked_training::zoo::{Family, zoo};
+use chronocooked_training::{TimingRunConfig, TrainConfig, TrainError, resolve};
+use std::collections::BTreeSet;
+
+const TASK: &str = "FixedInterval-v0";
+
+fn ppo_config(model: &str) -> TrainConfig {
+    resolve::<&str>(TASK, model.parse().unwrap(), "reference", 0, &[]).unwrap()
+}
+
+/// A value `rule` accepts, other than `avoid` where it can (so that setting it changes
+/// something), built from the rule alone.
+fn sample(rule: &Rule, avoid: &str) -> String {
+    let candidates: Vec<String> = match rule {
+        Rule::Int { lo, hi } => vec![lo.to_string(), (lo + 1).min(*hi).to_string()],
+        Rule::Num { .. } => ["0.5", "0", "1", "2", "0.01"].map(String::from).to_vec(),
+        Rule::Bool => vec!["true".into(), "false".into()],
+        Rule::Choice(names) => names.iter().map(|s| s.to_string()).collect(),
+        Rule::Text => vec!["some/run".into()],
+        Rule::Optional(inner) => vec![sample(inner, avoid), "none".into()],
+        Rule::List(inner) => vec![format!("{},{}", sample(inner, ""), sample(inner, ""))],
+    };
+    let ok: Vec<&String> = candidates
+        .iter()
+        .filter(|c| rule.parse(c).is_some())
+        .collect();
+    ok.iter()
+        .find(|c| c.as_str() != avoid)
+        .or(ok.first())
+        .map(|c| c.to_string())
+        .unwrap_or_else(|| panic!("no sample value for {rule:?}"))
+}
+
+fn listed_keys(listing: &[chronocooked_training::settings::Setting]) -> BTreeSet<String> {
+    listing.iter().map(|s| s.key.clone()).collect()
+}
+
+#[test]
+fn every_setting_zoo_show_lists_is_accepted_by_set_and_changes_the_config() {
+    let entries = zoo();
+    assert!(entries.iter().any(|e| e.family == Family::Timing));
+    for entry in &entries {
+        assert!(
+            entry.family == Family::Baseline || !entry.parameters.is_empty(),
+            "{} lists no settings",
+            entry.name
+        );
+        for s in &entry.parameters {
+            let (specs, accept_listed, accept_other): (&[Spec], _, _) = match entry.family {
+                Family::DeepRl => {
+                    let base = ppo_config(&entry.name);
+                    let spec = *chronocooked_training::settings::find(PPO_SETTINGS, &s.key)
+                        .unwrap_or_else(|| panic!("{}: {} has no spec", entry.name, s.key));
+                    let mut a = base.clone();
+                    let listed = a.set(&s.key, &s.value).map(|_| a);
+                    let other = sample(&spec.rule, &s.value);
+                    let mut b = base.clone();
+                    let changed = b.set(&s.key, &other).map(|_| b != base || other == s.value);
+                    (PPO_SETTINGS, listed.map(|a| a == base), changed)
+                }
+                Family::Timing => {
+                    let base = TimingRunConfig::new(TASK, &entry.name, 0);
+                    let spec = *chronocooked_training::settings::find(TIMING_SETTINGS, &s.key)
+                        .unwrap_or_else(|| panic!("{}: {} has no spec", entry.name, s.key));
+                    let mut a = base.clone();
+                    let listed = a.set(&format!("{}={}", s.key, s.value)).map(|_| {
+                        // The listed default, set explicitly, builds the same agent.
+                        serde_json::to_value(a.build_agent().unwrap()).unwrap()
+                            == serde_json::to_value(base.build_agent().unwrap()).unwrap()
+                    });
+                    let other = sample(&spec.rule, &s.value);
+                    let mut b = base.clone();
+                    let changed = b.set(&format!("{}={other}", s.key)).map(|_| {
+                        b.listing().iter().any(|x| {
+                            x.key == s.key && spec.rule.parse(&x.value) == spec.rule.parse(&other)
+                        })
+                    });
+                    (TIMING_SETTINGS, listed, changed)
+                }
+                Family::Baseline => panic!("baseline {} lists {}", entry.name, s.key),
+            };
+            assert!(
+                specs.iter().any(|x| x.key == s.key),
+                "{}: {}",
+                entry.name,
+                s.key
+            );
+            assert!(
+                matches!(accept_listed, Ok(true)),
+                "{}: --set {}={} (the listed value): {accept_listed:?}",
+                entry.name,
+                s.key,
+                s.value
+            );
+            assert!(
+                matches!(accept_other, Ok(true)),
+                "{}: --set {} to another value: {accept_other:?}",
+                entry.name,
+                s.key
+            );
+        }
+    }
+}
+
+#[test]
+fn every_key_set_accepts_is_listed() {
+    for entry in zoo() {
+        match entry.family {
+            Family::DeepRl => {
+                // Each curriculum lists its own parameters: try the keys on all three.
+                for curriculum in chronocooked_training::settings::ppo::CURRICULA {
+                    let mut cfg = ppo_config(&entry.name);
+                    cfg.set("curriculum", curriculum).unwrap();
+                    let listed = listed_keys(&cfg.listing());
+                    for spec in PPO_SETTINGS {
+                        let mut c = cfg.clone();
+                        for key in std::iter::once(&spec.key).chain(spec.aliases) {
+                            let accepted = c.set(key, &sample(&spec.rule, "")).is_ok();
+                            assert_eq!(
+                                accepted,
+                                listed.contains(spec.key),
+                                "{} with curriculum={curriculum}: {key}",
+                                entry.name
+                            );
+                        }
+                    }
+                }
+            }
+            Family::Timing => {
+                let cfg = TimingRunConfig::new(TASK, &entry.name, 0);
+                let listed = listed_keys(&cfg.listing());
+                assert_eq!(listed, listed_keys(&entry.parameters), "{}", entry.name);
+                for spec in TIMING_SETTINGS {
+                    let mut c = cfg.clone();
+                    let accepted = c
+                        .set(&format!("{}={}", spec.key, sample(&spec.rule, "")))
+                        .is_ok();
+                    assert_eq!(
+                        accepted,
+                        listed.contains(spec.key),
+                        "{}: {}",
+                        entry.name,
+                        spec.key
+                    );
+                }
+            }
+            Family::Baseline => assert!(entry.parameters.is_empty()),
+        }
+    }
+}
+
+/// Paths of the leaves of a serialised configuration (objects walked, anything else a leaf).
+fn leaves(v: &serde_json::Value, prefix: &mut Vec<String>, out: &mut BTreeSet<Vec<String>>) {
+    match v {
+        serde_json::Value::Object(m) => {
+            for (k, x) in m {
+                prefix.push(k.clone());
+                leaves(x, prefix, out);
+                prefix.pop();
+            }
+        }
+        _ => {
+            out.insert(prefix.clone());
+        }
+    }
+}
+
+fn spec_paths(specs: &[Spec]) -> BTreeSet<Vec<String>> {
+    specs
+        .iter()
+        .map(|s| s.path.iter().map(|p| p.to_string()).collect())
+        .collect()
+}
+
+/// Removes the fields below each of `names` (each must have some).
+fn remove_fields(fields: &mut BTreeSet<Vec<String>>, names: &[&str]) {
+    for name in names {
+        let before = fields.len();
+        fields.retain(|f| f[0] != *name);
+        assert!(fields.len() < before, "no field {name}");
+    }
+}
+
+#[test]
+fn every_field_of_the_configurations_is_a_setting_or_a_named_exception() {
+    // PPO: every field of every curriculum; not settings: the task, model and preset
+    // (`--task`, `--model`, `--preset`) and the task parameters (`env.<param>`).
+    let mut fields = BTreeSet::new();
+    for curriculum in chronocooked_training::settings::ppo::CURRICULA {
+        let mut cfg = ppo_config("lstm125");
+        cfg.set("curriculum", curriculum).unwrap();
+        leaves(
+            &serde_json::to_value(&cfg).unwrap(),
+            &mut vec![],
+            &mut fields,
+        );
+    }
+    remove_fields(&mut fields, &["task", "model", "preset", "env"]);
+    assert_eq!(fields, spec_paths(PPO_SETTINGS));
+    // Timing: every field of every family; not settings: kind, task, model, seed, env and
+    // the timer's family tag.
+    let mut fields = BTreeSet::new();
+    for model in ["ddm", "sbf", "timecells-ms"] {
+        let cfg = TimingRunConfig::new(TASK, model, 0);
+        leaves(
+            &serde_json::to_value(&cfg).unwrap(),
+            &mut vec![],
+            &mut fields,
+        );
+    }
+    remove_fields(&mut fields, &["kind", "task", "model", "seed", "env"]);
+    assert!(fields.remove(["agent", "timer", "family"].map(String::from).as_slice()));
+    assert_eq!(fields, spec_paths(TIMING_SETTINGS));
+}
+
+#[test]
+fn an_unknown_key_or_a_bad_value_names_the_key_and_what_it_accepts() {
+    let mut cfg = ppo_config("cnn-mlp");
+    let err = cfg.set("gama", "0.9").unwrap_err();
+    assert!(matches!(err, TrainError::UnknownKey { .. }), "{err:?}");
+    let msg = err.to_string();
+    assert!(
+        msg.contains("`gama`") && msg.contains("gamma") && msg.contains("n_envs"),
+        "{msg}"
+    );
+    for (key, value, allowed) in [
+        ("gamma", "1.5", "number in [0, 1]"),
+        ("gamma", "high", "number in [0, 1]"),
+        ("obs", "rgb", "codes|onehot"),
+        ("n_envs", "0", "integer 1..=4096"),
+        ("target_kl", "-1", "none, or number > 0"),
+        ("normalize_advantage", "yes", "true or false"),
+        ("curriculum", "easy", "none|multi_timer|uncertainty"),
+        ("curriculum_window", "5", "only with curriculum=multi_timer"),
+    ] {
+        let msg = cfg.set(key, value).unwrap_err().to_string();
+        assert!(
+            msg.contains(&format!("`{key}`"))
+                && msg.contains(&format!("`{value}`"))
+                && msg.contains(allowed),
+            "{key}={value}: {msg}"
+        );
+    }
+    // A config.json edited by hand gets the same rule, naming the same key.
+    let mut edited = ppo_config("cnn-mlp");
+    edited.ppo.gae_lambda = 2.0;
+    let msg = edited.validate().unwrap_err().to_string();
+    assert!(
+        msg.contains("`gae_lambda`") && msg.contains("[0, 1]"),
+        "{msg}"
+    );
+
+    let mut sbf = TimingRunConfig::new(TASK, "sbf", 0);
+    let err = sbf.set("noise=0.1").unwrap_err().to_string();
+    assert!(
+        err.contains("`noise`") && err.contains("only with ddm"),
+        "{err}"
+    );
+    let err = sbf.set("threshold=0.5").unwrap_err().to_string();
+    assert!(
+        err.contains("`threshold`") && err.contains("clock_noise") && err.contains("episodes"),
+        "{err}"
+    );
+    let err = sbf.set("decision_rule=median").unwrap_err().to_string();
+    assert!(
+        err.contains("`decision_rule`") && err.contains("ratio|difference"),
+        "{err}"
+    );
+    let err = sbf.set("probe=1").unwrap_err().to_string();
+    assert!(err.contains("`probe`") && err.contains("[0, 1)"), "{err}");
+}
+
+#[test]
+fn timing_settings_are_typed_per_family_and_old_run_folders_still_load() {
+    let mut ddm = TimingRunConfig::new(TASK, "ddm", 3);
+    ddm.set("noise=0.06").unwrap();
+    ddm.set("decision_rule=difference").unwrap();
+    ddm.set("q_init=0.5").unwrap();
+    assert!(matches!(
+        ddm.agent.timer,
+        TimerSettings::Ddm {
+            noise: Some(n),
+            memory_noise: None
+        } if n == 0.06
+    ));
+    let agent = ddm.build_agent().unwrap();
+    assert_eq!(agent.learner.q_init, 0.5);
+    // New config.json: the typed settings round-trip.
+    let text = serde_json::to_string(&ddm).unwrap();
+    let back: TimingRunConfig = serde_json::from_str(&text).unwrap();
+    assert_eq!(back, ddm);
+    // A config.json written before the typed settings (a list of `key=value` overrides).
+    let mut old: serde_json::Value = serde_json::from_str(&text).unwrap();
+    old["agent"] = serde_json::json!(["noise=0.06", "decision_rule=difference", "q_init=0.5"]);
+    let loaded: TimingRunConfig = serde_json::from_value(old.clone()).unwrap();
+    assert_eq!(loaded, ddm);
+    old["agent"] = serde_json::json!(["clock_noise=0"]);
+    assert!(
+        serde_json::from_value::<TimingRunConfig>(old).is_err(),
+        "ddm has no clock noise"
+    );
+}
+
+/// The table between `<!-- settings:NAME -->` and `<!-- /settings:NAME -->` in README.md.
+fn readme_table(readme: &str, name: &str) -> String {
+    let open = format!("<!-- settings:{name} -->\n");
+    let start = readme
+        .find(&open)
+        .unwrap_or_else(|| panic!("README lacks {open}"))
+        + open.len();
+    let end = readme[start..]
+        .find(&format!("<!-- /settings:{name} -->"))
+        .unwrap()
+        + start;
+    readme[start..end].to_string()
+}
+
+#[test]
+fn the_readme_settings_tables_are_generated_from_the_settings() {
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../README.md")).unwrap();
+    let ppo = chronocooked_training::settings::ppo::markdown();
+    let timing = chronocooked_training::settings::timing::markdown();
+    for key in ["gamma", "curriculum_window", "never_ready_ramp", "engine"] {
+        assert!(ppo.contains(&format!("| `{key}` |")), "{key}");
+    }
+    for key in [
+        "episodes",
+        "alpha",
+        "noise",
+        "memory_noise",
+        "clock_noise",
+        "q_init",
+    ] {
+        assert!(timing.contains(&format!("| `{key}` |")), "{key}");
+    }
+    for (name, table) in [("ppo", ppo), ("timing", timing)] {
+        assert_eq!(
+            readme_table(&readme, name),
+            table,
+            "README.md's {name} settings table differs from the code's; the table the code declares:\n{table}"
+        );
+    }
+}
