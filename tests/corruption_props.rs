@@ -412,7 +412,7 @@ proptest! {
         let text = std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/sweeps/demo.toml")).unwrap();
         let bad = mutate(&text, &m);
         let s = String::from_utf8_lossy(&bad);
-        if let Err(e) = chronocooked_training::sweep::SweepFile::parse(&s, "demo.toml") {
+        if let Err(e) = chronocooked_pipeline::sweep::SweepFile::parse(&s, "demo.toml") {
             prop_assert!(e.to_string().contains("demo.toml"), "{e}");
         }
     }

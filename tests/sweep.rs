@@ -2,7 +2,7 @@
 //! emission (`bash -n`), an interrupted sweep finishing on rerun without redoing finished
 //! jobs, and train → eval → record → export → report on tiny budgets.
 
-use chronocooked_training::sweep::{SweepFile, job_done};
+use chronocooked_pipeline::sweep::{SweepFile, job_done};
 use serde_json::Value;
 use std::os::unix::process::CommandExt;
 use std::path::{Path, PathBuf};

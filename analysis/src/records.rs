@@ -104,12 +104,16 @@ pub struct EvalRecord {
     pub episode: EpisodeRecord,
 }
 
+/// File name of an evaluation folder's per-episode records (JSON lines of [`EvalRecord`];
+/// the folder's other files are named in `evaluation/folder.rs`).
+pub const RECORDS: &str = "records.jsonl";
+
 /// Reads the per-episode records (`records.jsonl`) of an `eval` output folder, each checked
 /// ([`EpisodeRecord::validate`](chronocooked_models::EpisodeRecord::validate)); errors name
 /// the file (and the line and field of a malformed record). A file without any record is an
 /// error ("no episodes"), never an empty evaluation.
 pub fn read_records(folder: &std::path::Path) -> Result<Vec<EvalRecord>, String> {
-    let path = folder.join("records.jsonl");
+    let path = folder.join(RECORDS);
     let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
     let records: Vec<EvalRecord> = text
         .lines()

@@ -5,7 +5,7 @@
 //! ([`real_subdirs`]) and the removal of a killed writer's temporary files.
 
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Name prefix of the temporary files [`write_atomic`] creates.
 pub const TEMP_PREFIX: &str = ".tmp-";
@@ -39,16 +39,34 @@ fn temp_beside(path: &Path, suffix: &str) -> std::io::Result<tempfile::NamedTemp
     builder.tempfile_in(dir)
 }
 
+/// A file [`write_atomic`] could not write: the file and the I/O error (displayed as
+/// `PATH: ERROR`). Every crate's error type converts from it, so a write is `write_atomic(..)?`.
+#[derive(Debug, thiserror::Error)]
+#[error("{}: {error}", path.display())]
+pub struct WriteError {
+    /// The file being written.
+    pub path: PathBuf,
+    /// What failed.
+    pub error: std::io::Error,
+}
+
 /// Writes `bytes` to `path` atomically: into a temporary file in the same folder (created
 /// if missing), flushed to disk, then renamed over `path`. On error the temporary file is
 /// removed and `path` keeps its previous content. The file is created with the process
-/// umask (0644 under umask 022), like every output of the lab.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let mut tmp = temp_beside(path, "")?;
-    tmp.write_all(bytes)?;
-    tmp.as_file().sync_all()?;
-    tmp.persist(path).map_err(|e| e.error)?;
-    Ok(())
+/// umask (0644 under umask 022), like every output of the lab. The one atomic write of the
+/// lab: no crate wraps it.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), WriteError> {
+    let write = || -> std::io::Result<()> {
+        let mut tmp = temp_beside(path, "")?;
+        tmp.write_all(bytes)?;
+        tmp.as_file().sync_all()?;
+        tmp.persist(path).map_err(|e| e.error)?;
+        Ok(())
+    };
+    write().map_err(|error| WriteError {
+        path: path.to_path_buf(),
+        error,
+    })
 }
 
 /// Writes `path` atomically through a writer that only takes a path (a plotting backend):

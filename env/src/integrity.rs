@@ -161,13 +161,13 @@ fn write_manifest(dir: &Path, records: &BTreeMap<String, String>) -> Result<(), 
         }
     }
     let path = dir.join(MANIFEST);
-    write_atomic(&path, text.as_bytes()).map_err(|e| IntegrityError::io(&path, e))
+    write_atomic(&path, text.as_bytes()).map_err(|e| IntegrityError::io(&path, e.error))
 }
 
 /// Writes `bytes` to `path` atomically ([`write_atomic`]) and records their SHA-256 in the
 /// folder's manifest.
 pub fn write_recorded(path: &Path, bytes: &[u8]) -> Result<(), IntegrityError> {
-    write_atomic(path, bytes).map_err(|e| IntegrityError::io(path, e))?;
+    write_atomic(path, bytes).map_err(|e| IntegrityError::io(path, e.error))?;
     let (dir, name) = split(path);
     let mut records = read_manifest(&dir)?;
     records.insert(name, sha256_hex(bytes));

@@ -5,7 +5,6 @@ use crate::error::EnvError;
 use crate::kitchen::CODE_CHANNELS;
 use crate::layout::{Layout, ObjectKind};
 use crate::task::TaskFamily;
-use std::path::Path;
 
 /// ASCII picture of a codes observation: one 4-character cell per grid cell.
 ///
@@ -150,15 +149,6 @@ pub fn frame(layout: &Layout, family: TaskFamily, codes: &[u8]) -> Frame {
 
 fn flat_palette() -> Vec<u8> {
     PALETTE.iter().flatten().copied().collect()
-}
-
-fn io_err(path: &Path, e: impl std::fmt::Display) -> EnvError {
-    EnvError::Output(format!("{}: {e}", path.display()))
-}
-
-/// Writes `bytes` to `path` atomically ([`crate::fs::write_atomic`]).
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), EnvError> {
-    crate::fs::write_atomic(path, bytes).map_err(|e| io_err(path, e))
 }
 
 /// Encodes a frame as an indexed PNG.

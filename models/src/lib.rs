@@ -6,13 +6,16 @@
 //! * [`timing`] — the biologically plausible timing models (drift-diffusion, striatal beat
 //!   frequency, time cells, TD), the agents that play the tasks with them and their zoo;
 //! * [`agent`] — the one agent interface every model plays through, episodes and the
-//!   deterministic evaluation loop; [`activity`] — recording of neural activity.
+//!   deterministic evaluation loop; [`activity`] — recording of neural activity;
+//! * [`run_folder`] — the file names of a run folder (a trained agent), shared by the
+//!   crates that write and read it.
 
 #![warn(missing_docs)]
 
 pub mod activity;
 pub mod agent;
 pub mod deep;
+pub mod run_folder;
 pub mod timing;
 
 pub use activity::{ActivityDataset, ActivityMeta, Marker, StepRecorder, TrialRecorder};

@@ -2,6 +2,12 @@
 
 use std::path::PathBuf;
 
+impl From<chronocooked_env::fs::WriteError> for PipelineError {
+    fn from(e: chronocooked_env::fs::WriteError) -> Self {
+        PipelineError::write(e.path, e.error)
+    }
+}
+
 /// Why a stage could not run; messages name the file, the field or the job at fault.
 #[derive(Debug, thiserror::Error)]
 pub enum PipelineError {

@@ -5,9 +5,10 @@
 
 use crate::PipelineError;
 use crate::stages::{self, AdaptRequest, EvalRequest, EvalSubject, RecordRequest, TrainRequest};
+use crate::sweep::{Job, Stage, SweepFile, finished_stages, job_dir, mark_stage};
 use chronocooked_analysis::Mode;
+use chronocooked_models::run_folder;
 use chronocooked_training::adapt::{self, AdaptConfig};
-use chronocooked_training::sweep::{Job, Stage, SweepFile, finished_stages, job_dir, mark_stage};
 use chronocooked_training::zoo::Family;
 use std::path::Path;
 use std::time::Instant;
@@ -84,8 +85,7 @@ pub fn run_job(
     let job_json = serde_json::to_string_pretty(job)
         .map_err(|e| PipelineError::Analysis(format!("serialising job {}: {e}", job.id)))?;
     let job_file = dir.join("job.json");
-    chronocooked_env::fs::write_atomic(&job_file, job_json.as_bytes())
-        .map_err(|e| PipelineError::write(&job_file, e))?;
+    chronocooked_env::fs::write_atomic(&job_file, job_json.as_bytes())?;
     let done = finished_stages(&dir);
     let wanted = Stage::for_job(sweep, job);
     for (k, &stage) in wanted.iter().enumerate() {
@@ -113,10 +113,10 @@ fn run_stage(
     let run = dir.join("run");
     Ok(match stage {
         Stage::Train => {
-            if run.join("summary.json").is_file() {
+            if run.join(run_folder::SUMMARY).is_file() {
                 return Ok("already trained".into());
             }
-            let resume = job.family == Family::DeepRl && run.join("config.json").is_file();
+            let resume = job.family == Family::DeepRl && run.join(run_folder::CONFIG).is_file();
             let req = TrainRequest {
                 task: job.task.clone(),
                 model: job.model.clone(),

@@ -9,6 +9,7 @@
 //!   [`stages::export`] (NPZ + CSV + JSON metadata → `export/`);
 //! * [`job`] — [`run_job`]: the unfinished stages of one sweep job, in order, resumable
 //!   (finished stages are skipped, a PPO run continues from its newest checkpoint);
+//! * [`sweep`] — sweep files, typed job stages, job progress, Slurm emission, cost estimates;
 //! * [`error`] — [`PipelineError`], naming the file or the setting at fault.
 
 #![warn(missing_docs)]
@@ -16,6 +17,7 @@
 pub mod error;
 pub mod job;
 pub mod stages;
+pub mod sweep;
 
 pub use error::PipelineError;
 pub use job::{JobObserver, LogObserver, find_job, run_job};

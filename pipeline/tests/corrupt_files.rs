@@ -104,7 +104,7 @@ fn corrupt_sweep_files_are_errors() {
     {
         let path = dir.path().join(format!("s{i}.toml"));
         std::fs::write(&path, text).unwrap();
-        let e = chronocooked_training::sweep::SweepFile::load(&path);
+        let e = chronocooked_pipeline::sweep::SweepFile::load(&path);
         assert!(e.is_err(), "{text:?} was accepted");
     }
 }

@@ -4,8 +4,8 @@
 //! checkpoint, is `tests/sweep.rs`.)
 
 use chronocooked_pipeline::stages::{self, EvalRequest, EvalSubject};
+use chronocooked_pipeline::sweep::{Job, Stage, SweepFile, finished_stages, job_dir, job_done};
 use chronocooked_pipeline::{JobObserver, PipelineError, find_job, run_job};
-use chronocooked_training::sweep::{Job, Stage, SweepFile, finished_stages, job_dir, job_done};
 
 /// Records which stages started and finished.
 #[derive(Default)]

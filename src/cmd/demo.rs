@@ -4,8 +4,8 @@
 //! then compared in one leaderboard. Rerunning skips what is finished.
 
 use anyhow::Result;
-use chronocooked_training::run_dir::write_atomic;
-use chronocooked_training::sweep::SweepFile;
+use chronocooked_env::fs::write_atomic;
+use chronocooked_pipeline::sweep::SweepFile;
 use clap::Args;
 use std::path::PathBuf;
 

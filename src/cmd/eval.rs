@@ -53,7 +53,8 @@ fn report(out: &Path, outcome: &EvalOutcome) {
         m.model,
         m.episodes,
         m.success_rate * 100.0,
-        out.join("metrics.json").display(),
+        out.join(chronocooked_analysis::evaluation::folder::METRICS)
+            .display(),
         outcome.figures.len()
     );
     if let Some((trials, units, file)) = &outcome.activity {

@@ -3,9 +3,9 @@
 //! `sweep-job`: run one job's stages in this process (what workers and Slurm tasks call).
 
 use anyhow::{Context, Result, bail};
+use chronocooked_env::fs::write_atomic;
 use chronocooked_pipeline::LogObserver;
-use chronocooked_training::run_dir::write_atomic;
-use chronocooked_training::sweep::{
+use chronocooked_pipeline::sweep::{
     Job, SweepFile, finished_stages, job_dir, job_done, slurm_script,
 };
 use chronocooked_training::zoo::Family;
@@ -78,7 +78,7 @@ pub fn run(args: SweepArgs) -> Result<()> {
         for j in &jobs {
             let done = job_done(&job_dir(&out, &j.id));
             println!("{}  {}", if done { "done" } else { "todo" }, j.id);
-            let est = chronocooked_training::sweep::estimate_seconds(&sweep, j);
+            let est = chronocooked_pipeline::sweep::estimate_seconds(&sweep, j);
             unknown += usize::from(est.is_none() && j.family == Family::DeepRl);
             let s = est.unwrap_or(0.0);
             all_s += s;

@@ -6,6 +6,7 @@ use anyhow::{Context, Result, bail};
 use chronocooked_analysis::behaviour::aggregate::headline;
 use chronocooked_analysis::behaviour::metrics::Metrics;
 use chronocooked_env::integrity;
+use chronocooked_models::run_folder;
 use chronocooked_training::agent_zoo::{
     self, AGENT_FILES, INDEX, Provenance, ZooAgent, ZooEvaluation, ZooIndex,
 };
@@ -144,17 +145,13 @@ pub fn add(args: ZooAddArgs) -> Result<()> {
     let eval = args.job.join("eval");
     // The model must load intact before it is copied.
     chronocooked_training::load_policy(&run)?;
-    let metrics_text = std::fs::read_to_string(eval.join("metrics.json"))
-        .with_context(|| eval.join("metrics.json").display().to_string())?;
+    let metrics_path = eval.join(chronocooked_analysis::evaluation::folder::METRICS);
+    let metrics_text = std::fs::read_to_string(&metrics_path)
+        .with_context(|| metrics_path.display().to_string())?;
     let metrics: Metrics = chronocooked_analysis::stats::nan_json::from_str_nan(&metrics_text)
-        .with_context(|| {
-            format!(
-                "{}: not a metrics file",
-                eval.join("metrics.json").display()
-            )
-        })?;
-    let cfg = read_json(&run.join("config.json"))?;
-    let summary = read_json(&run.join("summary.json"))?;
+        .with_context(|| format!("{}: not a metrics file", metrics_path.display()))?;
+    let cfg = read_json(&run.join(run_folder::CONFIG))?;
+    let summary = read_json(&run.join(run_folder::SUMMARY))?;
     let name = format!("{model}/{task}");
     let (study_job, reproduces) = match &args.study {
         Some(study) => {
@@ -205,7 +202,7 @@ pub fn add(args: ZooAddArgs) -> Result<()> {
             let mut t = serde_json::to_string_pretty(&provenance)?;
             t.push('\n');
             t.into_bytes()
-        } else if file == "model.bpk" || file == "policy.json" {
+        } else if file == run_folder::MODEL || file == run_folder::POLICY {
             integrity::read_verified(&run.join(file))?
         } else {
             std::fs::read(run.join(file)).with_context(|| run.join(file).display().to_string())?
@@ -227,8 +224,7 @@ pub fn add(args: ZooAddArgs) -> Result<()> {
     }
     let mut text = serde_json::to_string_pretty(&index)?;
     text.push('\n');
-    chronocooked_env::fs::write_atomic(&index_path, text.as_bytes())
-        .with_context(|| index_path.display().to_string())?;
+    chronocooked_env::fs::write_atomic(&index_path, text.as_bytes())?;
     println!(
         "zoo:{name} ← {} (success {:.2}; reproduces {}: {:?})",
         args.job.display(),

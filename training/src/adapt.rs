@@ -21,9 +21,11 @@
 use crate::error::TrainError;
 use crate::ppo::config::Curriculum;
 use crate::ppo::run::{Silent, run_training};
-use crate::run_dir::{RunDir, write_atomic};
+use crate::run_dir::RunDir;
 use crate::timing_run::{is_timing_run, load_timing_agent};
+use chronocooked_env::fs::write_atomic;
 use chronocooked_env::make_config;
+use chronocooked_models::run_folder;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -262,7 +264,7 @@ pub fn run_adaptation(
                 .to_string(),
         );
         let dir = out.join("run");
-        let summary = if dir.join("config.json").is_file() {
+        let summary = if dir.join(run_folder::CONFIG).is_file() {
             run_training(None, &dir, "adapt (resumed)", &mut Silent)?
         } else {
             run_training(Some(tc), &dir, "adapt", &mut Silent)?
@@ -273,7 +275,7 @@ pub fn run_adaptation(
             } => f64::from(*never_ready_prob),
             _ => 0.0,
         };
-        let curve = curve_success(&summary.dir.join("curves.csv"), p)?;
+        let curve = curve_success(&summary.dir.join(run_folder::CURVES), p)?;
         let episodes = curve.last().map_or(0, |c| c.0);
         (source.model.name(), source.task, curve, episodes)
     };

@@ -157,3 +157,9 @@ impl TrainError {
         }
     }
 }
+
+impl From<chronocooked_env::fs::WriteError> for TrainError {
+    fn from(e: chronocooked_env::fs::WriteError) -> Self {
+        TrainError::io(&e.path, e.error)
+    }
+}

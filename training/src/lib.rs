@@ -9,9 +9,6 @@
 //! * [`adapt`] — adaptation to the uncertainty task; [`zoo`] — every model the lab can
 //!   train, evaluate or record; [`agent_zoo`] — the trained agents the repository keeps
 //!   (`zoo:<model>/<task>`);
-//! * [`sweep`] — sweep files, typed job stages, job progress, Slurm emission, cost estimates
-//!   (the stages themselves run in the `chronocooked-pipeline` crate, above this one and
-//!   the analysis crate);
 //! * [`error`] — typed training errors.
 
 #![warn(missing_docs)]
@@ -23,7 +20,6 @@ pub mod evaluate;
 pub mod ppo;
 pub mod run_dir;
 pub mod settings;
-pub mod sweep;
 pub mod timing_check;
 pub mod timing_run;
 pub mod zoo;

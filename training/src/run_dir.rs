@@ -13,22 +13,22 @@
 //!
 //! Learned state (`policy.json`, `model.bpk`, checkpoints) is written with a SHA-256 record
 //! ([`chronocooked_env::integrity`]) and verified whenever it is read.
+//!
+//! The file names are [`chronocooked_models::run_folder`]'s constants (shared with the
+//! crates that read run folders); this module reads and writes the files with their types.
 
 use crate::error::TrainError;
 use crate::ppo::config::TrainConfig;
 use crate::ppo::state::{TrainerState, UpdateLog};
 use burn::module::Module;
+use chronocooked_env::fs::write_atomic;
 use chronocooked_env::integrity;
+use chronocooked_models::run_folder;
 use chronocooked_models::{ActorCritic, PolicyConfig};
 use serde::{Deserialize, Serialize};
 use std::fs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
-
-/// Writes `bytes` to `path` atomically (temporary file in the same folder, then rename).
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), TrainError> {
-    chronocooked_env::fs::write_atomic(path, bytes).map_err(|e| TrainError::io(path, e))
-}
 
 /// Column names of `curves.csv`.
 pub const CURVE_COLUMNS: [&str; 23] = [
@@ -126,7 +126,8 @@ pub struct RunDir {
 impl RunDir {
     /// Creates (or reuses) a run folder.
     pub fn create(path: &Path) -> Result<Self, TrainError> {
-        fs::create_dir_all(path.join("checkpoints")).map_err(|e| TrainError::io(path, e))?;
+        fs::create_dir_all(path.join(run_folder::CHECKPOINTS))
+            .map_err(|e| TrainError::io(path, e))?;
         Ok(RunDir {
             path: path.to_path_buf(),
         })
@@ -134,7 +135,7 @@ impl RunDir {
 
     /// Opens an existing run folder (must hold `config.json`).
     pub fn open(path: &Path) -> Result<Self, TrainError> {
-        if !path.join("config.json").is_file() {
+        if !path.join(run_folder::CONFIG).is_file() {
             return Err(TrainError::NotARun {
                 path: path.display().to_string(),
             });
@@ -147,7 +148,7 @@ impl RunDir {
     /// Reads the resolved config and checks it like any other ([`TrainConfig::validate`]:
     /// a hand-edited `config.json` gets the same range checks as `--set`).
     pub fn config(&self) -> Result<TrainConfig, TrainError> {
-        let p = self.path.join("config.json");
+        let p = self.path.join(run_folder::CONFIG);
         let text = fs::read_to_string(&p).map_err(|e| TrainError::io(&p, e))?;
         let bad = |message: String| TrainError::ConfigFile {
             file: p.display().to_string(),
@@ -160,7 +161,7 @@ impl RunDir {
 
     /// Checkpoint files (`checkpoints/step-*.json`), oldest first.
     pub fn checkpoints(&self) -> Vec<PathBuf> {
-        let mut v: Vec<PathBuf> = fs::read_dir(self.path.join("checkpoints"))
+        let mut v: Vec<PathBuf> = fs::read_dir(self.path.join(run_folder::CHECKPOINTS))
             .map(|rd| {
                 rd.filter_map(|e| e.ok().map(|e| e.path()))
                     .filter(|p| {
@@ -202,7 +203,7 @@ impl RunDir {
     ) -> Result<(), TrainError> {
         let p = self
             .path
-            .join("checkpoints")
+            .join(run_folder::CHECKPOINTS)
             .join(format!("step-{:012}.json", state.steps));
         let json = serde_json::to_vec(state).map_err(|e| TrainError::Corrupt {
             path: p.display().to_string(),
@@ -221,7 +222,7 @@ impl RunDir {
     pub fn remove_stale_temps(&self) -> Vec<PathBuf> {
         let mut removed = chronocooked_env::fs::remove_temp_files(&self.path);
         removed.extend(chronocooked_env::fs::remove_temp_files(
-            &self.path.join("checkpoints"),
+            &self.path.join(run_folder::CHECKPOINTS),
         ));
         removed
     }
@@ -231,16 +232,20 @@ impl RunDir {
     pub(crate) fn write_curves(&self, rows: &[UpdateLog]) -> Result<(), TrainError> {
         let mut s = curve_header();
         rows.iter().for_each(|r| s.push_str(&curve_line(r)));
-        write_atomic(&self.path.join("curves.csv"), s.as_bytes())
+        write_atomic(&self.path.join(run_folder::CURVES), s.as_bytes())?;
+        Ok(())
     }
 
     pub(crate) fn append_curve(&self, row: &UpdateLog) -> Result<(), TrainError> {
-        append_line(&self.path.join("curves.csv"), &curve_line(row))
+        append_line(&self.path.join(run_folder::CURVES), &curve_line(row))
     }
 
     /// Appends a command line to `command.txt` (every session of a run is kept).
     pub fn append_command(&self, command: &str) -> Result<(), TrainError> {
-        append_line(&self.path.join("command.txt"), &format!("{command}\n"))
+        append_line(
+            &self.path.join(run_folder::COMMAND),
+            &format!("{command}\n"),
+        )
     }
 
     /// Saves a policy atomically as burnpack, with its SHA-256 record.
@@ -286,7 +291,7 @@ pub fn expected_policy(cfg: &TrainConfig) -> Result<PolicyConfig, TrainError> {
 /// Reads a run's `policy.json` (SHA-256 record checked) and checks it: sizes in range
 /// ([`PolicyConfig::validate`]) and the description its `config.json` implies.
 pub fn read_policy_config(dir: &Path, cfg: &TrainConfig) -> Result<PolicyConfig, TrainError> {
-    let pp = dir.join("policy.json");
+    let pp = dir.join(run_folder::POLICY);
     let corrupt = |reason: String| TrainError::Corrupt {
         path: pp.display().to_string(),
         reason,
@@ -327,7 +332,7 @@ pub fn load_policy(dir: &Path) -> Result<(ActorCritic, PolicyConfig, TrainConfig
         .sum();
     let device = chronocooked_models::cpu();
     let model = pcfg.init(cfg.seed, &device);
-    let file = dir.join("model.bpk");
+    let file = dir.join(run_folder::MODEL);
     if fs::symlink_metadata(&file).is_ok() {
         let bytes = integrity::read_verified(&file)?;
         let corrupt = |reason: String| TrainError::Corrupt {

@@ -10,11 +10,12 @@
 use crate::error::TrainError;
 use crate::evaluate::eval_tds;
 use crate::ppo::config::ENV_KEY;
-use crate::run_dir::write_atomic;
 use crate::settings::{
     self, timing::TIMING_SETTINGS, timing::TimerSettings, timing::TimingAgentSettings,
 };
+use chronocooked_env::fs::write_atomic;
 use chronocooked_env::{ChronoEnv, TaskFamily, integrity, make_config};
+use chronocooked_models::run_folder;
 use chronocooked_models::timing::agent::TimingAgent;
 use chronocooked_models::timing::zoo::make_timing_agent;
 use chronocooked_models::{TimingCurvePoint, TimingTrainConfig, train_timing_agent};
@@ -235,7 +236,7 @@ pub fn run_timing_training(
     progress: impl FnMut(&TimingCurvePoint),
 ) -> Result<TimingRunSummary, TrainError> {
     cfg.validate()?;
-    if dir.join("summary.json").is_file() {
+    if dir.join(run_folder::SUMMARY).is_file() {
         return Err(TrainError::Resume {
             path: dir.display().to_string(),
             reason: "the folder already holds a finished run; use a new --out".into(),
@@ -243,9 +244,9 @@ pub fn run_timing_training(
     }
     let start = std::time::Instant::now();
     std::fs::create_dir_all(dir).map_err(|e| TrainError::io(dir, e))?;
-    write_atomic(&dir.join("config.json"), &json(cfg))?;
+    write_atomic(&dir.join(run_folder::CONFIG), &json(cfg))?;
     // Every session of the folder is kept (`--resume` reruns an unfinished run).
-    crate::run_dir::append_line(&dir.join("command.txt"), &format!("{command}\n"))?;
+    crate::run_dir::append_line(&dir.join(run_folder::COMMAND), &format!("{command}\n"))?;
     let _ = chronocooked_env::fs::remove_temp_files(dir);
     let task = make_config(&cfg.task, &cfg.env)?;
     let mut agent = cfg.build_agent()?;
@@ -262,7 +263,7 @@ pub fn run_timing_training(
             p.eval_success.map_or(String::new(), |v| v.to_string())
         );
     }
-    write_atomic(&dir.join("curves.csv"), csv.as_bytes())?;
+    write_atomic(&dir.join(run_folder::CURVES), csv.as_bytes())?;
     integrity::write_recorded(&dir.join("agent.json"), &json(&agent))?;
     let last = curve.last();
     let summary = TimingRunSummary {
@@ -276,14 +277,14 @@ pub fn run_timing_training(
             .find(|p| p.eval_success.is_some_and(|s| s >= 0.95))
             .map(|p| p.episode),
     };
-    write_atomic(&dir.join("summary.json"), &json(&summary))?;
+    write_atomic(&dir.join(run_folder::SUMMARY), &json(&summary))?;
     Ok(summary)
 }
 
 /// Task id and task overrides of any run folder (PPO or timing agent), from its
 /// `config.json`.
 pub fn run_task(dir: &Path) -> Result<(String, Vec<String>), TrainError> {
-    let p = dir.join("config.json");
+    let p = dir.join(run_folder::CONFIG);
     let text = std::fs::read_to_string(&p).map_err(|_| TrainError::NotARun {
         path: dir.display().to_string(),
     })?;
@@ -305,7 +306,7 @@ pub fn run_task(dir: &Path) -> Result<(String, Vec<String>), TrainError> {
 
 /// Whether `dir`'s `config.json` describes a timing-agent run (finished or not).
 pub fn is_timing_run_config(dir: &Path) -> bool {
-    std::fs::read_to_string(dir.join("config.json"))
+    std::fs::read_to_string(dir.join(run_folder::CONFIG))
         .ok()
         .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
         .is_some_and(|v| v["kind"] == "timing")
@@ -329,12 +330,12 @@ fn bad_file(dir: &Path, name: &str, e: serde_json::Error) -> TrainError {
 /// `config.json` is "not a run folder"; a hand-edited config gets the same checks as
 /// `--set`, and errors name the file and the field.
 pub fn load_timing_config(dir: &Path) -> Result<TimingRunConfig, TrainError> {
-    let p = dir.join("config.json");
+    let p = dir.join(run_folder::CONFIG);
     let text = std::fs::read_to_string(&p).map_err(|_| TrainError::NotARun {
         path: dir.display().to_string(),
     })?;
     let cfg: TimingRunConfig =
-        serde_json::from_str(&text).map_err(|e| bad_file(dir, "config.json", e))?;
+        serde_json::from_str(&text).map_err(|e| bad_file(dir, run_folder::CONFIG, e))?;
     cfg.validate().map_err(|e| TrainError::ConfigFile {
         file: p.display().to_string(),
         message: e.to_string(),

@@ -1,17 +1,27 @@
 //! The evaluation folder: what `chronocooked eval` (and the Python package's `evaluate`)
 //! writes and what `report --eval DIR` reads.
 //!
-//! * `records.jsonl` — one [`EvalRecord`] per episode (condition + actions + infos);
-//! * `eval.json` — [`EvalInfo`]: model, task, overrides, protocol mode, seed;
-//! * `metrics.json` — [`Metrics`] computed from the records;
+//! * [`RECORDS`] `records.jsonl` — one [`EvalRecord`] per episode (condition + actions +
+//!   infos; read by [`crate::evaluation::protocol::read_records`]);
+//! * [`EVAL_INFO`] `eval.json` — [`EvalInfo`]: model, task, overrides, protocol mode, seed
+//!   ([`read_eval_info`]);
+//! * [`METRICS`] `metrics.json` — [`Metrics`] computed from the records;
 //! * `figures/` — the evaluation figures (SVG + PNG).
 //!
-//! Every file is written atomically.
+//! Every file is written atomically. Every crate names these files through the constants
+//! here and reads `eval.json` through [`read_eval_info`].
 
 use crate::behaviour::metrics::{Metrics, compute_metrics};
 use crate::evaluation::protocol::{EvalRecord, Mode};
+use chronocooked_env::fs::write_atomic;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
+
+pub use crate::evaluation::protocol::RECORDS;
+/// File name of the evaluation's description ([`EvalInfo`]).
+pub const EVAL_INFO: &str = "eval.json";
+/// File name of the metrics computed from the records ([`Metrics`]).
+pub const METRICS: &str = "metrics.json";
 
 /// What an evaluation was (`eval.json`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -26,10 +36,6 @@ pub struct EvalInfo {
     pub mode: Mode,
     /// Seed of the evaluation.
     pub seed: u64,
-}
-
-fn write(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    chronocooked_env::fs::write_atomic(path, bytes).map_err(|e| format!("{}: {e}", path.display()))
 }
 
 /// `out` must be a folder (or not exist yet): a file there is named in the error.
@@ -56,9 +62,9 @@ pub fn write_eval_folder(
         lines += &serde_json::to_string(r).map_err(|e| e.to_string())?;
         lines.push('\n');
     }
-    write(&out.join("records.jsonl"), lines.as_bytes())?;
+    write_atomic(&out.join(RECORDS), lines.as_bytes()).map_err(|e| e.to_string())?;
     let json = serde_json::to_string_pretty(info).map_err(|e| e.to_string())?;
-    write(&out.join("eval.json"), json.as_bytes())?;
+    write_atomic(&out.join(EVAL_INFO), json.as_bytes()).map_err(|e| e.to_string())?;
     write_metrics(out, info, records)
 }
 
@@ -72,7 +78,7 @@ pub fn write_metrics(
     let metrics = compute_metrics(&info.model, records, info.seed);
     let mut json = serde_json::to_string_pretty(&metrics).map_err(|e| e.to_string())?;
     json.push('\n');
-    write(&out.join("metrics.json"), json.as_bytes())?;
+    write_atomic(&out.join(METRICS), json.as_bytes()).map_err(|e| e.to_string())?;
     let figures = crate::report::figures::eval_figures(&out.join("figures"), &metrics, records)
         .map_err(|e| e.to_string())?;
     Ok((metrics, figures))
@@ -80,7 +86,7 @@ pub fn write_metrics(
 
 /// Reads `eval.json` of an evaluation folder; errors name the file.
 pub fn read_eval_info(dir: &Path) -> Result<EvalInfo, String> {
-    let path = dir.join("eval.json");
+    let path = dir.join(EVAL_INFO);
     let text = std::fs::read_to_string(&path).map_err(|e| {
         format!(
             "{}: {e} ({} is not an eval folder)",
@@ -100,7 +106,7 @@ pub fn write_activity(
 ) -> Result<Vec<PathBuf>, String> {
     let path = out.join("activity.json");
     let json = serde_json::to_vec(dataset).map_err(|e| e.to_string())?;
-    write(&path, &json)?;
+    write_atomic(&path, &json).map_err(|e| e.to_string())?;
     let mut files = vec![path];
     files.extend(crate::export::export_activity(
         dataset,

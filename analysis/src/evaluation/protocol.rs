@@ -21,7 +21,7 @@ use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use serde::{Deserialize, Serialize};
 
-pub use crate::records::{Condition, ConditionKind, EvalRecord, read_records};
+pub use crate::records::{Condition, ConditionKind, EvalRecord, RECORDS, read_records};
 
 fn cond(kind: ConditionKind, task: &str, env: Vec<String>, td: u32) -> Condition {
     Condition {

@@ -8,6 +8,7 @@ pub mod npz;
 
 use crate::export::npz::{NpyArray, NpyData, npz_bytes};
 use crate::records::{ConditionKind, EvalRecord};
+use chronocooked_env::fs::write_atomic;
 use chronocooked_models::{ActivityDataset, Marker};
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
@@ -41,11 +42,6 @@ pub fn csv_text<S: AsRef<str>>(header: &[&str], rows: &[Vec<S>]) -> Result<Strin
     String::from_utf8(bytes).map_err(|e| e.to_string())
 }
 
-/// The project's atomic write (temporary file, then rename), with a string error.
-pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    chronocooked_env::fs::write_atomic(path, bytes).map_err(|e| e.to_string())
-}
-
 fn describe(arrays: &[NpyArray], docs: &[(&str, &str, &str)]) -> Value {
     let mut m = serde_json::Map::new();
     for a in arrays {
@@ -71,10 +67,10 @@ fn save(dir: &Path, stem: &str, arrays: &[NpyArray], meta: Value) -> Result<Vec<
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let buf = npz_bytes(arrays)?;
     let npz = dir.join(format!("{stem}.npz"));
-    write_atomic(&npz, &buf)?;
+    write_atomic(&npz, &buf).map_err(|e| e.to_string())?;
     let meta_path = dir.join(format!("{stem}.meta.json"));
     let text = serde_json::to_string_pretty(&meta).map_err(|e| e.to_string())?;
-    write_atomic(&meta_path, text.as_bytes())?;
+    write_atomic(&meta_path, text.as_bytes()).map_err(|e| e.to_string())?;
     Ok(vec![npz, meta_path])
 }
 
@@ -264,7 +260,7 @@ pub fn export_activity(
         ],
         &rows,
     )?;
-    write_atomic(&dir.join("trials.csv"), csv.as_bytes())?;
+    write_atomic(&dir.join("trials.csv"), csv.as_bytes()).map_err(|e| e.to_string())?;
     let rows: Vec<Vec<String>> = dataset
         .meta
         .unit_names()
@@ -273,7 +269,7 @@ pub fn export_activity(
         .map(|(i, u)| vec![i.to_string(), u])
         .collect();
     let units = csv_text(&["column", "unit"], &rows)?;
-    write_atomic(&dir.join("units.csv"), units.as_bytes())?;
+    write_atomic(&dir.join("units.csv"), units.as_bytes()).map_err(|e| e.to_string())?;
     files.push(dir.join("trials.csv"));
     files.push(dir.join("units.csv"));
     Ok(files)
@@ -452,7 +448,7 @@ pub fn export_eval(records: &[EvalRecord], dir: &Path) -> Result<Vec<PathBuf>, S
         ],
         &rows,
     )?;
-    write_atomic(&dir.join("episodes.csv"), csv.as_bytes())?;
+    write_atomic(&dir.join("episodes.csv"), csv.as_bytes()).map_err(|e| e.to_string())?;
     files.push(dir.join("episodes.csv"));
     Ok(files)
 }

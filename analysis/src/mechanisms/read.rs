@@ -2,6 +2,7 @@
 //! study's compact results, or of a leaderboard's evaluation folders.
 
 use super::{MechanismError, READOUTS, Signature};
+use crate::evaluation::folder::METRICS;
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -165,7 +166,7 @@ fn job_dirs(results: &Path) -> Vec<PathBuf> {
     let mut out = Vec::new();
     let mut stack = vec![root];
     while let Some(dir) = stack.pop() {
-        if dir.join("job.json").is_file() && dir.join("metrics.json").is_file() {
+        if dir.join("job.json").is_file() && dir.join(METRICS).is_file() {
             out.push(dir);
             continue;
         }
@@ -195,7 +196,7 @@ pub fn signatures(results: &Path) -> Result<Vec<Signature>, MechanismError> {
             model,
             seed: job["seed"].as_u64().unwrap_or(0),
             task: job["task"].as_str().unwrap_or_default().to_string(),
-            metrics: dir.join("metrics.json"),
+            metrics: dir.join(METRICS),
             summary: dir.join("activity.summary.json"),
         });
     }

@@ -43,7 +43,7 @@ pub fn write_tables(
         chronocooked_env::fs::write_atomic(&p, text.as_bytes()).map_err(|e| {
             MechanismError::File {
                 path: p.clone(),
-                message: e.to_string(),
+                message: e.error.to_string(),
             }
         })?;
         Ok::<PathBuf, MechanismError>(p)

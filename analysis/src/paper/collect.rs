@@ -6,7 +6,9 @@
 
 use crate::behaviour::foc::{FocConvention, first_oven_check_with};
 use crate::records::{ConditionKind, EvalRecord, read_records};
+use crate::evaluation::folder::{METRICS, RECORDS};
 use chronocooked_env::Counter;
+use chronocooked_models::run_folder;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -223,19 +225,19 @@ pub fn job_folders(root: &Path) -> Vec<PathBuf> {
 /// The compact results of one finished job folder (`None` while its evaluation is missing).
 pub fn summarise_job(dir: &Path) -> Result<Option<CompactJob>, CollectError> {
     let eval = dir.join("eval");
-    if !eval.join("metrics.json").is_file() || !eval.join("records.jsonl").is_file() {
+    if !eval.join(METRICS).is_file() || !eval.join(RECORDS).is_file() {
         return Ok(None);
     }
     let job = read_json(&dir.join("job.json"))?;
-    let cfg = read_json(&dir.join("run").join("config.json"))?;
+    let cfg = read_json(&dir.join("run").join(run_folder::CONFIG))?;
     // A timing-model run's curves.csv has its own columns (episodes, not PPO updates): its
     // compact result keeps the evaluation, metrics and neural summary, no PPO curve.
     let curve = if cfg["kind"].as_str() == Some("timing") {
         Vec::new()
     } else {
-        read_curve(&dir.join("run").join("curves.csv"))?
+        read_curve(&dir.join("run").join(run_folder::CURVES))?
     };
-    let records = read_records(&eval).map_err(|e| err(&eval.join("records.jsonl"), e))?;
+    let records = read_records(&eval).map_err(|e| err(&eval.join(RECORDS), e))?;
     let s = |v: &serde_json::Value, k: &str| v[k].as_str().unwrap_or_default().to_string();
     let mut level_steps = vec![0];
     let mut prev = curve.first().map_or(0, |r| r.curriculum_level);
@@ -294,7 +296,7 @@ fn write_csv<T: Serialize>(path: &Path, rows: &[T]) -> Result<(), CollectError> 
         w.serialize(r).map_err(|e| err(path, e))?;
     }
     let bytes = w.into_inner().map_err(|e| err(path, e))?;
-    chronocooked_env::fs::write_atomic(path, &bytes).map_err(|e| err(path, e))
+    chronocooked_env::fs::write_atomic(path, &bytes).map_err(|e| err(path, e.error))
 }
 
 /// Writes the compact results of every finished job under `sweep_out` into
@@ -316,10 +318,10 @@ pub fn collect(sweep_out: &Path, to: &Path) -> Result<(usize, usize), CollectErr
         let json = serde_json::to_string_pretty(&summary).map_err(|e| err(&out, e))?;
         let job_path = out.join("job.json");
         chronocooked_env::fs::write_atomic(&job_path, json.as_bytes())
-            .map_err(|e| err(&job_path, e))?;
+            .map_err(|e| err(&job_path, e.error))?;
         write_csv(&out.join("episodes.csv"), &episodes)?;
         write_csv(&out.join("curve.csv"), &curve)?;
-        let metrics = dir.join("eval").join("metrics.json");
+        let metrics = dir.join("eval").join(METRICS);
         let text = std::fs::read(&metrics).map_err(|e| err(&metrics, e))?;
         // Copied as written, but only once it is a metrics object (never a corrupt file).
         let parsed: serde_json::Value =
@@ -327,8 +329,8 @@ pub fn collect(sweep_out: &Path, to: &Path) -> Result<(usize, usize), CollectErr
         if !parsed.get("conditions").is_some_and(|c| c.is_array()) {
             return Err(err(&metrics, "not a metrics file (no `conditions` list)"));
         }
-        let m_path = out.join("metrics.json");
-        chronocooked_env::fs::write_atomic(&m_path, &text).map_err(|e| err(&m_path, e))?;
+        let m_path = out.join(METRICS);
+        chronocooked_env::fs::write_atomic(&m_path, &text).map_err(|e| err(&m_path, e.error))?;
         // The neural summary of a recorded job (a few kB; the activity itself stays behind),
         // copied only when it is a list of population summaries.
         let neural = dir.join("activity.summary.json");
@@ -343,7 +345,8 @@ pub fn collect(sweep_out: &Path, to: &Path) -> Result<(usize, usize), CollectErr
                 ));
             }
             let n_path = out.join("activity.summary.json");
-            chronocooked_env::fs::write_atomic(&n_path, &text).map_err(|e| err(&n_path, e))?;
+            chronocooked_env::fs::write_atomic(&n_path, &text)
+                .map_err(|e| err(&n_path, e.error))?;
         }
         written += 1;
     }

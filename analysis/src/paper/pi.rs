@@ -17,6 +17,7 @@
 
 use super::collect::{CollectError, CompactJob, err};
 use crate::records::ConditionKind;
+use crate::evaluation::folder::METRICS;
 use serde::{Deserialize, Serialize};
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 use std::path::Path;
@@ -210,7 +211,7 @@ pub fn analyse_pi(root: &Path, jobs: &[CompactJob]) -> Result<Vec<PiRow>, Collec
         .iter()
         .filter(|j| j.job.task.starts_with("FixedInterval"))
     {
-        let p = root.join("jobs").join(&j.job.id).join("metrics.json");
+        let p = root.join("jobs").join(&j.job.id).join(METRICS);
         if !p.is_file() {
             continue;
         }

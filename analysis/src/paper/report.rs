@@ -162,6 +162,6 @@ pub fn write_paper_report(
     }
     h += "</table>\n</body></html>\n";
     let path = root.join("report.html");
-    chronocooked_env::fs::write_atomic(&path, h.as_bytes()).map_err(|e| err(&path, e))?;
+    chronocooked_env::fs::write_atomic(&path, h.as_bytes()).map_err(|e| err(&path, e.error))?;
     Ok(path)
 }

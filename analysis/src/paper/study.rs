@@ -328,7 +328,7 @@ pub fn write_study(root: &Path, s: &PaperStudy) -> Result<(), CollectError> {
     };
     let write = |name: &str, bytes: &[u8]| {
         let p = root.join(name);
-        chronocooked_env::fs::write_atomic(&p, bytes).map_err(|x| e(&p, x.to_string()))
+        chronocooked_env::fs::write_atomic(&p, bytes).map_err(|x| e(&p, x.error.to_string()))
     };
     let json = serde_json::to_string_pretty(s).map_err(|x| e(root, x.to_string()))?;
     write("analysis.json", json.as_bytes())?;

@@ -10,6 +10,7 @@
 use crate::behaviour::aggregate::{Spread, aggregate};
 use crate::behaviour::foc::{FocStats, pool_foc_stats, scalar_property};
 use crate::behaviour::metrics::{BisectionMetrics, Metrics};
+use crate::evaluation::folder::{EVAL_INFO, RECORDS, read_eval_info};
 use crate::neural::summary::NeuralSummary;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -54,25 +55,26 @@ pub struct RunResult {
 /// Recomputes the metrics of an `eval` folder from its `records.jsonl` and `eval.json`
 /// (the records are the source of truth; metrics JSON writes NaN as null).
 pub fn load_metrics(folder: &Path) -> Result<Metrics, String> {
-    let read = |name: &str| {
-        let p = folder.join(name);
-        std::fs::read_to_string(&p)
-            .map_err(|e| format!("{}: {e} (not an `eval` output folder)", p.display()))
-    };
-    let info: serde_json::Value = serde_json::from_str(&read("eval.json")?)
-        .map_err(|e| format!("{}: {e}", folder.join("eval.json").display()))?;
+    let path = folder.join(EVAL_INFO);
+    if !path.is_file() {
+        return Err(format!(
+            "{}: no such file (not an `eval` output folder)",
+            path.display()
+        ));
+    }
+    let info = read_eval_info(folder)?;
     let records = crate::records::read_records(folder)
         .map_err(|e| format!("{e} (not an `eval` output folder)"))?;
     Ok(crate::behaviour::metrics::compute_metrics(
-        info["model"].as_str().unwrap_or("unknown"),
+        &info.model,
         &records,
-        info["seed"].as_u64().unwrap_or(0),
+        info.seed,
     ))
 }
 
 /// Whether `dir` is an `eval` output folder.
 pub fn is_eval_folder(dir: &Path) -> bool {
-    dir.join("eval.json").is_file() && dir.join("records.jsonl").is_file()
+    dir.join(EVAL_INFO).is_file() && dir.join(RECORDS).is_file()
 }
 
 /// Every evaluation folder at or below `roots` (sorted, each real folder once; symbolic

@@ -265,11 +265,9 @@ fn row_figures_html(r: &Row) -> Result<String, String> {
 
 /// Task of an evaluation folder (from `eval.json`).
 fn run_task(folder: &Path) -> String {
-    std::fs::read_to_string(folder.join("eval.json"))
-        .ok()
-        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
-        .and_then(|v| v["task"].as_str().map(str::to_string))
-        .unwrap_or_else(|| "unknown task".into())
+    crate::evaluation::folder::read_eval_info(folder)
+        .map(|info| info.task)
+        .unwrap_or_else(|_| "unknown task".into())
 }
 
 /// Caption of one evaluation folder: its task and path.
@@ -509,7 +507,7 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
         ("report.csv", csv),
     ] {
         let p = out.join(name);
-        crate::export::write_atomic(&p, text.as_bytes())?;
+        chronocooked_env::fs::write_atomic(&p, text.as_bytes()).map_err(|e| e.to_string())?;
         files.push(p);
     }
     files.extend(grid);

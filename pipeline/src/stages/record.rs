@@ -187,7 +187,7 @@ pub fn record(req: &RecordRequest) -> Result<RecordOutcome, PipelineError> {
         dataset.trials.extend(more.trials);
     }
     let write = |path: &std::path::Path, bytes: &[u8]| {
-        chronocooked_env::fs::write_atomic(path, bytes).map_err(|e| PipelineError::write(path, e))
+        chronocooked_env::fs::write_atomic(path, bytes).map_err(PipelineError::from)
     };
     write(&req.out, &json_bytes(&dataset, false)?)?;
     if let Some(dir) = &req.figures {

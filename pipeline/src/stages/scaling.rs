@@ -11,6 +11,7 @@
 
 use crate::error::PipelineError;
 use crate::stages::record::{RecordRequest, record};
+use chronocooked_models::run_folder;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -55,7 +56,7 @@ fn groups(study: &Path) -> Result<BTreeMap<(String, u64), RunsByTd>, PipelineErr
     for row in chronocooked_env::fs::real_subdirs(&root) {
         for job_dir in chronocooked_env::fs::real_subdirs(&row) {
             let (job_file, run) = (job_dir.join("job.json"), job_dir.join("run"));
-            if !job_file.is_file() || !run.join("summary.json").is_file() {
+            if !job_file.is_file() || !run.join(run_folder::SUMMARY).is_file() {
                 continue;
             }
             let job = read_json(&job_file)?;
@@ -133,8 +134,7 @@ pub fn record_scaling(study: &Path, results: &Path) -> Result<ScalingOutcome, Pi
         let file = dir.join("scaling.json");
         let text = serde_json::to_vec_pretty(&job)
             .map_err(|e| PipelineError::Invalid(format!("{}: {e}", file.display())))?;
-        chronocooked_env::fs::write_atomic(&file, &text)
-            .map_err(|e| PipelineError::write(&file, e))?;
+        chronocooked_env::fs::write_atomic(&file, &text)?;
         outcome.recorded.push(job);
     }
     Ok(outcome)

@@ -93,7 +93,7 @@ pub fn run(args: DemoArgs) -> Result<()> {
             .map(|f| render::frame(env.layout(), env.family(), f))
             .collect();
         let gif = args.out.join(format!("{}.gif", spec.id));
-        render::write_atomic(&gif, &render::gif_bytes(&images, 25)?)?;
+        chronocooked_env::fs::write_atomic(&gif, &render::gif_bytes(&images, 25)?)?;
         summary.push(serde_json::json!({
             "task": spec.id,
             "episodes": episodes,
@@ -120,7 +120,7 @@ pub fn run(args: DemoArgs) -> Result<()> {
     }
     println!("{fi_ascii}");
     let path = args.out.join("summary.json");
-    render::write_atomic(&path, serde_json::to_string_pretty(&summary)?.as_bytes())?;
+    chronocooked_env::fs::write_atomic(&path, serde_json::to_string_pretty(&summary)?.as_bytes())?;
     println!("\nGIFs and summary.json written to {}", args.out.display());
     Ok(())
 }

@@ -278,10 +278,10 @@ fn render_episode(
         .iter()
         .map(|f| render::frame(&layout, family, f))
         .collect();
-    render::write_atomic(out, &render::gif_bytes(&images, delay)?)?;
+    chronocooked_env::fs::write_atomic(out, &render::gif_bytes(&images, delay)?)?;
     if let Some(dir) = png_dir {
         for (i, img) in images.iter().enumerate() {
-            render::write_atomic(
+            chronocooked_env::fs::write_atomic(
                 &dir.join(format!("frame_{i:04}.png")),
                 &render::png_bytes(img)?,
             )?;

@@ -92,12 +92,12 @@ pub fn unpack(cache: &Path) -> Result<PathBuf, ZooError> {
         std::fs::create_dir_all(&agent).map_err(|e| io(&agent, e))?;
         for (file, bytes) in files {
             let p = agent.join(file);
-            chronocooked_env::fs::write_atomic(&p, bytes).map_err(|e| io(&p, e))?;
+            chronocooked_env::fs::write_atomic(&p, bytes).map_err(|e| io(&p, e.error))?;
         }
     }
     std::fs::create_dir_all(&dir).map_err(|e| io(&dir, e))?;
     let p = dir.join(INDEX);
-    chronocooked_env::fs::write_atomic(&p, INDEX_JSON).map_err(|e| io(&p, e))?;
+    chronocooked_env::fs::write_atomic(&p, INDEX_JSON).map_err(|e| io(&p, e.error))?;
     Ok(dir)
 }
 

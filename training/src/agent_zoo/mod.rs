@@ -18,6 +18,7 @@
 pub mod embedded;
 
 use chronocooked_env::integrity::{self, MANIFEST};
+use chronocooked_models::run_folder;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -38,10 +39,10 @@ pub const INDEX: &str = "index.json";
 
 /// The files of one zoo agent besides `SHA256SUMS`, each recorded there.
 pub const AGENT_FILES: [&str; 5] = [
-    "config.json",
-    "policy.json",
-    "model.bpk",
-    "summary.json",
+    run_folder::CONFIG,
+    run_folder::POLICY,
+    run_folder::MODEL,
+    run_folder::SUMMARY,
     "provenance.json",
 ];
 

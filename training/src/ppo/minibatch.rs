@@ -1,13 +1,9 @@
-//! One PPO minibatch: gathered from the rollout as whole BPTT chunks, then its loss and
-//! parameter gradient computed on either engine (native or burn autodiff).
+//! One PPO minibatch: gathered from the rollout as whole BPTT chunks, with its loss and
+//! gradient at the network outputs (an engine, [`crate::ppo::engine`], runs the network
+//! and back-propagates them).
 
 use crate::ppo::loss::{LossCoefs, LossStats, OutputBatch, normalize_advantages, ppo_output_grads};
-use crate::ppo::params::{flat_grads, param_offset};
 use crate::ppo::rollout::{Chunk, Rollout};
-use burn::tensor::{Device, Tensor, TensorData};
-use chronocooked_models::deep::cores::SeqAux;
-use chronocooked_models::deep::native::{Cache, NativePolicy, SeqBatch};
-use chronocooked_models::{ActorCritic, CoreState};
 
 /// Time-major minibatch of `B` chunks of `L` steps (row `t·B + j`; padding rows have mask 0).
 #[derive(Debug, Clone)]
@@ -96,8 +92,9 @@ impl Minibatch {
         s
     }
 
-    /// The loss and its gradient at the outputs, given the outputs.
-    fn output_grads(
+    /// The PPO loss of this minibatch given the network's outputs, logits `[L·B, A]` and
+    /// values `[L·B]`, and its gradient with respect to them (`∂L/∂logits`, `∂L/∂values`).
+    pub fn output_grads(
         &self,
         logits: &[f32],
         values: &[f32],
@@ -117,97 +114,4 @@ impl Minibatch {
             c,
         )
     }
-
-    /// Native engine: forward pass into `cache`, loss, and `∂L/∂(logits, values)`.
-    pub fn loss_native(
-        &self,
-        net: &NativePolicy,
-        theta: &[f32],
-        cache: &mut Cache,
-        c: LossCoefs,
-    ) -> (LossStats, Vec<f32>, Vec<f32>) {
-        let batch = SeqBatch {
-            obs: &self.obs,
-            steps: self.steps,
-            batch: self.batch,
-            keep: &self.keep,
-            h0: &self.h0,
-            c0: self.c0.as_deref(),
-            active: Some(&self.active),
-        };
-        net.forward(theta, &batch, cache);
-        self.output_grads(&cache.logits, &cache.values, c)
-    }
-
-    /// burn engine: forward pass with autodiff and loss; returns the surrogate whose
-    /// `backward` gives the parameter gradient (finish with [`burn_gradient`]). With
-    /// `detach_critic` the value head reads a detached copy of the core output.
-    pub fn loss_burn(
-        &self,
-        model: &ActorCritic,
-        device: &Device,
-        (cells, channels): (usize, usize),
-        actions: usize,
-        c: LossCoefs,
-        detach_critic: bool,
-    ) -> (LossStats, Tensor<1>, Option<SeqAux>) {
-        let (l, b) = (self.steps, self.batch);
-        let m = l * b;
-        let state = (!self.h0.is_empty())
-            .then(|| CoreState::from_vecs(self.h0.clone(), self.c0.clone(), b, device));
-        let obs_t = Tensor::<4>::from_data(
-            TensorData::new(self.obs.clone(), [l, b, cells, channels]),
-            device,
-        );
-        let keep_t: Vec<Option<Tensor<2>>> = self
-            .keep
-            .chunks_exact(b)
-            .map(|k| {
-                k.iter()
-                    .any(|&v| v != 1.0)
-                    .then(|| Tensor::<2>::from_data(TensorData::new(k.to_vec(), [b, 1]), device))
-            })
-            .collect();
-        let out = model.forward_seq_train(obs_t, state, &keep_t, detach_critic);
-        let both = chronocooked_models::to_vec(&Tensor::cat(
-            vec![out.logits.clone(), out.values.clone()],
-            1,
-        ));
-        let mut logits = Vec::with_capacity(m * actions);
-        let mut values = Vec::with_capacity(m);
-        for row in both.chunks_exact(actions + 1) {
-            logits.extend_from_slice(&row[..actions]);
-            values.push(row[actions]);
-        }
-        let (stats, d_logits, d_values) = self.output_grads(&logits, &values, c);
-        let g_l = Tensor::<2>::from_data(TensorData::new(d_logits, [m, actions]), device);
-        let g_v = Tensor::<2>::from_data(TensorData::new(d_values, [m, 1]), device);
-        // Same parameter gradients as the full loss: backward of Σ out·(∂L/∂out).
-        let surrogate = (out.logits * g_l).sum() + (out.values * g_v).sum();
-        (stats, surrogate, out.aux)
-    }
-}
-
-/// Parameter gradient (flat layout) from a [`Minibatch::loss_burn`] surrogate.
-pub fn burn_gradient(model: &ActorCritic, surrogate: Tensor<1>, aux: Option<SeqAux>) -> Vec<f32> {
-    let grads = surrogate.backward();
-    let mut g = flat_grads(model, &grads);
-    if let Some(aux) = aux {
-        let id = aux.weight_id;
-        let (dw, sur) = aux.finish(&grads);
-        if let Some(dw) = dw
-            && let Some(off) = param_offset(model, id)
-        {
-            let dw = chronocooked_models::to_vec(&dw);
-            g[off..off + dw.len()]
-                .iter_mut()
-                .zip(&dw)
-                .for_each(|(a, b)| *a += b);
-        }
-        if let Some(sur) = sur {
-            let g2 = flat_grads(model, &sur.backward());
-            g.iter_mut().zip(&g2).for_each(|(a, b)| *a += b);
-        }
-    }
-    g
 }

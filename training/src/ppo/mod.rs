@@ -2,11 +2,13 @@
 //!
 //! * [`config`] — settings (`TrainConfig`, `PpoConfig`) and their `key=value` surface;
 //!   [`presets`] — the named presets (reference = the paper's code, fast, …);
-//! * [`obs`] — observation encoding for the networks; [`act`] — acting in rollouts on
-//!   either engine; [`rollout`] — the rollout buffer and its minibatch orders (transitions,
+//! * [`obs`] — observation encoding for the networks; [`act`] — batched policy steps,
+//!   sampling and log-probabilities; [`rollout`] — the rollout buffer and its minibatch orders (transitions,
 //!   BPTT chunks, whole sequences);
 //! * [`gae`] — generalised advantage estimation; [`loss`] — the clipped surrogate, value and
-//!   entropy terms; [`minibatch`] — loss and gradient of one minibatch on either engine;
+//!   entropy terms; [`minibatch`] — one minibatch and its loss at the network outputs;
+//!   [`engine`] — the network behind one trait (acting, loss and gradient, parameter sync)
+//!   with its two implementations, native and burn;
 //!   [`adam`] — Adam with SB3's settings; [`params`] — flat parameter vectors;
 //! * [`trainer`] — the update loop, curricula and its checkpointable state ([`state`]);
 //! * [`run`] — a run folder trained to its budget (new or resumed), with evaluation,
@@ -17,6 +19,7 @@ pub mod act;
 pub mod adam;
 pub mod agent;
 pub mod config;
+pub mod engine;
 pub mod gae;
 pub mod loss;
 pub mod minibatch;

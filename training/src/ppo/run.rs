@@ -11,10 +11,10 @@ use crate::evaluate::{eval_tds, evaluate_policy, success_rate};
 use crate::ppo::config::TrainConfig;
 use crate::ppo::state::UpdateLog;
 use crate::ppo::trainer::Trainer;
-use crate::run_dir::{
-    RunDir, RunSummary, curve_header, expected_policy, read_policy_config, write_atomic,
-};
+use crate::run_dir::{RunDir, RunSummary, curve_header, expected_policy, read_policy_config};
+use chronocooked_env::fs::write_atomic;
 use chronocooked_env::{integrity, make_config};
+use chronocooked_models::run_folder;
 use std::path::Path;
 
 /// Callbacks of a training run (progress display).
@@ -37,7 +37,7 @@ pub fn run_training(
     let (run, mut trainer) = match cfg {
         Some(cfg) => {
             let run = RunDir::create(dir)?;
-            if run.path.join("config.json").exists() && !run.checkpoints().is_empty() {
+            if run.path.join(run_folder::CONFIG).exists() && !run.checkpoints().is_empty() {
                 return Err(TrainError::Resume {
                     path: dir.display().to_string(),
                     reason: "the folder already holds a run; use `train --resume` or a new --out"
@@ -46,10 +46,13 @@ pub fn run_training(
             }
             let trainer = Trainer::new(cfg.clone())?;
             let json = serde_json::to_string_pretty(&cfg).unwrap_or_default();
-            write_atomic(&run.path.join("config.json"), json.as_bytes())?;
+            write_atomic(&run.path.join(run_folder::CONFIG), json.as_bytes())?;
             let pj = serde_json::to_string_pretty(trainer.policy_config()).unwrap_or_default();
-            integrity::write_recorded(&run.path.join("policy.json"), pj.as_bytes())?;
-            write_atomic(&run.path.join("curves.csv"), curve_header().as_bytes())?;
+            integrity::write_recorded(&run.path.join(run_folder::POLICY), pj.as_bytes())?;
+            write_atomic(
+                &run.path.join(run_folder::CURVES),
+                curve_header().as_bytes(),
+            )?;
             (run, trainer)
         }
         None => {
@@ -65,7 +68,7 @@ pub fn run_training(
                 // Nothing learned yet (killed before the first checkpoint, perhaps while the
                 // folder was being set up): the policy description follows from the config.
                 let pj = serde_json::to_string_pretty(&expected_policy(&cfg)?).unwrap_or_default();
-                integrity::write_recorded(&run.path.join("policy.json"), pj.as_bytes())?;
+                integrity::write_recorded(&run.path.join(run_folder::POLICY), pj.as_bytes())?;
             } else {
                 read_policy_config(&run.path, &cfg)?;
             }
@@ -117,7 +120,7 @@ pub fn run_training(
         }
     }
     run.write_checkpoint(trainer.state(), cfg.keep_checkpoints)?;
-    run.save_model(trainer.policy(), "model.bpk")?;
+    run.save_model(trainer.policy(), run_folder::MODEL)?;
     let eps = evaluate_policy(&trainer.policy(), &task, cfg.obs, &eval_tds(&task))?;
     let st = trainer.state();
     let summary = RunSummary {
@@ -130,7 +133,7 @@ pub fn run_training(
         train_success: st.curve.last().map(|r| r.success_rate).unwrap_or(f64::NAN),
     };
     let json = serde_json::to_string_pretty(&summary).unwrap_or_default();
-    write_atomic(&run.path.join("summary.json"), json.as_bytes())?;
+    write_atomic(&run.path.join(run_folder::SUMMARY), json.as_bytes())?;
     Ok(summary)
 }
 

@@ -7,6 +7,7 @@ mod draw;
 pub mod grid;
 
 use crate::records::ConditionKind;
+use chronocooked_models::run_folder;
 use draw::err;
 pub use draw::{
     Chart, FigureError, Series, write_chart, write_chart_sized, write_heatmap, write_heatmap_sized,
@@ -466,7 +467,7 @@ pub fn unit_by_td(
 /// Learning curve of a run folder's `curves.csv` (PPO: training success and evaluation
 /// success vs env steps; timing agents: the same vs env steps).
 pub fn learning_curve(run_dir: &Path) -> Result<Vec<PathBuf>, FigureError> {
-    let path = run_dir.join("curves.csv");
+    let path = run_dir.join(run_folder::CURVES);
     let text = std::fs::read_to_string(&path).map_err(err(&path))?;
     let mut lines = text.lines();
     let header: Vec<&str> = lines.next().unwrap_or("").split(',').collect();

@@ -25,6 +25,7 @@ mod card_html;
 #[cfg(test)]
 mod tests;
 
+use crate::evaluation::folder::{METRICS, read_eval_info};
 use crate::mechanisms::{JobFiles, MECHANISMS, Signature, assemble, compare};
 use crate::report::leaderboard::Row;
 use crate::report::{escape, figure_markup};
@@ -40,14 +41,11 @@ pub(super) struct RunInfo {
 }
 
 fn run_info(eval: &Path) -> RunInfo {
-    let info: serde_json::Value = std::fs::read_to_string(eval.join("eval.json"))
-        .ok()
-        .and_then(|t| serde_json::from_str(&t).ok())
-        .unwrap_or_default();
+    let info = read_eval_info(eval).ok();
     RunInfo {
         eval: eval.to_path_buf(),
-        task: info["task"].as_str().unwrap_or_default().to_string(),
-        seed: info["seed"].as_u64().unwrap_or(0),
+        task: info.as_ref().map(|i| i.task.clone()).unwrap_or_default(),
+        seed: info.map_or(0, |i| i.seed),
     }
 }
 
@@ -62,7 +60,7 @@ fn job_files(rows: &[Row]) -> (Vec<JobFiles>, Vec<Vec<RunInfo>>) {
                 model: row.model.clone(),
                 seed: r.seed,
                 task: r.task.clone(),
-                metrics: r.eval.join("metrics.json"),
+                metrics: r.eval.join(METRICS),
                 summary: r
                     .eval
                     .parent()

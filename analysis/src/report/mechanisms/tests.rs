@@ -69,9 +69,16 @@ fn row(root: &Path, model: &str, sets: Vec<ActivityDataset>) -> Row {
     for ds in sets {
         let job = root.join(format!("{model}-{}", ds.trials[0].td));
         std::fs::create_dir_all(job.join("eval")).unwrap();
+        let info = crate::evaluation::folder::EvalInfo {
+            model: model.into(),
+            task: "FixedInterval-v0".into(),
+            env: Vec::new(),
+            mode: crate::evaluation::protocol::Mode::Reference,
+            seed: 0,
+        };
         std::fs::write(
             job.join("eval/eval.json"),
-            r#"{"task": "FixedInterval-v0", "seed": 0}"#,
+            serde_json::to_vec(&info).unwrap(),
         )
         .unwrap();
         std::fs::write(job.join("eval/metrics.json"), "{}").unwrap();

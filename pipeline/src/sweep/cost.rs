@@ -2,7 +2,7 @@
 //! single-core time of a job.
 
 use super::file::{Job, SweepFile};
-use crate::zoo::Family;
+use chronocooked_training::zoo::Family;
 
 /// Measured training throughput (env steps per second, one core, native engine) of the
 /// reference preset on the lab's 2-core development machine (`BENCHMARKS.md`, "Study
@@ -38,7 +38,13 @@ pub fn estimate_seconds(sweep: &SweepFile, job: &Job) -> Option<f64> {
         .find(|(m, _)| *m == job.model)?
         .1;
     let arch = job.model.parse().ok()?;
-    let cfg =
-        crate::ppo::presets::resolve(&job.task, arch, &sweep.preset, job.seed, &job.sets).ok()?;
+    let cfg = chronocooked_training::ppo::presets::resolve(
+        &job.task,
+        arch,
+        &sweep.preset,
+        job.seed,
+        &job.sets,
+    )
+    .ok()?;
     Some(cfg.total_steps as f64 / rate)
 }

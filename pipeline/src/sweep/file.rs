@@ -1,8 +1,8 @@
 //! The sweep file (TOML): models × sizes × tasks × seeds × override variants, expanded into
 //! [`Job`]s with their ids, families and settings.
 
-use crate::error::TrainError;
-use crate::zoo::{Family, family_of};
+use chronocooked_training::TrainError;
+use chronocooked_training::zoo::{Family, family_of};
 use serde::{Deserialize, Serialize};
 
 /// A sweep file (TOML). Every list is crossed with every other.
@@ -122,8 +122,14 @@ pub fn applies(family: Family, task: &str, model: &str, kv: &str) -> bool {
     }
     let key = kv.split_once('=').map_or(kv, |(k, _)| k).trim();
     match family {
-        Family::DeepRl => crate::settings::find(crate::settings::ppo::PPO_SETTINGS, key).is_some(),
-        Family::Timing => crate::timing_run::TimingRunConfig::new(task, model, 0).has_setting(key),
+        Family::DeepRl => chronocooked_training::settings::find(
+            chronocooked_training::settings::ppo::PPO_SETTINGS,
+            key,
+        )
+        .is_some(),
+        Family::Timing => {
+            chronocooked_training::timing_run::TimingRunConfig::new(task, model, 0).has_setting(key)
+        }
         Family::Baseline => false,
     }
 }
@@ -164,11 +170,11 @@ impl SweepFile {
                 return Err(bad("tasks", t, &tasks.join(", ")));
             }
         }
-        if !crate::ppo::presets::PRESETS.contains(&self.preset.as_str()) {
+        if !chronocooked_training::ppo::presets::PRESETS.contains(&self.preset.as_str()) {
             return Err(bad(
                 "preset",
                 &self.preset,
-                &crate::ppo::presets::PRESETS.join(", "),
+                &chronocooked_training::ppo::presets::PRESETS.join(", "),
             ));
         }
         if self.steps == Some(0) {
@@ -377,13 +383,15 @@ pub(crate) fn refusal(sweep: &SweepFile, field: &str, kv: &str) -> TrainError {
             }
             let err = match family {
                 Ok(Family::DeepRl) => m.parse().ok().and_then(|arch| {
-                    crate::ppo::config::TrainConfig::base(task, arch)
+                    chronocooked_training::ppo::config::TrainConfig::base(task, arch)
                         .set(k, v)
                         .err()
                 }),
-                Ok(Family::Timing) => crate::timing_run::TimingRunConfig::new(task, &m, 0)
-                    .set(kv)
-                    .err(),
+                Ok(Family::Timing) => {
+                    chronocooked_training::timing_run::TimingRunConfig::new(task, &m, 0)
+                        .set(kv)
+                        .err()
+                }
                 _ => None,
             };
             if let Some(TrainError::InvalidParam { field: f, .. }) = &err

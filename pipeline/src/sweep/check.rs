@@ -1,13 +1,13 @@
 //! The full check of a sweep file at load: every job's settings resolved exactly as its
-//! run will resolve them (PPO configs through [`crate::resolve`] and
-//! [`crate::TrainConfig::validate`], timing models through [`TimingRunConfig::set`] and
+//! run will resolve them (PPO configs through [`chronocooked_training::resolve`] and
+//! [`chronocooked_training::TrainConfig::validate`], timing models through [`TimingRunConfig::set`] and
 //! [`TimingRunConfig::validate`], every job's task through the env's task checks), so
 //! `sweep --dry-run` refuses everything a run would refuse, before anything starts.
 
-use crate::error::TrainError;
 use crate::sweep::file::{Job, SweepFile, applies, refusal};
-use crate::timing_run::TimingRunConfig;
-use crate::zoo::{Family, family_of};
+use chronocooked_training::TrainError;
+use chronocooked_training::timing_run::TimingRunConfig;
+use chronocooked_training::zoo::{Family, family_of};
 use std::path::Path;
 
 /// Checks the sweep-wide settings (`set`: each must apply to some model of the sweep, so a
@@ -58,7 +58,7 @@ fn check_job(sweep: &SweepFile, job: &Job) -> Result<(), TrainError> {
                 .model
                 .parse()
                 .map_err(|e: String| TrainError::param("model", &job.model, &e))?;
-            crate::resolve(&job.task, arch, &sweep.preset, job.seed, &job.sets)?;
+            chronocooked_training::resolve(&job.task, arch, &sweep.preset, job.seed, &job.sets)?;
         }
         Family::Timing => {
             let mut cfg = TimingRunConfig::new(&job.task, &job.model, job.seed);

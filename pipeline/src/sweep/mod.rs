@@ -9,7 +9,7 @@
 //! * [`slurm`] — the same plan as a Slurm job array;
 //! * [`cost`] — measured throughput and the estimated time of a job.
 //!
-//! The stages themselves run in the `chronocooked-pipeline` crate (`run_job`), one level up:
+//! The stages themselves run in this crate ([`crate::run_job`]):
 //! evaluation, recording and export need the analysis crate, a sibling of this one.
 
 pub mod check;

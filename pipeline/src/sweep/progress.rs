@@ -1,8 +1,8 @@
 //! Per-job progress: the finished stages of a job folder (`progress.json`, written
 //! atomically after each stage), so a rerun redoes nothing that finished.
 
-use crate::error::TrainError;
 use crate::sweep::stage::Stage;
+use chronocooked_training::TrainError;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -48,7 +48,8 @@ pub fn mark_stage(
     }
     p.done = done;
     let json = serde_json::to_string_pretty(&p).unwrap_or_default();
-    crate::run_dir::write_atomic(&job_dir.join("progress.json"), json.as_bytes())
+    chronocooked_env::fs::write_atomic(&job_dir.join("progress.json"), json.as_bytes())?;
+    Ok(())
 }
 
 /// Whether the job in `job_dir` is completely finished.

@@ -1,7 +1,7 @@
 //! The stages of a sweep job and which of them a job needs.
 
 use crate::sweep::file::{Job, SweepFile};
-use crate::zoo::Family;
+use chronocooked_training::zoo::Family;
 use serde::{Deserialize, Serialize};
 
 /// One stage of a job, in the order they run.

@@ -1,0 +1,29 @@
+//! The file names of a run folder — one trained agent, a PPO policy or a timing model — in
+//! one place. The training crate writes run folders and reads them back with their types
+//! (`chronocooked_training::run_dir` for PPO, `timing_run` for the timing models); the
+//! analysis crate, the pipeline and the CLI read the same files by these names.
+//!
+//! ```text
+//! RUN_DIR/config.json     the resolved training config
+//! RUN_DIR/policy.json     PPO: the policy's architecture and input shape
+//! RUN_DIR/command.txt     the command line(s) that produced the run
+//! RUN_DIR/curves.csv      the learning curve
+//! RUN_DIR/checkpoints/    PPO: resumable trainer states
+//! RUN_DIR/model.bpk       PPO: the final policy (burnpack)
+//! RUN_DIR/summary.json    written last: the run finished
+//! ```
+
+/// The resolved training config (JSON).
+pub const CONFIG: &str = "config.json";
+/// The policy's architecture and input shape (JSON; PPO runs).
+pub const POLICY: &str = "policy.json";
+/// The command line(s) that produced the run, one per line.
+pub const COMMAND: &str = "command.txt";
+/// The learning curve (CSV, one row per update or per training block).
+pub const CURVES: &str = "curves.csv";
+/// The folder of resumable trainer states (PPO runs).
+pub const CHECKPOINTS: &str = "checkpoints";
+/// The final policy (burnpack; PPO runs).
+pub const MODEL: &str = "model.bpk";
+/// The run's summary (JSON), written last: its presence marks a finished run.
+pub const SUMMARY: &str = "summary.json";
