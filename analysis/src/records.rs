@@ -6,6 +6,7 @@
 
 use chronocooked_models::EpisodeRecord;
 use serde::{Deserialize, Serialize};
+use std::path::Path;
 
 /// What an evaluation condition measures (serialised in snake case: `fi`, `pi`,
 /// `bisection`, `multi_timer`, `buffer`, `dual`, `uncertainty`).
@@ -132,4 +133,49 @@ pub fn read_records(folder: &std::path::Path) -> Result<Vec<EvalRecord>, String>
         ));
     }
     Ok(records)
+}
+
+/// How episodes are played.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub enum Mode {
+    /// Greedy, one episode per free start cell.
+    Reference,
+    /// `episodes` per condition, random start cells, sampled actions.
+    Stochastic {
+        /// Episodes per condition.
+        episodes: usize,
+    },
+}
+
+/// File name of the evaluation's description ([`EvalInfo`]).
+pub const EVAL_INFO: &str = "eval.json";
+/// File name of the metrics computed from the records ([`Metrics`]).
+pub const METRICS: &str = "metrics.json";
+
+/// What an evaluation was (`eval.json`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EvalInfo {
+    /// Name of the evaluated model (a leaderboard row).
+    pub model: String,
+    /// Task id the protocol was built for.
+    pub task: String,
+    /// Task overrides `key=value`.
+    pub env: Vec<String>,
+    /// Reference (greedy, every start cell) or stochastic protocol.
+    pub mode: Mode,
+    /// Seed of the evaluation.
+    pub seed: u64,
+}
+
+/// Reads `eval.json` of an evaluation folder; errors name the file.
+pub fn read_eval_info(dir: &Path) -> Result<EvalInfo, String> {
+    let path = dir.join(EVAL_INFO);
+    let text = std::fs::read_to_string(&path).map_err(|e| {
+        format!(
+            "{}: {e} ({} is not an eval folder)",
+            path.display(),
+            dir.display()
+        )
+    })?;
+    serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
 }

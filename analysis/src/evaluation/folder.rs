@@ -12,31 +12,11 @@
 //! here and reads `eval.json` through [`read_eval_info`].
 
 use crate::behaviour::metrics::{Metrics, compute_metrics};
-use crate::evaluation::protocol::{EvalRecord, Mode};
+use crate::evaluation::protocol::EvalRecord;
 use chronocooked_env::fs::write_atomic;
-use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
-pub use crate::evaluation::protocol::RECORDS;
-/// File name of the evaluation's description ([`EvalInfo`]).
-pub const EVAL_INFO: &str = "eval.json";
-/// File name of the metrics computed from the records ([`Metrics`]).
-pub const METRICS: &str = "metrics.json";
-
-/// What an evaluation was (`eval.json`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct EvalInfo {
-    /// Name of the evaluated model (a leaderboard row).
-    pub model: String,
-    /// Task id the protocol was built for.
-    pub task: String,
-    /// Task overrides `key=value`.
-    pub env: Vec<String>,
-    /// Reference (greedy, every start cell) or stochastic protocol.
-    pub mode: Mode,
-    /// Seed of the evaluation.
-    pub seed: u64,
-}
+pub use crate::records::{EVAL_INFO, EvalInfo, METRICS, RECORDS, read_eval_info};
 
 /// `out` must be a folder (or not exist yet): a file there is named in the error.
 fn check_out(out: &Path) -> Result<(), String> {
@@ -82,19 +62,6 @@ pub fn write_metrics(
     let figures = crate::report::figures::eval_figures(&out.join("figures"), &metrics, records)
         .map_err(|e| e.to_string())?;
     Ok((metrics, figures))
-}
-
-/// Reads `eval.json` of an evaluation folder; errors name the file.
-pub fn read_eval_info(dir: &Path) -> Result<EvalInfo, String> {
-    let path = dir.join(EVAL_INFO);
-    let text = std::fs::read_to_string(&path).map_err(|e| {
-        format!(
-            "{}: {e} ({} is not an eval folder)",
-            path.display(),
-            dir.display()
-        )
-    })?;
-    serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
 }
 
 /// Writes the activity recorded during an evaluation next to it: `activity.json` (the

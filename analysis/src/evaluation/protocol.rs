@@ -19,9 +19,8 @@ use chronocooked_models::activity::TrialRecorder;
 use chronocooked_models::{Agent, run_episode};
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
-use serde::{Deserialize, Serialize};
 
-pub use crate::records::{Condition, ConditionKind, EvalRecord, RECORDS, read_records};
+pub use crate::records::{Condition, ConditionKind, EvalRecord, Mode, RECORDS, read_records};
 
 fn cond(kind: ConditionKind, task: &str, env: Vec<String>, td: u32) -> Condition {
     Condition {
@@ -102,18 +101,6 @@ pub fn reference_conditions(task: &str, env: &[String]) -> Result<Vec<Condition>
         }
     }
     Ok(out)
-}
-
-/// How episodes are played.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub enum Mode {
-    /// Greedy, one episode per free start cell.
-    Reference,
-    /// `episodes` per condition, random start cells, sampled actions.
-    Stochastic {
-        /// Episodes per condition.
-        episodes: usize,
-    },
 }
 
 /// Plays every condition with `agent`; `seed` makes the run reproducible.

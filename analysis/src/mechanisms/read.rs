@@ -2,7 +2,7 @@
 //! study's compact results, or of a leaderboard's evaluation folders.
 
 use super::{MechanismError, READOUTS, Signature};
-use crate::evaluation::folder::METRICS;
+use crate::records::METRICS;
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

@@ -6,7 +6,7 @@
 
 use crate::behaviour::foc::{FocConvention, first_oven_check_with};
 use crate::records::{ConditionKind, EvalRecord, read_records};
-use crate::evaluation::folder::{METRICS, RECORDS};
+use crate::records::{METRICS, RECORDS};
 use chronocooked_env::Counter;
 use chronocooked_models::run_folder;
 use serde::{Deserialize, Serialize};

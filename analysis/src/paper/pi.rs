@@ -17,7 +17,7 @@
 
 use super::collect::{CollectError, CompactJob, err};
 use crate::records::ConditionKind;
-use crate::evaluation::folder::METRICS;
+use crate::records::METRICS;
 use serde::{Deserialize, Serialize};
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 use std::path::Path;

@@ -88,7 +88,7 @@ pub fn read_job(dir: &Path) -> Result<RunResult, BaselineError> {
             field: "-".into(),
             message: format!("not a compact job summary: {e}"),
         })?;
-    let m_path = dir.join(crate::evaluation::folder::METRICS);
+    let m_path = dir.join(crate::records::METRICS);
     // Undefined statistics were written as `null`: read back as NaN, as they were computed.
     let metrics: Metrics =
         crate::stats::nan_json::from_str_nan(&read_text(&m_path)?).map_err(|e| {

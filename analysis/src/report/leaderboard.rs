@@ -10,8 +10,8 @@
 use crate::behaviour::aggregate::{Spread, aggregate};
 use crate::behaviour::foc::{FocStats, pool_foc_stats, scalar_property};
 use crate::behaviour::metrics::{BisectionMetrics, Metrics};
-use crate::evaluation::folder::{EVAL_INFO, RECORDS, read_eval_info};
 use crate::neural::summary::NeuralSummary;
+use crate::records::{EVAL_INFO, RECORDS, read_eval_info};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 

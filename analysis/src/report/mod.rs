@@ -265,7 +265,7 @@ fn row_figures_html(r: &Row) -> Result<String, String> {
 
 /// Task of an evaluation folder (from `eval.json`).
 fn run_task(folder: &Path) -> String {
-    crate::evaluation::folder::read_eval_info(folder)
+    crate::records::read_eval_info(folder)
         .map(|info| info.task)
         .unwrap_or_else(|_| "unknown task".into())
 }

@@ -25,8 +25,8 @@ mod card_html;
 #[cfg(test)]
 mod tests;
 
-use crate::evaluation::folder::{METRICS, read_eval_info};
 use crate::mechanisms::{JobFiles, MECHANISMS, Signature, assemble, compare};
+use crate::records::{METRICS, read_eval_info};
 use crate::report::leaderboard::Row;
 use crate::report::{escape, figure_markup};
 use card::card_and_scaling;

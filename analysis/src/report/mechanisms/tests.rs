@@ -69,11 +69,11 @@ fn row(root: &Path, model: &str, sets: Vec<ActivityDataset>) -> Row {
     for ds in sets {
         let job = root.join(format!("{model}-{}", ds.trials[0].td));
         std::fs::create_dir_all(job.join("eval")).unwrap();
-        let info = crate::evaluation::folder::EvalInfo {
+        let info = crate::records::EvalInfo {
             model: model.into(),
             task: "FixedInterval-v0".into(),
             env: Vec::new(),
-            mode: crate::evaluation::protocol::Mode::Reference,
+            mode: crate::records::Mode::Reference,
             seed: 0,
         };
         std::fs::write(
