@@ -332,3 +332,21 @@ pub fn markdown_table(settings: &[Setting]) -> String {
     }
     out
 }
+
+/// A setting of `key` at `path` in the serialised configuration, accepted by `rule`, with
+/// no aliases and no restriction to other settings' values.
+pub(crate) const fn spec(
+    key: &'static str,
+    path: &'static [&'static str],
+    rule: Rule,
+    doc: &'static str,
+) -> Spec {
+    Spec {
+        key,
+        aliases: &[],
+        path,
+        rule,
+        doc,
+        only_with: None,
+    }
+}

@@ -1,23 +1,7 @@
 //! The settings of a deep-RL (PPO) run: every `--set` key of [`crate::TrainConfig`] and
 //! of its [`crate::PpoConfig`] and [`crate::Curriculum`], with its accepted values.
 
-use super::{COUNT, NON_NEGATIVE, POSITIVE, POSITIVE_COUNT, Rule, Spec, UNIT};
-
-const fn spec(
-    key: &'static str,
-    path: &'static [&'static str],
-    rule: Rule,
-    doc: &'static str,
-) -> Spec {
-    Spec {
-        key,
-        aliases: &[],
-        path,
-        rule,
-        doc,
-        only_with: None,
-    }
-}
+use super::{COUNT, NON_NEGATIVE, POSITIVE, POSITIVE_COUNT, Rule, Spec, UNIT, spec};
 
 const fn multi_timer(
     key: &'static str,

@@ -7,7 +7,7 @@
 //! [`TimingAgentSettings::apply`] writes the overrides into one — the only code that knows
 //! where each parameter lives inside a timing agent.
 
-use super::{COUNT, NON_NEGATIVE, Rule, Spec, UNIT, non_negative};
+use super::{COUNT, NON_NEGATIVE, Rule, Spec, UNIT, non_negative, spec};
 use crate::error::TrainError;
 use chronocooked_models::timing::agent::TimingAgent;
 use chronocooked_models::timing::judgment::DecisionRule;
@@ -249,22 +249,6 @@ const NOISE: Rule = Rule::Num {
     ok: non_negative,
     allowed: "number >= 0 (0 = noise-free)",
 };
-
-const fn spec(
-    key: &'static str,
-    path: &'static [&'static str],
-    rule: Rule,
-    doc: &'static str,
-) -> Spec {
-    Spec {
-        key,
-        aliases: &[],
-        path,
-        rule,
-        doc,
-        only_with: None,
-    }
-}
 
 const fn timer(
     key: &'static str,
