@@ -34,5 +34,5 @@ def cli():
 def golden_cases():
     import json
 
-    with open(ROOT / "tests" / "golden" / "reference_traces.jsonl") as f:
+    with open(ROOT / "env" / "tests" / "golden" / "reference_traces.jsonl") as f:
         return [json.loads(line) for line in f if line.strip()]
