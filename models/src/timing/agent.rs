@@ -460,13 +460,13 @@ impl Agent for TimingAgent {
             && !self.shows_ready
             && !self.timer.has_gate()
             && self.ep.last_was_check;
-        let a = if run {
-            let mut biased = q.clone();
-            biased[Action::Interact.code() as usize] += self.config.response_cost;
-            self.learner.choose(&biased, &allowed, eps, &mut self.rng)
-        } else {
-            self.learner.choose(&q, &allowed, eps, &mut self.rng)
-        };
+        let check = Action::Interact.code() as usize;
+        let q_check = q[check];
+        if run {
+            q[check] += self.config.response_cost;
+        }
+        let a = self.learner.choose(&q, &allowed, eps, &mut self.rng);
+        q[check] = q_check;
         self.learn(Some(q[a]));
         self.ep.value = q[a];
         if self.training {
