@@ -6,7 +6,9 @@
 use chronocooked_analysis::paper::agreement::{Counts, control_counts, table_counts};
 use chronocooked_analysis::paper::compare::{ComparisonRow, agree_z, z_score, z_score_sd};
 use chronocooked_analysis::paper::pi::{PiEntry, pi_row, pi_verdicts, slope, uniformity};
-use chronocooked_analysis::paper::reference::{Source, numbers, size8_numbers};
+use chronocooked_analysis::paper::reference::{
+    Source, appendix_numbers, lab_model, numbers, size8_numbers,
+};
 
 fn close(a: f64, b: f64) -> bool {
     (a - b).abs() < 1e-9
@@ -209,4 +211,47 @@ fn uniform_and_peaked_post_td_curves_are_told_apart() {
             .unwrap();
     let r = pi_row("j", 1, &e, 12);
     assert_eq!((r.bins, r.verdict.as_str()), (2, "uniform"));
+}
+
+#[test]
+fn appendix_tables_are_transcribed_from_the_paper() {
+    let a = appendix_numbers();
+    // tab:wf_supp and tab:dl_supp: 2 sizes × 2 models × (mean, SD) × 2 statistics × 6 pairs.
+    assert_eq!(a.len(), 96);
+    assert!(a.iter().all(|p| p.source == Source::Paper));
+    let get = |table: &str, column: &str, row: &str| {
+        a.iter()
+            .find(|p| p.table == table && p.column == column && p.row == row)
+            .map(|p| p.value)
+            .unwrap()
+    };
+    // By hand from the LaTeX tables (row order 6-8, 4-8, 6-12, 4-12, 6-18, 4-18).
+    assert_eq!(get("appendix_wf", "CTRNN256", "4-8"), 0.29);
+    assert_eq!(get("appendix_wf_sd", "CTRNN256", "4-18"), 0.00);
+    assert_eq!(get("appendix_wf", "LSTM256", "4-18"), 0.18);
+    assert_eq!(get("appendix_dl", "LSTM256", "6-18"), 1.30);
+    assert_eq!(get("appendix_dl_sd", "LSTM256", "6-18"), 0.95);
+    assert_eq!(get("appendix_dl", "CTRNN256", "6-12"), 0.28);
+    // NaN: the 6-8 row everywhere and every size-8 entry; 20 finite means at size 256.
+    assert!(
+        a.iter()
+            .filter(|p| p.row == "6-8")
+            .all(|p| p.value.is_nan())
+    );
+    assert!(
+        a.iter()
+            .filter(|p| p.column.ends_with("8") && !p.column.ends_with("256"))
+            .all(|p| p.value.is_nan())
+    );
+    let finite_means = a
+        .iter()
+        .filter(|p| matches!(p.table, "appendix_wf" | "appendix_dl") && p.value.is_finite())
+        .count();
+    assert_eq!(finite_means, 20);
+    // The paper's CTRNN is the untrained reservoir at every size.
+    assert_eq!(lab_model("CTRNN256"), Some("ctrnn-reservoir256"));
+    assert_eq!(lab_model("CTRNN8"), Some("ctrnn-reservoir8"));
+    assert_eq!(lab_model("LSTM256"), Some("lstm256"));
+    // The main text's counts are unchanged by the appendix (kept in its own tables).
+    assert!(numbers().iter().all(|p| !p.table.starts_with("appendix")));
 }

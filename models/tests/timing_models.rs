@@ -448,3 +448,39 @@ fn an_sbf_clock_is_overdue_from_k_times_its_remembered_time() {
         assert_eq!(first, Some(expected), "clock speed {speed}");
     }
 }
+
+/// Trains `timecells-csc` on fixed interval TD 6 for 300 episodes with `alpha_end`.
+fn trained_weights(alpha_end: Option<f64>) -> (f64, String) {
+    use chronocooked_env::{ChronoEnv, make_config};
+    use chronocooked_models::timing::zoo::make_timing_agent;
+    use chronocooked_models::{TimingTrainConfig, train_timing_agent};
+    let config = make_config("FixedInterval-v0", &["td=6".to_string()]).unwrap();
+    let env = ChronoEnv::new(&config).unwrap();
+    let mut agent = make_timing_agent("timecells-csc", &env, 3).unwrap();
+    let train = TimingTrainConfig {
+        episodes: 300,
+        eval_every: 0,
+        alpha_end,
+        ..Default::default()
+    };
+    train_timing_agent(&mut agent, &config, &train, &[6], 3, |_| {}).unwrap();
+    let weights = serde_json::to_string(&agent.learner.weights).unwrap();
+    (agent.learner.config.alpha, weights)
+}
+
+#[test]
+fn an_annealed_step_size_changes_learning_and_leaves_the_agents_alpha_as_configured() {
+    let (alpha_const, constant) = trained_weights(None);
+    // Annealing to the same value is the constant step size, update for update.
+    let (alpha_same, same) = trained_weights(Some(alpha_const));
+    assert_eq!(same, constant);
+    let (alpha_annealed, annealed) = trained_weights(Some(0.005));
+    assert_ne!(
+        annealed, constant,
+        "alpha_end had no effect on the learned weights"
+    );
+    // The saved agent keeps its configured alpha (the schedule belongs to the run).
+    assert_eq!(alpha_const, 0.05);
+    assert_eq!(alpha_same, 0.05);
+    assert_eq!(alpha_annealed, 0.05);
+}

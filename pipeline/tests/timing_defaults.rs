@@ -92,7 +92,7 @@ fn probes_far_below_the_short_anchor_are_judged_short() {
     // cell, and sent the 1- and 2-step probes (picked up from the cell where it had put the
     // onion) to the long counter — P(long) 1.00, 1.00, then 0.00: not a psychometric curve.
     // Waiting at the oven, its choice follows its clock's judgment: P(long) rises with the
-    // probe (no drop between neighbouring probes beyond sampling noise, 32 episodes each).
+    // probe (no drop between neighbouring probes beyond sampling noise, 128 episodes each).
     let (m, _) = trained_metrics(
         "timecells-ms",
         "Bisection-v0",
@@ -113,11 +113,14 @@ fn probes_far_below_the_short_anchor_are_judged_short() {
 #[test]
 fn the_reference_protocol_samples_a_noisy_models_noise() {
     // 12 free start cells on fixed interval, 2 PI probes + the FI condition: a noisy model
-    // plays each start cell 4 times, a noise-free one once.
+    // plays each start cell NOISE_DRAWS (16) times, a noise-free one once.
+    use chronocooked_models::timing::agent::NOISE_DRAWS;
     let (_, noisy) = trained_metrics("ddm", "FixedInterval-v0", &["env.td=6"], 1);
     let quiet = ["env.td=6", "noise=0", "memory_noise=0"];
     let (_, exact) = trained_metrics("ddm", "FixedInterval-v0", &quiet, 1);
-    assert_eq!(noisy, 4 * exact, "{noisy} vs {exact}");
+    assert_eq!(exact, 3 * 12, "one episode per start cell and condition");
+    assert_eq!(NOISE_DRAWS, 16);
+    assert_eq!(noisy, NOISE_DRAWS * exact, "{noisy} vs {exact}");
 }
 
 #[test]

@@ -27,9 +27,11 @@ pub struct EvalArgs {
     /// episodes from every start cell.
     #[arg(long)]
     pub stochastic: Option<usize>,
-    /// Seed of the evaluation.
-    #[arg(long, default_value_t = 0)]
-    pub seed: u64,
+    /// Seed of the evaluation (its noise draws and stochastic start cells). Default: the
+    /// run's training seed, so replicate runs are evaluated with independent draws and a
+    /// rerun gives the same result; 0 for `--agent` and `--human`.
+    #[arg(long)]
+    pub seed: Option<u64>,
     /// Metrics of recorded human play (`env play --record FILE`, JSON lines).
     #[arg(long, value_name = "FILE", conflicts_with_all = ["run", "agent", "from"])]
     pub human: Option<PathBuf>,
@@ -70,7 +72,7 @@ pub fn run(args: EvalArgs) -> Result<()> {
     let outcome = if let Some(dir) = &args.from {
         stages::rescore_eval_folder(dir, &args.out)?
     } else if let Some(file) = &args.human {
-        stages::evaluate_human(file, args.seed, &args.out)?
+        stages::evaluate_human(file, args.seed.unwrap_or(0), &args.out)?
     } else {
         let subject = match (&args.run, &args.agent) {
             (Some(run), _) => EvalSubject::Run(crate::cmd::zoo_agents::resolve_run(run)?),
@@ -79,6 +81,10 @@ pub fn run(args: EvalArgs) -> Result<()> {
                 bail!("say what to evaluate: --run DIR, --agent oracle|random, or --from DIR")
             }
         };
+        let seed = args.seed.unwrap_or_else(|| match &subject {
+            EvalSubject::Run(dir) => stages::run_seed(dir).unwrap_or(0),
+            EvalSubject::Reference(_) => 0,
+        });
         stages::evaluate(&EvalRequest {
             subject,
             task: args.task.clone(),
@@ -87,7 +93,7 @@ pub fn run(args: EvalArgs) -> Result<()> {
                 Some(n) => Mode::Stochastic { episodes: n },
                 None => Mode::Reference,
             },
-            seed: args.seed,
+            seed,
             out: args.out.clone(),
             activity: args.activity,
         })?

@@ -1,15 +1,15 @@
 //! `agreement.json`: how many published numbers agree with the lab under each rule (per
 //! table × source × rule), and a **negative control** — the same rules applied to
 //! deliberately mismatched pairs (the paper's LSTM125 numbers against the lab's reservoir
-//! CTRNN125 and against its trained CTRNN125, the paper's CTRNN125 against the lab's LSTM125, the paper's size-8 numbers
-//! against the lab's size 125), beside the faithful pairs on the same numbers — so a reader
+//! CTRNN125 and against its trained CTRNN125, the paper's CTRNN125 against the lab's LSTM125, the same at size 256, the paper's size-8 numbers
+//! against the lab's size 256 or 125), beside the faithful pairs on the same numbers — so a reader
 //! sees how often each rule agrees by chance.
 
 use super::bisection::BisectionModel;
 use super::compare::{ComparisonRow, Z_AGREE, compare_numbers, paper_model};
 use super::fi::FiModel;
 use super::multitimer::MtCell;
-use super::reference::{PaperNumber, lab_model, numbers, size8_numbers};
+use super::reference::{PaperNumber, appendix_numbers, lab_model, numbers, size8_numbers};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -167,69 +167,114 @@ fn of_model(nums: &[PaperNumber], m: &str) -> Vec<PaperNumber> {
         .collect()
 }
 
+/// Which lab model stands for a paper model in one pairing (`None`: left out).
+type LabOf = Box<dyn Fn(&str) -> Option<&'static str>>;
+
 /// The negative control and the faithful pairs on the same numbers, from the lab's analysed
-/// models.
+/// models. The size control pairs the paper's size-8 numbers with the lab's size 256 where
+/// it has run (`lstm256`, `ctrnn-reservoir256` among the analysed bisection models), else
+/// with its size 125 as a stand-in.
 pub fn negative_control(
     fi: &[FiModel],
     bis: &[BisectionModel],
     mt: &[MtCell],
 ) -> Vec<ControlCounts> {
-    let all = numbers();
+    let mut all = numbers();
+    all.extend(appendix_numbers());
     let s8 = size8_numbers();
-    type Pairing = (
-        &'static str,
-        bool,
-        Vec<PaperNumber>,
-        fn(&str) -> Option<&'static str>,
-    );
-    let pairings: [Pairing; 7] = [
+    let has = |m: &str| bis.iter().any(|b| b.model == m) || fi.iter().any(|f| f.model == m);
+    let lstm_big: &'static str = if has("lstm256") { "lstm256" } else { "lstm125" };
+    let ctrnn_big: &'static str = if has("ctrnn-reservoir256") {
+        "ctrnn-reservoir256"
+    } else {
+        "ctrnn-reservoir125"
+    };
+    let fixed = |m: &'static str| -> LabOf { Box::new(move |_| Some(m)) };
+    let faithful = || -> LabOf { Box::new(lab_model) };
+    let pairings: Vec<(String, bool, Vec<PaperNumber>, LabOf)> = vec![
         (
-            "paper LSTM125 vs lab lstm125",
+            "paper LSTM125 vs lab lstm125".into(),
             true,
             of_model(&all, "LSTM125"),
-            lab_model,
+            faithful(),
         ),
         (
-            "paper LSTM125 vs lab ctrnn-reservoir125",
+            "paper LSTM125 vs lab ctrnn-reservoir125".into(),
             false,
             of_model(&all, "LSTM125"),
-            |_| Some("ctrnn-reservoir125"),
+            fixed("ctrnn-reservoir125"),
         ),
         (
-            "paper LSTM125 vs lab ctrnn125 (trained CTRNN)",
+            "paper LSTM125 vs lab ctrnn125 (trained CTRNN)".into(),
             false,
             of_model(&all, "LSTM125"),
-            |_| Some("ctrnn125"),
+            fixed("ctrnn125"),
         ),
         (
-            "paper CTRNN125 vs lab ctrnn-reservoir125",
+            "paper CTRNN125 vs lab ctrnn-reservoir125".into(),
             true,
             of_model(&all, "CTRNN125"),
-            lab_model,
+            faithful(),
         ),
         (
-            "paper CTRNN125 vs lab lstm125",
+            "paper CTRNN125 vs lab lstm125".into(),
             false,
             of_model(&all, "CTRNN125"),
-            |_| Some("lstm125"),
+            fixed("lstm125"),
         ),
         (
-            "paper LSTM8 vs lab lstm125 (stand-in for 256)",
+            "paper LSTM256 vs lab lstm256".into(),
+            true,
+            of_model(&all, "LSTM256"),
+            faithful(),
+        ),
+        (
+            "paper LSTM256 vs lab ctrnn-reservoir256".into(),
+            false,
+            of_model(&all, "LSTM256"),
+            fixed("ctrnn-reservoir256"),
+        ),
+        (
+            "paper CTRNN256 vs lab ctrnn-reservoir256".into(),
+            true,
+            of_model(&all, "CTRNN256"),
+            faithful(),
+        ),
+        (
+            "paper CTRNN256 vs lab lstm256".into(),
+            false,
+            of_model(&all, "CTRNN256"),
+            fixed("lstm256"),
+        ),
+        (
+            format!("paper LSTM8 vs lab {lstm_big}"),
             false,
             of_model(&s8, "LSTM8"),
-            |_| Some("lstm125"),
+            fixed(lstm_big),
         ),
         (
-            "paper CTRNN8 vs lab ctrnn-reservoir125 (stand-in for 256)",
+            format!("paper CTRNN8 vs lab {ctrnn_big}"),
             false,
             of_model(&s8, "CTRNN8"),
-            |_| Some("ctrnn-reservoir125"),
+            fixed(ctrnn_big),
+        ),
+        (
+            "paper LSTM8 vs lab lstm8".into(),
+            true,
+            of_model(&s8, "LSTM8"),
+            faithful(),
+        ),
+        (
+            "paper CTRNN8 vs lab ctrnn-reservoir8".into(),
+            true,
+            of_model(&s8, "CTRNN8"),
+            faithful(),
         ),
     ];
     let mut out = Vec::new();
     for (name, matched, nums, lab_of) in pairings {
-        let rows = compare_numbers(&nums, &lab_of, fi, bis, mt);
-        out.extend(control_counts(name, matched, &rows));
+        let rows = compare_numbers(&nums, &*lab_of, fi, bis, mt);
+        out.extend(control_counts(&name, matched, &rows));
     }
     out
 }
@@ -263,8 +308,8 @@ pub fn agreement(
         notes: vec![
             "rate = yes / (yes + no); `no` includes a number on one side and NaN on the other"
                 .into(),
-            "size 256 has not been run: the lab's size 125 stands in for it, so the size \
-             control compares the paper's size 8 with the lab's size 125"
+            "the size control pairs the paper's size 8 with the lab's size 256 where it has \
+             run, else with its size 125 (named in the pairing)"
                 .into(),
             "the appendix prints NaN for every size-8 WF and DL (tab:wf_supp, tab:dl_supp), so \
              the size control's finite numbers are the FI notebook's size-8 FOC means and R² \

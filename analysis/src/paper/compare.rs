@@ -27,7 +27,9 @@
 use super::bisection::BisectionModel;
 use super::fi::FiModel;
 use super::multitimer::MtCell;
-use super::reference::{PAPER_RUNS, PaperNumber, lab_model, numbers};
+use super::reference::{
+    PAPER_RUNS, PaperNumber, appendix_numbers, lab_model, numbers, size8_fi_numbers,
+};
 use serde::{Deserialize, Serialize};
 use statrs::distribution::{ChiSquared, ContinuousCDF, StudentsT};
 
@@ -186,6 +188,8 @@ fn printed_sd(nums: &[PaperNumber], p: &PaperNumber) -> Option<f64> {
     let sd_table = match p.table {
         "bisection_wf" => "bisection_wf_sd",
         "bisection_dl" => "bisection_dl_sd",
+        "appendix_wf" => "appendix_wf_sd",
+        "appendix_dl" => "appendix_dl_sd",
         _ => return None,
     };
     nums.iter()
@@ -195,9 +199,13 @@ fn printed_sd(nums: &[PaperNumber], p: &PaperNumber) -> Option<f64> {
 }
 
 /// Every comparison row the lab's results cover (rows whose model or condition the study
-/// did not run are left out), each paper model against its faithful lab counterpart.
+/// did not run are left out), each paper model against its faithful lab counterpart: the
+/// main text's numbers, then the appendix's sizes 256 and 8 and the FI notebook's size 8.
 pub fn compare(fi: &[FiModel], bis: &[BisectionModel], mt: &[MtCell]) -> Vec<ComparisonRow> {
-    compare_numbers(&numbers(), &|m| lab_model(m), fi, bis, mt)
+    let mut nums = numbers();
+    nums.extend(appendix_numbers());
+    nums.extend(size8_fi_numbers());
+    compare_numbers(&nums, &|m| lab_model(m), fi, bis, mt)
 }
 
 /// The comparison rows of `nums`, each paper model `m` against the lab model `lab_of(m)`
@@ -279,10 +287,18 @@ pub fn compare_numbers(
                 }
                 row
             }),
-            "bisection_wf" => bis_cell(p.row).map(|c| mean_row(c.wf.mean, c.wf.sd, c.wf.n)),
-            "bisection_dl" => bis_cell(p.row).map(|c| mean_row(c.dl.mean, c.dl.sd, c.dl.n)),
-            "bisection_wf_sd" => bis_cell(p.row).map(|c| sd_row(c.wf.sd, c.wf.n)),
-            "bisection_dl_sd" => bis_cell(p.row).map(|c| sd_row(c.dl.sd, c.dl.n)),
+            "bisection_wf" | "appendix_wf" => {
+                bis_cell(p.row).map(|c| mean_row(c.wf.mean, c.wf.sd, c.wf.n))
+            }
+            "bisection_dl" | "appendix_dl" => {
+                bis_cell(p.row).map(|c| mean_row(c.dl.mean, c.dl.sd, c.dl.n))
+            }
+            "bisection_wf_sd" | "appendix_wf_sd" => {
+                bis_cell(p.row).map(|c| sd_row(c.wf.sd, c.wf.n))
+            }
+            "bisection_dl_sd" | "appendix_dl_sd" => {
+                bis_cell(p.row).map(|c| sd_row(c.dl.sd, c.dl.n))
+            }
             "multitimer_level" => mt
                 .iter()
                 .find(|c| c.model == lab && c.curriculum == p.column)

@@ -66,9 +66,21 @@ pub const MODELS: [(&str, &str); 3] = [
     ("CNN", "cnn-mlp"),
 ];
 
-/// The lab model of a paper model name.
+/// The appendix's sizes (`tab:wf_supp`, `tab:dl_supp`) and the lab's faithful counterparts.
+pub const APPENDIX_MODELS: [(&str, &str); 4] = [
+    ("CTRNN256", "ctrnn-reservoir256"),
+    ("LSTM256", "lstm256"),
+    ("CTRNN8", "ctrnn-reservoir8"),
+    ("LSTM8", "lstm8"),
+];
+
+/// The lab model of a paper model name (main text or appendix).
 pub fn lab_model(paper: &str) -> Option<&'static str> {
-    MODELS.iter().find(|(p, _)| *p == paper).map(|(_, l)| *l)
+    MODELS
+        .iter()
+        .chain(&APPENDIX_MODELS)
+        .find(|(p, _)| *p == paper)
+        .map(|(_, l)| *l)
 }
 
 fn rows(
@@ -257,23 +269,98 @@ pub fn numbers() -> Vec<PaperNumber> {
     v
 }
 
-/// The size-8 numbers: the appendix's WF and DL tables (`tab:wf_supp`, `tab:dl_supp`:
-/// every CTRNN8 and LSTM8 entry is printed as NaN) and the FI notebook's pooled FOC means
-/// and R² of LSTM8 and CTRNN8 (`docs/paper-protocol.md` §4; "–" there = NaN here). Used only by
-/// the negative control of `agreement.json` (paper size 8 against the lab's size 125, the
-/// stand-in for size 256 until that runs).
-pub fn size8_numbers() -> Vec<PaperNumber> {
+/// The appendix's Weber fraction and difference limen tables at sizes 256 and 8
+/// (`tab:wf_supp`, `tab:dl_supp`: mean and SD over runs per anchor pair; the 6-8 row and
+/// every size-8 entry are printed as NaN) as tables `appendix_wf`, `appendix_wf_sd`,
+/// `appendix_dl` and `appendix_dl_sd` (kept apart from the main text's `bisection_*` tables
+/// so that each is counted on its own in `agreement.json`).
+pub fn appendix_numbers() -> Vec<PaperNumber> {
     let mut v = Vec::new();
+    v.extend(rows(
+        Paper,
+        "appendix_wf",
+        "CTRNN256",
+        &ANCHORS,
+        &[N, 0.29, 0.03, 0.11, 0.06, 0.07],
+    ));
+    v.extend(rows(
+        Paper,
+        "appendix_wf",
+        "LSTM256",
+        &ANCHORS,
+        &[N, 0.08, 0.06, 0.09, 0.14, 0.18],
+    ));
+    v.extend(rows(
+        Paper,
+        "appendix_wf_sd",
+        "CTRNN256",
+        &ANCHORS,
+        &[N, 0.34, 0.02, 0.03, 0.04, 0.00],
+    ));
+    v.extend(rows(
+        Paper,
+        "appendix_wf_sd",
+        "LSTM256",
+        &ANCHORS,
+        &[N, 0.01, 0.01, 0.03, 0.09, 0.02],
+    ));
+    v.extend(rows(
+        Paper,
+        "appendix_dl",
+        "CTRNN256",
+        &ANCHORS,
+        &[N, 0.68, 0.28, 0.63, 0.73, 0.46],
+    ));
+    v.extend(rows(
+        Paper,
+        "appendix_dl",
+        "LSTM256",
+        &ANCHORS,
+        &[N, 0.46, 0.50, 0.70, 1.30, 1.75],
+    ));
+    v.extend(rows(
+        Paper,
+        "appendix_dl_sd",
+        "CTRNN256",
+        &ANCHORS,
+        &[N, 0.61, 0.20, 0.18, 0.45, 0.06],
+    ));
+    v.extend(rows(
+        Paper,
+        "appendix_dl_sd",
+        "LSTM256",
+        &ANCHORS,
+        &[N, 0.06, 0.07, 0.24, 0.95, 0.04],
+    ));
     for model in ["CTRNN8", "LSTM8"] {
         for table in [
-            "bisection_wf",
-            "bisection_wf_sd",
-            "bisection_dl",
-            "bisection_dl_sd",
+            "appendix_wf",
+            "appendix_wf_sd",
+            "appendix_dl",
+            "appendix_dl_sd",
         ] {
             v.extend(rows(Paper, table, model, &ANCHORS, &[N; 6]));
         }
     }
+    v
+}
+
+/// The size-8 numbers: the appendix's WF and DL entries (all printed as NaN) and the FI
+/// notebook's pooled FOC means and R² of LSTM8 and CTRNN8 (`docs/paper-protocol.md` §4;
+/// "–" there = NaN here), for the size control of `agreement.json` (paper size 8 against
+/// the lab's size 256, or its size 125 where 256 has not run).
+pub fn size8_numbers() -> Vec<PaperNumber> {
+    let mut v: Vec<PaperNumber> = appendix_numbers()
+        .into_iter()
+        .filter(|p| ["CTRNN8", "LSTM8"].contains(&p.column))
+        .collect();
+    v.extend(size8_fi_numbers());
+    v
+}
+
+/// The FI notebook's pooled FOC means and R² of LSTM8 and CTRNN8 (source notebook).
+pub fn size8_fi_numbers() -> Vec<PaperNumber> {
+    let mut v = Vec::new();
     v.extend(rows(
         Notebook,
         "fi_foc_mean_notebook",

@@ -16,8 +16,18 @@ pub struct TimingTrainConfig {
     pub epsilon_start: f64,
     /// … annealed linearly to this value …
     pub epsilon_end: f64,
-    /// … over this fraction of the episodes.
+    /// … over this fraction of the episodes (the step size too, when `alpha_end` is set).
     pub anneal_fraction: f64,
+    /// Final SARSA(λ) step size: `α` anneals linearly from the agent's own value to this
+    /// one over the same episodes as ε (`None`: constant `α`). A constant step size leaves
+    /// the values tracking the last ~`1/α` episodes' returns, and the greedy first check is
+    /// where a noisy check-minus-wait advantage first crosses zero, which can come early,
+    /// the more so the more steps an interval spends near the threshold (long TDs). Decreasing step sizes are the
+    /// stochastic-approximation condition for the estimates to converge (Robbins & Monro
+    /// 1951; Sutton & Barto 2018 §2.5). Off by default (Ludvig et al.'s constant α): the
+    /// measured gain was partial and seed-dependent (RESULTS.md, "Step-size annealing").
+    #[serde(default)]
+    pub alpha_end: Option<f64>,
     /// Evaluate every this many episodes (0: only at the end).
     pub eval_every: usize,
     /// Stop once an evaluation reaches this success rate.
@@ -31,6 +41,7 @@ impl Default for TimingTrainConfig {
             epsilon_start: 0.3,
             epsilon_end: 0.0,
             anneal_fraction: 0.8,
+            alpha_end: None,
             eval_every: 500,
             stop_at_success: None,
         }
@@ -83,9 +94,13 @@ pub fn train_timing_agent(
     let mut window: std::collections::VecDeque<(bool, f32)> = Default::default();
     let mut steps = 0u64;
     let anneal = (train.episodes as f64 * train.anneal_fraction).max(1.0);
+    let alpha_start = agent.learner.config.alpha;
     for ep in 0..train.episodes {
         let frac = (ep as f64 / anneal).min(1.0);
         agent.set_epsilon(train.epsilon_start + (train.epsilon_end - train.epsilon_start) * frac);
+        if let Some(end) = train.alpha_end {
+            agent.learner.config.alpha = alpha_start + (end - alpha_start) * frac;
+        }
         agent.set_training(true);
         let rec = training_episode(&mut env, agent, seed, ep)?;
         steps += rec.actions.len() as u64;
@@ -115,6 +130,7 @@ pub fn train_timing_agent(
             }
         }
     }
+    agent.learner.config.alpha = alpha_start;
     agent.set_training(false);
     Ok(curve)
 }

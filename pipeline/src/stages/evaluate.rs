@@ -125,6 +125,17 @@ pub fn evaluate(req: &EvalRequest) -> Result<EvalOutcome, PipelineError> {
     })
 }
 
+/// The training seed recorded in run folder `dir`'s `config.json` (PPO and timing runs
+/// both keep it at the top level); `None` when the file or the field is missing or
+/// unreadable (loading the run then reports the problem).
+pub fn run_seed(dir: &Path) -> Option<u64> {
+    let text = std::fs::read_to_string(dir.join(chronocooked_models::run_folder::CONFIG)).ok()?;
+    serde_json::from_str::<serde_json::Value>(&text)
+        .ok()?
+        .get("seed")?
+        .as_u64()
+}
+
 /// Writes the evaluation folder of recorded human play (`env play --record FILE`, JSON
 /// lines) into `out`.
 pub fn evaluate_human(file: &Path, seed: u64, out: &Path) -> Result<EvalOutcome, PipelineError> {

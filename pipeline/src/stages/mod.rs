@@ -18,7 +18,7 @@ pub mod train;
 
 pub use adapt::{AdaptRequest, adapt};
 pub use evaluate::{
-    EvalOutcome, EvalRequest, EvalSubject, evaluate, evaluate_human, rescore_eval_folder,
+    EvalOutcome, EvalRequest, EvalSubject, evaluate, evaluate_human, rescore_eval_folder, run_seed,
 };
 pub use export::export;
 pub use record::{RecordOutcome, RecordRequest, record};

@@ -295,7 +295,7 @@ pub const TIMING_SETTINGS: &[Spec] = &[
         "anneal_fraction",
         &["train", "anneal_fraction"],
         STEP_SIZE,
-        "fraction of the episodes over which epsilon anneals",
+        "fraction of the episodes over which epsilon (and alpha, to alpha_end) anneals",
     ),
     spec(
         "eval_every",
@@ -314,6 +314,12 @@ pub const TIMING_SETTINGS: &[Spec] = &[
         &["agent", "alpha"],
         STEP_SIZE,
         "SARSA(lambda) learning rate",
+    ),
+    spec(
+        "alpha_end",
+        &["train", "alpha_end"],
+        Rule::Optional(&STEP_SIZE),
+        "final SARSA(lambda) learning rate, annealed from alpha like epsilon (none = constant alpha)",
     ),
     spec("gamma", &["agent", "gamma"], UNIT, "discount per step"),
     spec(
