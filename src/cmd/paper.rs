@@ -60,24 +60,36 @@ pub fn run(cmd: PaperCommand) -> Result<()> {
                 &s,
                 &a.results.join("figures"),
             )?;
-            let agree = s.comparison.iter().filter(|r| r.agree == "yes").count();
-            let agree_z = s.comparison.iter().filter(|r| r.agree_z == "yes").count();
-            let printed: Vec<_> = s
-                .comparison
+            // The main text's numbers; the appendix's sizes are counted on their own.
+            let (appendix, main): (Vec<_>, Vec<_>) = s.comparison.iter().partition(|r| {
+                r.table
+                    .starts_with(chronocooked_analysis::paper::reference::APPENDIX_PREFIX)
+            });
+            let means: Vec<_> = appendix
                 .iter()
-                .filter(|r| r.source == "paper")
+                .filter(|r| matches!(r.table.as_str(), "appendix_wf" | "appendix_dl"))
                 .collect();
+            let agree = main.iter().filter(|r| r.agree == "yes").count();
+            let agree_z = main.iter().filter(|r| r.agree_z == "yes").count();
+            let printed: Vec<_> = main.iter().filter(|r| r.source == "paper").collect();
             println!(
-                "{} jobs analysed; {} of {} paper numbers within the lab's interval (old rule), \
-                 {} with |z| <= 2; printed in the paper: {} (old) and {} (z) of {}; wrote {}, \
-                 {} and {} figure files (and agreement.json, pi.csv)",
+                "{} jobs analysed; main text: {} of {} paper numbers within the lab's interval \
+                 (old rule), {} with |z| <= 2; printed in the paper: {} (old) and {} (z) of {}; \
+                 appendix sizes 8/256: {} of 48 WF/DL means run ({} with a finite lab value), \
+                 {} of {} numbers agree (old), {} (z); \
+                 wrote {}, {} and {} figure files (and agreement.json, pi.csv)",
                 s.jobs,
                 agree,
-                s.comparison.len(),
+                main.len(),
                 agree_z,
                 printed.iter().filter(|r| r.agree == "yes").count(),
                 printed.iter().filter(|r| r.agree_z == "yes").count(),
                 printed.len(),
+                means.len(),
+                means.iter().filter(|r| r.lab_mean.is_finite()).count(),
+                appendix.iter().filter(|r| r.agree == "yes").count(),
+                appendix.len(),
+                appendix.iter().filter(|r| r.agree_z == "yes").count(),
                 a.results.join("tables.md").display(),
                 report.display(),
                 figures.len()

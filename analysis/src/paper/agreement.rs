@@ -9,7 +9,10 @@ use super::bisection::BisectionModel;
 use super::compare::{ComparisonRow, Z_AGREE, compare_numbers, paper_model};
 use super::fi::FiModel;
 use super::multitimer::MtCell;
-use super::reference::{PaperNumber, appendix_numbers, lab_model, numbers, size8_numbers};
+use super::reference::{
+    APPENDIX_PREFIX, PaperNumber, appendix_fi_numbers, appendix_numbers, lab_model, numbers,
+    size8_numbers,
+};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -117,15 +120,27 @@ pub fn table_counts(rows: &[ComparisonRow]) -> Vec<TableCounts> {
         seen.push(k.clone());
         new
     });
+    // `all`: the main text's tables; `appendix`: the appendix's sizes 8 and 256 together.
     for src in ["paper", "notebook"] {
         keys.push(("all".into(), src.into()));
+        if rows
+            .iter()
+            .any(|r| r.source == src && r.table.starts_with(APPENDIX_PREFIX))
+        {
+            keys.push(("appendix".into(), src.into()));
+        }
     }
+    let in_group = |r: &ComparisonRow, table: &str| match table {
+        "all" => !r.table.starts_with(APPENDIX_PREFIX),
+        "appendix" => r.table.starts_with(APPENDIX_PREFIX),
+        t => r.table == t,
+    };
     let mut out = Vec::new();
     for (table, source) in keys {
         for rule in RULES {
             let v = rows
                 .iter()
-                .filter(|r| r.source == source && (table == "all" || r.table == table))
+                .filter(|r| r.source == source && in_group(r, &table))
                 .map(|r| verdict(r, rule));
             out.push(TableCounts {
                 table: table.clone(),
@@ -181,6 +196,7 @@ pub fn negative_control(
 ) -> Vec<ControlCounts> {
     let mut all = numbers();
     all.extend(appendix_numbers());
+    all.extend(appendix_fi_numbers());
     let s8 = size8_numbers();
     let has = |m: &str| bis.iter().any(|b| b.model == m) || fi.iter().any(|f| f.model == m);
     let lstm_big: &'static str = if has("lstm256") { "lstm256" } else { "lstm125" };

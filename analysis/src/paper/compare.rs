@@ -28,7 +28,7 @@ use super::bisection::BisectionModel;
 use super::fi::FiModel;
 use super::multitimer::MtCell;
 use super::reference::{
-    PAPER_RUNS, PaperNumber, appendix_numbers, lab_model, numbers, size8_fi_numbers,
+    PAPER_RUNS, PaperNumber, appendix_fi_numbers, appendix_numbers, lab_model, numbers,
 };
 use serde::{Deserialize, Serialize};
 use statrs::distribution::{ChiSquared, ContinuousCDF, StudentsT};
@@ -200,11 +200,12 @@ fn printed_sd(nums: &[PaperNumber], p: &PaperNumber) -> Option<f64> {
 
 /// Every comparison row the lab's results cover (rows whose model or condition the study
 /// did not run are left out), each paper model against its faithful lab counterpart: the
-/// main text's numbers, then the appendix's sizes 256 and 8 and the FI notebook's size 8.
+/// main text's numbers, then the appendix's sizes 256 and 8 (bisection tables and the FI
+/// notebook's numbers).
 pub fn compare(fi: &[FiModel], bis: &[BisectionModel], mt: &[MtCell]) -> Vec<ComparisonRow> {
     let mut nums = numbers();
     nums.extend(appendix_numbers());
-    nums.extend(size8_fi_numbers());
+    nums.extend(appendix_fi_numbers());
     compare_numbers(&nums, &|m| lab_model(m), fi, bis, mt)
 }
 
@@ -267,13 +268,13 @@ pub fn compare_numbers(
         };
         let value = match p.table {
             "fi_cv" => fi_cell(p.row).map(|c| mean_row(c.pooled.cv, c.run_cv.sd, c.run_cv.n)),
-            "fi_foc_mean_notebook" => {
+            "fi_foc_mean_notebook" | "appendix_fi_foc_mean_notebook" => {
                 fi_cell(p.row).map(|c| mean_row(c.pooled.mean, c.run_mean.sd, c.run_mean.n))
             }
             "fi_foc_sd_notebook" => {
                 fi_cell(p.row).map(|c| mean_row(c.pooled.sd, c.run_sd.sd, c.run_sd.n))
             }
-            "fi_r2" | "fi_r2_notebook" => fi_m.map(|m| {
+            "fi_r2" | "fi_r2_notebook" | "appendix_fi_r2_notebook" => fi_m.map(|m| {
                 let (v, s) = if p.column == "mean_vs_td" {
                     (m.scalar.r2_mean_vs_td, m.run_r2_mean_vs_td)
                 } else {

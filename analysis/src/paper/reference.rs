@@ -66,6 +66,10 @@ pub const MODELS: [(&str, &str); 3] = [
     ("CNN", "cnn-mlp"),
 ];
 
+/// Prefix of the tables that hold the appendix's sizes 8 and 256 (counted apart from the
+/// main text's tables).
+pub const APPENDIX_PREFIX: &str = "appendix_";
+
 /// The appendix's sizes (`tab:wf_supp`, `tab:dl_supp`) and the lab's faithful counterparts.
 pub const APPENDIX_MODELS: [(&str, &str); 4] = [
     ("CTRNN256", "ctrnn-reservoir256"),
@@ -354,37 +358,71 @@ pub fn size8_numbers() -> Vec<PaperNumber> {
         .into_iter()
         .filter(|p| ["CTRNN8", "LSTM8"].contains(&p.column))
         .collect();
-    v.extend(size8_fi_numbers());
+    v.extend(appendix_fi_numbers().into_iter().filter(|p| {
+        [p.row, p.column]
+            .iter()
+            .any(|m| ["CTRNN8", "LSTM8"].contains(m))
+    }));
     v
 }
 
-/// The FI notebook's pooled FOC means and R² of LSTM8 and CTRNN8 (source notebook).
-pub fn size8_fi_numbers() -> Vec<PaperNumber> {
+/// The FI notebook's pooled FOC means and R² at sizes 8 and 256 (source notebook, tables
+/// `appendix_fi_foc_mean_notebook` and `appendix_fi_r2_notebook`; `docs/paper-protocol.md`
+/// §4; "–" there = NaN here).
+pub fn appendix_fi_numbers() -> Vec<PaperNumber> {
     let mut v = Vec::new();
     v.extend(rows(
         Notebook,
-        "fi_foc_mean_notebook",
+        "appendix_fi_foc_mean_notebook",
+        "LSTM256",
+        &TDS,
+        &[3.96, 5.90, 8.67, 11.96, 17.13, 23.73],
+    ));
+    v.extend(rows(
+        Notebook,
+        "appendix_fi_foc_mean_notebook",
+        "CTRNN256",
+        &TDS,
+        &[1.97, 4.56, 6.78, 8.83, 12.53, 16.92],
+    ));
+    v.extend(rows(
+        Notebook,
+        "appendix_fi_r2_notebook",
+        "mean_vs_td",
+        &["CTRNN256", "LSTM256"],
+        &[0.99, 1.00],
+    ));
+    v.extend(rows(
+        Notebook,
+        "appendix_fi_r2_notebook",
+        "sd_vs_mean",
+        &["CTRNN256", "LSTM256"],
+        &[0.79, 0.98],
+    ));
+    v.extend(rows(
+        Notebook,
+        "appendix_fi_foc_mean_notebook",
         "LSTM8",
         &TDS,
         &[3.39, 3.92, 5.59, 12.50, N, 10.85],
     ));
     v.extend(rows(
         Notebook,
-        "fi_foc_mean_notebook",
+        "appendix_fi_foc_mean_notebook",
         "CTRNN8",
         &TDS,
         &[0.0, 0.0, 7.58, 6.17, 5.44, N],
     ));
     v.extend(rows(
         Notebook,
-        "fi_r2_notebook",
+        "appendix_fi_r2_notebook",
         "mean_vs_td",
         &["CTRNN8", "LSTM8"],
         &[0.44, 0.57],
     ));
     v.extend(rows(
         Notebook,
-        "fi_r2_notebook",
+        "appendix_fi_r2_notebook",
         "sd_vs_mean",
         &["CTRNN8", "LSTM8"],
         &[0.35, 0.35],
