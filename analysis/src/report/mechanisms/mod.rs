@@ -62,10 +62,9 @@ fn job_files(rows: &[Row]) -> (Vec<JobFiles>, Vec<Vec<RunInfo>>) {
                 seed: r.seed,
                 task: r.task.clone(),
                 metrics: r.eval.join(METRICS),
-                summary: r
-                    .eval
-                    .parent()
-                    .map_or_else(PathBuf::new, |p| p.join("activity.summary.json")),
+                summary: r.eval.parent().map_or_else(PathBuf::new, |p| {
+                    p.join(crate::job_folder::ACTIVITY_SUMMARY)
+                }),
             });
         }
         infos.push(runs);
