@@ -350,9 +350,13 @@ fn report_is_self_contained_and_has_every_model() {
     // The per-TD fixed-interval table: the oracle checks exactly when the soup is ready.
     let per_td = &html[html.find("Fixed interval per TD").expect("per-TD table")..];
     let oracle = per_td
-        .lines()
-        .find(|l| l.starts_with("<tr><td>oracle</td>"))
-        .expect("oracle line");
+        .split("<tr>")
+        .find_map(|r| {
+            r.starts_with("<td>oracle</td>")
+                .then(|| r.split("</tr>").next())
+        })
+        .flatten()
+        .expect("oracle row");
     assert!(oracle.contains("<td>1.00</td>"), "{oracle}");
     // The paper's psychometric grid: one panel per model and anchor pair.
     let grid = std::fs::read_to_string(rep.join("psychometric_grid.svg")).unwrap();

@@ -8,6 +8,8 @@
 //! * [`neural`] — neural metrics: ramping units, time cells, sequentiality, temporal
 //!   information, scaling; elapsed-time decoders (`decode`), spectra and phase coherence
 //!   (`oscillation`), the per-model neural summary (`summary`);
+//! * [`job_folder`] — the file names of a sweep job's folder (`job.json`, `run/`, `eval/`,
+//!   recorded activity and its summary);
 //! * [`records`] — evaluation records: conditions and evaluated episodes (`records.jsonl`);
 //! * [`evaluation`] — the evaluation protocol (`protocol`: conditions per task, the runner
 //!   for any agent) and the evaluation folder it writes (`folder`);
@@ -25,6 +27,7 @@
 pub mod behaviour;
 pub mod evaluation;
 pub mod export;
+pub mod job_folder;
 pub mod mechanisms;
 pub mod neural;
 pub mod paper;

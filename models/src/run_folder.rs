@@ -10,6 +10,7 @@
 //! RUN_DIR/curves.csv      the learning curve
 //! RUN_DIR/checkpoints/    PPO: resumable trainer states
 //! RUN_DIR/model.bpk       PPO: the final policy (burnpack)
+//! RUN_DIR/agent.json      timing models: the trained agent (settings and learned state)
 //! RUN_DIR/summary.json    written last: the run finished
 //! ```
 
@@ -25,5 +26,8 @@ pub const CURVES: &str = "curves.csv";
 pub const CHECKPOINTS: &str = "checkpoints";
 /// The final policy (burnpack; PPO runs).
 pub const MODEL: &str = "model.bpk";
+/// A timing model's trained agent (JSON: its settings and learned state); an adaptation
+/// folder keeps the adapted agent under the same name.
+pub const AGENT: &str = "agent.json";
 /// The run's summary (JSON), written last: its presence marks a finished run.
 pub const SUMMARY: &str = "summary.json";

@@ -7,6 +7,7 @@ use crate::PipelineError;
 use crate::stages::{self, AdaptRequest, EvalRequest, EvalSubject, RecordRequest, TrainRequest};
 use crate::sweep::{Job, Stage, SweepFile, finished_stages, job_dir, mark_stage};
 use chronocooked_analysis::Mode;
+use chronocooked_analysis::job_folder;
 use chronocooked_models::run_folder;
 use chronocooked_training::adapt::{self, AdaptConfig};
 use chronocooked_training::zoo::Family;
@@ -84,7 +85,7 @@ pub fn run_job(
     remove_stale_temps(&dir);
     let job_json = serde_json::to_string_pretty(job)
         .map_err(|e| PipelineError::Analysis(format!("serialising job {}: {e}", job.id)))?;
-    let job_file = dir.join("job.json");
+    let job_file = dir.join(job_folder::JOB);
     chronocooked_env::fs::write_atomic(&job_file, job_json.as_bytes())?;
     let done = finished_stages(&dir);
     let wanted = Stage::for_job(sweep, job);
@@ -110,7 +111,7 @@ fn run_stage(
     stage: Stage,
 ) -> Result<String, PipelineError> {
     let trained = job.family != Family::Baseline;
-    let run = dir.join("run");
+    let run = dir.join(job_folder::RUN);
     Ok(match stage {
         Stage::Train => {
             if run.join(run_folder::SUMMARY).is_file() {
@@ -154,7 +155,7 @@ fn run_stage(
                     None => Mode::Reference,
                 },
                 seed: job.seed,
-                out: dir.join("eval"),
+                out: dir.join(job_folder::EVAL),
                 activity: false,
             };
             let m = stages::evaluate(&req)?.metrics;
@@ -203,17 +204,17 @@ fn run_stage(
                 tds: vec![],
                 repeats: 1,
                 seed: job.seed,
-                out: dir.join("activity.json"),
+                out: dir.join(job_folder::ACTIVITY),
                 summary: true,
                 figures: Some(dir.join("neural_figures")),
             })?;
             format!("{} trials × {} units", r.trials, r.units)
         }
         Stage::Export => {
-            let activity = dir.join("activity.json");
+            let activity = dir.join(job_folder::ACTIVITY);
             let files = stages::export(
                 (trained && sweep.record).then_some(activity.as_path()),
-                Some(&dir.join("eval")),
+                Some(&dir.join(job_folder::EVAL)),
                 EXPORT_WINDOW,
                 &dir.join("export"),
             )?;

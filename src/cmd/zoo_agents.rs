@@ -5,6 +5,7 @@
 use anyhow::{Context, Result, bail};
 use chronocooked_analysis::behaviour::aggregate::headline;
 use chronocooked_analysis::behaviour::metrics::Metrics;
+use chronocooked_analysis::job_folder;
 use chronocooked_env::integrity;
 use chronocooked_models::run_folder;
 use chronocooked_training::agent_zoo::{
@@ -131,18 +132,18 @@ fn same_episodes(eval: &Path, committed: &Path) -> Result<Option<bool>> {
 /// `zoo/<model>/<task>/`, writes its provenance, records every file in `SHA256SUMS` and
 /// adds the agent to the index.
 pub fn add(args: ZooAddArgs) -> Result<()> {
-    let job = read_json(&args.job.join("job.json"))?;
+    let job = read_json(&args.job.join(job_folder::JOB))?;
     let s = |k: &str| -> Result<String> {
         job[k].as_str().map(str::to_string).with_context(|| {
             format!(
                 "{}: field `{k}` missing",
-                args.job.join("job.json").display()
+                args.job.join(job_folder::JOB).display()
             )
         })
     };
     let (id, task, model) = (s("id")?, s("task")?, s("model")?);
-    let run = args.job.join("run");
-    let eval = args.job.join("eval");
+    let run = args.job.join(job_folder::RUN);
+    let eval = args.job.join(job_folder::EVAL);
     // The model must load intact before it is copied.
     chronocooked_training::load_policy(&run)?;
     let metrics_path = eval.join(chronocooked_analysis::evaluation::folder::METRICS);

@@ -241,7 +241,7 @@ pub fn run_adaptation(
             cfg.seed,
         )?;
         chronocooked_env::integrity::write_recorded(
-            &out.join("agent.json"),
+            &out.join(run_folder::AGENT),
             serde_json::to_string(&agent).unwrap_or_default().as_bytes(),
         )?;
         let curve = adaptation_curve(&outcomes, cfg.window);

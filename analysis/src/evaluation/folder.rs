@@ -13,6 +13,7 @@
 
 use crate::behaviour::metrics::{Metrics, compute_metrics};
 use crate::evaluation::protocol::EvalRecord;
+use crate::job_folder;
 use chronocooked_env::fs::write_atomic;
 use std::path::{Path, PathBuf};
 
@@ -71,7 +72,7 @@ pub fn write_activity(
     out: &Path,
     dataset: &chronocooked_models::ActivityDataset,
 ) -> Result<Vec<PathBuf>, String> {
-    let path = out.join("activity.json");
+    let path = out.join(job_folder::ACTIVITY);
     let json = serde_json::to_vec(dataset).map_err(|e| e.to_string())?;
     write_atomic(&path, &json).map_err(|e| e.to_string())?;
     let mut files = vec![path];

@@ -2,6 +2,7 @@
 //! study's compact results, or of a leaderboard's evaluation folders.
 
 use super::{MechanismError, READOUTS, Signature};
+use crate::job_folder;
 use crate::records::METRICS;
 use serde_json::Value;
 use std::collections::BTreeMap;
@@ -136,7 +137,10 @@ fn scaling_features(results: &Path) -> Result<Vec<(String, u64, f64)>, Mechanism
     let mut out = Vec::new();
     for model_dir in chronocooked_env::fs::real_subdirs(&results.join("scaling")) {
         for dir in chronocooked_env::fs::real_subdirs(&model_dir) {
-            let (job, summary) = (dir.join("scaling.json"), dir.join("activity.summary.json"));
+            let (job, summary) = (
+                dir.join(job_folder::SCALING),
+                dir.join(job_folder::ACTIVITY_SUMMARY),
+            );
             if !job.is_file() || !summary.is_file() {
                 continue;
             }
@@ -166,7 +170,7 @@ fn job_dirs(results: &Path) -> Vec<PathBuf> {
     let mut out = Vec::new();
     let mut stack = vec![root];
     while let Some(dir) = stack.pop() {
-        if dir.join("job.json").is_file() && dir.join(METRICS).is_file() {
+        if dir.join(job_folder::JOB).is_file() && dir.join(METRICS).is_file() {
             out.push(dir);
             continue;
         }
@@ -186,7 +190,7 @@ pub fn signatures(results: &Path) -> Result<Vec<Signature>, MechanismError> {
     }
     let mut jobs = Vec::new();
     for dir in dirs {
-        let job = read(&dir.join("job.json"))?;
+        let job = read(&dir.join(job_folder::JOB))?;
         let model = job["row"]
             .as_str()
             .or(job["model"].as_str())
@@ -197,7 +201,7 @@ pub fn signatures(results: &Path) -> Result<Vec<Signature>, MechanismError> {
             seed: job["seed"].as_u64().unwrap_or(0),
             task: job["task"].as_str().unwrap_or_default().to_string(),
             metrics: dir.join(METRICS),
-            summary: dir.join("activity.summary.json"),
+            summary: dir.join(job_folder::ACTIVITY_SUMMARY),
         });
     }
     let scaling = scaling_features(results)?;

@@ -5,6 +5,7 @@
 //! (`metrics.json`) and, for recorded jobs, the neural summary (`activity.summary.json`).
 
 use crate::behaviour::foc::{FocConvention, first_oven_check_with};
+use crate::job_folder;
 use crate::records::{ConditionKind, EvalRecord, read_records};
 use crate::records::{METRICS, RECORDS};
 use chronocooked_env::Counter;
@@ -208,7 +209,7 @@ pub fn job_folders(root: &Path) -> Vec<PathBuf> {
             let p = e.path();
             // Real folders only: symbolic links (self-links, loops) are not followed.
             if e.file_type().is_ok_and(|t| t.is_dir()) {
-                if p.join("job.json").is_file() {
+                if p.join(job_folder::JOB).is_file() {
                     out.push(p);
                 } else {
                     walk(&p, out);
@@ -224,18 +225,18 @@ pub fn job_folders(root: &Path) -> Vec<PathBuf> {
 
 /// The compact results of one finished job folder (`None` while its evaluation is missing).
 pub fn summarise_job(dir: &Path) -> Result<Option<CompactJob>, CollectError> {
-    let eval = dir.join("eval");
+    let eval = dir.join(job_folder::EVAL);
     if !eval.join(METRICS).is_file() || !eval.join(RECORDS).is_file() {
         return Ok(None);
     }
-    let job = read_json(&dir.join("job.json"))?;
-    let cfg = read_json(&dir.join("run").join(run_folder::CONFIG))?;
+    let job = read_json(&dir.join(job_folder::JOB))?;
+    let cfg = read_json(&dir.join(job_folder::RUN).join(run_folder::CONFIG))?;
     // A timing-model run's curves.csv has its own columns (episodes, not PPO updates): its
     // compact result keeps the evaluation, metrics and neural summary, no PPO curve.
     let curve = if cfg["kind"].as_str() == Some("timing") {
         Vec::new()
     } else {
-        read_curve(&dir.join("run").join(run_folder::CURVES))?
+        read_curve(&dir.join(job_folder::RUN).join(run_folder::CURVES))?
     };
     let records = read_records(&eval).map_err(|e| err(&eval.join(RECORDS), e))?;
     let s = |v: &serde_json::Value, k: &str| v[k].as_str().unwrap_or_default().to_string();
@@ -316,12 +317,12 @@ pub fn collect(sweep_out: &Path, to: &Path) -> Result<(usize, usize), CollectErr
         let out = to.join("jobs").join(&summary.id);
         std::fs::create_dir_all(&out).map_err(|e| err(&out, e))?;
         let json = serde_json::to_string_pretty(&summary).map_err(|e| err(&out, e))?;
-        let job_path = out.join("job.json");
+        let job_path = out.join(job_folder::JOB);
         chronocooked_env::fs::write_atomic(&job_path, json.as_bytes())
             .map_err(|e| err(&job_path, e.error))?;
         write_csv(&out.join("episodes.csv"), &episodes)?;
         write_csv(&out.join("curve.csv"), &curve)?;
-        let metrics = dir.join("eval").join(METRICS);
+        let metrics = dir.join(job_folder::EVAL).join(METRICS);
         let text = std::fs::read(&metrics).map_err(|e| err(&metrics, e))?;
         // Copied as written, but only once it is a metrics object (never a corrupt file).
         let parsed: serde_json::Value =
@@ -333,7 +334,7 @@ pub fn collect(sweep_out: &Path, to: &Path) -> Result<(usize, usize), CollectErr
         chronocooked_env::fs::write_atomic(&m_path, &text).map_err(|e| err(&m_path, e.error))?;
         // The neural summary of a recorded job (a few kB; the activity itself stays behind),
         // copied only when it is a list of population summaries.
-        let neural = dir.join("activity.summary.json");
+        let neural = dir.join(job_folder::ACTIVITY_SUMMARY);
         if neural.is_file() {
             let text = std::fs::read(&neural).map_err(|e| err(&neural, e))?;
             let parsed: serde_json::Value =
@@ -344,7 +345,7 @@ pub fn collect(sweep_out: &Path, to: &Path) -> Result<(usize, usize), CollectErr
                     "not a neural summary (no list of populations)",
                 ));
             }
-            let n_path = out.join("activity.summary.json");
+            let n_path = out.join(job_folder::ACTIVITY_SUMMARY);
             chronocooked_env::fs::write_atomic(&n_path, &text)
                 .map_err(|e| err(&n_path, e.error))?;
         }
@@ -381,7 +382,7 @@ pub fn read_compact(root: &Path) -> Result<Vec<CompactJob>, CollectError> {
     let mut out = Vec::new();
     for dir in job_folders(&root.join("jobs")) {
         let job: JobSummary = {
-            let p = dir.join("job.json");
+            let p = dir.join(job_folder::JOB);
             serde_json::from_value(read_json(&p)?).map_err(|e| err(&p, e))?
         };
         let ep_path = dir.join("episodes.csv");

@@ -5,8 +5,9 @@
 use super::collect::{CollectError, err};
 use super::compare::ComparisonRow;
 use super::study::PaperStudy;
-use crate::report::{STYLE, escape, inline_svg};
-use std::fmt::Write as _;
+use crate::paper::agreement::Counts;
+use crate::report::markup::{figure, inline_svg, page};
+use maud::{Markup, html};
 use std::path::{Path, PathBuf};
 
 /// The figures the page shows, in order: (file stem, caption, full width).
@@ -67,6 +68,95 @@ fn agreement_by_table(rows: &[ComparisonRow]) -> Vec<(String, String, usize, usi
     out
 }
 
+/// What the page's numbers mean (its first paragraph), after the number of jobs.
+const INTRO: &str = " finished jobs. Old rule: a paper number agrees when it lies in the lab's 95% interval; z rule: |z| ≤ 2, z = difference over the combined standard error of the two means (";
+
+/// The agreement per comparison table, counted over the numbers printed in the paper.
+fn agreement_table(s: &PaperStudy) -> Markup {
+    let by_table = agreement_by_table(&s.comparison);
+    let printed = by_table.iter().filter(|t| t.1 == "paper");
+    let (n, yes, yes_z) = printed.fold((0, 0, 0), |(n, y, z), t| (n + t.2, y + t.3, z + t.4));
+    html! {
+        h2.group {
+            "Numbers printed in the paper: " (yes_z) " of " (n)
+            " agree under the z rule (" (yes) " under the old rule)"
+        }
+        table {
+            tr {
+                th { "table" } th { "source" } th { "numbers" } th { "agree (old rule)" }
+                th { "agree (z rule)" } th { "n/a or both NaN" }
+            }
+            @for (t, src, rows, a, z, o) in &by_table {
+                tr { td { (t) } td { (src) } td { (rows) } td { (a) } td { (z) } td { (o) } }
+            }
+        }
+    }
+}
+
+/// The negative control (unmatched pairings) beside the faithful ones, per rule.
+fn negative_control_table(s: &PaperStudy) -> Markup {
+    let nc = &s.agreement.negative_control;
+    let cell = |k: &Counts| format!("{} of {}", k.yes, k.yes + k.no);
+    html! {
+        h2.group {
+            "Negative control (matched = false) beside the faithful pairs: yes of (yes + no)"
+        }
+        table {
+            tr { th { "pairing" } th { "matched" } th { "source" } th { "old rule" } th { "z rule" } }
+            @for c in nc.iter().filter(|c| c.rule == "old") {
+                @let z = nc
+                    .iter()
+                    .find(|x| x.pairing == c.pairing && x.source == c.source && x.rule == "z");
+                tr {
+                    td { (c.pairing) } td { (c.matched) } td { (c.source) } td { (cell(&c.counts)) }
+                    td { (z.map_or("–".into(), |z| cell(&z.counts))) }
+                }
+            }
+        }
+    }
+}
+
+/// The peak-interval verdicts (`pi.csv`).
+fn pi_table(s: &PaperStudy) -> Markup {
+    html! {
+        h2.group { "Peak interval: uniform checking after the TD (pi.csv)" }
+        table {
+            tr {
+                th { "model" } th { "factor" } th { "curves" } th { "uniform" }
+                th { "non-uniform" } th { "no checks" } th { "verdict" }
+            }
+            @for v in &s.pi_verdicts {
+                tr {
+                    td { (v.model) } td { (v.factor) } td { (v.curves) } td { (v.uniform) }
+                    td { (v.non_uniform) } td { (v.no_checks) } td { (v.verdict) }
+                }
+            }
+        }
+    }
+}
+
+/// Every comparison row (`comparison.csv`).
+fn comparison_table(s: &PaperStudy) -> Markup {
+    html! {
+        h2.group { "Every comparison row" }
+        table {
+            tr {
+                th { "table" } th { "row" } th { "column" } th { "source" } th { "paper" }
+                th { "paper SD" } th { "lab mean" } th { "lab SD" } th { "runs" } th { "z" }
+                th { "agree (old)" } th { "agree (z)" }
+            }
+            @for r in &s.comparison {
+                tr {
+                    td { (r.table) } td { (r.row) } td { (r.column) } td { (r.source) }
+                    td { (number(r.paper)) } td { (number(r.paper_sd)) }
+                    td { (number(r.lab_mean)) } td { (number(r.lab_sd)) } td { (r.n) }
+                    td { (number(r.z)) } td { (r.agree) } td { (r.agree_z) }
+                }
+            }
+        }
+    }
+}
+
 /// Writes `report.html` into `root`, inlining the figures found in `figures`; returns its path.
 pub fn write_paper_report(
     root: &Path,
@@ -76,91 +166,29 @@ pub fn write_paper_report(
     let name = root
         .file_name()
         .map_or("study".into(), |n| n.to_string_lossy().to_string());
-    let mut h = format!(
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{0}: the paper reproduced</title>\n<style>{STYLE}</style></head><body>\n<h1>{0}: the paper reproduced</h1>\n<p>{1} finished jobs. Old rule: a paper number agrees when it lies in the lab's 95% interval; z rule: |z| ≤ 2, z = difference over the combined standard error of the two means (<code>compare.rs</code>, <code>agreement.json</code> with its negative control); the full tables are in <code>tables.md</code>, the rows below in <code>comparison.csv</code>.</p>\n",
-        escape(&name),
-        s.jobs
-    );
-    let by_table = agreement_by_table(&s.comparison);
-    let printed = by_table.iter().filter(|t| t.1 == "paper");
-    let (n, yes, yes_z) = printed.fold((0, 0, 0), |(n, y, z), t| (n + t.2, y + t.3, z + t.4));
-    let _ = writeln!(
-        h,
-        "<h2 class=\"group\">Numbers printed in the paper: {yes_z} of {n} agree under the z rule ({yes} under the old rule)</h2>\n<table>\n<tr><th>table</th><th>source</th><th>numbers</th><th>agree (old rule)</th><th>agree (z rule)</th><th>n/a or both NaN</th></tr>"
-    );
-    for (t, src, rows, a, z, o) in &by_table {
-        let _ = writeln!(
-            h,
-            "<tr><td>{}</td><td>{}</td><td>{rows}</td><td>{a}</td><td>{z}</td><td>{o}</td></tr>",
-            escape(t),
-            escape(src)
-        );
-    }
-    h += "</table>\n<h2 class=\"group\">Negative control (matched = false) beside the faithful pairs: yes of (yes + no)</h2>\n<table>\n<tr><th>pairing</th><th>matched</th><th>source</th><th>old rule</th><th>z rule</th></tr>\n";
-    let nc = &s.agreement.negative_control;
-    for c in nc.iter().filter(|c| c.rule == "old") {
-        let z = nc
-            .iter()
-            .find(|x| x.pairing == c.pairing && x.source == c.source && x.rule == "z");
-        let cell = |k: &crate::paper::agreement::Counts| format!("{} of {}", k.yes, k.yes + k.no);
-        let _ = writeln!(
-            h,
-            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
-            escape(&c.pairing),
-            c.matched,
-            escape(&c.source),
-            cell(&c.counts),
-            z.map_or("–".into(), |z| cell(&z.counts))
-        );
-    }
-    h += "</table>\n<h2 class=\"group\">Peak interval: uniform checking after the TD (pi.csv)</h2>\n<table>\n<tr><th>model</th><th>factor</th><th>curves</th><th>uniform</th><th>non-uniform</th><th>no checks</th><th>verdict</th></tr>\n";
-    for v in &s.pi_verdicts {
-        let _ = writeln!(
-            h,
-            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
-            escape(&v.model),
-            v.factor,
-            v.curves,
-            v.uniform,
-            v.non_uniform,
-            v.no_checks,
-            escape(&v.verdict)
-        );
-    }
-    h += "</table>\n";
+    let mut shown = Vec::new();
     for (stem, caption, wide) in FIGURES {
         let svg = figures.join(format!("{stem}.svg"));
-        if !svg.is_file() {
-            continue;
+        if svg.is_file() {
+            let body = inline_svg(&svg).map_err(|m| err(&svg, m))?;
+            shown.push(figure(body, caption, wide.then_some("wide")));
         }
-        let body = inline_svg(&svg).map_err(|m| err(&svg, m))?;
-        let class = if wide { " class=\"wide\"" } else { "" };
-        let _ = writeln!(
-            h,
-            "<figure{class}>{body}<figcaption>{}</figcaption></figure>",
-            escape(caption)
-        );
     }
-    h += "<h2 class=\"group\">Every comparison row</h2>\n<table>\n<tr><th>table</th><th>row</th><th>column</th><th>source</th><th>paper</th><th>paper SD</th><th>lab mean</th><th>lab SD</th><th>runs</th><th>z</th><th>agree (old)</th><th>agree (z)</th></tr>\n";
-    for r in &s.comparison {
-        let _ = writeln!(
-            h,
-            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
-            escape(&r.table),
-            escape(&r.row),
-            escape(&r.column),
-            escape(&r.source),
-            number(r.paper),
-            number(r.paper_sd),
-            number(r.lab_mean),
-            number(r.lab_sd),
-            r.n,
-            number(r.z),
-            escape(&r.agree),
-            escape(&r.agree_z)
-        );
-    }
-    h += "</table>\n</body></html>\n";
+    let h = page(
+        &format!("{name}: the paper reproduced"),
+        html! {
+            p {
+                (s.jobs) (INTRO) code { "compare.rs" } ", " code { "agreement.json" }
+                " with its negative control); the full tables are in " code { "tables.md" }
+                ", the rows below in " code { "comparison.csv" } "."
+            }
+            (agreement_table(s))
+            (negative_control_table(s))
+            (pi_table(s))
+            @for f in &shown { (f) }
+            (comparison_table(s))
+        },
+    );
     let path = root.join("report.html");
     chronocooked_env::fs::write_atomic(&path, h.as_bytes()).map_err(|e| err(&path, e.error))?;
     Ok(path)

@@ -12,6 +12,7 @@
 //! its own row, and [`Row::baseline`] names the study.
 
 use crate::behaviour::metrics::Metrics;
+use crate::job_folder;
 use crate::neural::summary::NeuralSummary;
 use crate::paper::collect::{JobSummary, job_folders};
 use crate::report::leaderboard::{Row, RunResult, group_rows};
@@ -81,7 +82,7 @@ pub fn study_name(root: &Path) -> String {
 
 /// One compact job as a leaderboard run (its row label, unmarked).
 pub fn read_job(dir: &Path) -> Result<RunResult, BaselineError> {
-    let job_path = dir.join("job.json");
+    let job_path = dir.join(job_folder::JOB);
     let job: JobSummary =
         serde_json::from_str(&read_text(&job_path)?).map_err(|e| BaselineError::Field {
             path: job_path.display().to_string(),
@@ -108,7 +109,7 @@ pub fn read_job(dir: &Path) -> Result<RunResult, BaselineError> {
             ),
         });
     }
-    let n_path = dir.join("activity.summary.json");
+    let n_path = dir.join(job_folder::ACTIVITY_SUMMARY);
     let neural = if n_path.is_file() {
         let all: Vec<NeuralSummary> =
             serde_json::from_str(&read_text(&n_path)?).map_err(|e| BaselineError::Field {

@@ -10,6 +10,7 @@
 use crate::behaviour::aggregate::{Spread, aggregate};
 use crate::behaviour::foc::{FocStats, pool_foc_stats, scalar_property};
 use crate::behaviour::metrics::{BisectionMetrics, Metrics};
+use crate::job_folder;
 use crate::neural::summary::NeuralSummary;
 use crate::records::{EVAL_INFO, RECORDS, read_eval_info};
 use std::collections::BTreeMap;
@@ -123,7 +124,7 @@ pub fn find_eval_folders(roots: &[PathBuf]) -> Vec<PathBuf> {
 fn row_label(folder: &Path, model: &str) -> String {
     folder
         .parent()
-        .and_then(|p| optional_json::<serde_json::Value>(&p.join("job.json")))
+        .and_then(|p| optional_json::<serde_json::Value>(&p.join(job_folder::JOB)))
         .and_then(|v| v["row"].as_str().map(str::to_string))
         .unwrap_or_else(|| model.to_string())
 }
@@ -145,7 +146,8 @@ fn optional_json<T: serde::de::DeserializeOwned>(path: &Path) -> Option<T> {
 /// population with the most units (first on ties: PPO `latent`, SBF `oscillators`, time
 /// cells `time_cells`; DDM `accumulator`).
 pub fn load_neural(folder: &Path) -> Option<NeuralSummary> {
-    let all: Vec<NeuralSummary> = optional_json(&folder.parent()?.join("activity.summary.json"))?;
+    let all: Vec<NeuralSummary> =
+        optional_json(&folder.parent()?.join(job_folder::ACTIVITY_SUMMARY))?;
     let max = all.iter().map(|s| s.units).max()?;
     all.into_iter().find(|s| s.units == max)
 }
@@ -350,7 +352,7 @@ fn is_svg(p: &Path) -> bool {
 pub fn behaviour_figures(folder: &Path) -> Vec<PathBuf> {
     let mut dirs = vec![folder.join("figures")];
     if let Some(parent) = folder.parent() {
-        dirs.push(parent.join("run").join("figures"));
+        dirs.push(parent.join(job_folder::RUN).join("figures"));
     }
     dirs.iter()
         .flat_map(|d| sorted_entries(d))

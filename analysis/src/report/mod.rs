@@ -3,15 +3,19 @@
 //! the same model are aggregated: mean ± SD over runs); columns = headline metrics.
 //!
 //! Submodules: [`leaderboard`] — rows and columns of the leaderboard; [`figures`] — the
-//! SVG/PNG figures (plotters, bundled font).
+//! SVG/PNG figures (plotters, bundled font); `markup` — the page shell and figures as maud
+//! templates (maud escapes the text).
 
 pub mod baselines;
 pub mod figures;
 pub mod leaderboard;
+pub(crate) mod markup;
 pub mod mechanisms;
 
 use crate::behaviour::aggregate::Spread;
 pub use crate::report::leaderboard::{Row, load_metrics, load_rows, load_rows_from_runs};
+use markup::{figure, figure_file, inline_svg};
+use maud::{Markup, html};
 use std::path::{Path, PathBuf};
 
 /// What the `runs` column counts.
@@ -173,64 +177,18 @@ fn cell(s: Option<&Spread>) -> String {
     }
 }
 
-pub(crate) fn escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
-
-/// The reports' style sheet: compact tables that fit a 1366 px window, figures as small
-/// multiples two to a row (`figure.wide`: full width).
-pub(crate) const STYLE: &str = "body{font-family:sans-serif;margin:1.5em;max-width:1600px}table{border-collapse:collapse;margin-bottom:1em}td,th{border:1px solid #bbb;padding:3px 7px;text-align:right;white-space:nowrap;font-size:14px}th{background:#eee}td:first-child{text-align:left}h2.group{font-size:1.1em;margin:0.8em 0 0.3em}figure{display:inline-block;margin:0.5em;width:46%}figure.wide{width:96%}figure.panel{width:23.5%;margin:0.3em}figure.half{width:60%}figure svg,figure img{width:100%;height:auto}.card{border:1px solid #ccc;border-radius:4px;padding:0.3em 0.6em;margin:0.6em 0}.card h3{font-size:1em;margin:0.3em 0}.catbar{display:flex;width:100%;height:1.4em;font-size:12px;line-height:1.4em;color:#fff;overflow:hidden}.catbar span{white-space:nowrap;overflow:hidden;padding-left:3px;box-sizing:border-box}figcaption{font-size:13px}";
-
-/// An SVG file as inline markup: the XML prolog and namespace URIs dropped (inline SVG in
-/// HTML needs neither, and the page then holds no URL at all).
-pub(crate) fn inline_svg(svg: &Path) -> Result<String, String> {
-    let text = std::fs::read_to_string(svg).map_err(|e| format!("{}: {e}", svg.display()))?;
-    let body = text.find("<svg").map_or(text.as_str(), |i| &text[i..]);
-    Ok(body
-        .replace(" xmlns=\"http://www.w3.org/2000/svg\"", "")
-        .replace(" xmlns:xlink=\"http://www.w3.org/1999/xlink\"", ""))
-}
-
 /// Runs per row and task whose behaviour figures are inlined in the HTML (the other runs
 /// are named, their figures stay in their folders): a sweep's report stays readable and
 /// small (the demo's ≤ 2 MB).
 pub const FIGURE_RUNS: usize = 1;
 
-/// A figure as HTML: the SVG inline, or its PNG sibling (`stem.png`) as a base64 data URI
-/// when that is smaller (heat maps: thousands of SVG rectangles, a few kB of PNG).
-pub(crate) fn figure_markup(svg: &Path, caption: &str) -> Result<String, String> {
-    use base64::Engine as _;
-    let png = svg.with_extension("png");
-    let svg_len = std::fs::metadata(svg)
-        .map_err(|e| format!("{}: {e}", svg.display()))?
-        .len();
-    let png_len = std::fs::metadata(&png).map_or(u64::MAX, |m| m.len());
-    let body = if png_len.saturating_mul(4) / 3 < svg_len {
-        let bytes = std::fs::read(&png).map_err(|e| format!("{}: {e}", png.display()))?;
-        format!(
-            "<img alt=\"{}\" src=\"data:image/png;base64,{}\">",
-            escape(caption),
-            base64::engine::general_purpose::STANDARD.encode(bytes)
-        )
-    } else {
-        inline_svg(svg)?
-    };
-    Ok(format!(
-        "<figure>{body}<figcaption>{}</figcaption></figure>\n",
-        escape(caption)
-    ))
-}
-
 /// One row's figures: the behaviour figures of its first [`FIGURE_RUNS`] runs per task, the
 /// other runs named. (Its neural activity is in the "Mechanisms" section's card; every
 /// population's heat map stays in the run's `neural_figures/`.)
-fn row_figures_html(r: &Row) -> Result<String, String> {
+fn row_figures_html(r: &Row) -> Result<Markup, String> {
     use crate::report::leaderboard::{behaviour_figures, figure_caption};
-    let mut html = String::new();
     let mut shown: Vec<(String, usize)> = Vec::new();
+    let mut inlined: Vec<(String, Vec<Markup>)> = Vec::new();
     let mut named = Vec::new();
     for run in &r.runs {
         let task = run_task(run);
@@ -248,19 +206,22 @@ fn row_figures_html(r: &Row) -> Result<String, String> {
             named.push(run_caption(run));
             continue;
         }
-        html += &format!("<h3>{}</h3>\n", escape(&run_caption(run)));
-        for svg in behaviour_figures(run) {
-            html += &figure_markup(&svg, &figure_caption(&svg))?;
-        }
+        let figures = behaviour_figures(run)
+            .iter()
+            .map(|svg| figure_file(svg, &figure_caption(svg), None))
+            .collect::<Result<Vec<_>, _>>()?;
+        inlined.push((run_caption(run), figures));
     }
-    if !named.is_empty() {
-        html += "<p>Other runs (figures in their folders):</p>\n<ul>\n";
-        for n in named {
-            html += &format!("<li>{}</li>\n", escape(&n));
+    Ok(html! {
+        @for (caption, figures) in &inlined {
+            h3 { (caption) }
+            @for f in figures { (f) }
         }
-        html += "</ul>\n";
-    }
-    Ok(html)
+        @if !named.is_empty() {
+            p { "Other runs (figures in their folders):" }
+            ul { @for n in &named { li { (n) } } }
+        }
+    })
 }
 
 /// Task of an evaluation folder (from `eval.json`).
@@ -340,23 +301,64 @@ fn fi_by_td(rows: &[Row]) -> Vec<(String, u32, usize, String, String, String)> {
 /// Caption of the per-TD fixed-interval table.
 const FI_BY_TD: &str = "The first oven check (FOC, steps after the onion went in; the paper's convention), pooled over the row's runs and start cells. FOC / TD near 1: the agent checks when the soup is ready; near 0: it checks at once (no timing).";
 
-fn fi_by_td_html(rows: &[Row]) -> String {
+fn fi_by_td_html(rows: &[Row]) -> Markup {
     let lines = fi_by_td(rows);
-    if lines.is_empty() {
-        return String::new();
+    html! {
+        @if !lines.is_empty() {
+            h2.group { "Fixed interval per TD" }
+            p { (FI_BY_TD) }
+            table {
+                tr {
+                    th { "model" } th { "TD (steps)" } th { "episodes" }
+                    th { "mean FOC (steps)" } th { "FOC / TD" } th { "FOC CV" }
+                }
+                @for (m, td, n, mean, ratio, cv) in &lines {
+                    tr { td { (m) } td { (td) } td { (n) } td { (mean) } td { (ratio) } td { (cv) } }
+                }
+            }
+        }
     }
-    let mut h = format!(
-        "<h2 class=\"group\">Fixed interval per TD</h2>\n<p>{}</p>\n<table>\n<tr><th>model</th><th>TD (steps)</th><th>episodes</th><th>mean FOC (steps)</th><th>FOC / TD</th><th>FOC CV</th></tr>\n",
-        escape(FI_BY_TD)
-    );
-    for (m, td, n, mean, ratio, cv) in lines {
-        h += &format!(
-            "<tr><td>{}</td><td>{td}</td><td>{n}</td><td>{mean}</td><td>{ratio}</td><td>{cv}</td></tr>\n",
-            escape(&m)
-        );
-    }
-    h + "</table>\n"
 }
+
+/// The headline metrics as one table per theme (each narrow enough for a 1366 px window),
+/// a row per model that has a metric of the theme.
+fn theme_tables(rows: &[Row], cols: &[(&str, &str)]) -> Markup {
+    let what = |k: &str| cols.iter().find(|(c, _)| *c == k).map_or("", |(_, w)| *w);
+    html! {
+        @for (group, keys) in column_groups(cols) {
+            h2.group { (group) }
+            table {
+                tr {
+                    th { "model" } th { "runs" }
+                    @for k in &keys { th title=(what(k)) { (column_title(k)) } }
+                }
+                @for r in rows.iter().filter(|r| keys.iter().any(|k| r.values.contains_key(*k))) {
+                    tr {
+                        td { (r.model) } td { (r.runs.len()) }
+                        @for k in &keys { td { (cell(r.values.get(*k))) } }
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The legend of the columns (`runs`, each used column, the baselines when shown).
+fn columns_legend(cols: &[(&str, &str)], baselines: bool) -> Markup {
+    html! {
+        h2 { "Columns" }
+        dl {
+            dt { code { "runs" } } dd { (RUNS_LEGEND) }
+            @for (k, what) in cols {
+                dt { (column_title(k)) " (" code { (k) } ")" } dd { (what) }
+            }
+            @if baselines { dt { "baselines" } dd { (BASELINE_LEGEND) } }
+        }
+    }
+}
+
+/// Caption of the psychometric grid.
+const GRID_CAPTION: &str = "P(long) per probe: grey dots = runs, blue = mean over runs, red = logistic fit of the pooled counts; AM/GM = arithmetic/geometric mean of the anchors, BP = bisection point";
 
 fn fi_by_td_markdown(rows: &[Row]) -> String {
     let lines = fi_by_td(rows);
@@ -421,57 +423,11 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
     for (k, what) in &cols {
         md += &format!("* `{k}`: {what}\n");
     }
-    // HTML with inline SVG figures; the headline metrics as one table per theme, each
-    // narrow enough for a 1366 px window.
-    let mut html = String::from(
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>Chronocooked leaderboard</title>\n",
-    );
-    html += &format!("<style>{STYLE}</style></head><body>\n<h1>Chronocooked leaderboard</h1>\n");
+    // HTML with inline SVG figures.
+    let baselines = rows.iter().any(|r| r.baseline.is_some());
     let (mech_html, mech_md) = mechanisms::mechanisms_section(rows, out)?;
-    html += &mech_html;
-    for (group, keys) in column_groups(&cols) {
-        html +=
-            &format!("<h2 class=\"group\">{group}</h2>\n<table>\n<tr><th>model</th><th>runs</th>");
-        for k in &keys {
-            let what = cols.iter().find(|(c, _)| c == k).map_or("", |(_, w)| *w);
-            html += &format!(
-                "<th title=\"{}\">{}</th>",
-                escape(what),
-                escape(column_title(k))
-            );
-        }
-        html += "</tr>\n";
-        for r in rows {
-            if !keys.iter().any(|k| r.values.contains_key(*k)) {
-                continue;
-            }
-            html += &format!("<tr><td>{}</td><td>{}</td>", escape(&r.model), r.runs.len());
-            for k in &keys {
-                html += &format!("<td>{}</td>", cell(r.values.get(*k)));
-            }
-            html += "</tr>\n";
-        }
-        html += "</table>\n";
-    }
-    html += &fi_by_td_html(rows);
     md += &fi_by_td_markdown(rows);
     md += &mech_md;
-    html += "<h2>Columns</h2>\n<dl>\n";
-    html += &format!(
-        "<dt><code>runs</code></dt><dd>{}</dd>\n",
-        escape(RUNS_LEGEND)
-    );
-    for (k, what) in &cols {
-        html += &format!(
-            "<dt>{} (<code>{k}</code>)</dt><dd>{}</dd>\n",
-            escape(column_title(k)),
-            escape(what)
-        );
-    }
-    if rows.iter().any(|r| r.baseline.is_some()) {
-        html += &format!("<dt>baselines</dt><dd>{}</dd>\n", escape(BASELINE_LEGEND));
-    }
-    html += "</dl>\n";
     let grid_rows: Vec<(String, Vec<crate::behaviour::metrics::BisectionMetrics>)> = rows
         .iter()
         .map(|r| (r.model.clone(), r.bisection.clone()))
@@ -479,27 +435,41 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
     let grid =
         crate::report::figures::psychometric_grid(&out.join("psychometric_grid"), &grid_rows)
             .map_err(|e| e.to_string())?;
-    if let Some(svg) = grid
+    let grid_svg = match grid
         .iter()
         .find(|p| p.extension().is_some_and(|e| e == "svg"))
     {
-        html += "<h2>Psychometric curves (bisection)</h2>\n";
-        html += &format!(
-            "<figure class=\"wide\">{}<figcaption>P(long) per probe: grey dots = runs, blue = mean over runs, red = logistic fit of the pooled counts; AM/GM = arithmetic/geometric mean of the anchors, BP = bisection point</figcaption></figure>\n",
-            inline_svg(svg)?
-        );
-    }
-    for r in rows.iter().filter(|r| r.baseline.is_none()) {
-        html += &format!("<h2>{}</h2>\n", escape(&r.model));
-        html += &row_figures_html(r)?;
-    }
+        Some(svg) => Some(inline_svg(svg)?),
+        None => None,
+    };
+    let row_figures = rows
+        .iter()
+        .filter(|r| r.baseline.is_none())
+        .map(|r| Ok((r.model.as_str(), row_figures_html(r)?)))
+        .collect::<Result<Vec<_>, String>>()?;
+    let html = markup::page(
+        "Chronocooked leaderboard",
+        html! {
+            (mech_html)
+            (theme_tables(rows, &cols))
+            (fi_by_td_html(rows))
+            (columns_legend(&cols, baselines))
+            @if let Some(svg) = grid_svg {
+                h2 { "Psychometric curves (bisection)" }
+                (figure(svg, GRID_CAPTION, Some("wide")))
+            }
+            @for (model, figures) in row_figures {
+                h2 { (model) }
+                (figures)
+            }
+        },
+    );
     if grid
         .iter()
         .any(|p| p.extension().is_some_and(|e| e == "png"))
     {
         md += "\n## Psychometric curves\n\n![psychometric grid](psychometric_grid.png)\n";
     }
-    html += "</body></html>\n";
     let mut files = Vec::new();
     for (name, text) in [
         ("report.html", html),
@@ -538,37 +508,5 @@ mod tests {
                 column_group(k)
             );
         }
-        assert_eq!(escape("a \"b\" <c>"), "a &quot;b&quot; &lt;c&gt;");
-    }
-
-    #[test]
-    fn a_figure_is_embedded_in_its_smaller_form() {
-        let dir = std::env::temp_dir().join(format!("cc-figure-markup-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let big_svg = format!("<svg>{}</svg>", "<rect/>".repeat(2000));
-        // A heat map: large SVG, small PNG → the PNG as data.
-        std::fs::write(dir.join("heat.svg"), &big_svg).unwrap();
-        std::fs::write(dir.join("heat.png"), [1u8, 2, 3]).unwrap();
-        let m = figure_markup(&dir.join("heat.svg"), "heat <map>").unwrap();
-        assert!(
-            m.contains("<img alt=\"heat &lt;map&gt;\" src=\"data:image/png;base64,AQID\">"),
-            "{m}"
-        );
-        // A line chart: small SVG, large PNG → the SVG inline.
-        std::fs::write(dir.join("line.svg"), "<svg><path/></svg>").unwrap();
-        std::fs::write(dir.join("line.png"), vec![0u8; 5000]).unwrap();
-        let m = figure_markup(&dir.join("line.svg"), "line").unwrap();
-        assert!(
-            m.contains("<svg><path/></svg>") && !m.contains("<img"),
-            "{m}"
-        );
-        // No PNG beside it: the SVG.
-        std::fs::write(dir.join("only.svg"), &big_svg).unwrap();
-        assert!(
-            figure_markup(&dir.join("only.svg"), "x")
-                .unwrap()
-                .contains("<svg>")
-        );
-        let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -11,6 +11,7 @@
 
 use crate::error::PipelineError;
 use crate::stages::record::{RecordRequest, record};
+use chronocooked_analysis::job_folder;
 use chronocooked_models::run_folder;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -55,7 +56,7 @@ fn groups(study: &Path) -> Result<BTreeMap<(String, u64), RunsByTd>, PipelineErr
     let root = study.join(FI_TASK);
     for row in chronocooked_env::fs::real_subdirs(&root) {
         for job_dir in chronocooked_env::fs::real_subdirs(&row) {
-            let (job_file, run) = (job_dir.join("job.json"), job_dir.join("run"));
+            let (job_file, run) = (job_dir.join(job_folder::JOB), job_dir.join(job_folder::RUN));
             if !job_file.is_file() || !run.join(run_folder::SUMMARY).is_file() {
                 continue;
             }
@@ -96,13 +97,15 @@ pub fn record_scaling(study: &Path, results: &Path) -> Result<ScalingOutcome, Pi
             .join("scaling")
             .join(&model)
             .join(format!("seed{seed}"));
-        if dir.join("scaling.json").is_file() && dir.join("activity.summary.json").is_file() {
+        if dir.join(job_folder::SCALING).is_file()
+            && dir.join(job_folder::ACTIVITY_SUMMARY).is_file()
+        {
             outcome.skipped += 1;
             continue;
         }
         std::fs::create_dir_all(&dir).map_err(|e| PipelineError::write(&dir, e))?;
         let paths: Vec<PathBuf> = runs.values().cloned().collect();
-        let dataset = dir.join("activity.json");
+        let dataset = dir.join(job_folder::ACTIVITY);
         record(&RecordRequest {
             run: paths[0].clone(),
             more_runs: paths[1..].to_vec(),
@@ -131,7 +134,7 @@ pub fn record_scaling(study: &Path, results: &Path) -> Result<ScalingOutcome, Pi
                 })
                 .collect(),
         };
-        let file = dir.join("scaling.json");
+        let file = dir.join(job_folder::SCALING);
         let text = serde_json::to_vec_pretty(&job)
             .map_err(|e| PipelineError::Invalid(format!("{}: {e}", file.display())))?;
         chronocooked_env::fs::write_atomic(&file, &text)?;

@@ -1,6 +1,7 @@
 //! What a signature card shows, computed from a model's recorded fixed-interval runs.
 
 use super::RunInfo;
+use crate::job_folder;
 use crate::mechanisms::{MECHANISMS, READOUTS};
 use crate::neural::categories::{Category, UnitTests};
 use crate::neural::oscillation::welch;
@@ -14,7 +15,7 @@ use std::path::Path;
 
 /// The activity dataset recorded next to an evaluation folder (`<job>/activity.json`).
 fn load_activity(eval: &Path) -> Result<Option<ActivityDataset>, String> {
-    let Some(path) = eval.parent().map(|p| p.join("activity.json")) else {
+    let Some(path) = eval.parent().map(|p| p.join(job_folder::ACTIVITY)) else {
         return Ok(None);
     };
     if !path.is_file() {

@@ -5,7 +5,8 @@ use crate::neural::categories::CATEGORIES;
 use crate::neural::geometry::{geometry_profile, geometry_scaling};
 use crate::neural::summary::{TdClassification, WINDOW_ORIGIN};
 use crate::report::figures::{Chart, Series, write_chart_sized, write_heatmap_sized};
-use crate::report::{escape, figure_markup};
+use crate::report::markup::figure_file;
+use maud::{Markup, html};
 use std::path::Path;
 
 /// Pixel size of a card's panels (four to a row at 1366 px).
@@ -14,49 +15,52 @@ const PANEL: (u32, u32) = (380, 280);
 /// Colour of each category in the bar (ramp, time field, oscillating, mixed, untuned).
 const CATEGORY_COLOURS: [&str; 5] = ["#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#bbbbbb"];
 
-fn panel(stem: &Path, chart: &Chart, caption: &str) -> Result<String, String> {
+fn panel(stem: &Path, chart: &Chart, caption: &str) -> Result<Markup, String> {
     let files = write_chart_sized(stem, chart, PANEL).map_err(|e| e.to_string())?;
-    figure_markup(&files[0], caption).map(|h| h.replace("<figure>", "<figure class=\"panel\">"))
+    figure_file(&files[0], caption, Some("panel"))
 }
 
 /// The category bar of a classification (HTML: widths proportional to the counts).
-fn category_bar(c: &TdClassification) -> String {
+fn category_bar(c: &TdClassification) -> Markup {
     let Ok(tests) = &c.tests else {
-        return String::from("<p>categories undefined (too few trials)</p>\n");
+        return html! { p { "categories undefined (too few trials)" } };
     };
     let total = tests.len().max(1) as f64;
-    let mut html = String::from("<div class=\"catbar\">");
-    for (k, cat) in CATEGORIES.iter().enumerate() {
-        let n = tests.iter().filter(|u| u.category == *cat).count();
-        if n == 0 {
-            continue;
+    let counts: Vec<(usize, usize)> = CATEGORIES
+        .iter()
+        .enumerate()
+        .map(|(k, cat)| (k, tests.iter().filter(|u| u.category == *cat).count()))
+        .filter(|&(_, n)| n > 0)
+        .collect();
+    html! {
+        div.catbar {
+            @for (k, n) in counts {
+                @let name = CATEGORIES[k].name();
+                span style=(format!("width:{:.1}%;background:{}", 100.0 * n as f64 / total, CATEGORY_COLOURS[k]))
+                    title=(format!("{name} {n}")) { (name) " " (n) }
+            }
         }
-        html += &format!(
-            "<span style=\"width:{:.1}%;background:{}\" title=\"{} {n}\">{} {n}</span>",
-            100.0 * n as f64 / total,
-            CATEGORY_COLOURS[k],
-            cat.name(),
-            cat.name()
-        );
     }
-    html + "</div>\n"
 }
 
-pub(super) fn card_html(card: &Card, dir: &Path) -> Result<String, String> {
+/// A model's signature card: heading, category bar and the four panels (heat map,
+/// example units, spectrum, and the scaling profile when two TDs were recorded); the
+/// panels' files go to `dir`.
+pub(super) fn card_html(card: &Card, dir: &Path) -> Result<Markup, String> {
     let long = card.by_td.last().expect("a card has a TD");
     let short = &card.by_td[0];
     let tds: Vec<String> = card.by_td.iter().map(|c| c.td.to_string()).collect();
-    let mut html = format!(
-        "<div class=\"card\"><h3>{} — {} ({} varying of {} units at TD {}; seed {}; TDs {})</h3>\n",
-        escape(&card.model),
-        escape(&card.population),
+    let heading = format!(
+        "{} — {} ({} varying of {} units at TD {}; seed {}; TDs {})",
+        card.model,
+        card.population,
         long.varying.len(),
         long.size,
         long.td,
         card.seed,
         tds.join(", ")
     );
-    html += &category_bar(long);
+    let mut panels = Vec::new();
     let stem = |name: &str| dir.join(format!("{}-{name}", card.model));
     // Heat map.
     let heat = write_heatmap_sized(
@@ -67,11 +71,11 @@ pub(super) fn card_html(card: &Card, dir: &Path) -> Result<String, String> {
         PANEL,
     )
     .map_err(|e| e.to_string())?;
-    html += &figure_markup(
+    panels.push(figure_file(
         &heat[0],
         "units sorted by peak time, each min–max normalised",
-    )?
-    .replace("<figure>", "<figure class=\"panel\">");
+        Some("panel"),
+    )?);
     // Example units.
     let avg = long.cube.average();
     let units = long.cube.units;
@@ -98,11 +102,11 @@ pub(super) fn card_html(card: &Card, dir: &Path) -> Result<String, String> {
         markers: vec![(f64::from(long.td), "TD".into())],
         y_range: None,
     };
-    html += &panel(
+    panels.push(panel(
         &stem("units"),
         &chart,
         "example units, one per category it has",
-    )?;
+    )?);
     // Spectrum.
     let spectrum = population_spectrum(long);
     let chart = Chart {
@@ -118,11 +122,11 @@ pub(super) fn card_html(card: &Card, dir: &Path) -> Result<String, String> {
         markers: vec![(1.0 / f64::from(long.td), "1/TD".into())],
         y_range: None,
     };
-    html += &panel(
+    panels.push(panel(
         &stem("spectrum"),
         &chart,
         "mean single-trial power spectrum of the units",
-    )?;
+    )?);
     // Scaling.
     if card.by_td.len() >= 2 {
         let ratio = f64::from(long.td) / f64::from(short.td);
@@ -166,7 +170,13 @@ pub(super) fn card_html(card: &Card, dir: &Path) -> Result<String, String> {
             card.scaling_index
                 .map_or("undefined".into(), |i| format!("{i:.2}"))
         );
-        html += &panel(&stem("scaling"), &chart, &caption)?;
+        panels.push(panel(&stem("scaling"), &chart, &caption)?);
     }
-    Ok(html + "</div>\n")
+    Ok(html! {
+        div.card {
+            h3 { (heading) }
+            (category_bar(long))
+            @for p in &panels { (p) }
+        }
+    })
 }

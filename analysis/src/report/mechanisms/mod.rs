@@ -28,9 +28,10 @@ mod tests;
 use crate::mechanisms::{JobFiles, MECHANISMS, Signature, assemble, compare};
 use crate::records::{METRICS, read_eval_info};
 use crate::report::leaderboard::Row;
-use crate::report::{escape, figure_markup};
+use crate::report::markup::figure_file;
 use card::card_and_scaling;
 use card_html::card_html;
+use maud::{Markup, html};
 use std::path::{Path, PathBuf};
 
 /// One evaluation folder of a row: its task, seed and job folder.
@@ -61,10 +62,9 @@ fn job_files(rows: &[Row]) -> (Vec<JobFiles>, Vec<Vec<RunInfo>>) {
                 seed: r.seed,
                 task: r.task.clone(),
                 metrics: r.eval.join(METRICS),
-                summary: r
-                    .eval
-                    .parent()
-                    .map_or_else(PathBuf::new, |p| p.join("activity.summary.json")),
+                summary: r.eval.parent().map_or_else(PathBuf::new, |p| {
+                    p.join(crate::job_folder::ACTIVITY_SUMMARY)
+                }),
             });
         }
         infos.push(runs);
@@ -72,55 +72,94 @@ fn job_files(rows: &[Row]) -> (Vec<JobFiles>, Vec<Vec<RunInfo>>) {
     (jobs, infos)
 }
 
-/// The nearest-mechanism table (HTML, Markdown) of the agents among `sigs`.
-fn nearest_tables(sigs: &[Signature]) -> (String, String) {
+/// The nearest-mechanism table (HTML, Markdown) of the agents among `sigs`; `None` when
+/// no agent is among them.
+fn nearest_tables(sigs: &[Signature]) -> Option<(Markup, String)> {
     let comparisons = compare(sigs, &MECHANISMS, 1000, 0);
     let mut agents: Vec<&str> = comparisons.iter().map(|c| c.agent.as_str()).collect();
     agents.dedup();
     if agents.is_empty() {
-        return (String::new(), String::new());
+        return None;
     }
     let mechs: Vec<&str> = MECHANISMS
         .iter()
         .copied()
         .filter(|m| comparisons.iter().any(|c| c.mechanism == *m))
         .collect();
-    let mut html = String::from("<table>\n<tr><th>agent</th><th>seeds</th>");
+    // Per agent: name, seeds, distance cell per mechanism, nearest label.
+    let lines: Vec<(&str, usize, Vec<String>, String)> = agents
+        .into_iter()
+        .map(|a| {
+            let mine: Vec<_> = comparisons.iter().filter(|c| c.agent == a).collect();
+            let seeds = mine.first().map_or(0, |c| c.seeds.0);
+            let cells = mechs
+                .iter()
+                .map(|m| {
+                    let d = mine
+                        .iter()
+                        .find(|c| c.mechanism == *m)
+                        .map_or(f64::NAN, |c| c.distance);
+                    if d.is_finite() {
+                        format!("{d:.2}")
+                    } else {
+                        "–".into()
+                    }
+                })
+                .collect();
+            (a, seeds, cells, crate::mechanisms::nearest_label(&mine))
+        })
+        .collect();
+    let html = html! {
+        table {
+            tr {
+                th { "agent" } th { "seeds" }
+                @for m in &mechs { th { (m) } }
+                th { "nearest (bootstrap share)" }
+            }
+            @for (a, seeds, cells, nearest) in &lines {
+                tr {
+                    td { (a) } td { (seeds) }
+                    @for c in cells { td { (c) } }
+                    td { (nearest) }
+                }
+            }
+        }
+    };
     let mut md = String::from("| agent | seeds |");
     for m in &mechs {
-        html += &format!("<th>{}</th>", escape(m));
         md += &format!(" {m} |");
     }
-    html += "<th>nearest (bootstrap share)</th></tr>\n";
     md += &format!(" nearest |\n|---|---|{}---|\n", "---|".repeat(mechs.len()));
-    for a in agents {
-        let mine: Vec<_> = comparisons.iter().filter(|c| c.agent == a).collect();
-        let seeds = mine.first().map_or(0, |c| c.seeds.0);
-        html += &format!("<tr><td>{}</td><td>{seeds}</td>", escape(a));
+    for (a, seeds, cells, nearest) in &lines {
         md += &format!("| {a} | {seeds} |");
-        for m in &mechs {
-            let d = mine
-                .iter()
-                .find(|c| c.mechanism == *m)
-                .map_or(f64::NAN, |c| c.distance);
-            let cell = if d.is_finite() {
-                format!("{d:.2}")
-            } else {
-                "–".into()
-            };
-            html += &format!("<td>{cell}</td>");
-            md += &format!(" {cell} |");
+        for c in cells {
+            md += &format!(" {c} |");
         }
-        let nearest = crate::mechanisms::nearest_label(&mine);
-        html += &format!("<td>{}</td></tr>\n", escape(&nearest));
         md += &format!(" {nearest} |\n");
     }
-    (html + "</table>\n", md)
+    Some((html, md))
 }
+
+/// What the "Mechanisms" section shows (its first paragraph).
+const MECHANISMS_INTRO: &str = "How each model keeps time, on peak-interval probe trials \
+     (soup withheld, windows of 2 × TD steps after oven-on): its timing population's \
+     unit categories (bar: counts of the exclusive categories ramp, time field, \
+     oscillating, mixed, untuned), heat map, example units, power spectrum and temporal \
+     scaling between its shortest and longest TD (a peak at s = 1: a clock at a fixed \
+     speed; at the TD ratio: activity that stretches with the interval). Below the \
+     cards: each model's fingerprint and each agent's distance to every timing \
+     mechanism.";
+
+/// How the nearest-mechanism table is read (the paragraph above it).
+const NEAREST_LEGEND: &str = "Distance: RMS over the shared \
+     features of the difference in units of each feature's SD over all \
+     signatures (models × seeds); nearest: the share of 1,000 bootstrap \
+     resamples of the seeds in which it is the nearest. With one seed per \
+     model the share is 1 by construction: run more seeds for a test.";
 
 /// The "Mechanisms" section of the leaderboard (HTML, Markdown) for `rows`; its figures go
 /// to `<out>/mechanisms/`. Empty strings when no row has recorded fixed-interval runs.
-pub fn mechanisms_section(rows: &[Row], out: &Path) -> Result<(String, String), String> {
+pub fn mechanisms_section(rows: &[Row], out: &Path) -> Result<(Markup, String), String> {
     let dir = out.join("mechanisms");
     let (jobs, infos) = job_files(rows);
     let mut cards = Vec::new();
@@ -131,7 +170,7 @@ pub fn mechanisms_section(rows: &[Row], out: &Path) -> Result<(String, String), 
         scaling.extend(s);
     }
     if cards.is_empty() {
-        return Ok((String::new(), String::new()));
+        return Ok((html! {}, String::new()));
     }
     std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     // Fingerprints of the models with a card (recorded neural activity): the oracle and
@@ -141,51 +180,47 @@ pub fn mechanisms_section(rows: &[Row], out: &Path) -> Result<(String, String), 
         .filter(|j| cards.iter().any(|c| c.model == j.model))
         .collect();
     let sigs = assemble(&carded, &scaling).map_err(|e| e.to_string())?;
-    let mut html = String::from(
-        "<h2>Mechanisms</h2>\n<p>How each model keeps time, on peak-interval probe trials \
-         (soup withheld, windows of 2 × TD steps after oven-on): its timing population's \
-         unit categories (bar: counts of the exclusive categories ramp, time field, \
-         oscillating, mixed, untuned), heat map, example units, power spectrum and temporal \
-         scaling between its shortest and longest TD (a peak at s = 1: a clock at a fixed \
-         speed; at the TD ratio: activity that stretches with the interval). Below the \
-         cards: each model's fingerprint and each agent's distance to every timing \
-         mechanism.</p>\n",
-    );
-    let mut md = String::from("\n## Mechanisms\n\n");
-    for card in &cards {
-        html += &card_html(card, &dir)?;
-    }
-    let (table_html, table_md) = nearest_tables(&sigs);
+    let card_markup = cards
+        .iter()
+        .map(|card| card_html(card, &dir))
+        .collect::<Result<Vec<_>, _>>()?;
+    let nearest = nearest_tables(&sigs);
     let fig = crate::mechanisms::fingerprint_figure(&sigs, &dir.join("fingerprints"))
         .map_err(|e| e.to_string())?;
-    if let Some(svg) = fig
+    let fingerprint = match fig
         .iter()
         .find(|p| p.extension().is_some_and(|e| e == "svg"))
     {
-        let names: Vec<String> = crate::mechanisms::FEATURES
-            .iter()
-            .enumerate()
-            .map(|(i, f)| format!("{i} {f}"))
-            .collect();
-        html += &figure_markup(
-            svg,
-            &format!(
+        Some(svg) => {
+            let names: Vec<String> = crate::mechanisms::FEATURES
+                .iter()
+                .enumerate()
+                .map(|(i, f)| format!("{i} {f}"))
+                .collect();
+            let caption = format!(
                 "fingerprints: each model's features (seed means) in SDs from the mean of \
                  all signatures; features: {}",
                 names.join(", ")
-            ),
-        )?
-        .replace("<figure>", "<figure class=\"half\">");
-    }
-    if !table_html.is_empty() {
-        html += "<h3>Nearest timing mechanism</h3>\n<p>Distance: RMS over the shared \
-                 features of the difference in units of each feature's SD over all \
-                 signatures (models × seeds); nearest: the share of 1,000 bootstrap \
-                 resamples of the seeds in which it is the nearest. With one seed per \
-                 model the share is 1 by construction: run more seeds for a test.</p>\n";
-        html += &table_html;
+            );
+            Some(figure_file(svg, &caption, Some("half"))?)
+        }
+        None => None,
+    };
+    let html = html! {
+        h2 { "Mechanisms" }
+        p { (MECHANISMS_INTRO) }
+        @for card in &card_markup { (card) }
+        @if let Some(f) = &fingerprint { (f) }
+        @if let Some((table, _)) = &nearest {
+            h3 { "Nearest timing mechanism" }
+            p { (NEAREST_LEGEND) }
+            (table)
+        }
+    };
+    let mut md = String::from("\n## Mechanisms\n\n");
+    if let Some((_, table_md)) = &nearest {
         md += "Nearest timing mechanism (distance in feature SDs):\n\n";
-        md += &table_md;
+        md += table_md;
     }
     md += "\n| model | population | scaling index |\n|---|---|---|\n";
     for c in &cards {

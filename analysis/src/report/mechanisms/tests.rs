@@ -156,6 +156,7 @@ fn cards_show_the_stretching_sequence_and_the_fixed_clock_for_what_they_are() {
     // The section: a card per model with its four panels and the category bar.
     let out = root.join("report");
     let (html, md) = mechanisms_section(&[seq, osc], &out).unwrap();
+    let html = html.into_string();
     assert!(html.starts_with("<h2>Mechanisms</h2>"));
     assert_eq!(html.matches("<div class=\"card\">").count(), 2);
     assert_eq!(html.matches("<figure class=\"panel\">").count(), 8);
@@ -183,10 +184,8 @@ fn cards_show_the_stretching_sequence_and_the_fixed_clock_for_what_they_are() {
 fn a_report_without_recordings_has_no_section() {
     let root = std::env::temp_dir().join(format!("cc-mech-none-{}", std::process::id()));
     let r = row(&root, "none", Vec::new());
-    assert_eq!(
-        mechanisms_section(&[r], &root).unwrap(),
-        (String::new(), String::new())
-    );
+    let (html, md) = mechanisms_section(&[r], &root).unwrap();
+    assert_eq!((html.into_string(), md), (String::new(), String::new()));
     assert!(!root.join("mechanisms").exists());
     let _ = std::fs::remove_dir_all(&root);
 }
