@@ -178,7 +178,16 @@ fn committed_baseline_rows_equal_numbers_computed_from_the_job_files_and_results
     ]);
     let rows = read_csv(&out.join("report.csv"));
     let all = jobs(&Path::new(ROOT).join("results/paper-core"));
-    assert_eq!(all.len(), 224, "paper-core has 224 jobs");
+    // paper-core's own four models: 224 jobs (the folder also holds the rest of the paper's
+    // grid as it runs: sizes 8 and 256, more repeats).
+    let core = all
+        .iter()
+        .filter(|j| MODELS.contains(&j.row.as_str()))
+        .count();
+    assert!(
+        core >= 224,
+        "paper-core's models have {core} jobs, fewer than its 224"
+    );
     let oracle = rows
         .iter()
         .find(|r| r["model"] == "oracle")

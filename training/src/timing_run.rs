@@ -264,7 +264,7 @@ pub fn run_timing_training(
         );
     }
     write_atomic(&dir.join(run_folder::CURVES), csv.as_bytes())?;
-    integrity::write_recorded(&dir.join("agent.json"), &json(&agent))?;
+    integrity::write_recorded(&dir.join(run_folder::AGENT), &json(&agent))?;
     let last = curve.last();
     let summary = TimingRunSummary {
         dir: dir.to_path_buf(),
@@ -316,7 +316,7 @@ pub fn is_timing_run_config(dir: &Path) -> bool {
 /// `config.json`: an unfinished or damaged run is still a timing run, so a missing agent
 /// is reported as such rather than as a PPO config error).
 pub fn is_timing_run(dir: &Path) -> bool {
-    std::fs::symlink_metadata(dir.join("agent.json")).is_ok() || is_timing_run_config(dir)
+    std::fs::symlink_metadata(dir.join(run_folder::AGENT)).is_ok() || is_timing_run_config(dir)
 }
 
 fn bad_file(dir: &Path, name: &str, e: serde_json::Error) -> TrainError {
@@ -348,7 +348,7 @@ pub fn load_timing_config(dir: &Path) -> Result<TimingRunConfig, TrainError> {
 /// ([`crate::timing_check::check_agent`]).
 pub fn load_timing_agent(dir: &Path) -> Result<(TimingRunConfig, TimingAgent), TrainError> {
     let cfg = load_timing_config(dir)?;
-    let p = dir.join("agent.json");
+    let p = dir.join(run_folder::AGENT);
     if std::fs::symlink_metadata(&p).is_err() {
         return Err(TrainError::Corrupt {
             path: p.display().to_string(),
@@ -359,7 +359,7 @@ pub fn load_timing_agent(dir: &Path) -> Result<(TimingRunConfig, TimingAgent), T
     }
     let bytes = integrity::read_verified(&p)?;
     let agent: TimingAgent =
-        serde_json::from_slice(&bytes).map_err(|e| bad_file(dir, "agent.json", e))?;
+        serde_json::from_slice(&bytes).map_err(|e| bad_file(dir, run_folder::AGENT, e))?;
     crate::timing_check::check_agent(&agent, &cfg.build_agent()?).map_err(|reason| {
         TrainError::Corrupt {
             path: p.display().to_string(),
