@@ -11,7 +11,6 @@ use super::fi::FiModel;
 use super::multitimer::MtCell;
 use super::reference::{
     APPENDIX_PREFIX, PaperNumber, appendix_fi_numbers, appendix_numbers, lab_model, numbers,
-    size8_numbers,
 };
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -182,9 +181,6 @@ fn of_model(nums: &[PaperNumber], m: &str) -> Vec<PaperNumber> {
         .collect()
 }
 
-/// Which lab model stands for a paper model in one pairing (`None`: left out).
-type LabOf = Box<dyn Fn(&str) -> Option<&'static str>>;
-
 /// The negative control and the faithful pairs on the same numbers, from the lab's analysed
 /// models. The size control pairs the paper's size-8 numbers with the lab's size 256 where
 /// it has run (`lstm256`, `ctrnn-reservoir256` among the analysed bisection models), else
@@ -197,7 +193,6 @@ pub fn negative_control(
     let mut all = numbers();
     all.extend(appendix_numbers());
     all.extend(appendix_fi_numbers());
-    let s8 = size8_numbers();
     let has = |m: &str| bis.iter().any(|b| b.model == m) || fi.iter().any(|f| f.model == m);
     let lstm_big: &'static str = if has("lstm256") { "lstm256" } else { "lstm125" };
     let ctrnn_big: &'static str = if has("ctrnn-reservoir256") {
@@ -205,92 +200,33 @@ pub fn negative_control(
     } else {
         "ctrnn-reservoir125"
     };
-    let fixed = |m: &'static str| -> LabOf { Box::new(move |_| Some(m)) };
-    let faithful = || -> LabOf { Box::new(lab_model) };
-    let pairings: Vec<(String, bool, Vec<PaperNumber>, LabOf)> = vec![
-        (
-            "paper LSTM125 vs lab lstm125".into(),
-            true,
-            of_model(&all, "LSTM125"),
-            faithful(),
-        ),
-        (
-            "paper LSTM125 vs lab ctrnn-reservoir125".into(),
-            false,
-            of_model(&all, "LSTM125"),
-            fixed("ctrnn-reservoir125"),
-        ),
-        (
-            "paper LSTM125 vs lab ctrnn125 (trained CTRNN)".into(),
-            false,
-            of_model(&all, "LSTM125"),
-            fixed("ctrnn125"),
-        ),
-        (
-            "paper CTRNN125 vs lab ctrnn-reservoir125".into(),
-            true,
-            of_model(&all, "CTRNN125"),
-            faithful(),
-        ),
-        (
-            "paper CTRNN125 vs lab lstm125".into(),
-            false,
-            of_model(&all, "CTRNN125"),
-            fixed("lstm125"),
-        ),
-        (
-            "paper LSTM256 vs lab lstm256".into(),
-            true,
-            of_model(&all, "LSTM256"),
-            faithful(),
-        ),
-        (
-            "paper LSTM256 vs lab ctrnn-reservoir256".into(),
-            false,
-            of_model(&all, "LSTM256"),
-            fixed("ctrnn-reservoir256"),
-        ),
-        (
-            "paper CTRNN256 vs lab ctrnn-reservoir256".into(),
-            true,
-            of_model(&all, "CTRNN256"),
-            faithful(),
-        ),
-        (
-            "paper CTRNN256 vs lab lstm256".into(),
-            false,
-            of_model(&all, "CTRNN256"),
-            fixed("lstm256"),
-        ),
-        (
-            format!("paper LSTM8 vs lab {lstm_big}"),
-            false,
-            of_model(&s8, "LSTM8"),
-            fixed(lstm_big),
-        ),
-        (
-            format!("paper CTRNN8 vs lab {ctrnn_big}"),
-            false,
-            of_model(&s8, "CTRNN8"),
-            fixed(ctrnn_big),
-        ),
-        (
-            "paper LSTM8 vs lab lstm8".into(),
-            true,
-            of_model(&s8, "LSTM8"),
-            faithful(),
-        ),
-        (
-            "paper CTRNN8 vs lab ctrnn-reservoir8".into(),
-            true,
-            of_model(&s8, "CTRNN8"),
-            faithful(),
-        ),
+    // (paper model, lab model): faithful when the lab model is the paper model's counterpart
+    // (`lab_model`), else a deliberate mismatch.
+    let pairs: [(&str, &'static str); 13] = [
+        ("LSTM125", "lstm125"),
+        ("LSTM125", "ctrnn-reservoir125"),
+        ("LSTM125", "ctrnn125"),
+        ("CTRNN125", "ctrnn-reservoir125"),
+        ("CTRNN125", "lstm125"),
+        ("LSTM256", "lstm256"),
+        ("LSTM256", "ctrnn-reservoir256"),
+        ("CTRNN256", "ctrnn-reservoir256"),
+        ("CTRNN256", "lstm256"),
+        ("LSTM8", lstm_big),
+        ("CTRNN8", ctrnn_big),
+        ("LSTM8", "lstm8"),
+        ("CTRNN8", "ctrnn-reservoir8"),
     ];
     let mut out = Vec::new();
-    for (name, matched, nums, lab_of) in pairings {
-        let rows = compare_numbers(&nums, &*lab_of, fi, bis, mt);
-        out.extend(control_counts(&name, matched, &rows));
+    for (paper, lab) in pairs {
+        let trained = if lab == "ctrnn125" {
+            " (trained CTRNN)"
+        } else {
+            ""
+        };
+        let name = format!("paper {paper} vs lab {lab}{trained}");
+        let rows = compare_numbers(&of_model(&all, paper), &|_| Some(lab), fi, bis, mt);
+        out.extend(control_counts(&name, lab_model(paper) == Some(lab), &rows));
     }
     out
 }
