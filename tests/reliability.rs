@@ -175,6 +175,8 @@ fn a_corrupt_newest_checkpoint_is_skipped_with_a_warning_and_history_kept() {
     // A killed writer's leftovers.
     std::fs::write(dir.join(".tmp-AbC123"), b"half").unwrap();
     std::fs::write(dir.join("checkpoints").join(".tmp-XyZ789"), b"half").unwrap();
+    std::fs::create_dir_all(dir.join("figures")).unwrap();
+    std::fs::write(dir.join("figures").join(".tmp-Fig456.svg"), b"<svg").unwrap();
     let out = bin()
         .args(["train", "--resume", s(&dir), "--quiet"])
         .output()
@@ -188,6 +190,7 @@ fn a_corrupt_newest_checkpoint_is_skipped_with_a_warning_and_history_kept() {
     );
     assert!(!dir.join(".tmp-AbC123").exists());
     assert!(!dir.join("checkpoints").join(".tmp-XyZ789").exists());
+    assert!(!dir.join("figures").join(".tmp-Fig456.svg").exists());
     assert_eq!(curves_without_clock(&dir), curves_without_clock(reference));
     assert_eq!(
         std::fs::read(dir.join("model.bpk")).unwrap(),

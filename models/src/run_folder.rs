@@ -29,5 +29,7 @@ pub const MODEL: &str = "model.bpk";
 /// A timing model's trained agent (JSON: its settings and learned state); an adaptation
 /// folder keeps the adapted agent under the same name.
 pub const AGENT: &str = "agent.json";
+/// The run's own figures (its learning curve, SVG and PNG).
+pub const FIGURES: &str = "figures";
 /// The run's summary (JSON), written last: its presence marks a finished run.
 pub const SUMMARY: &str = "summary.json";

@@ -217,13 +217,15 @@ impl RunDir {
         Ok(())
     }
 
-    /// Removes what a killed writer left in the run folder and `checkpoints/` (temporary
-    /// files of atomic writes); returns them.
+    /// Removes what a killed writer left in the run folder, `checkpoints/` and `figures/`
+    /// (temporary files of atomic writes); returns them.
     pub fn remove_stale_temps(&self) -> Vec<PathBuf> {
         let mut removed = chronocooked_env::fs::remove_temp_files(&self.path);
-        removed.extend(chronocooked_env::fs::remove_temp_files(
-            &self.path.join(run_folder::CHECKPOINTS),
-        ));
+        for sub in [run_folder::CHECKPOINTS, run_folder::FIGURES] {
+            removed.extend(chronocooked_env::fs::remove_temp_files(
+                &self.path.join(sub),
+            ));
+        }
         removed
     }
 

@@ -512,7 +512,9 @@ pub fn learning_curve(run_dir: &Path) -> Result<Vec<PathBuf>, FigureError> {
         });
     }
     write_chart(
-        &run_dir.join("figures").join("learning_curve"),
+        &run_dir
+            .join(chronocooked_models::run_folder::FIGURES)
+            .join("learning_curve"),
         &Chart {
             title: format!("learning curve: {}", run_dir.display()),
             x_label: "env steps".into(),
