@@ -152,11 +152,16 @@ pub fn read_manifest(dir: &Path) -> Result<BTreeMap<String, String>, IntegrityEr
     Ok(out)
 }
 
-/// Writes the records of `dir` atomically (records of files that no longer exist dropped).
-fn write_manifest(dir: &Path, records: &BTreeMap<String, String>) -> Result<(), IntegrityError> {
+/// Writes the records of `dir` atomically (records of files that no longer exist dropped,
+/// except `pending`: a file about to be written).
+fn write_manifest(
+    dir: &Path,
+    records: &BTreeMap<String, String>,
+    pending: Option<&str>,
+) -> Result<(), IntegrityError> {
     let mut text = String::new();
     for (name, digest) in records {
-        if dir.join(name).exists() {
+        if pending == Some(name.as_str()) || dir.join(name).exists() {
             text.push_str(&format!("{digest}  {name}\n"));
         }
     }
@@ -166,12 +171,25 @@ fn write_manifest(dir: &Path, records: &BTreeMap<String, String>) -> Result<(), 
 
 /// Writes `bytes` to `path` atomically ([`write_atomic`]) and records their SHA-256 in the
 /// folder's manifest.
+///
+/// A new file (no record, or not there yet: every checkpoint) is recorded *before* it is
+/// renamed into place, so a kill between the two leaves a record of a missing file (dropped
+/// at the next write), never a complete file without its record — which a resume would
+/// have to refuse. A file that replaces a recorded one is recorded after the rename (until
+/// then its old record stands for the old content).
 pub fn write_recorded(path: &Path, bytes: &[u8]) -> Result<(), IntegrityError> {
-    write_atomic(path, bytes).map_err(|e| IntegrityError::io(path, e.error))?;
     let (dir, name) = split(path);
     let mut records = read_manifest(&dir)?;
-    records.insert(name, sha256_hex(bytes));
-    write_manifest(&dir, &records)
+    let replaces = records.contains_key(&name) && std::fs::symlink_metadata(path).is_ok();
+    records.insert(name.clone(), sha256_hex(bytes));
+    if !replaces {
+        write_manifest(&dir, &records, Some(&name))?;
+    }
+    write_atomic(path, bytes).map_err(|e| IntegrityError::io(path, e.error))?;
+    if replaces {
+        write_manifest(&dir, &records, None)?;
+    }
+    Ok(())
 }
 
 /// Removes the file `path` of learned state and its record.
@@ -184,7 +202,7 @@ pub fn remove_recorded(path: &Path) -> Result<(), IntegrityError> {
     let (dir, name) = split(path);
     let mut records = read_manifest(&dir)?;
     if records.remove(&name).is_some() {
-        write_manifest(&dir, &records)?;
+        write_manifest(&dir, &records, None)?;
     }
     Ok(())
 }
@@ -273,6 +291,32 @@ mod tests {
             e.contains("c.json") && e.contains("no SHA-256 record"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn a_new_file_is_recorded_before_it_is_in_place() {
+        let dir = tempfile::tempdir().unwrap();
+        // The rename fails (a folder holds the name): the record was written first, so a
+        // write interrupted at that point leaves a record, never an unrecorded file.
+        let blocked = dir.path().join("step-000000004000.json");
+        std::fs::create_dir(&blocked).unwrap();
+        std::fs::write(blocked.join("x"), b"").unwrap();
+        assert!(write_recorded(&blocked, b"state").is_err());
+        let records = read_manifest(dir.path()).unwrap();
+        assert_eq!(
+            records.get("step-000000004000.json"),
+            Some(&sha256_hex(b"state"))
+        );
+        // A record of a file that never arrived is dropped at the next write.
+        let other = dir.path().join("step-000000005000.json");
+        std::fs::remove_dir_all(&blocked).unwrap();
+        write_recorded(&other, b"next").unwrap();
+        let records = read_manifest(dir.path()).unwrap();
+        assert!(!records.contains_key("step-000000004000.json"));
+        assert_eq!(read_verified(&other).unwrap(), b"next");
+        // Replacing a recorded file keeps it verifiable.
+        write_recorded(&other, b"newer").unwrap();
+        assert_eq!(read_verified(&other).unwrap(), b"newer");
     }
 
     #[test]
