@@ -304,6 +304,17 @@ pub fn run_task(dir: &Path) -> Result<(String, Vec<String>), TrainError> {
     Ok((task, env))
 }
 
+/// The training seed of any run folder (PPO or timing agent: both keep it at the top level
+/// of `config.json`); `None` when the file or the field is missing or unreadable (loading
+/// the run then reports the problem).
+pub fn run_seed(dir: &Path) -> Option<u64> {
+    let text = std::fs::read_to_string(dir.join(run_folder::CONFIG)).ok()?;
+    serde_json::from_str::<serde_json::Value>(&text)
+        .ok()?
+        .get("seed")?
+        .as_u64()
+}
+
 /// Whether `dir`'s `config.json` describes a timing-agent run (finished or not).
 pub fn is_timing_run_config(dir: &Path) -> bool {
     std::fs::read_to_string(dir.join(run_folder::CONFIG))

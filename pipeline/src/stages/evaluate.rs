@@ -11,6 +11,7 @@ use chronocooked_env::ChronoEnv;
 use chronocooked_models::Agent;
 use chronocooked_models::activity::{ActivityMeta, TrialRecorder};
 use chronocooked_models::agent::{OracleAgent, RandomAgent};
+pub use chronocooked_training::timing_run::run_seed;
 use chronocooked_training::timing_run::{load_agent, run_task};
 use std::path::{Path, PathBuf};
 
@@ -123,17 +124,6 @@ pub fn evaluate(req: &EvalRequest) -> Result<EvalOutcome, PipelineError> {
         figures,
         activity,
     })
-}
-
-/// The training seed recorded in run folder `dir`'s `config.json` (PPO and timing runs
-/// both keep it at the top level); `None` when the file or the field is missing or
-/// unreadable (loading the run then reports the problem).
-pub fn run_seed(dir: &Path) -> Option<u64> {
-    let text = std::fs::read_to_string(dir.join(chronocooked_models::run_folder::CONFIG)).ok()?;
-    serde_json::from_str::<serde_json::Value>(&text)
-        .ok()?
-        .get("seed")?
-        .as_u64()
 }
 
 /// Writes the evaluation folder of recorded human play (`env play --record FILE`, JSON
