@@ -307,6 +307,13 @@ impl TimingAgent {
             self.ep.overdue = false;
             self.ep.prev_check_failed = false;
             self.timer.tick(1, &mut self.rng);
+            if self.shows_ready && p.oven == 2 {
+                // A one-step interval: the oven went on and showed ready between two
+                // observations, so the interval ends at its onset (clock 1). Without this the
+                // interval never ended and the choice had no judgment (1-step bisection
+                // probes went to whichever counter the bias preferred).
+                self.end_at_ready();
+            }
             return;
         }
         if !self.ep.running {
@@ -336,18 +343,24 @@ impl TimingAgent {
         self.ep.clock += 1;
         self.timer.tick(self.ep.clock, &mut self.rng);
         if self.shows_ready && p.oven == 2 {
-            self.ep.running = false;
-            self.ep.interval = Some(self.ep.clock);
-            self.judge();
-            // A ready the agent made itself (manual button) is not the oven's interval:
-            // drift-diffusion (one drift per context) learns only from the oven's own
-            // ready; SBF stores every reinforced time, so the button time joins its
-            // reference memory as a second, later remembered time (its time-out).
-            let own_ready = !self.ep.pressed_button || !matches!(self.timer, Timer::Ddm(_));
-            if self.training && own_ready {
-                let t = self.ep.clock as f64;
-                self.timer.reinforce(self.ep.ctx, t, true, &mut self.rng);
-            }
+            self.end_at_ready();
+        }
+    }
+
+    /// The oven shows ready: the interval ends at the current clock (steps), the model
+    /// judges it (bisection) and, in training, learns the ready time.
+    fn end_at_ready(&mut self) {
+        self.ep.running = false;
+        self.ep.interval = Some(self.ep.clock);
+        self.judge();
+        // A ready the agent made itself (manual button) is not the oven's interval:
+        // drift-diffusion (one drift per context) learns only from the oven's own
+        // ready; SBF stores every reinforced time, so the button time joins its
+        // reference memory as a second, later remembered time (its time-out).
+        let own_ready = !self.ep.pressed_button || !matches!(self.timer, Timer::Ddm(_));
+        if self.training && own_ready {
+            let t = self.ep.clock as f64;
+            self.timer.reinforce(self.ep.ctx, t, true, &mut self.rng);
         }
     }
 
@@ -531,5 +544,58 @@ impl Agent for TimingAgent {
 
     fn set_training(&mut self, on: bool) {
         self.training = on;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::timing::train::{TimingTrainConfig, train_timing_agent};
+    use crate::timing::zoo::make_timing_agent;
+    use chronocooked_env::{ChronoEnv, ResetOptions, make_config};
+
+    #[test]
+    fn a_one_step_bisection_probe_ends_its_interval_and_is_judged_short() {
+        // On a 1-step probe the oven goes on and shows ready between two observations. The
+        // interval must end there (clock 1) and be judged against the anchors; before the
+        // fix it never ended, the choice had no judgment and went wherever the choice
+        // values' bias pointed (measured: microstimuli 6-8 seed 7 sent every 1-step probe
+        // to the long counter).
+        let sets = |extra: &[&str]| {
+            let mut v = vec!["short=4".to_string(), "long=12".to_string()];
+            v.extend(extra.iter().map(|s| s.to_string()));
+            v
+        };
+        let config = make_config("Bisection-v0", &sets(&[])).unwrap();
+        let env = ChronoEnv::new(&config).unwrap();
+        let mut agent = make_timing_agent("timecells-csc", &env, 1).unwrap();
+        let train = TimingTrainConfig {
+            episodes: 1500,
+            eval_every: 0,
+            ..Default::default()
+        };
+        train_timing_agent(&mut agent, &config, &train, &[], 1, |_| {}).unwrap();
+        let probe = make_config("Bisection-v0", &sets(&["td=1"])).unwrap();
+        let mut env = ChronoEnv::new(&probe).unwrap();
+        agent.transfer_to(&env);
+        agent.set_training(false);
+        for seed in 0..8 {
+            env.reset(Some(seed), &ResetOptions::default()).unwrap();
+            agent.begin_episode(env.obs_codes(), seed);
+            // Play until the agent has seen the oven go on; the interval must already be
+            // over at that observation (not later, at the pickup).
+            for _ in 0..200 {
+                let action = agent.act(env.obs_codes());
+                if agent.ep.running || agent.ep.interval.is_some() {
+                    break;
+                }
+                let t = env.step(action).unwrap();
+                agent.observe(t.reward, env.obs_codes(), t.terminated, t.truncated);
+                assert!(!t.terminated && !t.truncated, "seed {seed}: oven never went on");
+            }
+            assert!(!agent.ep.running, "seed {seed}: the interval is still running");
+            assert_eq!(agent.ep.interval, Some(1), "seed {seed}");
+            assert_eq!(agent.ep.judgment, Some(false), "seed {seed}: 1 step vs 4-12");
+        }
     }
 }

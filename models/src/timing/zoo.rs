@@ -32,11 +32,11 @@ pub const TIMING_MODELS: [TimingModelSpec; 7] = [
     },
     TimingModelSpec {
         name: "timecells-csc",
-        description: "complete serial compound (64-unit delay line), clock noise 0.15, memory noise 0.2 + SARSA(lambda) (Ludvig et al. 2008)",
+        description: "complete serial compound (64-unit delay line), clock noise 0.15, memory noise 0.15 + SARSA(lambda) (Ludvig et al. 2008)",
     },
     TimingModelSpec {
         name: "timecells-ms",
-        description: "microstimuli (d 0.95/step, sigma 0.08, m 20), clock noise 0.15, memory noise 0.2 + SARSA(lambda) (Ludvig et al. 2008)",
+        description: "microstimuli (d 0.95/step, sigma 0.08, m 20), clock noise 0.15, memory noise 0.15 + SARSA(lambda) (Ludvig et al. 2008)",
     },
     TimingModelSpec {
         name: "timecells-presence",
@@ -44,7 +44,7 @@ pub const TIMING_MODELS: [TimingModelSpec; 7] = [
     },
     TimingModelSpec {
         name: "timecells-laplace",
-        description: "scale-invariant Laplace time cells (24 cells, tau* 1-64 steps, k 8), clock noise 0.15, memory noise 0.2 + SARSA(lambda)",
+        description: "scale-invariant Laplace time cells (24 cells, tau* 1-64 steps, k 8), clock noise 0.15, memory noise 0.15 + SARSA(lambda)",
     },
 ];
 
@@ -72,8 +72,8 @@ pub const SBF_MEMORY_NOISE: f64 = 0.15;
 pub const SBF_CLOCK_NOISE: f64 = 0.15;
 
 /// Default memory noise of the anchor memories of a bisection judgment for drift-diffusion
-/// (a per-trial factor on each remembered drift) and time cells (a factor on each stored
-/// duration estimate): SD of its log, scalar expectancy theory's memory-constant variance
+/// (a per-trial factor on each remembered drift; time cells: [`TIME_CELL_MEMORY_NOISE`]):
+/// SD of its log, scalar expectancy theory's memory-constant variance
 /// (Gibbon 1977; Gibbon, Church & Meck 1984 fit memory CVs of about 0.15–0.3): 0.2. The
 /// drift-diffusion judgment reads two accumulators and so averages part of their noise
 /// (log-SD ≈ 0.76 m), and time cells stored their estimates exactly: without memory noise
@@ -81,8 +81,20 @@ pub const SBF_CLOCK_NOISE: f64 = 0.15;
 /// 0.03 (Laplace), below the 0.1–0.3 animals show.
 pub const DDM_MEMORY_NOISE: f64 = 0.2;
 
-/// Default memory noise of the time cells' stored anchor estimates (see [`DDM_MEMORY_NOISE`]).
-pub const TIME_CELL_MEMORY_NOISE: f64 = 0.2;
+/// Default memory noise of the time cells' stored anchor estimates: SD of the log of a
+/// factor on each stored duration estimate, 0.15 — the low end of scalar expectancy theory's
+/// fitted memory CVs (0.15–0.3, Gibbon, Church & Meck 1984) and the SBF agents' memory
+/// noise ([`SBF_MEMORY_NOISE`]). The low end because in temporal bisection the referents'
+/// memory is the minor source of variance, perception the dominant one (Rodríguez-Gironés &
+/// Kacelnik 2001: psychometric functions steeper with fixed than with roving referents;
+/// Allan 2002: referent memory "not a dominant source of variability"), and a stored
+/// estimate already carries the clock-speed noise of the trial that stored it
+/// ([`TIME_CELL_CLOCK_NOISE`]): at 0.15 the memory factor is a quarter of the judgment's
+/// log-variance (`c² + (c² + m²)/2` with c = m = 0.15), at 0.2 it was 37%. Measured on
+/// five ratio-2 and two ratio-3 pairs, 12 seeds each (RESULTS.md, "Anchor memory of the
+/// time cells"): Weber fractions 0.10–0.15 and anchors 0.91–1.00 at 0.15; at 0.2, on 5-10
+/// and 9-18, Weber fractions 0.12–0.16 and anchors 0.88–0.96, 9 of 48 runs below 0.90.
+pub const TIME_CELL_MEMORY_NOISE: f64 = 0.15;
 
 /// Default clock-speed noise of the time-cell agents (`timecells-csc`, `-ms`, `-laplace`):
 /// SD 15% of the log of a per-trial factor scaling the representation's time, so every
