@@ -591,11 +591,21 @@ mod tests {
                 }
                 let t = env.step(action).unwrap();
                 agent.observe(t.reward, env.obs_codes(), t.terminated, t.truncated);
-                assert!(!t.terminated && !t.truncated, "seed {seed}: oven never went on");
+                assert!(
+                    !t.terminated && !t.truncated,
+                    "seed {seed}: oven never went on"
+                );
             }
-            assert!(!agent.ep.running, "seed {seed}: the interval is still running");
+            assert!(
+                !agent.ep.running,
+                "seed {seed}: the interval is still running"
+            );
             assert_eq!(agent.ep.interval, Some(1), "seed {seed}");
-            assert_eq!(agent.ep.judgment, Some(false), "seed {seed}: 1 step vs 4-12");
+            assert_eq!(
+                agent.ep.judgment,
+                Some(false),
+                "seed {seed}: 1 step vs 4-12"
+            );
         }
     }
 }
