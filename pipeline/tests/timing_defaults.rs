@@ -86,6 +86,43 @@ fn default_bisection_has_an_animal_like_weber_fraction() {
 }
 
 #[test]
+fn time_cell_bisection_follows_its_noise_model_at_ratio_two() {
+    // A time cell's judgment compares this trial's decoded time (clock-speed noise c, log-SD)
+    // with the geometric mean of one stored estimate of each anchor (each with its own
+    // trial's clock noise and the memory factor m): log-variance c² + (c² + m²)/2. With the
+    // defaults c = m = 0.15, σ = 0.212: WF ≈ 0.674 σ = 0.143 and anchors at ratio 2 ≈
+    // Φ(ln 2 / (2σ)) = 0.949. Means over four training seeds on 5-10, tolerances for the
+    // decoder's step rounding (it lowers the fitted WF, measured 0.12–0.13) and sampling.
+    let seeds = 0..4u64;
+    let (mut wf, mut anchors) = (0.0, 0.0);
+    for seed in seeds.clone() {
+        let (m, _) = trained_metrics(
+            "timecells-ms",
+            "Bisection-v0",
+            &["env.short=5", "env.long=10"],
+            seed,
+        );
+        let b = m.bisection.unwrap();
+        wf += b
+            .fit
+            .unwrap_or_else(|| panic!("seed {seed}: {:?}", b.p_long))
+            .wf;
+        anchors += b.anchor_accuracy;
+    }
+    let n = seeds.count() as f64;
+    let (wf, anchors) = (wf / n, anchors / n);
+    let sigma = (0.15f64.powi(2) + (0.15f64.powi(2) + 0.15f64.powi(2)) / 2.0).sqrt();
+    let predicted_wf = 0.674 * sigma;
+    assert!((predicted_wf - 0.143).abs() < 0.001);
+    assert!(
+        (predicted_wf - 0.035..=predicted_wf + 0.02).contains(&wf),
+        "WF {wf} against {predicted_wf}"
+    );
+    // Φ(ln 2 / 2σ) = 0.949 (by hand: ln 2 / 0.424 = 1.635).
+    assert!((0.925..=0.975).contains(&anchors), "anchors {anchors}");
+}
+
+#[test]
 fn probes_far_below_the_short_anchor_are_judged_short() {
     // Microstimuli seed 2 on 6-12 is the measured case: walking while the oven ran, it stood
     // at different cells when the short and the long anchor ended, chose the counter by its

@@ -120,6 +120,11 @@ fn resize(v: &mut Vec<f32>, len: usize) {
     v.resize(len, 0.0);
 }
 
+/// Gives `v` length `len` for a pass that writes every element; the kept part is not zeroed.
+fn resize_for_overwrite(v: &mut Vec<f32>, len: usize) {
+    v.resize(len, 0.0);
+}
+
 /// Copies `src` rows scaled by their keep value into `dst` (`[B, H]`).
 #[inline(always)]
 fn masked_copy(dst: &mut [f32], src: &[f32], keep: &[f32], h: usize) {
@@ -179,20 +184,28 @@ pub(super) fn forward(
     cc.rows = n;
     assert_eq!(xw.len(), n * g * h, "input projection rows");
     assert_eq!(batch.keep.len(), n, "keep mask rows");
-    resize(&mut cc.h, n * h);
-    resize(&mut cc.h_prev, n * h);
-    resize(&mut cc.gates, n * gh);
+    // Every row is stepped (packed layout, or every sequence active at every step): each
+    // buffer below is overwritten in full, so its kept part need not be zeroed first.
+    let every_row = packed || cc.active_rows.iter().all(|&bt| bt == b);
+    let size: fn(&mut Vec<f32>, usize) = if every_row {
+        resize_for_overwrite
+    } else {
+        resize
+    };
+    size(&mut cc.h, n * h);
+    size(&mut cc.h_prev, n * h);
+    size(&mut cc.gates, n * gh);
     let lstm = p.kind == CoreKind::Lstm;
     if lstm {
-        resize(&mut cc.c, n * h);
-        resize(&mut cc.tc, n * h);
-        resize(&mut cc.c_prev, n * h);
+        size(&mut cc.c, n * h);
+        size(&mut cc.tc, n * h);
+        size(&mut cc.c_prev, n * h);
     } else {
         cc.c.clear();
     }
     if p.kind == CoreKind::Gru {
-        resize(&mut cc.hn, n * h);
-        resize(&mut cc.hw_step, b * gh);
+        size(&mut cc.hn, n * h);
+        resize_for_overwrite(&mut cc.hw_step, b * gh);
     }
     let (alpha, _) = p.alpha();
     let zero_c = vec![0f32; b * h];
