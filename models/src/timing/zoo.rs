@@ -92,8 +92,8 @@ pub const DDM_MEMORY_NOISE: f64 = 0.2;
 /// ([`TIME_CELL_CLOCK_NOISE`]): at 0.15 the memory factor is a quarter of the judgment's
 /// log-variance (`c² + (c² + m²)/2` with c = m = 0.15), at 0.2 it was 37%. Measured on
 /// five ratio-2 and two ratio-3 pairs, 12 seeds each (RESULTS.md, "Anchor memory of the
-/// time cells"): Weber fractions 0.10–0.15 and anchors 0.91–1.00 at 0.15; at 0.2, on 5-10
-/// and 9-18, Weber fractions 0.12–0.16 and anchors 0.88–0.96, 9 of 48 runs below 0.90.
+/// time cells"): Weber fractions 0.10–0.15 and anchors 0.91–1.00 at 0.15; at 0.2, on the
+/// ratio-2 pairs, Weber fractions 0.12–0.17 and anchors 0.87–0.97, 25 of 180 runs below 0.90.
 pub const TIME_CELL_MEMORY_NOISE: f64 = 0.15;
 
 /// Default clock-speed noise of the time-cell agents (`timecells-csc`, `-ms`, `-laplace`):
