@@ -8,7 +8,7 @@
 use super::kernels::{
     Mat, Packed, lstm_cell, matmul, matmul_packed, matmul_tn, sigmoid_inplace, tanh_inplace,
 };
-use super::{Block, SeqBatch};
+use super::{Block, SeqBatch, resize, resize_for_overwrite};
 use crate::CoreKind;
 
 /// Read-only parameters of a core.
@@ -113,16 +113,6 @@ impl CoreCache {
         let c = (!self.c.is_empty()).then(|| &self.c[range.clone()]);
         (&self.h[range], c)
     }
-}
-
-fn resize(v: &mut Vec<f32>, len: usize) {
-    v.clear();
-    v.resize(len, 0.0);
-}
-
-/// Gives `v` length `len` for a pass that writes every element; the kept part is not zeroed.
-fn resize_for_overwrite(v: &mut Vec<f32>, len: usize) {
-    v.resize(len, 0.0);
 }
 
 /// Copies `src` rows scaled by their keep value into `dst` (`[B, H]`).

@@ -5,7 +5,7 @@ use super::core::{self, CoreCache};
 use super::kernels::{
     Isa, Mat, add_bias, add_col_sums, matmul, matmul_nt, matmul_tn, relu_inplace, tanh_inplace,
 };
-use super::{Block, Layout, SeqBatch};
+use super::{Block, Layout, SeqBatch, resize, resize_for_overwrite};
 use crate::PolicyConfig;
 
 /// Activations of the last forward pass (kept for the backward pass) and reusable
@@ -60,18 +60,6 @@ impl Cache {
     pub fn final_state(&self) -> (&[f32], Option<&[f32]>) {
         self.core.final_state()
     }
-}
-
-fn resize(v: &mut Vec<f32>, len: usize) {
-    v.clear();
-    v.resize(len, 0.0);
-}
-
-/// Gives `v` length `len` for an operation that overwrites every element (a product with
-/// `accumulate == false`): the kept part is not zeroed first. Zeroing every cache of a
-/// minibatch was `memset` at 2–3% of an LSTM125 update (`perf`, session 17).
-fn resize_for_overwrite(v: &mut Vec<f32>, len: usize) {
-    v.resize(len, 0.0);
 }
 
 /// The native engine for one policy configuration.
