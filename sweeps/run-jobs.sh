@@ -34,6 +34,6 @@ wait "$pid" 2> /dev/null
 "$bin" sweep "$file" --out "$out" --dry-run | awk '{print $1}' | sort | uniq -c
 (cd "$out" && find . \( -name job.json -o -name progress.json -o -path '*/run/config.json' \
     -o -path '*/run/curves.csv' -o -path '*/run/summary.json' -o -path '*/eval/metrics.json' \
-    -o -path '*/eval/eval.json' -o -path '*/eval/records.jsonl' \) -print0 \
+    -o -path '*/eval/eval.json' -o -path '*/eval/records.jsonl' -o -path '*/eval/levels.csv' \) -print0 \
     | tar czf "$tgz" --null -T -)
 ls -la "$tgz"

@@ -102,11 +102,13 @@ fn fi_pooling_follows_the_notebook_rule() {
             ep("pi", 6, (0, 0), Some(1), 0),
         ],
         curve: vec![],
+        levels: vec![],
     };
     let r2 = CompactJob {
         job: job("FixedInterval-v0", "m", 2, &["td=6"], 20.0),
         episodes: (0..3).map(|c| ep("fi", 6, (c, 0), Some(5), 0)).collect(),
         curve: vec![],
+        levels: vec![],
     };
     let fi = analyse_fi(&[r1, r2]);
     let c = &fi[0].cells[0];
@@ -133,6 +135,7 @@ fn fi_pooling_follows_the_notebook_rule() {
             })
             .collect(),
         curve: vec![],
+        levels: vec![],
     };
     let fi = analyse_fi(&[spam]);
     let c = &fi[0].cells[0];
@@ -159,6 +162,7 @@ fn bisection_job(seed: u64, ep_len: f64, bp: u32) -> CompactJob {
         job: job("Bisection-v0", "m", seed, &["short=4", "long=12"], ep_len),
         episodes: eps,
         curve: vec![],
+        levels: vec![],
     }
 }
 
@@ -258,6 +262,7 @@ fn study_figures_and_comparison_come_out_of_constructed_jobs() {
                     .map(|c| ep("fi", td, (c, 0), Some((td + (c as u32 % 3)) as i32 - 1), 0))
                     .collect(),
                 curve: vec![],
+                levels: vec![],
             });
         }
         let mut b = bisection_job(seed, 30.0, 7 + seed as u32 % 2);
@@ -396,6 +401,7 @@ fn multitimer_analysis_reads_levels_rewards_and_oven_off_times() {
             curve_at(1, 0.9),
             curve_at(5, 1.0),
         ],
+        levels: vec![],
     };
     // Run B stays at one timer and never takes the soup.
     let mut b = job("MultiTimer-v0", "m", 2, &cat, 200.0);
@@ -404,12 +410,14 @@ fn multitimer_analysis_reads_levels_rewards_and_oven_off_times() {
         job: b,
         episodes: vec![mt_ep(3, 0.0, -1)],
         curve: vec![curve_at(0, 0.5), curve_at(1, 0.1)],
+        levels: vec![],
     };
     // An exact-curriculum run still in the warm-up.
     let c = CompactJob {
         job: job("MultiTimer-v0", "m", 1, &["mode=exact"], 200.0),
         episodes: vec![mt_ep(3, 0.0, -1)],
         curve: vec![curve_at(0, 0.0)],
+        levels: vec![],
     };
     let mt = analyse_multitimer(&[a, b, c]);
     assert_eq!(mt.len(), 2);

@@ -10,6 +10,8 @@
 //! RUN_DIR/curves.csv      the learning curve
 //! RUN_DIR/checkpoints/    PPO: resumable trainer states
 //! RUN_DIR/model.bpk       PPO: the final policy (burnpack)
+//! RUN_DIR/levels/level-L.bpk  PPO, multi-timer curriculum: the policy as it left level L
+//!                         (the final policy for the last level reached)
 //! RUN_DIR/agent.json      timing models: the trained agent (settings and learned state)
 //! RUN_DIR/summary.json    written last: the run finished
 //! ```
@@ -26,6 +28,16 @@ pub const CURVES: &str = "curves.csv";
 pub const CHECKPOINTS: &str = "checkpoints";
 /// The final policy (burnpack; PPO runs).
 pub const MODEL: &str = "model.bpk";
+/// The folder of the multi-timer curriculum's per-level policies (PPO runs).
+pub const LEVELS: &str = "levels";
+
+/// The file name (inside [`LEVELS`]) of the policy that left curriculum level `level`
+/// (for the last level reached: the final policy), as the paper's code keeps
+/// `rl_model_env<level>_<steps>_steps` for every level.
+pub fn level_model(level: usize) -> String {
+    format!("level-{level}.bpk")
+}
+
 /// A timing model's trained agent (JSON: its settings and learned state); an adaptation
 /// folder keeps the adapted agent under the same name.
 pub const AGENT: &str = "agent.json";

@@ -144,7 +144,7 @@ fn run_stage(
         Stage::Eval => {
             let req = EvalRequest {
                 subject: if trained {
-                    EvalSubject::Run(run)
+                    EvalSubject::Run(run.clone())
                 } else {
                     EvalSubject::Reference(job.model.clone())
                 },
@@ -159,12 +159,16 @@ fn run_stage(
                 activity: false,
             };
             let m = stages::evaluate(&req)?.metrics;
-            format!(
+            let mut line = format!(
                 "{}: {} episodes, success {:.1}%",
                 m.model,
                 m.episodes,
                 m.success_rate * 100.0
-            )
+            );
+            if run.join(run_folder::LEVELS).is_dir() {
+                line += "; the curriculum levels' policies evaluated (levels.csv)";
+            }
+            line
         }
         Stage::Adapt => {
             let config = AdaptConfig {

@@ -221,7 +221,11 @@ impl RunDir {
     /// (temporary files of atomic writes); returns them.
     pub fn remove_stale_temps(&self) -> Vec<PathBuf> {
         let mut removed = chronocooked_env::fs::remove_temp_files(&self.path);
-        for sub in [run_folder::CHECKPOINTS, run_folder::FIGURES] {
+        for sub in [
+            run_folder::CHECKPOINTS,
+            run_folder::FIGURES,
+            run_folder::LEVELS,
+        ] {
             removed.extend(chronocooked_env::fs::remove_temp_files(
                 &self.path.join(sub),
             ));
@@ -262,6 +266,37 @@ impl RunDir {
             })?;
         integrity::write_recorded(&p, &bytes)?;
         Ok(p)
+    }
+
+    /// Saves `model` as the policy that left curriculum level `level`
+    /// (`levels/level-<level>.bpk`, with its SHA-256 record).
+    pub fn save_level_model(
+        &self,
+        level: usize,
+        model: ActorCritic,
+    ) -> Result<PathBuf, TrainError> {
+        let dir = self.path.join(run_folder::LEVELS);
+        fs::create_dir_all(&dir).map_err(|e| TrainError::io(&dir, e))?;
+        let name = format!("{}/{}", run_folder::LEVELS, run_folder::level_model(level));
+        self.save_model(model, &name)
+    }
+
+    /// The curriculum levels whose policy the run kept (`levels/level-*.bpk`), ascending.
+    pub fn saved_levels(&self) -> Vec<usize> {
+        let mut v: Vec<usize> = fs::read_dir(self.path.join(run_folder::LEVELS))
+            .map(|rd| {
+                rd.filter_map(|e| {
+                    let name = e.ok()?.file_name().into_string().ok()?;
+                    name.strip_prefix("level-")?
+                        .strip_suffix(".bpk")?
+                        .parse()
+                        .ok()
+                })
+                .collect()
+            })
+            .unwrap_or_default();
+        v.sort_unstable();
+        v
     }
 }
 
@@ -325,6 +360,32 @@ fn finite_params(path: &Path, theta: &[f32]) -> Result<(), TrainError> {
 /// model: a corrupt one is an error, never a silent fall-back), else the newest intact
 /// checkpoint's parameters.
 pub fn load_policy(dir: &Path) -> Result<(ActorCritic, PolicyConfig, TrainConfig), TrainError> {
+    load_policy_from(dir, &dir.join(run_folder::MODEL))
+}
+
+/// The policy saved as the burnpack `file` (e.g. a curriculum level's policy in
+/// `levels/`) with the run folder `dir`'s architecture and config; like [`load_policy`],
+/// but without the fallback to checkpoints when `file` is missing.
+pub fn load_level_policy(
+    dir: &Path,
+    level: usize,
+) -> Result<(ActorCritic, PolicyConfig, TrainConfig), TrainError> {
+    let file = dir
+        .join(run_folder::LEVELS)
+        .join(run_folder::level_model(level));
+    if fs::symlink_metadata(&file).is_err() {
+        return Err(TrainError::Resume {
+            path: file.display().to_string(),
+            reason: format!("the run kept no policy for curriculum level {level}"),
+        });
+    }
+    load_policy_from(dir, &file)
+}
+
+fn load_policy_from(
+    dir: &Path,
+    file: &Path,
+) -> Result<(ActorCritic, PolicyConfig, TrainConfig), TrainError> {
     let run = RunDir::open(dir)?;
     let cfg = run.config()?;
     let pcfg = read_policy_config(dir, &cfg)?;
@@ -334,9 +395,8 @@ pub fn load_policy(dir: &Path) -> Result<(ActorCritic, PolicyConfig, TrainConfig
         .sum();
     let device = chronocooked_models::cpu();
     let model = pcfg.init(cfg.seed, &device);
-    let file = dir.join(run_folder::MODEL);
-    if fs::symlink_metadata(&file).is_ok() {
-        let bytes = integrity::read_verified(&file)?;
+    if fs::symlink_metadata(file).is_ok() {
+        let bytes = integrity::read_verified(file)?;
         let corrupt = |reason: String| TrainError::Corrupt {
             path: file.display().to_string(),
             reason,
@@ -347,7 +407,7 @@ pub fn load_policy(dir: &Path) -> Result<(ActorCritic, PolicyConfig, TrainConfig
         let m = model
             .try_load_record(record)
             .map_err(|e| corrupt(format!("does not fit policy.json: {e:?}")))?;
-        finite_params(&file, &crate::ppo::params::flat_params(&m))?;
+        finite_params(file, &crate::ppo::params::flat_params(&m))?;
         return Ok((m, pcfg, cfg));
     }
     let all = run.checkpoints();

@@ -455,3 +455,83 @@ fn every_preset_survives_its_own_validation_and_settings_replay_exactly() {
     let err = bad.validate().unwrap_err().to_string();
     assert!(err.contains("gamma") && err.contains("[0, 1]"), "{err}");
 }
+
+/// A multi-timer curriculum run with thresholds every run passes: levels change after
+/// `window` episodes, so a 12-update run crosses several.
+fn curriculum_cfg(steps: u64) -> chronocooked_training::TrainConfig {
+    resolve(
+        "MultiTimer-v0",
+        "lstm8".parse().unwrap(),
+        "reference",
+        3,
+        &[
+            format!("total_steps={steps}"),
+            "n_steps=250".into(),
+            "n_epochs=2".into(),
+            "env.tds=2,4,6".into(),
+            "env.mode=exact".into(),
+            "env.reduced_reward=0".into(),
+            "env.num_timers=3".into(),
+            "curriculum_thresholds=0,0,0".into(),
+            "curriculum_window=10".into(),
+        ],
+    )
+    .unwrap()
+}
+
+#[test]
+fn a_curriculum_level_keeps_the_policy_whose_rollout_passed_it() {
+    let mut t = Trainer::new(curriculum_cfg(10000)).unwrap();
+    let mut left = Vec::new();
+    while !t.finished() {
+        let before = t.state().theta.clone();
+        let level = t.state().curriculum_level;
+        t.update().unwrap();
+        if let Some((l, policy)) = t.take_left_level() {
+            assert_eq!(l, level, "the level left is the one the update started in");
+            assert_eq!(t.state().curriculum_level, level + 1);
+            // The paper's callback saves at the rollout's end, before the optimisation:
+            // the policy that collected the passing episodes, not the updated one.
+            let kept = chronocooked_training::ppo::params::flat_params(&policy);
+            assert_eq!(
+                kept, before,
+                "level {l}: not the policy that collected the rollout"
+            );
+            assert_ne!(
+                kept,
+                t.state().theta,
+                "level {l}: the update changed nothing"
+            );
+            assert!(t.take_left_level().is_none(), "taken twice");
+            left.push(l);
+        } else {
+            assert_eq!(t.state().curriculum_level, level);
+        }
+    }
+    assert_eq!(
+        left,
+        [0, 1, 2],
+        "warm-up, one timer and two timers are left in order"
+    );
+}
+
+#[test]
+fn a_curriculum_run_folder_keeps_every_level_and_the_last_is_the_final_policy() {
+    let dir = std::env::temp_dir().join(format!("cc-levels-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    run_training(Some(curriculum_cfg(10000)), &dir, "test", &mut Silent).unwrap();
+    let run = chronocooked_training::RunDir::open(&dir).unwrap();
+    assert_eq!(run.saved_levels(), [0, 1, 2, 3]);
+    let (final_policy, _, _) = load_policy(&dir).unwrap();
+    let (last, _, _) = chronocooked_training::run_dir::load_level_policy(&dir, 3).unwrap();
+    let flat = chronocooked_training::ppo::params::flat_params;
+    assert_eq!(flat(&last), flat(&final_policy));
+    let (first, _, _) = chronocooked_training::run_dir::load_level_policy(&dir, 0).unwrap();
+    assert_ne!(flat(&first), flat(&final_policy));
+    let missing = chronocooked_training::run_dir::load_level_policy(&dir, 4)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(missing.contains("level 4"), "{missing}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

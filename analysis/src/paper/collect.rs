@@ -124,6 +124,67 @@ impl EpisodeRow {
     }
 }
 
+/// File of a job's evaluation folder (and of its compact results) with the multi-timer
+/// curriculum's per-level evaluation: one [`LevelEpisode`] per line.
+pub const LEVELS_CSV: &str = "levels.csv";
+
+/// One evaluation episode of a curriculum level's policy in that level's test setting (a
+/// line of `levels.csv`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LevelEpisode {
+    /// Curriculum level whose policy played (0 warm-up, then the number of timers).
+    pub level: usize,
+    /// Target duration of the episode (steps).
+    pub td: u32,
+    /// Start cell row.
+    pub row: usize,
+    /// Start cell column.
+    pub col: usize,
+    /// Steps played.
+    pub steps: usize,
+    /// Reward of the episode (the notebook's final-step reward: the pickup is the only
+    /// reward).
+    pub reward: f32,
+    /// Full-reward delivery.
+    pub success: bool,
+    /// Steps from the onion put to the soup pickup (−1: never taken).
+    pub oven_off_time: i32,
+}
+
+impl LevelEpisode {
+    /// The line of one record played by the policy of `level`.
+    pub fn of(level: usize, r: &EvalRecord) -> Self {
+        let e = EpisodeRow::of(r);
+        LevelEpisode {
+            level,
+            td: e.td,
+            row: e.row,
+            col: e.col,
+            steps: e.steps,
+            reward: e.reward,
+            success: e.success,
+            oven_off_time: e.oven_off_time,
+        }
+    }
+}
+
+/// Writes `rows` as the CSV `path` (atomically).
+pub fn write_level_episodes(path: &Path, rows: &[LevelEpisode]) -> Result<(), CollectError> {
+    write_csv(path, rows)
+}
+
+/// Reads a `levels.csv` (no file: no rows).
+pub fn read_level_episodes(path: &Path) -> Result<Vec<LevelEpisode>, CollectError> {
+    if !path.is_file() {
+        return Ok(Vec::new());
+    }
+    csv::Reader::from_path(path)
+        .map_err(|e| err(path, e))?
+        .deserialize()
+        .collect::<Result<Vec<LevelEpisode>, _>>()
+        .map_err(|e| err(path, e))
+}
+
 /// One thinned learning-curve row.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CurveRow {
@@ -284,10 +345,12 @@ pub fn summarise_job(dir: &Path) -> Result<Option<CompactJob>, CollectError> {
         })
         .map(|(_, r)| r.clone())
         .collect();
+    let levels = read_level_episodes(&eval.join(LEVELS_CSV))?;
     Ok(Some(CompactJob {
         job: summary,
         episodes,
         curve: thinned,
+        levels,
     }))
 }
 
@@ -309,6 +372,7 @@ pub fn collect(sweep_out: &Path, to: &Path) -> Result<(usize, usize), CollectErr
             job: summary,
             episodes,
             curve,
+            ..
         }) = summarise_job(&dir)?
         else {
             pending += 1;
@@ -332,6 +396,12 @@ pub fn collect(sweep_out: &Path, to: &Path) -> Result<(usize, usize), CollectErr
         }
         let m_path = out.join(METRICS);
         chronocooked_env::fs::write_atomic(&m_path, &text).map_err(|e| err(&m_path, e.error))?;
+        // The curriculum levels' evaluation, copied once it parses as one.
+        let levels = dir.join(job_folder::EVAL).join(LEVELS_CSV);
+        if levels.is_file() {
+            let rows = read_level_episodes(&levels)?;
+            write_level_episodes(&out.join(LEVELS_CSV), &rows)?;
+        }
         // The neural summary of a recorded job (a few kB; the activity itself stays behind),
         // copied only when it is a list of population summaries.
         let neural = dir.join(job_folder::ACTIVITY_SUMMARY);
@@ -363,6 +433,9 @@ pub struct CompactJob {
     pub episodes: Vec<EpisodeRow>,
     /// Thinned learning curve.
     pub curve: Vec<CurveRow>,
+    /// Multi-timer: every curriculum level's policy in its test setting (empty when the
+    /// run kept no per-level policies).
+    pub levels: Vec<LevelEpisode>,
 }
 
 impl CompactJob {
@@ -397,10 +470,12 @@ pub fn read_compact(root: &Path) -> Result<Vec<CompactJob>, CollectError> {
             .deserialize()
             .collect::<Result<Vec<CurveRow>, _>>()
             .map_err(|e| err(&c_path, e))?;
+        let levels = read_level_episodes(&dir.join(LEVELS_CSV))?;
         out.push(CompactJob {
             job,
             episodes,
             curve,
+            levels,
         });
     }
     Ok(out)

@@ -1,6 +1,7 @@
 //! The eval stage: the task's evaluation protocol with a trained run or a reference agent,
 //! written as an evaluation folder (`records.jsonl`, `eval.json`, `metrics.json`,
-//! `figures/`, and with activity `activity.json` + `activity/`).
+//! `figures/`, and with activity `activity.json` + `activity/`; a multi-timer run that kept
+//! its curriculum levels' policies adds `levels.csv`, see [`super::levels`]).
 
 use crate::PipelineError;
 use chronocooked_analysis::evaluation::folder::{self as eval_folder, EvalInfo};
@@ -102,6 +103,10 @@ pub fn evaluate(req: &EvalRequest) -> Result<EvalOutcome, PipelineError> {
     };
     let (metrics, figures) =
         eval_folder::write_eval_folder(&req.out, &info, &records).map_err(analysis)?;
+    // A multi-timer run's per-level policies, each in its level's test setting.
+    if let (EvalSubject::Run(run), None, Mode::Reference) = (&req.subject, &req.task, req.mode) {
+        super::levels::evaluate_levels(run, &req.out, req.seed)?;
+    }
     let activity = if req.activity {
         let dataset = recorder.finish();
         if dataset.meta.n_units() == 0 {

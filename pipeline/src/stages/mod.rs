@@ -5,6 +5,8 @@
 //! * [`train`] — a PPO agent or a timing model into a run folder (new or resumed);
 //! * [`evaluate`] — the task's reference (or stochastic) protocol with a trained run or a
 //!   reference agent, recorded play of a human, or metrics recomputed from saved records;
+//! * [`levels`] — a multi-timer run's per-level curriculum policies, each in its level's
+//!   test setting (the paper's notebooks);
 //! * [`adapt`] — uncertainty adaptation of a trained run;
 //! * [`record`] — the neural activity of a trained run, its summary and figures;
 //! * [`export`] — activity datasets and evaluation records as NPZ + CSV + JSON metadata.
@@ -12,6 +14,7 @@
 pub mod adapt;
 pub mod evaluate;
 pub mod export;
+pub mod levels;
 pub mod record;
 pub mod scaling;
 pub mod train;

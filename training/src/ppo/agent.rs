@@ -63,6 +63,13 @@ impl PpoAgent {
         };
         Self::new(&pcfg.arch.name(), policy, &task, cfg.obs)
     }
+
+    /// The policy the run folder `dir` kept as it left multi-timer curriculum level `level`
+    /// (`levels/level-<level>.bpk`), acting in `config`.
+    pub fn load_level(dir: &Path, level: usize, config: &TaskConfig) -> Result<Self, TrainError> {
+        let (policy, pcfg, cfg) = crate::run_dir::load_level_policy(dir, level)?;
+        Self::new(&pcfg.arch.name(), policy, config, cfg.obs)
+    }
 }
 
 impl Agent for PpoAgent {

@@ -8,7 +8,7 @@
 
 use crate::error::TrainError;
 use crate::evaluate::{eval_tds, evaluate_policy, success_rate};
-use crate::ppo::config::TrainConfig;
+use crate::ppo::config::{Curriculum, TrainConfig};
 use crate::ppo::state::UpdateLog;
 use crate::ppo::trainer::Trainer;
 use crate::run_dir::{RunDir, RunSummary, curve_header, expected_policy, read_policy_config};
@@ -99,6 +99,9 @@ pub fn run_training(
     while !trainer.finished() {
         let row = trainer.update()?;
         let steps = row.env_steps;
+        if let Some((level, policy)) = trainer.take_left_level() {
+            run.save_level_model(level, policy)?;
+        }
         if every(cfg.eval_every, steps) || (cfg.stop_at_success.is_some() && cfg.eval_every == 0) {
             let eps = evaluate_policy(&trainer.policy(), &task, cfg.obs, &eval_tds(&task))?;
             let s = success_rate(&eps);
@@ -121,6 +124,10 @@ pub fn run_training(
     }
     run.write_checkpoint(trainer.state(), cfg.keep_checkpoints)?;
     run.save_model(trainer.policy(), run_folder::MODEL)?;
+    if matches!(cfg.curriculum, Curriculum::MultiTimer { .. }) {
+        // The last level reached keeps the final policy (the paper's newest checkpoint).
+        run.save_level_model(trainer.state().curriculum_level, trainer.policy())?;
+    }
     let eps = evaluate_policy(&trainer.policy(), &task, cfg.obs, &eval_tds(&task))?;
     let st = trainer.state();
     let summary = RunSummary {

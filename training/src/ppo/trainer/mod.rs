@@ -69,6 +69,9 @@ pub struct Trainer {
     grad: Vec<f32>,
     /// Reservoir cores: the core's parameter range in θ (its weights never change).
     reservoir_core: Option<Range<usize>>,
+    /// The multi-timer curriculum level the last update left and θ as it left it (the
+    /// policy whose episodes passed the level's threshold), until taken.
+    left_level: Option<(usize, Vec<f32>)>,
 }
 
 impl Trainer {
@@ -173,6 +176,7 @@ impl Trainer {
             encoder,
             rollout,
             state,
+            left_level: None,
         };
         t.apply_curriculum()?;
         Ok(t)
@@ -232,6 +236,13 @@ impl Trainer {
         write_params(self.model.clone(), &self.state.theta).valid()
     }
 
+    /// The multi-timer curriculum level the last update left, with the policy as it left
+    /// it (`None` when the last update changed no level or it was taken already).
+    pub fn take_left_level(&mut self) -> Option<(usize, ActorCritic)> {
+        let (level, theta) = self.left_level.take()?;
+        Some((level, write_params(self.model.clone(), &theta).valid()))
+    }
+
     /// Whether the step budget is spent.
     pub fn finished(&self) -> bool {
         self.state.steps >= self.cfg.total_steps
@@ -286,6 +297,15 @@ impl Trainer {
         self.state.steps += (p.n_envs * p.n_steps) as u64;
         let rollout_s = started.elapsed().as_secs_f64();
 
+        // The multi-timer curriculum is checked at the rollout's end, as the paper's
+        // callback does: a level left keeps the policy that collected the passing episodes
+        // (the environments change now; the optimisation below does not use them).
+        let level = self.state.curriculum_level;
+        self.advance_multi_timer()?;
+        if self.state.curriculum_level != level {
+            self.left_level = Some((level, self.state.theta.clone()));
+        }
+
         // Epochs × minibatches: loss and gradient, clip, optimiser step.
         let lr = self.learning_rate();
         let coefs = LossCoefs {
@@ -327,9 +347,8 @@ impl Trainer {
             return Err(self.diverged("non-finite parameters after the update".into()));
         }
 
-        // Curriculum, then the learning-curve row.
+        // The learning-curve row.
         self.state.updates += 1;
-        self.advance_multi_timer()?;
         let secs = started.elapsed().as_secs_f64();
         self.state.wall_s += secs;
         let row = self.curve_row(&sums, lr, rollout_s, secs);

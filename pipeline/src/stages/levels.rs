@@ -1,0 +1,140 @@
+//! The multi-timer curriculum's per-level policies evaluated as the paper's notebooks do
+//! (`perforamce_metric_cl_exact.ipynb`, `..._cl_cat.ipynb`): the policy that left level `L`
+//! (the final policy for the last level reached) plays, greedily from every start cell, each
+//! TD it was trained on at that level, in that level's test setting:
+//!
+//! * level 0 (the warm-up): one timer, `TD[0]`, soup only takeable at `timer ≥ TD`, reduced
+//!   reward 0.1, no buffers;
+//! * level `L ≥ 1`: `L` timers, `TD[0..L]`, undercooking possible, no late buffer; exact
+//!   curriculum: reduced reward 0, no early buffer; categorical curriculum (trained with an
+//!   early buffer): reduced reward 0.1 and an early buffer of 2 steps, as the categorical
+//!   notebook tests (its training used 3 and 0).
+//!
+//! Written as `levels.csv` ([`LevelEpisode`] rows) in the evaluation folder.
+
+use crate::PipelineError;
+use chronocooked_analysis::paper::collect::{LEVELS_CSV, LevelEpisode, write_level_episodes};
+use chronocooked_analysis::{Condition, ConditionKind, Mode, run_protocol};
+use chronocooked_env::{RewardMode, TaskParams, make_config};
+use chronocooked_models::run_folder;
+use chronocooked_training::ppo::agent::PpoAgent;
+use chronocooked_training::ppo::config::Curriculum;
+use chronocooked_training::run_dir::RunDir;
+use std::path::Path;
+
+/// Early buffer (steps) of the categorical notebook's test setting.
+pub const CATEGORICAL_TEST_UNDER_BUFFER: u32 = 2;
+
+/// The task overrides of level `level`'s test setting (appended to the run's own) and the
+/// TDs it tests, for a run trained on `tds` with early buffer `under_buffer`.
+pub fn level_test_setting(level: usize, tds: &[u32], under_buffer: u32) -> (Vec<String>, Vec<u32>) {
+    let categorical = under_buffer > 0;
+    if level == 0 {
+        let env = [
+            "num_timers=1",
+            "mode=lower_bounded",
+            "reduced_reward=0.1",
+            "under_buffer=0",
+            "over_buffer=0",
+        ];
+        return (
+            env.iter().map(|s| s.to_string()).collect(),
+            tds.iter().take(1).copied().collect(),
+        );
+    }
+    let n = level.min(tds.len());
+    let (reduced, under) = if categorical {
+        ("0.1", CATEGORICAL_TEST_UNDER_BUFFER)
+    } else {
+        ("0", 0)
+    };
+    let env = vec![
+        format!("num_timers={n}"),
+        "mode=exact".into(),
+        format!("reduced_reward={reduced}"),
+        format!("under_buffer={under}"),
+        "over_buffer=0".into(),
+    ];
+    (env, tds[..n].to_vec())
+}
+
+/// Evaluates every per-level policy the PPO run folder `run` kept into
+/// `out/levels.csv`; returns the number of levels evaluated (`None`: the run is not a
+/// multi-timer curriculum run, or kept no per-level policies).
+pub fn evaluate_levels(run: &Path, out: &Path, seed: u64) -> Result<Option<usize>, PipelineError> {
+    if !run.join(run_folder::LEVELS).is_dir() {
+        return Ok(None);
+    }
+    let dir = RunDir::open(run)?;
+    let cfg = dir.config()?;
+    if !matches!(cfg.curriculum, Curriculum::MultiTimer { .. }) {
+        return Ok(None);
+    }
+    let levels = dir.saved_levels();
+    if levels.is_empty() {
+        return Ok(None);
+    }
+    let task = make_config(&cfg.task, &cfg.env)?;
+    let TaskParams::MultiTimer {
+        tds,
+        under_buffer,
+        mode,
+        ..
+    } = &task.params
+    else {
+        return Ok(None);
+    };
+    // A lower-bounded task has no early buffer to speak of: its levels test as exact.
+    let under = if *mode == RewardMode::Exact {
+        *under_buffer
+    } else {
+        0
+    };
+    let mut rows = Vec::new();
+    for &level in &levels {
+        let (extra, test_tds) = level_test_setting(level, tds, under);
+        let env: Vec<String> = cfg.env.iter().cloned().chain(extra).collect();
+        let config = make_config(&cfg.task, &env)?;
+        let mut agent = PpoAgent::load_level(run, level, &config)?;
+        let conditions: Vec<Condition> = test_tds
+            .iter()
+            .map(|&td| Condition {
+                kind: ConditionKind::MultiTimer,
+                task: cfg.task.clone(),
+                env: env.clone(),
+                td,
+                never_ready: None,
+                factor: None,
+            })
+            .collect();
+        let records = run_protocol(&mut agent, &conditions, Mode::Reference, seed)?;
+        rows.extend(records.iter().map(|r| LevelEpisode::of(level, r)));
+    }
+    std::fs::create_dir_all(out)
+        .map_err(|e| PipelineError::Analysis(format!("{}: {e}", out.display())))?;
+    write_level_episodes(&out.join(LEVELS_CSV), &rows)
+        .map_err(|e| PipelineError::Analysis(e.to_string()))?;
+    Ok(Some(levels.len()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_level_tests_its_own_tds_in_the_notebooks_settings() {
+        let tds = [2, 4, 6, 8, 10];
+        let (env, t) = level_test_setting(0, &tds, 3);
+        assert_eq!(t, [2]);
+        assert!(env.contains(&"mode=lower_bounded".to_string()));
+        assert!(env.contains(&"reduced_reward=0.1".to_string()));
+        let (env, t) = level_test_setting(3, &tds, 0);
+        assert_eq!(t, [2, 4, 6]);
+        assert!(env.contains(&"reduced_reward=0".to_string()));
+        assert!(env.contains(&"under_buffer=0".to_string()));
+        let (env, t) = level_test_setting(5, &tds, 3);
+        assert_eq!(t, tds);
+        assert!(env.contains(&"under_buffer=2".to_string()));
+        assert!(env.contains(&"reduced_reward=0.1".to_string()));
+    }
+}

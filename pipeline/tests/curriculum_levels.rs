@@ -1,0 +1,68 @@
+//! A multi-timer curriculum run's per-level policies evaluated as the paper's notebooks do:
+//! each level's policy on exactly the TDs trained at that level, from every start cell.
+
+use chronocooked_analysis::paper::collect::{LEVELS_CSV, read_level_episodes};
+use chronocooked_pipeline::stages::levels::evaluate_levels;
+use chronocooked_training::{Silent, resolve, run_training};
+use std::collections::BTreeMap;
+
+#[test]
+fn every_kept_level_is_evaluated_on_its_own_tds_from_every_start_cell() {
+    let dir = std::env::temp_dir().join(format!("cc-levels-eval-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let cfg = resolve(
+        "MultiTimer-v0",
+        "lstm8".parse().unwrap(),
+        "reference",
+        5,
+        &[
+            "total_steps=10000",
+            "n_steps=250",
+            "n_epochs=1",
+            "env.tds=2,4,6",
+            "env.mode=exact",
+            "env.under_buffer=3",
+            "env.reduced_reward=0",
+            "env.num_timers=3",
+            "curriculum_thresholds=0,0,0",
+            "curriculum_window=10",
+        ],
+    )
+    .unwrap();
+    let run = dir.join("run");
+    run_training(Some(cfg), &run, "test", &mut Silent).unwrap();
+    let out = dir.join("eval");
+    assert_eq!(evaluate_levels(&run, &out, 7).unwrap(), Some(4));
+    let rows = read_level_episodes(&out.join(LEVELS_CSV)).unwrap();
+    let mut per: BTreeMap<(usize, u32), usize> = BTreeMap::new();
+    for r in &rows {
+        *per.entry((r.level, r.td)).or_default() += 1;
+        // Categorical test setting: full reward only inside [TD − 2, TD]; else 0.1 for a
+        // delivered soup (the warm-up: only at TD exactly, nothing earlier is takeable).
+        let hit = r.oven_off_time >= 0
+            && r.oven_off_time <= r.td as i32
+            && r.oven_off_time >= r.td as i32 - if r.level == 0 { 0 } else { 2 };
+        assert_eq!(r.success, hit && r.reward == 1.0, "{r:?}");
+        assert!([0.0, 0.1, 1.0].contains(&r.reward), "{r:?}");
+    }
+    let expected: BTreeMap<(usize, u32), usize> = [
+        ((0, 2), 12),
+        ((1, 2), 12),
+        ((2, 2), 12),
+        ((2, 4), 12),
+        ((3, 2), 12),
+        ((3, 4), 12),
+        ((3, 6), 12),
+    ]
+    .into_iter()
+    .collect();
+    assert_eq!(per, expected);
+    // The rerun is the same (greedy policies, seeded episodes).
+    let again = dir.join("eval2");
+    evaluate_levels(&run, &again, 7).unwrap();
+    assert_eq!(read_level_episodes(&again.join(LEVELS_CSV)).unwrap(), rows);
+    // A run without per-level policies has nothing to evaluate.
+    std::fs::remove_dir_all(run.join("levels")).unwrap();
+    assert_eq!(evaluate_levels(&run, &dir.join("eval3"), 7).unwrap(), None);
+    let _ = std::fs::remove_dir_all(&dir);
+}
