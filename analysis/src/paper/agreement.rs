@@ -10,7 +10,8 @@ use super::compare::{ComparisonRow, Z_AGREE, compare_numbers, paper_model};
 use super::fi::FiModel;
 use super::multitimer::MtCell;
 use super::reference::{
-    APPENDIX_PREFIX, PaperNumber, appendix_fi_numbers, appendix_numbers, lab_model, numbers,
+    APPENDIX_PREFIX, PaperNumber, appendix_fi_numbers, appendix_numbers, lab_model,
+    multitimer_2_10_numbers, numbers,
 };
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -193,6 +194,7 @@ pub fn negative_control(
     let mut all = numbers();
     all.extend(appendix_numbers());
     all.extend(appendix_fi_numbers());
+    all.extend(multitimer_2_10_numbers());
     let has = |m: &str| bis.iter().any(|b| b.model == m) || fi.iter().any(|f| f.model == m);
     let lstm_big: &'static str = if has("lstm256") { "lstm256" } else { "lstm125" };
     let ctrnn_big: &'static str = if has("ctrnn-reservoir256") {

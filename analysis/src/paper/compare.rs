@@ -28,7 +28,8 @@ use super::bisection::BisectionModel;
 use super::fi::FiModel;
 use super::multitimer::MtCell;
 use super::reference::{
-    PAPER_RUNS, PaperNumber, appendix_fi_numbers, appendix_numbers, lab_model, numbers,
+    PAPER_RUNS, PaperNumber, appendix_fi_numbers, appendix_numbers, lab_model,
+    multitimer_2_10_numbers, numbers,
 };
 use serde::{Deserialize, Serialize};
 use statrs::distribution::{ChiSquared, ContinuousCDF, StudentsT};
@@ -190,6 +191,7 @@ fn printed_sd(nums: &[PaperNumber], p: &PaperNumber) -> Option<f64> {
         "bisection_dl" => "bisection_dl_sd",
         "appendix_wf" => "appendix_wf_sd",
         "appendix_dl" => "appendix_dl_sd",
+        "multitimer_2_10_level_reward" => "multitimer_2_10_level_reward_sd",
         _ => return None,
     };
     nums.iter()
@@ -206,6 +208,7 @@ pub fn compare(fi: &[FiModel], bis: &[BisectionModel], mt: &[MtCell]) -> Vec<Com
     let mut nums = numbers();
     nums.extend(appendix_numbers());
     nums.extend(appendix_fi_numbers());
+    nums.extend(multitimer_2_10_numbers());
     compare_numbers(&nums, &|m| lab_model(m), fi, bis, mt)
 }
 
@@ -237,6 +240,16 @@ pub fn compare_numbers(
                 .cells
                 .iter()
                 .find(|c| c.short == s && c.long == l)
+        };
+        // The multi-timer cell of `lab` under `curriculum` on the table's TD list.
+        let mt_cell = |table: &str, curriculum: &str| {
+            let tds: &[u32] = if table.starts_with("multitimer_2_10") {
+                &[2, 4, 6, 8, 10]
+            } else {
+                &[3, 6, 9, 12, 15]
+            };
+            mt.iter()
+                .find(|c| c.model == lab && c.curriculum == curriculum && c.tds == tds)
         };
         let paper_sd = printed_sd(nums, p);
         let (psd, pn) = paper_sd.map_or((f64::NAN, 0), |sd| (sd, PAPER_RUNS));
@@ -300,18 +313,25 @@ pub fn compare_numbers(
             "bisection_dl_sd" | "appendix_dl_sd" => {
                 bis_cell(p.row).map(|c| sd_row(c.dl.sd, c.dl.n))
             }
-            "multitimer_level" => mt
-                .iter()
-                .find(|c| c.model == lab && c.curriculum == p.column)
-                .map(|c| mean_row(c.level.mean, c.level.sd, c.level.n)),
-            "multitimer_runs_at_last_level" => mt
-                .iter()
-                .find(|c| c.model == lab && c.curriculum == p.column)
-                .map(|c| {
+            "multitimer_level" | "multitimer_2_10_level" => {
+                mt_cell(p.table, p.column).map(|c| mean_row(c.level.mean, c.level.sd, c.level.n))
+            }
+            "multitimer_2_10_level_reward" => p
+                .column
+                .rsplit_once(" level ")
+                .and_then(|(curriculum, level)| {
+                    let level: usize = level.parse().ok()?;
+                    mt_cell(p.table, curriculum)?.level_eval.get(level).copied()
+                })
+                .filter(|x| x.n > 0)
+                .map(|x| mean_row(x.mean, x.sd, x.n)),
+            "multitimer_runs_at_last_level" | "multitimer_2_10_runs_at_last_level" => {
+                mt_cell(p.table, p.column).map(|c| {
                     let v = c.reached_last as f64;
                     let ok = if v == p.value { "yes" } else { "no" };
                     (v, f64::NAN, c.runs.len(), ok.to_string(), f64::NAN, "exact")
-                }),
+                })
+            }
             _ => None,
         };
         if let Some((lab_mean, lab_sd, n, agree, z, se_from)) = value {

@@ -3,6 +3,9 @@
 //! curve), and the final policy's reward and oven-off time per TD — the trained TDs and every
 //! other evaluated TD (out of distribution, as in the paper's figure) — as means over the 12
 //! start cells, where a soup never taken counts as oven-off time −1, as in the notebook.
+//! Runs that kept their curriculum levels' policies add each level's reward in that level's
+//! test setting (`levels.csv`, the notebooks' per-level evaluation). Runs trained on one TD
+//! are the exact timer ([`analyse_exact_timer`]): reward against the test buffer.
 
 use super::collect::CompactJob;
 use crate::behaviour::aggregate::Spread;
@@ -31,6 +34,10 @@ pub struct MtRun {
     /// curve's samples at that level; `None` where no sample fell in it).
     #[serde(default)]
     pub level_reward: Vec<Option<f64>>,
+    /// Mean reward of each level 0 … 5's own policy in that level's test setting, over its
+    /// TDs and start cells (`None`: no policy kept for that level).
+    #[serde(default)]
+    pub level_eval: Vec<Option<f64>>,
 }
 
 /// One model under one curriculum.
@@ -40,6 +47,9 @@ pub struct MtCell {
     pub model: String,
     /// `exact` or `categorical`.
     pub curriculum: String,
+    /// The trained TD list (steps), in curriculum order.
+    #[serde(default)]
+    pub tds: Vec<u32>,
     /// Every run.
     pub runs: Vec<MtRun>,
     /// Level reached across runs.
@@ -56,6 +66,23 @@ pub struct MtCell {
     /// Training reward at each level 0 … 5 across the runs that have a sample there.
     #[serde(default)]
     pub level_reward: Vec<Spread>,
+    /// Each level's policy in its test setting, across the runs that kept one.
+    #[serde(default)]
+    pub level_eval: Vec<Spread>,
+}
+
+/// The exact timer at one TD: reward against the test buffer.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ExactTimerCell {
+    /// Zoo model name.
+    pub model: String,
+    /// Target duration (steps).
+    pub td: u32,
+    /// Runs.
+    pub runs: usize,
+    /// Per test buffer (fraction of TD on either side): the runs' mean rewards over the
+    /// start cells (1 inside the window, the reduced reward outside, 0 never delivered).
+    pub buffers: Vec<(f64, Spread)>,
 }
 
 /// `exact` (undercooking not tolerated) or `categorical` (an early buffer).
@@ -106,6 +133,28 @@ fn level_reward_of(job: &CompactJob) -> Vec<Option<f64>> {
         .collect()
 }
 
+/// Mean reward of each level's own policy in that level's test setting.
+fn level_eval_of(job: &CompactJob) -> Vec<Option<f64>> {
+    (0..LEVELS)
+        .map(|l| {
+            let r: Vec<f64> = job
+                .levels
+                .iter()
+                .filter(|e| e.level == l)
+                .map(|e| f64::from(e.reward))
+                .collect();
+            (!r.is_empty()).then(|| r.iter().sum::<f64>() / r.len() as f64)
+        })
+        .collect()
+}
+
+/// The TD list a multi-timer job trained on (the task's default list when not set).
+pub fn trained_tds(job: &CompactJob) -> Vec<u32> {
+    job.env_value("tds")
+        .map(|v| v.split(',').filter_map(|x| x.trim().parse().ok()).collect())
+        .unwrap_or_else(|| vec![3, 6, 9, 12, 15])
+}
+
 fn run_of(job: &CompactJob) -> MtRun {
     let mut evaluated: Vec<u32> = job
         .episodes
@@ -115,10 +164,7 @@ fn run_of(job: &CompactJob) -> MtRun {
         .collect();
     evaluated.sort_unstable();
     evaluated.dedup();
-    let trained: Vec<u32> = job
-        .env_value("tds")
-        .map(|v| v.split(',').filter_map(|x| x.trim().parse().ok()).collect())
-        .unwrap_or_else(|| vec![3, 6, 9, 12, 15]);
+    let trained = trained_tds(job);
     let tested = per_td_of(job, &evaluated);
     MtRun {
         seed: job.job.seed,
@@ -131,6 +177,7 @@ fn run_of(job: &CompactJob) -> MtRun {
             .collect(),
         tested,
         level_reward: level_reward_of(job),
+        level_eval: level_eval_of(job),
     }
 }
 
@@ -157,18 +204,23 @@ fn spread_per_td(
         .collect()
 }
 
-/// Multi-timer analysis of every model and curriculum among `jobs`.
+/// Multi-timer analysis of every model, curriculum and TD list among `jobs` (jobs trained
+/// on one TD are the exact timer's, see [`analyse_exact_timer`]).
 pub fn analyse_multitimer(jobs: &[CompactJob]) -> Vec<MtCell> {
-    let mut groups: BTreeMap<(&str, &str), Vec<&CompactJob>> = BTreeMap::new();
+    let mut groups: BTreeMap<(&str, &str, Vec<u32>), Vec<&CompactJob>> = BTreeMap::new();
     for j in jobs.iter().filter(|j| j.job.task == "MultiTimer-v0") {
+        let tds = trained_tds(j);
+        if tds.len() < 2 {
+            continue;
+        }
         groups
-            .entry((j.job.label(), curriculum_of(j)))
+            .entry((j.job.label(), curriculum_of(j), tds))
             .or_default()
             .push(j);
     }
     groups
         .into_iter()
-        .map(|((model, curriculum), js)| {
+        .map(|((model, curriculum, tds), js)| {
             let runs: Vec<MtRun> = js.iter().map(|j| run_of(j)).collect();
             let steps_in_level = (0..LEVELS - 1)
                 .map(|l| {
@@ -180,9 +232,14 @@ pub fn analyse_multitimer(jobs: &[CompactJob]) -> Vec<MtCell> {
             let level_reward = (0..LEVELS)
                 .map(|l| Spread::of(runs.iter().filter_map(|r| *r.level_reward.get(l)?)))
                 .collect();
+            let level_eval = (0..LEVELS)
+                .map(|l| Spread::of(runs.iter().filter_map(|r| *r.level_eval.get(l)?)))
+                .collect();
             MtCell {
                 model: model.to_string(),
                 curriculum: curriculum.to_string(),
+                tds,
+                level_eval,
                 level: Spread::of(runs.iter().map(|r| r.level as f64)),
                 reached_last: runs.iter().filter(|r| r.level == LEVELS - 1).count(),
                 steps_in_level,
@@ -190,6 +247,55 @@ pub fn analyse_multitimer(jobs: &[CompactJob]) -> Vec<MtCell> {
                 tested: spread_per_td(&runs, |r| &r.tested),
                 level_reward,
                 runs,
+            }
+        })
+        .collect()
+}
+
+/// The exact timer: every multi-timer job trained on a single TD, per model and TD, its
+/// reward under each test buffer (the evaluation's `buffer` conditions: soup taken within
+/// TD ± buffer pays 1, outside it the reduced reward, never delivered 0), as the mean over
+/// the start cells per run, then mean ± SD over runs.
+pub fn analyse_exact_timer(jobs: &[CompactJob]) -> Vec<ExactTimerCell> {
+    let mut groups: BTreeMap<(&str, u32), Vec<&CompactJob>> = BTreeMap::new();
+    for j in jobs.iter().filter(|j| j.job.task == "MultiTimer-v0") {
+        if let [td] = trained_tds(j)[..] {
+            groups.entry((j.job.label(), td)).or_default().push(j);
+        }
+    }
+    groups
+        .into_iter()
+        .map(|((model, td), js)| {
+            let mut fracs: Vec<f64> = js
+                .iter()
+                .flat_map(|j| j.episodes.iter())
+                .filter(|e| e.kind == ConditionKind::Buffer && e.td == td)
+                .filter_map(|e| e.factor)
+                .collect();
+            fracs.sort_by(f64::total_cmp);
+            fracs.dedup();
+            let buffers = fracs
+                .into_iter()
+                .map(|f| {
+                    let per_run = js.iter().filter_map(|j| {
+                        let r: Vec<f64> = j
+                            .episodes
+                            .iter()
+                            .filter(|e| {
+                                e.kind == ConditionKind::Buffer && e.td == td && e.factor == Some(f)
+                            })
+                            .map(|e| f64::from(e.reward))
+                            .collect();
+                        (!r.is_empty()).then(|| r.iter().sum::<f64>() / r.len() as f64)
+                    });
+                    (f, Spread::of(per_run))
+                })
+                .collect();
+            ExactTimerCell {
+                model: model.to_string(),
+                td,
+                runs: js.len(),
+                buffers,
             }
         })
         .collect()

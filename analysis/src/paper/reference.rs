@@ -273,6 +273,67 @@ pub fn numbers() -> Vec<PaperNumber> {
     v
 }
 
+/// The multi-timer notebooks' numbers on the TD list 2, 4, 6, 8, 10 (`docs/paper-protocol.md`
+/// §4; the lab's study: `sweeps/paper-multitimer.toml`), every one a notebook output:
+/// * `multitimer_2_10_level`, exact CTRNN125: its logs reached the script's `env1` and
+///   stayed; the exact CTRNN script starts at `env1` under level counter 0, so counter 1 is
+///   the one-timer level again: level 1 in the lab's numbering (0 = warm-up).
+/// * `multitimer_2_10_runs_at_last_level`: no exact LSTM125 or CNN run reached five timers;
+///   categorical LSTM125 and CTRNN125 reached them on all 4 logs.
+/// * `multitimer_2_10_level_reward` (+ `_sd`): categorical LSTM125, each level's checkpoint
+///   in its test setting, mean and SD over logs 1–4 of the printed per-log rewards (levels
+///   2–5: 0.85/0.79/0.82/0.82, 0.96/0.95/0.83/0.83, 0.94/0.85/0.89/0.94, 0.92/0.00/0.84/0.89;
+///   the protocol notes that some of these tables come from an older version that also
+///   tested untrained TDs).
+pub fn multitimer_2_10_numbers() -> Vec<PaperNumber> {
+    let mut v = Vec::new();
+    v.extend(rows(
+        Notebook,
+        "multitimer_2_10_level",
+        "exact",
+        &["CTRNN125"],
+        &[1.0],
+    ));
+    v.extend(rows(
+        Notebook,
+        "multitimer_2_10_runs_at_last_level",
+        "exact",
+        &["LSTM125", "CNN"],
+        &[0.0, 0.0],
+    ));
+    v.extend(rows(
+        Notebook,
+        "multitimer_2_10_runs_at_last_level",
+        "categorical",
+        &["LSTM125", "CTRNN125"],
+        &[4.0, 4.0],
+    ));
+    let per_log: [(&'static str, [f64; 4]); 4] = [
+        ("categorical level 2", [0.85, 0.79, 0.82, 0.82]),
+        ("categorical level 3", [0.96, 0.95, 0.83, 0.83]),
+        ("categorical level 4", [0.94, 0.85, 0.89, 0.94]),
+        ("categorical level 5", [0.92, 0.00, 0.84, 0.89]),
+    ];
+    for (column, logs) in per_log {
+        let s = crate::stats::Spread::of(logs);
+        v.extend(rows(
+            Notebook,
+            "multitimer_2_10_level_reward",
+            column,
+            &["LSTM125"],
+            &[s.mean],
+        ));
+        v.extend(rows(
+            Notebook,
+            "multitimer_2_10_level_reward_sd",
+            column,
+            &["LSTM125"],
+            &[s.sd],
+        ));
+    }
+    v
+}
+
 /// The appendix's Weber fraction and difference limen tables at sizes 256 and 8
 /// (`tab:wf_supp`, `tab:dl_supp`: mean and SD over runs per anchor pair; the 6-8 row and
 /// every size-8 entry are printed as NaN) as tables `appendix_wf`, `appendix_wf_sd`,

@@ -8,7 +8,7 @@ use super::bisection::{BisectionModel, analyse_bisection};
 use super::collect::{CollectError, CompactJob, read_compact};
 use super::compare::{ComparisonRow, compare};
 use super::fi::{FiModel, analyse_fi};
-use super::multitimer::{MtCell, analyse_multitimer};
+use super::multitimer::{ExactTimerCell, MtCell, analyse_exact_timer, analyse_multitimer};
 use super::pi::{PiRow, PiVerdict, analyse_pi, pi_verdicts};
 use super::reference::HUMAN_WF_VS_RATIO;
 use crate::behaviour::aggregate::Spread;
@@ -43,8 +43,11 @@ pub struct PaperStudy {
     pub fi: Vec<FiModel>,
     /// Bisection per model.
     pub bisection: Vec<BisectionModel>,
-    /// Multi-timer per model and curriculum.
+    /// Multi-timer per model, curriculum and TD list.
     pub multitimer: Vec<MtCell>,
+    /// The exact timer (runs trained on one TD): reward against the test buffer.
+    #[serde(default)]
+    pub exact_timer: Vec<ExactTimerCell>,
     /// Comparison with the paper.
     pub comparison: Vec<ComparisonRow>,
     /// Verdict counts under both rules and the negative control (`agreement.json`).
@@ -81,6 +84,7 @@ pub fn analyse(root: &Path) -> Result<PaperStudy, CollectError> {
     let fi = analyse_fi(&jobs);
     let bisection = analyse_bisection(&jobs);
     let multitimer = analyse_multitimer(&jobs);
+    let exact_timer = analyse_exact_timer(&jobs);
     let comparison = compare(&fi, &bisection, &multitimer);
     let agreement = agreement(&comparison, &fi, &bisection, &multitimer);
     let pi = analyse_pi(root, &jobs)?;
@@ -94,6 +98,7 @@ pub fn analyse(root: &Path) -> Result<PaperStudy, CollectError> {
         fi,
         bisection,
         multitimer,
+        exact_timer,
         comparison,
     })
 }
@@ -114,6 +119,13 @@ fn pm(s: &Spread, digits: usize) -> String {
     } else {
         format!("{} ± {}", f(s.mean, digits), f(s.sd, digits))
     }
+}
+
+fn tds_label(tds: &[u32]) -> String {
+    tds.iter()
+        .map(u32::to_string)
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// Markdown tables of the study (what `RESULTS.md` quotes).
@@ -232,20 +244,21 @@ pub fn tables_markdown(s: &PaperStudy) -> String {
     let _ = writeln!(m, "\n## Multi-timer\n");
     let _ = writeln!(
         m,
-        "Curriculum: level 0 warm-up, then 1 … 5 timers (TDs 3, 6, 9, 12, 15). Steps per level: env steps spent in a level by the runs that left it.\n"
+        "Curriculum: level 0 warm-up, then 1 … 5 timers (the TDs of the list in order). Steps per level: env steps spent in a level by the runs that left it.\n"
     );
     let _ = writeln!(
         m,
-        "| model | curriculum | runs | level reached | runs at level 5 | steps in level 0 | 1 | 2 | 3 | 4 |"
+        "| model | curriculum | TDs | runs | level reached | runs at level 5 | steps in level 0 | 1 | 2 | 3 | 4 |"
     );
-    let _ = writeln!(m, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    let _ = writeln!(m, "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|");
     for c in &s.multitimer {
         let steps: Vec<String> = c.steps_in_level.iter().map(|s| pm(s, 0)).collect();
         let _ = writeln!(
             m,
-            "| {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} |",
             c.model,
             c.curriculum,
+            tds_label(&c.tds),
             c.runs.len(),
             pm(&c.level, 1),
             c.reached_last,
@@ -261,6 +274,45 @@ pub fn tables_markdown(s: &PaperStudy) -> String {
     for c in &s.multitimer {
         let r: Vec<String> = c.level_reward.iter().map(|s| pm(s, 2)).collect();
         let _ = writeln!(m, "| {} | {} | {} |", c.model, c.curriculum, r.join(" | "));
+    }
+    if s.multitimer
+        .iter()
+        .any(|c| c.level_eval.iter().any(|x| x.n > 0))
+    {
+        let _ = writeln!(
+            m,
+            "\nEach level's own policy in that level's test setting (the notebooks' evaluation: level 0 one timer, soup only at TD, reduced reward 0.1; level L ≥ 1 the first L TDs, undercooking possible; exact: reduced reward 0; categorical: reduced reward 0.1, 2 steps early allowed), mean reward over its TDs and 12 start cells, then mean ± SD (runs) over the runs that reached the level:\n"
+        );
+        let _ = writeln!(
+            m,
+            "| model | curriculum | TDs | level 0 | 1 | 2 | 3 | 4 | 5 |"
+        );
+        let _ = writeln!(m, "|---|---|---|---:|---:|---:|---:|---:|---:|");
+        for c in s
+            .multitimer
+            .iter()
+            .filter(|c| c.level_eval.iter().any(|x| x.n > 0))
+        {
+            let r: Vec<String> = c
+                .level_eval
+                .iter()
+                .map(|x| {
+                    if x.n == 0 {
+                        "–".into()
+                    } else {
+                        format!("{} ({})", pm(x, 2), x.n)
+                    }
+                })
+                .collect();
+            let _ = writeln!(
+                m,
+                "| {} | {} | {} | {} |",
+                c.model,
+                c.curriculum,
+                tds_label(&c.tds),
+                r.join(" | ")
+            );
+        }
     }
     let _ = writeln!(
         m,
@@ -295,6 +347,44 @@ pub fn tables_markdown(s: &PaperStudy) -> String {
             c.curriculum,
             cells.join(" | ")
         );
+    }
+    if !s.exact_timer.is_empty() {
+        let mut fracs: Vec<f64> = s
+            .exact_timer
+            .iter()
+            .flat_map(|c| c.buffers.iter().map(|b| b.0))
+            .collect();
+        fracs.sort_by(f64::total_cmp);
+        fracs.dedup();
+        let _ = writeln!(
+            m,
+            "\n## Exact timer\n\nOne timer per run, trained to take the soup at exactly TD; tested with a buffer of a fraction of TD on either side (rounded to whole steps): mean reward over the 12 start cells (1 inside TD ± buffer, the reduced reward 0.1 outside, 0 never delivered), then mean ± SD over runs.\n"
+        );
+        let head: Vec<String> = fracs
+            .iter()
+            .map(|f| format!("buffer {:.0}%", f * 100.0))
+            .collect();
+        let _ = writeln!(m, "| model | TD | runs | {} |", head.join(" | "));
+        let _ = writeln!(m, "|---|---:|---:|{}", "---:|".repeat(fracs.len()));
+        for c in &s.exact_timer {
+            let cells: Vec<String> = fracs
+                .iter()
+                .map(|f| {
+                    c.buffers
+                        .iter()
+                        .find(|b| b.0 == *f)
+                        .map_or("–".into(), |b| pm(&b.1, 2))
+                })
+                .collect();
+            let _ = writeln!(
+                m,
+                "| {} | {} | {} | {} |",
+                c.model,
+                c.td,
+                c.runs,
+                cells.join(" | ")
+            );
+        }
     }
     super::agreement::agreement_markdown(&mut m, &s.agreement);
     super::pi::pi_markdown(&mut m, &s.pi_verdicts);
