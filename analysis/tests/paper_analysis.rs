@@ -315,6 +315,7 @@ fn study_figures_and_comparison_come_out_of_constructed_jobs() {
         bisection,
         multitimer,
         exact_timer: vec![],
+        spreads: vec![],
         comparison,
     };
     let dir = std::env::temp_dir().join(format!("cc-paper-fig-{}", std::process::id()));
@@ -463,6 +464,7 @@ fn multitimer_analysis_reads_levels_rewards_and_oven_off_times() {
         bisection: vec![],
         multitimer: mt,
         exact_timer: vec![],
+        spreads: vec![],
         comparison: vec![],
         agreement: Default::default(),
         pi: vec![],
@@ -634,4 +636,36 @@ fn the_exact_timer_scores_each_test_buffer_per_run() {
     // Per run means: 0.1 and 0.55 at buffer 0; 0.55 and 1.0 at 50%.
     assert!((s0.mean - 0.325).abs() < 1e-6 && (s1.mean - 0.775).abs() < 1e-6);
     assert!((s0.sd - 0.45 / 2f64.sqrt()).abs() < 1e-6);
+}
+
+#[test]
+fn spreads_compare_the_first_four_seeds_with_every_run_by_hand() {
+    use chronocooked_analysis::paper::spreads::spread_changes;
+    let fi_run = |seed: u64, foc: i32| CompactJob {
+        job: job("FixedInterval-v0", "lstm125", seed, &["td=4"], 20.0),
+        episodes: vec![
+            ep("fi", 4, (0, 0), Some(foc), 0),
+            ep("fi", 4, (1, 1), Some(foc), 0),
+        ],
+        curve: vec![],
+        levels: vec![],
+    };
+    // Run means: seeds 1–4 → 4, 4, 5, 5; seeds 5, 6 → 2, 8.
+    let mut jobs: Vec<CompactJob> = [(1, 4), (2, 4), (3, 5), (4, 5)]
+        .into_iter()
+        .map(|(s, f)| fi_run(s, f))
+        .collect();
+    // Only the first four seeds: nothing changed, no row.
+    assert!(spread_changes(&jobs).is_empty());
+    jobs.push(fi_run(5, 2));
+    jobs.push(fi_run(6, 8));
+    let rows = spread_changes(&jobs);
+    let r = rows.iter().find(|r| r.statistic == "foc_mean").unwrap();
+    assert_eq!((r.condition.as_str(), r.n_first, r.n_all), ("TD 4", 4, 6));
+    assert!((r.mean_first - 4.5).abs() < 1e-9 && (r.sd_first - 0.577350).abs() < 1e-6);
+    // Every run: mean 28/6, SD √(19.3333/5) = 1.96638.
+    assert!((r.mean_all - 28.0 / 6.0).abs() < 1e-9 && (r.sd_all - 1.966384).abs() < 1e-6);
+    // Each run's CV is 0 (its two FOCs are equal).
+    let cv = rows.iter().find(|r| r.statistic == "foc_cv").unwrap();
+    assert_eq!((cv.mean_first, cv.mean_all), (0.0, 0.0));
 }

@@ -13,6 +13,8 @@
 //! * [`agreement`] — `agreement.json`: verdict counts per table × source × rule and the
 //!   negative control;
 //! * [`pi`] — `pi.csv`: the peak-interval probes and the uniform-checking test;
+//! * [`spreads`] — `spreads.csv`: each condition's spread on the first four seeds and on
+//!   every run;
 //! * [`figures`] — the study's figures in the paper's form;
 //! * [`study`] — the whole analysis of a results folder, written as JSON, CSV and Markdown;
 //! * [`report`] — the study's `report.html`: agreement per table, figures, every row.
@@ -28,4 +30,5 @@ pub mod multitimer;
 pub mod pi;
 pub mod reference;
 pub mod report;
+pub mod spreads;
 pub mod study;

@@ -11,6 +11,7 @@ use super::fi::{FiModel, analyse_fi};
 use super::multitimer::{ExactTimerCell, MtCell, analyse_exact_timer, analyse_multitimer};
 use super::pi::{PiRow, PiVerdict, analyse_pi, pi_verdicts};
 use super::reference::HUMAN_WF_VS_RATIO;
+use super::spreads::{SpreadChange, spread_changes};
 use crate::behaviour::aggregate::Spread;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -58,6 +59,9 @@ pub struct PaperStudy {
     pub pi_verdicts: Vec<PiVerdict>,
     /// Cost per job kind.
     pub cost: Vec<JobCost>,
+    /// Each condition's spread on the first four seeds and on every run (`spreads.csv`).
+    #[serde(default)]
+    pub spreads: Vec<SpreadChange>,
 }
 
 /// Cost of each job kind.
@@ -95,6 +99,7 @@ pub fn analyse(root: &Path) -> Result<PaperStudy, CollectError> {
         pi,
         pi_verdicts,
         cost: job_costs(&jobs),
+        spreads: spread_changes(&jobs),
         fi,
         bisection,
         multitimer,
@@ -118,6 +123,70 @@ fn pm(s: &Spread, digits: usize) -> String {
         f(s.mean, digits)
     } else {
         format!("{} ± {}", f(s.mean, digits), f(s.sd, digits))
+    }
+}
+
+/// Per task and statistic: how the SD over runs moved from the first four seeds to every
+/// run (`spreads.csv` has each condition).
+fn spreads_markdown(m: &mut String, rows: &[SpreadChange]) {
+    if rows.is_empty() {
+        return;
+    }
+    let _ = writeln!(
+        m,
+        "\n## Spread over runs: first four seeds vs every run\n\nSD ratio = SD over every run ÷ SD over seeds 1–4, per condition (both with ≥ 2 runs); each condition in `spreads.csv`. Shift = |mean over every run − mean over seeds 1–4| in units of the seeds-1–4 SD.\n"
+    );
+    let _ = writeln!(
+        m,
+        "| task | model | statistic | conditions | runs (first → all) | median SD ratio | SD ratio range | ratio > 1.5 | median shift | shift > 1 |"
+    );
+    let _ = writeln!(m, "|---|---|---|---:|---|---:|---|---:|---:|---:|");
+    let mut keys: Vec<(&str, &str, &str)> = Vec::new();
+    for r in rows {
+        let k = (r.task.as_str(), r.model.as_str(), r.statistic.as_str());
+        if !keys.contains(&k) {
+            keys.push(k);
+        }
+    }
+    for (task, model, stat) in keys {
+        let sel: Vec<&SpreadChange> = rows
+            .iter()
+            .filter(|r| r.task == task && r.model == model && r.statistic == stat)
+            .collect();
+        let mut ratios: Vec<f64> = sel
+            .iter()
+            .map(|r| r.sd_all / r.sd_first)
+            .filter(|x| x.is_finite())
+            .collect();
+        let mut shifts: Vec<f64> = sel
+            .iter()
+            .map(|r| (r.mean_all - r.mean_first).abs() / r.sd_first)
+            .filter(|x| x.is_finite())
+            .collect();
+        ratios.sort_by(f64::total_cmp);
+        shifts.sort_by(f64::total_cmp);
+        let median = |v: &[f64]| {
+            if v.is_empty() {
+                f64::NAN
+            } else {
+                v[v.len() / 2]
+            }
+        };
+        let n_first = Spread::of(sel.iter().map(|r| r.n_first as f64));
+        let n_all = Spread::of(sel.iter().map(|r| r.n_all as f64));
+        let _ = writeln!(
+            m,
+            "| {task} | {model} | {stat} | {} | {} → {} | {} | {}–{} | {} | {} | {} |",
+            sel.len(),
+            f(n_first.mean, 1),
+            f(n_all.mean, 1),
+            f(median(&ratios), 2),
+            f(ratios.first().copied().unwrap_or(f64::NAN), 2),
+            f(ratios.last().copied().unwrap_or(f64::NAN), 2),
+            ratios.iter().filter(|x| **x > 1.5).count(),
+            f(median(&shifts), 2),
+            shifts.iter().filter(|x| **x > 1.0).count(),
+        );
     }
 }
 
@@ -386,6 +455,7 @@ pub fn tables_markdown(s: &PaperStudy) -> String {
             );
         }
     }
+    spreads_markdown(&mut m, &s.spreads);
     super::agreement::agreement_markdown(&mut m, &s.agreement);
     super::pi::pi_markdown(&mut m, &s.pi_verdicts);
     let _ = writeln!(m, "\n## Cost per job kind (one core per job)\n");
@@ -409,8 +479,8 @@ pub fn tables_markdown(s: &PaperStudy) -> String {
     m
 }
 
-/// Writes `analysis.json`, `comparison.csv`, `agreement.json`, `pi.csv` and `tables.md`
-/// into `root`.
+/// Writes `analysis.json`, `comparison.csv`, `agreement.json`, `pi.csv`, `spreads.csv`
+/// (once a condition has more than the first four seeds' runs) and `tables.md` into `root`.
 pub fn write_study(root: &Path, s: &PaperStudy) -> Result<(), CollectError> {
     let e = |p: &Path, m: String| CollectError::File {
         path: p.display().to_string(),
@@ -436,5 +506,13 @@ pub fn write_study(root: &Path, s: &PaperStudy) -> Result<(), CollectError> {
     }
     let bytes = w.into_inner().map_err(|x| e(root, x.to_string()))?;
     write("pi.csv", &bytes)?;
+    if !s.spreads.is_empty() {
+        let mut w = csv::Writer::from_writer(Vec::new());
+        for r in &s.spreads {
+            w.serialize(r).map_err(|x| e(root, x.to_string()))?;
+        }
+        let bytes = w.into_inner().map_err(|x| e(root, x.to_string()))?;
+        write("spreads.csv", &bytes)?;
+    }
     write("tables.md", tables_markdown(s).as_bytes())
 }

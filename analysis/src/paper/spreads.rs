@@ -1,0 +1,121 @@
+//! How much the spread over runs changed with more repeats (issue #29 item 2): every
+//! condition's per-run statistics computed on the study's first four seeds (the paper's run
+//! count: logs 1–4) and on every run, side by side (`spreads.csv`).
+//!
+//! Fixed interval: each run's mean first oven check and its CV; bisection: each run's Weber
+//! fraction, difference limen and bisection point. A condition appears once it has more
+//! runs than the first four seeds.
+
+use super::bisection::analyse_bisection;
+use super::collect::CompactJob;
+use super::fi::analyse_fi;
+use crate::stats::Spread;
+use serde::{Deserialize, Serialize};
+
+/// The seeds of the paper-core study's first repeats (the paper's logs 1–4).
+pub const FIRST_SEEDS: [u64; 4] = [1, 2, 3, 4];
+
+/// One statistic of one condition on the first four seeds and on every run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SpreadChange {
+    /// Task id.
+    pub task: String,
+    /// Model label.
+    pub model: String,
+    /// Condition: `TD 12` or the anchor pair `4-12`.
+    pub condition: String,
+    /// `foc_mean`, `foc_cv` (FI) or `wf`, `dl`, `bp` (bisection).
+    pub statistic: String,
+    /// Mean over the first four seeds' runs.
+    pub mean_first: f64,
+    /// SD over them.
+    pub sd_first: f64,
+    /// Runs with a value among them.
+    pub n_first: usize,
+    /// Mean over every run.
+    pub mean_all: f64,
+    /// SD over every run.
+    pub sd_all: f64,
+    /// Runs with a value.
+    pub n_all: usize,
+}
+
+fn row(
+    task: &str,
+    model: &str,
+    condition: String,
+    statistic: &str,
+    a: Spread,
+    b: Spread,
+) -> SpreadChange {
+    SpreadChange {
+        task: task.into(),
+        model: model.into(),
+        condition,
+        statistic: statistic.into(),
+        mean_first: a.mean,
+        sd_first: a.sd,
+        n_first: a.n,
+        mean_all: b.mean,
+        sd_all: b.sd,
+        n_all: b.n,
+    }
+}
+
+/// The spread of every FI and bisection statistic on the first four seeds and on all runs,
+/// for the conditions that have more runs than those.
+pub fn spread_changes(jobs: &[CompactJob]) -> Vec<SpreadChange> {
+    let first: Vec<CompactJob> = jobs
+        .iter()
+        .filter(|j| FIRST_SEEDS.contains(&j.job.seed))
+        .cloned()
+        .collect();
+    let mut out = Vec::new();
+    let (fi_a, fi_b) = (analyse_fi(&first), analyse_fi(jobs));
+    for m in &fi_b {
+        for c in &m.cells {
+            let Some(a) = fi_a
+                .iter()
+                .find(|x| x.model == m.model)
+                .and_then(|x| x.cells.iter().find(|y| y.td == c.td))
+            else {
+                continue;
+            };
+            if c.runs <= a.runs {
+                continue;
+            }
+            let cond = format!("TD {}", c.td);
+            let t = "FixedInterval-v0";
+            out.push(row(
+                t,
+                &m.model,
+                cond.clone(),
+                "foc_mean",
+                a.run_mean,
+                c.run_mean,
+            ));
+            out.push(row(t, &m.model, cond, "foc_cv", a.run_cv, c.run_cv));
+        }
+    }
+    let (bis_a, bis_b) = (analyse_bisection(&first), analyse_bisection(jobs));
+    for m in &bis_b {
+        for c in &m.cells {
+            let Some(a) = bis_a.iter().find(|x| x.model == m.model).and_then(|x| {
+                x.cells
+                    .iter()
+                    .find(|y| y.short == c.short && y.long == c.long)
+            }) else {
+                continue;
+            };
+            if c.runs.len() <= a.runs.len() {
+                continue;
+            }
+            let cond = format!("{}-{}", c.short, c.long);
+            let t = "Bisection-v0";
+            out.push(row(t, &m.model, cond.clone(), "wf", a.wf, c.wf));
+            out.push(row(t, &m.model, cond.clone(), "dl", a.dl, c.dl));
+            out.push(row(t, &m.model, cond, "bp", a.bp, c.bp));
+        }
+    }
+    out
+}
