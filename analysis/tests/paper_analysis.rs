@@ -316,6 +316,7 @@ fn study_figures_and_comparison_come_out_of_constructed_jobs() {
         multitimer,
         exact_timer: vec![],
         spreads: vec![],
+        ranges: vec![],
         comparison,
     };
     let dir = std::env::temp_dir().join(format!("cc-paper-fig-{}", std::process::id()));
@@ -465,6 +466,7 @@ fn multitimer_analysis_reads_levels_rewards_and_oven_off_times() {
         multitimer: mt,
         exact_timer: vec![],
         spreads: vec![],
+        ranges: vec![],
         comparison: vec![],
         agreement: Default::default(),
         pi: vec![],
@@ -668,4 +670,18 @@ fn spreads_compare_the_first_four_seeds_with_every_run_by_hand() {
     // Each run's CV is 0 (its two FOCs are equal).
     let cv = rows.iter().find(|r| r.statistic == "foc_cv").unwrap();
     assert_eq!((cv.mean_first, cv.mean_all), (0.0, 0.0));
+}
+
+#[test]
+fn a_new_runs_range_is_the_95_percent_prediction_interval() {
+    use chronocooked_analysis::paper::spreads::prediction_interval;
+    use chronocooked_analysis::stats::Spread;
+    // Runs 4, 4, 5, 5: mean 4.5, SD 0.57735; t(0.975, 3) = 3.18245; half-width
+    // 3.18245 · 0.57735 · √(1.25) = 2.05422.
+    let (lo, hi) = prediction_interval(&Spread::of([4.0, 4.0, 5.0, 5.0]));
+    assert!(
+        (lo - 2.44578).abs() < 1e-4 && (hi - 6.55422).abs() < 1e-4,
+        "{lo} {hi}"
+    );
+    assert!(prediction_interval(&Spread::of([4.0])).0.is_nan());
 }

@@ -119,3 +119,80 @@ pub fn spread_changes(jobs: &[CompactJob]) -> Vec<SpreadChange> {
     }
     out
 }
+
+/// Where one more run of a condition is expected to land: the 95% prediction interval of a
+/// single new run from the study's runs, `mean ± t₀.₉₇₅,ₙ₋₁ · sd · √(1 + 1/n)` (normal runs).
+/// A held-out seed's run is checked against this, not against mean ± SD (which a new run
+/// leaves about a third of the time).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct NewRunRange {
+    /// Task id.
+    pub task: String,
+    /// Model label.
+    pub model: String,
+    /// Condition: `TD 12` or the anchor pair `4-12`.
+    pub condition: String,
+    /// `foc_mean`, `foc_cv` (FI) or `wf`, `dl`, `bp` (bisection).
+    pub statistic: String,
+    /// Runs with a value.
+    pub n: usize,
+    /// Mean over them.
+    pub mean: f64,
+    /// SD over them.
+    pub sd: f64,
+    /// Lower end of the 95% prediction interval.
+    pub lo: f64,
+    /// Upper end.
+    pub hi: f64,
+}
+
+/// The 95% prediction interval of one new run from `s` (NaN ends below two runs).
+pub fn prediction_interval(s: &Spread) -> (f64, f64) {
+    if s.n < 2 || !s.sd.is_finite() {
+        return (f64::NAN, f64::NAN);
+    }
+    let t = statrs::distribution::StudentsT::new(0.0, 1.0, (s.n - 1) as f64)
+        .map(|d| statrs::distribution::ContinuousCDF::inverse_cdf(&d, 0.975))
+        .unwrap_or(f64::NAN);
+    let half = t * s.sd * (1.0 + 1.0 / s.n as f64).sqrt();
+    (s.mean - half, s.mean + half)
+}
+
+fn range(task: &str, model: &str, condition: String, statistic: &str, s: Spread) -> NewRunRange {
+    let (lo, hi) = prediction_interval(&s);
+    NewRunRange {
+        task: task.into(),
+        model: model.into(),
+        condition,
+        statistic: statistic.into(),
+        n: s.n,
+        mean: s.mean,
+        sd: s.sd,
+        lo,
+        hi,
+    }
+}
+
+/// The new-run range of every FI and bisection statistic with at least two runs.
+pub fn new_run_ranges(jobs: &[CompactJob]) -> Vec<NewRunRange> {
+    let mut out = Vec::new();
+    for m in analyse_fi(jobs) {
+        for c in &m.cells {
+            let cond = format!("TD {}", c.td);
+            let t = "FixedInterval-v0";
+            out.push(range(t, &m.model, cond.clone(), "foc_mean", c.run_mean));
+            out.push(range(t, &m.model, cond, "foc_cv", c.run_cv));
+        }
+    }
+    for m in analyse_bisection(jobs) {
+        for c in &m.cells {
+            let cond = format!("{}-{}", c.short, c.long);
+            let t = "Bisection-v0";
+            out.push(range(t, &m.model, cond.clone(), "wf", c.wf));
+            out.push(range(t, &m.model, cond.clone(), "dl", c.dl));
+            out.push(range(t, &m.model, cond, "bp", c.bp));
+        }
+    }
+    out.retain(|r| r.n >= 2);
+    out
+}

@@ -11,7 +11,7 @@ use super::fi::{FiModel, analyse_fi};
 use super::multitimer::{ExactTimerCell, MtCell, analyse_exact_timer, analyse_multitimer};
 use super::pi::{PiRow, PiVerdict, analyse_pi, pi_verdicts};
 use super::reference::HUMAN_WF_VS_RATIO;
-use super::spreads::{SpreadChange, spread_changes};
+use super::spreads::{NewRunRange, SpreadChange, new_run_ranges, spread_changes};
 use crate::behaviour::aggregate::Spread;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -62,6 +62,9 @@ pub struct PaperStudy {
     /// Each condition's spread on the first four seeds and on every run (`spreads.csv`).
     #[serde(default)]
     pub spreads: Vec<SpreadChange>,
+    /// Where one more run of each condition should land (`ranges.csv`).
+    #[serde(default)]
+    pub ranges: Vec<NewRunRange>,
 }
 
 /// Cost of each job kind.
@@ -100,6 +103,7 @@ pub fn analyse(root: &Path) -> Result<PaperStudy, CollectError> {
         pi_verdicts,
         cost: job_costs(&jobs),
         spreads: spread_changes(&jobs),
+        ranges: new_run_ranges(&jobs),
         fi,
         bisection,
         multitimer,
@@ -479,7 +483,8 @@ pub fn tables_markdown(s: &PaperStudy) -> String {
     m
 }
 
-/// Writes `analysis.json`, `comparison.csv`, `agreement.json`, `pi.csv`, `spreads.csv`
+/// Writes `analysis.json`, `comparison.csv`, `agreement.json`, `pi.csv`, `ranges.csv` (the
+/// 95% prediction interval of one new run per condition), `spreads.csv`
 /// (once a condition has more than the first four seeds' runs) and `tables.md` into `root`.
 pub fn write_study(root: &Path, s: &PaperStudy) -> Result<(), CollectError> {
     let e = |p: &Path, m: String| CollectError::File {
@@ -506,6 +511,12 @@ pub fn write_study(root: &Path, s: &PaperStudy) -> Result<(), CollectError> {
     }
     let bytes = w.into_inner().map_err(|x| e(root, x.to_string()))?;
     write("pi.csv", &bytes)?;
+    let mut w = csv::Writer::from_writer(Vec::new());
+    for r in &s.ranges {
+        w.serialize(r).map_err(|x| e(root, x.to_string()))?;
+    }
+    let bytes = w.into_inner().map_err(|x| e(root, x.to_string()))?;
+    write("ranges.csv", &bytes)?;
     if !s.spreads.is_empty() {
         let mut w = csv::Writer::from_writer(Vec::new());
         for r in &s.spreads {
