@@ -1,7 +1,8 @@
 //! Figures of the paper's study in the paper's form (SVG + PNG): FOC distributions per TD,
 //! mean FOC vs TD and SD vs mean with their regression lines, the psychometric grid (models ×
 //! anchor pairs) with the paper's least-squares fit and the lab's maximum-likelihood fit,
-//! WF against log2(L/S), and the multi-timer reward per curriculum level.
+//! WF against log2(L/S), the multi-timer reward per curriculum level, and the exact timer's
+//! reward against the test buffer.
 
 use super::bisection::BisectionModel;
 use super::fi::FiModel;
@@ -273,6 +274,19 @@ pub fn multitimer_panels(s: &PaperStudy) -> ((usize, usize), Vec<Option<Chart>>)
                 true,
                 k,
             ));
+            if c.level_eval.iter().any(|x| x.n > 0) {
+                lv.push(series(
+                    &format!("{}: level's policy, test", c.curriculum),
+                    c.level_eval
+                        .iter()
+                        .enumerate()
+                        .filter(|(_, x)| x.n > 0)
+                        .map(|(l, x)| (l as f64, x.mean))
+                        .collect(),
+                    true,
+                    k + 1,
+                ));
+            }
             // One legend per column (top row): the curricula keep their colours below.
             rw.push(series(
                 "",
@@ -336,6 +350,63 @@ pub fn multitimer_panels(s: &PaperStudy) -> ((usize, usize), Vec<Option<Chart>>)
     ((3, cols), panels)
 }
 
+/// The exact timer in the paper's form: one panel per TD, mean reward against the test
+/// buffer (% of TD) per model, ± SD over runs as dots, and the reduced reward 0.1 that any
+/// delivery earns (the paper's red dotted line) in grey.
+pub fn exact_timer_panels(s: &PaperStudy) -> Vec<Option<Chart>> {
+    let mut tds: Vec<u32> = s.exact_timer.iter().map(|c| c.td).collect();
+    tds.sort_unstable();
+    tds.dedup();
+    let mut models: Vec<&str> = Vec::new();
+    for c in &s.exact_timer {
+        if !models.contains(&c.model.as_str()) {
+            models.push(&c.model);
+        }
+    }
+    tds.iter()
+        .map(|&td| {
+            let mut ser = vec![series(
+                "reduced reward 0.1",
+                vec![(0.0, 0.1), (75.0, 0.1)],
+                true,
+                7,
+            )];
+            for (k, &model) in models.iter().enumerate() {
+                let Some(c) = s
+                    .exact_timer
+                    .iter()
+                    .find(|c| c.td == td && c.model == model)
+                else {
+                    continue;
+                };
+                let pts = |sign: f64| -> Vec<(f64, f64)> {
+                    c.buffers
+                        .iter()
+                        .filter(|(_, x)| x.n > 1)
+                        .map(|(f, x)| (f * 100.0, x.mean + sign * x.sd))
+                        .collect()
+                };
+                ser.push(series(
+                    &format!("{model} ({} runs)", c.runs),
+                    c.buffers.iter().map(|(f, x)| (f * 100.0, x.mean)).collect(),
+                    true,
+                    k,
+                ));
+                ser.push(series("", pts(1.0), false, k));
+                ser.push(series("", pts(-1.0), false, k));
+            }
+            Some(Chart {
+                title: format!("exact timer, TD {td}"),
+                x_label: "test buffer (% of TD, either side)".into(),
+                y_label: "mean reward".into(),
+                series: ser,
+                markers: vec![],
+                y_range: Some((-0.05, 1.05)),
+            })
+        })
+        .collect()
+}
+
 /// Writes every figure into `dir`; returns the files written.
 pub fn write_figures(dir: &Path, s: &PaperStudy) -> Result<Vec<PathBuf>, FigureError> {
     let mut out = Vec::new();
@@ -361,6 +432,16 @@ pub fn write_figures(dir: &Path, s: &PaperStudy) -> Result<Vec<PathBuf>, FigureE
     if !s.multitimer.is_empty() {
         let (grid, panels) = multitimer_panels(s);
         out.extend(write_panels(&dir.join("multitimer"), grid, &panels)?);
+    }
+    if !s.exact_timer.is_empty() {
+        let panels = exact_timer_panels(s);
+        let cols = panels.len().min(5);
+        let rows = panels.len().div_ceil(cols);
+        out.extend(write_panels(
+            &dir.join("exact_timer"),
+            (rows, cols),
+            &panels,
+        )?);
     }
     Ok(out)
 }

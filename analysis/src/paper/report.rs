@@ -11,7 +11,7 @@ use maud::{Markup, html};
 use std::path::{Path, PathBuf};
 
 /// The figures the page shows, in order: (file stem, caption, full width).
-const FIGURES: [(&str, &str, bool); 5] = [
+const FIGURES: [(&str, &str, bool); 6] = [
     (
         "fi_foc",
         "Fixed interval: every first oven check per TD (dots, pooled over runs × start cells), the per-TD mean and FOC = TD",
@@ -34,7 +34,12 @@ const FIGURES: [(&str, &str, bool); 5] = [
     ),
     (
         "multitimer",
-        "Multi-timer: training reward per curriculum level, the final policy's reward and oven-off time at every tested TD (vertical lines: trained TDs; the rest are out of distribution)",
+        "Multi-timer: training reward per curriculum level (and, where the run kept them, each level's own policy in the notebook's test setting), the final policy's reward and oven-off time at every tested TD (vertical lines: trained TDs; the rest are out of distribution)",
+        true,
+    ),
+    (
+        "exact_timer",
+        "Exact timer: reward against the test buffer (% of TD) per TD and model, ± SD over runs as dots; grey: the reduced reward 0.1 of any delivery (the paper's red dotted line)",
         true,
     ),
 ];
