@@ -158,15 +158,16 @@ fn run_stage(
                 out: dir.join(job_folder::EVAL),
                 activity: false,
             };
-            let m = stages::evaluate(&req)?.metrics;
+            let outcome = stages::evaluate(&req)?;
+            let m = outcome.metrics;
             let mut line = format!(
                 "{}: {} episodes, success {:.1}%",
                 m.model,
                 m.episodes,
                 m.success_rate * 100.0
             );
-            if run.join(run_folder::LEVELS).is_dir() {
-                line += "; the curriculum levels' policies evaluated (levels.csv)";
+            if let Some(n) = outcome.levels {
+                line += &format!("; {n} curriculum levels' policies evaluated (levels.csv)");
             }
             line
         }

@@ -61,6 +61,16 @@ fn every_kept_level_is_evaluated_on_its_own_tds_from_every_start_cell() {
     let again = dir.join("eval2");
     evaluate_levels(&run, &again, 7).unwrap();
     assert_eq!(read_level_episodes(&again.join(LEVELS_CSV)).unwrap(), rows);
+    // A stray level file (one the learning curve never reached) is an error naming the
+    // folder, not a silent extra row.
+    let stray = run.join("levels").join("level-5.bpk");
+    std::fs::copy(run.join("levels").join("level-0.bpk"), &stray).unwrap();
+    let e = evaluate_levels(&run, &dir.join("eval-stray"), 7)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("levels") && e.contains("[0, 1, 2, 3, 5]"), "{e}");
+    std::fs::remove_file(&stray).unwrap();
     // A run without per-level policies has nothing to evaluate.
     std::fs::remove_dir_all(run.join("levels")).unwrap();
     assert_eq!(evaluate_levels(&run, &dir.join("eval3"), 7).unwrap(), None);

@@ -290,6 +290,11 @@ pub fn summarise_job(dir: &Path) -> Result<Option<CompactJob>, CollectError> {
     if !eval.join(METRICS).is_file() || !eval.join(RECORDS).is_file() {
         return Ok(None);
     }
+    // A curriculum run that kept its levels' policies is evaluated once they are too.
+    let kept_levels = dir.join(job_folder::RUN).join(run_folder::LEVELS).is_dir();
+    if kept_levels && !eval.join(LEVELS_CSV).is_file() {
+        return Ok(None);
+    }
     let job = read_json(&dir.join(job_folder::JOB))?;
     let cfg = read_json(&dir.join(job_folder::RUN).join(run_folder::CONFIG))?;
     // A timing-model run's curves.csv has its own columns (episodes, not PPO updates): its

@@ -252,7 +252,23 @@ pub fn multitimer_panels(s: &PaperStudy) -> ((usize, usize), Vec<Option<Chart>>)
         let mut hi = 1.0_f64;
         for c in s.multitimer.iter().filter(|c| c.model == model) {
             let k = curriculum_color(&c.curriculum);
-            let label = format!("{} ({} runs)", c.curriculum, c.runs.len());
+            // Several TD lists for one model (the full paper grid): each says which.
+            let lists = s
+                .multitimer
+                .iter()
+                .filter(|d| d.model == model && d.curriculum == c.curriculum)
+                .count();
+            let label = if lists > 1 {
+                let tds: Vec<String> = c.tds.iter().map(u32::to_string).collect();
+                format!(
+                    "{}, TDs {} ({} runs)",
+                    c.curriculum,
+                    tds.join(","),
+                    c.runs.len()
+                )
+            } else {
+                format!("{} ({} runs)", c.curriculum, c.runs.len())
+            };
             let dots: Vec<(f64, f64)> = c
                 .runs
                 .iter()

@@ -169,12 +169,10 @@ fn spreads_markdown(m: &mut String, rows: &[SpreadChange]) {
             .collect();
         ratios.sort_by(f64::total_cmp);
         shifts.sort_by(f64::total_cmp);
-        let median = |v: &[f64]| {
-            if v.is_empty() {
-                f64::NAN
-            } else {
-                v[v.len() / 2]
-            }
+        let median = |v: &[f64]| match v.len() {
+            0 => f64::NAN,
+            n if n % 2 == 1 => v[n / 2],
+            n => (v[n / 2 - 1] + v[n / 2]) / 2.0,
         };
         let n_first = Spread::of(sel.iter().map(|r| r.n_first as f64));
         let n_all = Spread::of(sel.iter().map(|r| r.n_all as f64));
@@ -342,11 +340,21 @@ pub fn tables_markdown(s: &PaperStudy) -> String {
         m,
         "\nTraining reward per curriculum level (mean of the learning curve's samples at that level, then mean ± SD over the runs with samples there):\n"
     );
-    let _ = writeln!(m, "| model | curriculum | level 0 | 1 | 2 | 3 | 4 | 5 |");
-    let _ = writeln!(m, "|---|---|---:|---:|---:|---:|---:|---:|");
+    let _ = writeln!(
+        m,
+        "| model | curriculum | TDs | level 0 | 1 | 2 | 3 | 4 | 5 |"
+    );
+    let _ = writeln!(m, "|---|---|---|---:|---:|---:|---:|---:|---:|");
     for c in &s.multitimer {
         let r: Vec<String> = c.level_reward.iter().map(|s| pm(s, 2)).collect();
-        let _ = writeln!(m, "| {} | {} | {} |", c.model, c.curriculum, r.join(" | "));
+        let _ = writeln!(
+            m,
+            "| {} | {} | {} | {} |",
+            c.model,
+            c.curriculum,
+            tds_label(&c.tds),
+            r.join(" | ")
+        );
     }
     if s.multitimer
         .iter()
@@ -399,8 +407,8 @@ pub fn tables_markdown(s: &PaperStudy) -> String {
     tds.sort_unstable();
     tds.dedup();
     let head: Vec<String> = tds.iter().map(|td| format!("TD {td}")).collect();
-    let _ = writeln!(m, "| model | curriculum | {} |", head.join(" | "));
-    let _ = writeln!(m, "|---|---|{}", "---:|".repeat(tds.len()));
+    let _ = writeln!(m, "| model | curriculum | TDs | {} |", head.join(" | "));
+    let _ = writeln!(m, "|---|---|---|{}", "---:|".repeat(tds.len()));
     for c in &s.multitimer {
         let cells: Vec<String> = tds
             .iter()
@@ -415,9 +423,10 @@ pub fn tables_markdown(s: &PaperStudy) -> String {
             .collect();
         let _ = writeln!(
             m,
-            "| {} | {} | {} |",
+            "| {} | {} | {} | {} |",
             c.model,
             c.curriculum,
+            tds_label(&c.tds),
             cells.join(" | ")
         );
     }
@@ -524,6 +533,13 @@ pub fn write_study(root: &Path, s: &PaperStudy) -> Result<(), CollectError> {
         }
         let bytes = w.into_inner().map_err(|x| e(root, x.to_string()))?;
         write("spreads.csv", &bytes)?;
+    } else {
+        // No condition has more runs than the first seeds: no stale file from an earlier
+        // analysis either.
+        let p = root.join("spreads.csv");
+        if p.is_file() {
+            std::fs::remove_file(&p).map_err(|x| e(&p, x.to_string()))?;
+        }
     }
     write("tables.md", tables_markdown(s).as_bytes())
 }

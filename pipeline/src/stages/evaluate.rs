@@ -53,6 +53,9 @@ pub struct EvalOutcome {
     pub figures: Vec<PathBuf>,
     /// With activity: (trials, units, the dataset file).
     pub activity: Option<(usize, usize, PathBuf)>,
+    /// Curriculum levels whose policies were evaluated into `levels.csv` (multi-timer runs
+    /// that kept them).
+    pub levels: Option<usize>,
 }
 
 fn analysis(e: String) -> PipelineError {
@@ -101,12 +104,16 @@ pub fn evaluate(req: &EvalRequest) -> Result<EvalOutcome, PipelineError> {
         mode: req.mode,
         seed: req.seed,
     };
+    // A multi-timer run's per-level policies, each in its level's test setting — before
+    // `metrics.json`, so that an evaluation folder with metrics is a finished one.
+    let levels = match (&req.subject, &req.task, req.mode) {
+        (EvalSubject::Run(run), None, Mode::Reference) => {
+            super::levels::evaluate_levels(run, &req.out, req.seed)?
+        }
+        _ => None,
+    };
     let (metrics, figures) =
         eval_folder::write_eval_folder(&req.out, &info, &records).map_err(analysis)?;
-    // A multi-timer run's per-level policies, each in its level's test setting.
-    if let (EvalSubject::Run(run), None, Mode::Reference) = (&req.subject, &req.task, req.mode) {
-        super::levels::evaluate_levels(run, &req.out, req.seed)?;
-    }
     let activity = if req.activity {
         let dataset = recorder.finish();
         if dataset.meta.n_units() == 0 {
@@ -128,6 +135,7 @@ pub fn evaluate(req: &EvalRequest) -> Result<EvalOutcome, PipelineError> {
         metrics,
         figures,
         activity,
+        levels,
     })
 }
 
@@ -164,6 +172,7 @@ pub fn evaluate_human(file: &Path, seed: u64, out: &Path) -> Result<EvalOutcome,
         metrics,
         figures,
         activity: None,
+        levels: None,
     })
 }
 
@@ -178,5 +187,6 @@ pub fn rescore_eval_folder(from: &Path, out: &Path) -> Result<EvalOutcome, Pipel
         metrics,
         figures,
         activity: None,
+        levels: None,
     })
 }

@@ -13,7 +13,9 @@
 //! Written as `levels.csv` ([`LevelEpisode`] rows) in the evaluation folder.
 
 use crate::PipelineError;
-use chronocooked_analysis::paper::collect::{LEVELS_CSV, LevelEpisode, write_level_episodes};
+use chronocooked_analysis::paper::collect::{
+    LEVELS_CSV, LevelEpisode, read_curve, write_level_episodes,
+};
 use chronocooked_analysis::{Condition, ConditionKind, Mode, run_protocol};
 use chronocooked_env::{RewardMode, TaskParams, make_config};
 use chronocooked_models::run_folder;
@@ -26,8 +28,15 @@ use std::path::Path;
 pub const CATEGORICAL_TEST_UNDER_BUFFER: u32 = 2;
 
 /// The task overrides of level `level`'s test setting (appended to the run's own) and the
-/// TDs it tests, for a run trained on `tds` with early buffer `under_buffer`.
-pub fn level_test_setting(level: usize, tds: &[u32], under_buffer: u32) -> (Vec<String>, Vec<u32>) {
+/// TDs it tests, for a run trained on `tds` with early buffer `under_buffer` and reduced
+/// reward `reduced` (an exact run is tested with its own reduced reward: 0 in the paper's
+/// code; a categorical one with the categorical notebook's 0.1).
+pub fn level_test_setting(
+    level: usize,
+    tds: &[u32],
+    under_buffer: u32,
+    reduced: f32,
+) -> (Vec<String>, Vec<u32>) {
     let categorical = under_buffer > 0;
     if level == 0 {
         let env = [
@@ -44,9 +53,9 @@ pub fn level_test_setting(level: usize, tds: &[u32], under_buffer: u32) -> (Vec<
     }
     let n = level.min(tds.len());
     let (reduced, under) = if categorical {
-        ("0.1", CATEGORICAL_TEST_UNDER_BUFFER)
+        ("0.1".to_string(), CATEGORICAL_TEST_UNDER_BUFFER)
     } else {
-        ("0", 0)
+        (reduced.to_string(), 0)
     };
     let env = vec![
         format!("num_timers={n}"),
@@ -60,7 +69,11 @@ pub fn level_test_setting(level: usize, tds: &[u32], under_buffer: u32) -> (Vec<
 
 /// Evaluates every per-level policy the PPO run folder `run` kept into
 /// `out/levels.csv`; returns the number of levels evaluated (`None`: the run is not a
-/// multi-timer curriculum run, or kept no per-level policies).
+/// multi-timer curriculum run, or kept no per-level policies). The kept levels must be
+/// exactly those the learning curve passed through (first to last level): a gap (a run
+/// resumed from a binary that kept none) or a stray file is an error naming the folder.
+/// The last level's policy is the final one; when the final update entered that level, it
+/// never collected a rollout there (as the paper's newest checkpoint of that level).
 pub fn evaluate_levels(run: &Path, out: &Path, seed: u64) -> Result<Option<usize>, PipelineError> {
     if !run.join(run_folder::LEVELS).is_dir() {
         return Ok(None);
@@ -74,11 +87,27 @@ pub fn evaluate_levels(run: &Path, out: &Path, seed: u64) -> Result<Option<usize
     if levels.is_empty() {
         return Ok(None);
     }
+    let curve_path = run.join(run_folder::CURVES);
+    let curve = read_curve(&curve_path).map_err(|e| PipelineError::Analysis(e.to_string()))?;
+    let passed: Vec<usize> = match (curve.first(), curve.last()) {
+        (Some(a), Some(b)) => (a.curriculum_level..=b.curriculum_level).collect(),
+        _ => Vec::new(),
+    };
+    if levels != passed {
+        return Err(PipelineError::Invalid(format!(
+            "{}: holds the policies of curriculum levels {levels:?}, but {} passed levels \
+             {passed:?} (a run resumed from a binary that kept no per-level policies, or a \
+             stray file); retrain the run to evaluate its levels",
+            run.join(run_folder::LEVELS).display(),
+            curve_path.display()
+        )));
+    }
     let task = make_config(&cfg.task, &cfg.env)?;
     let TaskParams::MultiTimer {
         tds,
         under_buffer,
         mode,
+        reduced_reward,
         ..
     } = &task.params
     else {
@@ -92,7 +121,7 @@ pub fn evaluate_levels(run: &Path, out: &Path, seed: u64) -> Result<Option<usize
     };
     let mut rows = Vec::new();
     for &level in &levels {
-        let (extra, test_tds) = level_test_setting(level, tds, under);
+        let (extra, test_tds) = level_test_setting(level, tds, under, *reduced_reward);
         let env: Vec<String> = cfg.env.iter().cloned().chain(extra).collect();
         let config = make_config(&cfg.task, &env)?;
         let mut agent = PpoAgent::load_level(run, level, &config)?;
@@ -124,17 +153,21 @@ mod tests {
     #[test]
     fn each_level_tests_its_own_tds_in_the_notebooks_settings() {
         let tds = [2, 4, 6, 8, 10];
-        let (env, t) = level_test_setting(0, &tds, 3);
+        let (env, t) = level_test_setting(0, &tds, 3, 0.0);
         assert_eq!(t, [2]);
         assert!(env.contains(&"mode=lower_bounded".to_string()));
         assert!(env.contains(&"reduced_reward=0.1".to_string()));
-        let (env, t) = level_test_setting(3, &tds, 0);
+        let (env, t) = level_test_setting(3, &tds, 0, 0.0);
         assert_eq!(t, [2, 4, 6]);
         assert!(env.contains(&"reduced_reward=0".to_string()));
         assert!(env.contains(&"under_buffer=0".to_string()));
-        let (env, t) = level_test_setting(5, &tds, 3);
+        let (env, t) = level_test_setting(5, &tds, 3, 0.0);
         assert_eq!(t, tds);
         assert!(env.contains(&"under_buffer=2".to_string()));
+        assert!(env.contains(&"reduced_reward=0.1".to_string()));
+        // An exact run trained with the text's reduced reward 0.1 is tested with it.
+        let (env, t) = level_test_setting(1, &[4], 0, 0.1);
+        assert_eq!(t, [4]);
         assert!(env.contains(&"reduced_reward=0.1".to_string()));
     }
 }
