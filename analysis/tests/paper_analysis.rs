@@ -696,3 +696,31 @@ fn a_new_runs_range_is_the_95_percent_prediction_interval() {
     );
     assert!(prediction_interval(&Spread::of([4.0])).0.is_nan());
 }
+
+#[test]
+fn a_row_the_old_rule_cannot_judge_has_no_z_verdict_either() {
+    use chronocooked_analysis::paper::compare::compare;
+    use chronocooked_analysis::paper::fi::analyse_fi;
+    // LSTM125 at one TD only: its R² rows (mean vs TD, SD vs mean) need three TDs.
+    let jobs: Vec<CompactJob> = (1..=4)
+        .map(|seed| CompactJob {
+            job: job("FixedInterval-v0", "lstm125", seed, &["td=4"], 20.0),
+            episodes: vec![
+                ep("fi", 4, (0, 0), Some(4), 0),
+                ep("fi", 4, (1, 1), Some(3 + seed as i32 % 2), 0),
+            ],
+            curve: vec![],
+            levels: vec![],
+        })
+        .collect();
+    let rows = compare(&analyse_fi(&jobs), &[], &[]);
+    let r2: Vec<_> = rows.iter().filter(|r| r.table.contains("r2")).collect();
+    assert!(!r2.is_empty());
+    for r in r2 {
+        assert_eq!(
+            (r.agree.as_str(), r.agree_z.as_str()),
+            ("n/a", "n/a"),
+            "{r:?}"
+        );
+    }
+}

@@ -335,7 +335,9 @@ pub fn compare_numbers(
             _ => None,
         };
         if let Some((lab_mean, lab_sd, n, agree, z, se_from)) = value {
-            let agree_z = if se_from == "exact" {
+            // Counts compare exactly; a row the old rule cannot judge (fewer than two runs, or
+            // an R² over fewer than three TDs) has no z verdict either.
+            let agree_z = if se_from == "exact" || agree == "n/a" {
                 agree.clone()
             } else {
                 agree_z(p.value, lab_mean, z)
