@@ -192,6 +192,17 @@ fn spreads_markdown(m: &mut String, rows: &[SpreadChange]) {
     }
 }
 
+/// A Markdown table's header: the `fixed` columns (left-aligned) then the numeric `cols`.
+fn table_head(m: &mut String, fixed: &[&str], cols: &[String]) {
+    let _ = writeln!(m, "| {} | {} |", fixed.join(" | "), cols.join(" | "));
+    let _ = writeln!(
+        m,
+        "|{}{}",
+        "---|".repeat(fixed.len()),
+        "---:|".repeat(cols.len())
+    );
+}
+
 fn tds_label(tds: &[u32]) -> String {
     tds.iter()
         .map(u32::to_string)
@@ -407,8 +418,7 @@ pub fn tables_markdown(s: &PaperStudy) -> String {
     tds.sort_unstable();
     tds.dedup();
     let head: Vec<String> = tds.iter().map(|td| format!("TD {td}")).collect();
-    let _ = writeln!(m, "| model | curriculum | TDs | {} |", head.join(" | "));
-    let _ = writeln!(m, "|---|---|---|{}", "---:|".repeat(tds.len()));
+    table_head(&mut m, &["model", "curriculum", "TDs"], &head);
     for c in &s.multitimer {
         let cells: Vec<String> = tds
             .iter()
@@ -446,8 +456,7 @@ pub fn tables_markdown(s: &PaperStudy) -> String {
             .iter()
             .map(|f| format!("buffer {:.0}%", f * 100.0))
             .collect();
-        let _ = writeln!(m, "| model | TD | runs | {} |", head.join(" | "));
-        let _ = writeln!(m, "|---|---:|---:|{}", "---:|".repeat(fracs.len()));
+        table_head(&mut m, &["model", "TD", "runs"], &head);
         for c in &s.exact_timer {
             let cells: Vec<String> = fracs
                 .iter()
