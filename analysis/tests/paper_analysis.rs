@@ -507,7 +507,7 @@ fn multitimer_analysis_reads_levels_rewards_and_oven_off_times() {
     assert!(
         html.contains("<svg")
             && html.contains(
-                "Numbers printed in the paper: 0 of 0 agree under the z rule (0 under the old rule)"
+                "Numbers printed in the paper's main text: 0 of 0 agree under the z rule (0 under the old rule)"
             )
     );
     assert!(!html.contains("http://"), "the page must hold no URL");

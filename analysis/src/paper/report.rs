@@ -6,6 +6,7 @@ use super::collect::{CollectError, err};
 use super::compare::ComparisonRow;
 use super::study::PaperStudy;
 use crate::paper::agreement::Counts;
+use crate::paper::reference::APPENDIX_PREFIX;
 use crate::report::markup::{figure, inline_svg, page};
 use maud::{Markup, html};
 use std::path::{Path, PathBuf};
@@ -79,12 +80,22 @@ const INTRO: &str = " finished jobs. Old rule: a paper number agrees when it lie
 /// The agreement per comparison table, counted over the numbers printed in the paper.
 fn agreement_table(s: &PaperStudy) -> Markup {
     let by_table = agreement_by_table(&s.comparison);
-    let printed = by_table.iter().filter(|t| t.1 == "paper");
-    let (n, yes, yes_z) = printed.fold((0, 0, 0), |(n, y, z), t| (n + t.2, y + t.3, z + t.4));
+    // The main text's printed numbers lead; the appendix's sizes 8 and 256 apart.
+    let sum = |appendix: bool| {
+        by_table
+            .iter()
+            .filter(|t| t.1 == "paper" && t.0.starts_with(APPENDIX_PREFIX) == appendix)
+            .fold((0, 0, 0), |(n, y, z), t| (n + t.2, y + t.3, z + t.4))
+    };
+    let (n, yes, yes_z) = sum(false);
+    let (an, ayes, ayes_z) = sum(true);
     html! {
         h2.group {
-            "Numbers printed in the paper: " (yes_z) " of " (n)
+            "Numbers printed in the paper's main text: " (yes_z) " of " (n)
             " agree under the z rule (" (yes) " under the old rule)"
+            @if an > 0 {
+                "; appendix, sizes 8 and 256: " (ayes_z) " of " (an) " (" (ayes) ")"
+            }
         }
         table {
             tr {
@@ -108,7 +119,7 @@ fn negative_control_table(s: &PaperStudy) -> Markup {
         }
         table {
             tr { th { "pairing" } th { "matched" } th { "source" } th { "old rule" } th { "z rule" } }
-            @for c in nc.iter().filter(|c| c.rule == "old") {
+            @for c in nc.iter().filter(|c| c.rule == "old" && c.counts.rows > 0) {
                 @let z = nc
                     .iter()
                     .find(|x| x.pairing == c.pairing && x.source == c.source && x.rule == "z");
@@ -189,7 +200,7 @@ pub fn write_paper_report(
             }
             (agreement_table(s))
             (negative_control_table(s))
-            (pi_table(s))
+            @if !s.pi_verdicts.is_empty() { (pi_table(s)) }
             @for f in &shown { (f) }
             (comparison_table(s))
         },
