@@ -203,6 +203,18 @@ fn table_head(m: &mut String, fixed: &[&str], cols: &[String]) {
     );
 }
 
+/// One multi-timer cell's table row: model, curriculum, TD list, then `cells`.
+fn mt_row(m: &mut String, c: &MtCell, cells: &[String]) {
+    let _ = writeln!(
+        m,
+        "| {} | {} | {} | {} |",
+        c.model,
+        c.curriculum,
+        tds_label(&c.tds),
+        cells.join(" | ")
+    );
+}
+
 fn tds_label(tds: &[u32]) -> String {
     tds.iter()
         .map(u32::to_string)
@@ -358,14 +370,7 @@ pub fn tables_markdown(s: &PaperStudy) -> String {
     let _ = writeln!(m, "|---|---|---|---:|---:|---:|---:|---:|---:|");
     for c in &s.multitimer {
         let r: Vec<String> = c.level_reward.iter().map(|s| pm(s, 2)).collect();
-        let _ = writeln!(
-            m,
-            "| {} | {} | {} | {} |",
-            c.model,
-            c.curriculum,
-            tds_label(&c.tds),
-            r.join(" | ")
-        );
+        mt_row(&mut m, c, &r);
     }
     if s.multitimer
         .iter()
@@ -396,14 +401,7 @@ pub fn tables_markdown(s: &PaperStudy) -> String {
                     }
                 })
                 .collect();
-            let _ = writeln!(
-                m,
-                "| {} | {} | {} | {} |",
-                c.model,
-                c.curriculum,
-                tds_label(&c.tds),
-                r.join(" | ")
-            );
+            mt_row(&mut m, c, &r);
         }
     }
     let _ = writeln!(
@@ -431,14 +429,7 @@ pub fn tables_markdown(s: &PaperStudy) -> String {
                     })
             })
             .collect();
-        let _ = writeln!(
-            m,
-            "| {} | {} | {} | {} |",
-            c.model,
-            c.curriculum,
-            tds_label(&c.tds),
-            cells.join(" | ")
-        );
+        mt_row(&mut m, c, &cells);
     }
     if !s.exact_timer.is_empty() {
         let mut fracs: Vec<f64> = s
