@@ -306,3 +306,57 @@ fn a_reader_that_goes_away_ends_the_command_quietly() {
         assert_eq!(out.status.signal(), Some(13), "{:?}", out.status);
     }
 }
+
+/// Copies a folder tree (the committed held-out jobs) into `to`.
+fn copy_tree(from: &std::path::Path, to: &std::path::Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for e in std::fs::read_dir(from).unwrap() {
+        let e = e.unwrap();
+        let target = to.join(e.file_name());
+        if e.file_type().unwrap().is_dir() {
+            copy_tree(&e.path(), &target);
+        } else {
+            std::fs::copy(e.path(), &target).unwrap();
+        }
+    }
+}
+
+#[test]
+fn paper_check_held_out_judges_each_statistic_and_refuses_a_used_seed() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dir = temp_dir("held-out");
+    let held = dir.join("held");
+    copy_tree(
+        &root.join("results/paper-core-heldout/jobs"),
+        &held.join("jobs"),
+    );
+    let held_s = held.to_str().unwrap();
+    let study = root.join("results/paper-core");
+    let out = run_ok(&[
+        "paper",
+        "check-held-out",
+        held_s,
+        "--study",
+        study.to_str().unwrap(),
+    ]);
+    // Every row of the table carries a verdict; the CSV has one row per job × statistic.
+    let rows: Vec<&str> = out.lines().filter(|l| l.contains("/seed")).collect();
+    assert!(!rows.is_empty(), "{out}");
+    assert!(
+        rows.iter()
+            .all(|l| ["inside", "outside", "no value", "no range"]
+                .iter()
+                .any(|v| l.trim_end().ends_with(&format!("{v} |")))),
+        "{out}"
+    );
+    let csv = std::fs::read_to_string(held.join("held-out.csv")).unwrap();
+    assert!(csv.starts_with("id,seed,task,model,condition,statistic,value,"));
+    assert_eq!(csv.lines().count(), rows.len() + 1);
+    // The held-out jobs as their own study: every seed is "used", a typed refusal.
+    let err = run_err(&["paper", "check-held-out", held_s, "--study", held_s]);
+    assert!(
+        err.contains("is already one of the study's runs of this condition"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

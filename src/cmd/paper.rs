@@ -2,7 +2,7 @@
 //! the repository, the paper's analyses beside the lab's, and the comparison table.
 
 use anyhow::{Context, Result};
-use chronocooked_analysis::paper::{collect, study};
+use chronocooked_analysis::paper::{collect, heldout, study};
 use clap::{Args, Subcommand};
 use std::path::PathBuf;
 
@@ -17,6 +17,11 @@ pub enum PaperCommand {
     /// comparison.csv, agreement.json (with the negative control), pi.csv (peak-interval
     /// uniformity), tables.md, report.html and figures/ there.
     Analyse(AnalyseArgs),
+    /// Check jobs rerun with seeds the study never used against the study's reported spread:
+    /// each FI and bisection statistic of each held-out job against the 95% range for one
+    /// new run of its condition (the study's `ranges.csv`). Writes held-out.csv into the
+    /// held-out results folder and prints the table.
+    CheckHeldOut(CheckHeldOutArgs),
 }
 
 /// `paper collect`.
@@ -36,6 +41,17 @@ pub struct AnalyseArgs {
     pub results: PathBuf,
 }
 
+/// `paper check-held-out`.
+#[derive(Args, Debug)]
+pub struct CheckHeldOutArgs {
+    /// Results folder of the held-out jobs (`paper collect` of a sweep with an unused seed,
+    /// e.g. results/paper-core-heldout).
+    pub held_out: PathBuf,
+    /// The study's results folder (e.g. results/paper-core).
+    #[arg(long)]
+    pub study: PathBuf,
+}
+
 /// Runs a `paper` subcommand.
 pub fn run(cmd: PaperCommand) -> Result<()> {
     match cmd {
@@ -45,6 +61,19 @@ pub fn run(cmd: PaperCommand) -> Result<()> {
                 "{written} finished jobs collected into {} ({pending} unfinished skipped)",
                 a.out.display()
             );
+            Ok(())
+        }
+        PaperCommand::CheckHeldOut(a) => {
+            let read = |p: &PathBuf| {
+                collect::read_compact(p).with_context(|| format!("reading {}", p.display()))
+            };
+            let (study_jobs, held) = (read(&a.study)?, read(&a.held_out)?);
+            let checks = heldout::check_held_out(&study_jobs, &held)
+                .with_context(|| format!("checking {}", a.held_out.display()))?;
+            let csv = a.held_out.join("held-out.csv");
+            heldout::write_held_out_csv(&csv, &checks)?;
+            print!("{}", heldout::held_out_markdown(&checks));
+            println!("wrote {}", csv.display());
             Ok(())
         }
         PaperCommand::Analyse(a) => {

@@ -15,6 +15,7 @@
 //! * [`pi`] — `pi.csv`: the peak-interval probes and the uniform-checking test;
 //! * [`spreads`] — `spreads.csv`: each condition's spread on the first four seeds and on
 //!   every run;
+//! * [`heldout`] — a held-out seed's run against each condition's 95% range for a new run;
 //! * [`figures`] — the study's figures in the paper's form;
 //! * [`study`] — the whole analysis of a results folder, written as JSON, CSV and Markdown;
 //! * [`report`] — the study's `report.html`: agreement per table, figures, every row.
@@ -25,6 +26,7 @@ pub mod collect;
 pub mod compare;
 pub mod fi;
 pub mod figures;
+pub mod heldout;
 pub mod lsq;
 pub mod multitimer;
 pub mod pi;

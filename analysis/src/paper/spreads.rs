@@ -173,26 +173,60 @@ fn range(task: &str, model: &str, condition: String, statistic: &str, s: Spread)
     }
 }
 
-/// The new-run range of every FI and bisection statistic with at least two runs.
-pub fn new_run_ranges(jobs: &[CompactJob]) -> Vec<NewRunRange> {
+/// One per-run statistic of one condition over a set of runs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConditionStat {
+    /// Task id.
+    pub task: String,
+    /// Model label.
+    pub model: String,
+    /// Condition: `TD 12` or the anchor pair `4-12`.
+    pub condition: String,
+    /// `foc_mean`, `foc_cv` (FI) or `wf`, `dl`, `bp` (bisection).
+    pub statistic: &'static str,
+    /// The statistic over the runs (runs the paper's rules exclude, or whose fit fails,
+    /// have no value).
+    pub spread: Spread,
+}
+
+/// Every FI and bisection statistic per condition over `jobs`: FI each run's mean first
+/// oven check and its CV; bisection each run's WF, DL and bisection point.
+pub fn condition_stats(jobs: &[CompactJob]) -> Vec<ConditionStat> {
     let mut out = Vec::new();
+    let mut push = |task: &str, model: &str, condition: &str, statistic, spread| {
+        out.push(ConditionStat {
+            task: task.into(),
+            model: model.into(),
+            condition: condition.into(),
+            statistic,
+            spread,
+        })
+    };
     for m in analyse_fi(jobs) {
         for c in &m.cells {
             let cond = format!("TD {}", c.td);
             let t = "FixedInterval-v0";
-            out.push(range(t, &m.model, cond.clone(), "foc_mean", c.run_mean));
-            out.push(range(t, &m.model, cond, "foc_cv", c.run_cv));
+            push(t, &m.model, &cond, "foc_mean", c.run_mean);
+            push(t, &m.model, &cond, "foc_cv", c.run_cv);
         }
     }
     for m in analyse_bisection(jobs) {
         for c in &m.cells {
             let cond = format!("{}-{}", c.short, c.long);
             let t = "Bisection-v0";
-            out.push(range(t, &m.model, cond.clone(), "wf", c.wf));
-            out.push(range(t, &m.model, cond.clone(), "dl", c.dl));
-            out.push(range(t, &m.model, cond, "bp", c.bp));
+            push(t, &m.model, &cond, "wf", c.wf);
+            push(t, &m.model, &cond, "dl", c.dl);
+            push(t, &m.model, &cond, "bp", c.bp);
         }
     }
-    out.retain(|r| r.n >= 2);
     out
+}
+
+/// The new-run range of every FI and bisection statistic with at least two runs.
+pub fn new_run_ranges(jobs: &[CompactJob]) -> Vec<NewRunRange> {
+    condition_stats(jobs)
+        .into_iter()
+        .filter(|c| c.spread.n >= 2)
+        .map(|c| range(&c.task, &c.model, c.condition, c.statistic, c.spread))
+        .collect()
 }
