@@ -67,7 +67,10 @@ fn a_held_out_run_is_judged_against_the_hand_computed_new_run_range() {
             .clone()
     };
     let (a, b) = (mean("seed9"), mean("seed10"));
-    assert_eq!((a.value, a.n, a.verdict), (6.0, 4, HeldOutVerdict::Inside));
+    assert_eq!(
+        (a.value, a.n, a.runs, a.verdict),
+        (6.0, 4, 4, HeldOutVerdict::Inside)
+    );
     assert!((a.lo - 2.44578).abs() < 1e-4 && (a.hi - 6.55422).abs() < 1e-4);
     // (6 − 4.5) / 0.57735 = 2.598 SDs: inside the range although beyond 2 SDs.
     assert!((a.sds_from_mean - 2.598076).abs() < 1e-5);
@@ -91,10 +94,10 @@ fn an_excluded_run_has_no_value_and_an_unstudied_condition_no_range() {
     // an FI run at a TD the study never ran.
     let checks = check_held_out(&study, &[bisection_run(9, 150.0, 8), fi_run(9, 12, 11)]).unwrap();
     let bis: Vec<_> = checks.iter().filter(|c| c.task == "Bisection-v0").collect();
-    assert_eq!(bis.len(), 3, "wf, dl and bp");
+    assert_eq!(bis.len(), 4, "anchor accuracy, wf, dl and bp");
     assert!(
         bis.iter()
-            .all(|c| c.verdict == HeldOutVerdict::NoValue && c.n >= 2)
+            .all(|c| c.verdict == HeldOutVerdict::NoValue && c.n >= 2 && c.runs == 4)
     );
     let fi: Vec<_> = checks.iter().filter(|c| c.condition == "TD 12").collect();
     assert!(!fi.is_empty());
@@ -110,6 +113,15 @@ fn an_excluded_run_has_no_value_and_an_unstudied_condition_no_range() {
         HeldOutVerdict::Inside | HeldOutVerdict::Outside
     ));
     assert!(bp.value.is_finite() && bp.value > 4.0 && bp.value < 12.0);
+    // Its anchors are all delivered right, as in every study run: accuracy 1 with SD 0.
+    let anchors = kept
+        .iter()
+        .find(|c| c.statistic == "anchor_accuracy")
+        .unwrap();
+    assert_eq!(
+        (anchors.value, anchors.mean, anchors.verdict),
+        (1.0, 1.0, HeldOutVerdict::Inside)
+    );
 }
 
 #[test]

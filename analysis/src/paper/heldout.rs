@@ -1,13 +1,13 @@
 //! The held-out check (issues #15 and #29): a grid job rerun with a seed the study never
 //! used should land inside the study's reported spread — the 95% prediction interval of one
-//! new run of its condition ([`NewRunRange`], `ranges.csv`).
+//! new run of its condition ([`super::spreads::NewRunRange`], `ranges.csv`).
 //!
 //! Each held-out job is analysed on its own exactly as the study analyses its runs (the
 //! notebook's exclusion rule and fit failures included), so its value of each statistic is
 //! the one a study run with that seed would have contributed.
 
 use super::collect::CompactJob;
-use super::spreads::{NewRunRange, condition_stats, new_run_ranges};
+use super::spreads::{condition_stats, prediction_interval};
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use thiserror::Error;
@@ -56,6 +56,9 @@ pub struct HeldOutCheck {
     pub value: f64,
     /// The study's runs with a value.
     pub n: usize,
+    /// The study's runs of the condition, with a value or not (a held-out run without a
+    /// value is unlike the study when most of these have one).
+    pub runs: usize,
     /// Their mean.
     pub mean: f64,
     /// Their SD.
@@ -107,7 +110,7 @@ pub fn check_held_out(
     study: &[CompactJob],
     held_out: &[CompactJob],
 ) -> Result<Vec<HeldOutCheck>, HeldOutError> {
-    let ranges = new_run_ranges(study);
+    let study_stats = condition_stats(study);
     let mut out = Vec::new();
     for h in held_out {
         if let Some(s) = study
@@ -121,24 +124,22 @@ pub fn check_held_out(
             });
         }
         for stat in condition_stats(std::slice::from_ref(h)) {
-            let range: Option<&NewRunRange> = ranges.iter().find(|r| {
-                r.task == stat.task
-                    && r.model == stat.model
-                    && r.condition == stat.condition
-                    && r.statistic == stat.statistic
+            let study_stat = study_stats.iter().find(|s| {
+                s.task == stat.task
+                    && s.model == stat.model
+                    && s.condition == stat.condition
+                    && s.statistic == stat.statistic
             });
             let value = if stat.spread.n == 1 {
                 stat.spread.mean
             } else {
                 f64::NAN
             };
-            let (n, mean, sd, lo, hi) = range.map(|r| (r.n, r.mean, r.sd, r.lo, r.hi)).unwrap_or((
-                0,
-                f64::NAN,
-                f64::NAN,
-                f64::NAN,
-                f64::NAN,
-            ));
+            let (n, runs, mean, sd) = study_stat.map_or((0, 0, f64::NAN, f64::NAN), |s| {
+                (s.spread.n, s.runs, s.spread.mean, s.spread.sd)
+            });
+            let (lo, hi) =
+                study_stat.map_or((f64::NAN, f64::NAN), |s| prediction_interval(&s.spread));
             let verdict = if !value.is_finite() {
                 HeldOutVerdict::NoValue
             } else if !(lo.is_finite() && hi.is_finite()) {
@@ -157,6 +158,7 @@ pub fn check_held_out(
                 statistic: stat.statistic.into(),
                 value,
                 n,
+                runs,
                 mean,
                 sd,
                 lo,
@@ -201,21 +203,22 @@ fn num(x: f64) -> String {
     }
 }
 
-/// The checks as a Markdown table (job, statistic, held-out value, study mean ± SD over n
-/// runs, the 95% range for a new run, SDs from the mean, verdict) and a count line.
+/// The checks as a Markdown table (job, statistic, held-out value, study mean ± SD and its
+/// runs with a value of all its runs, the 95% range for a new run, SDs from the mean, verdict) and a count line.
 pub fn held_out_markdown(checks: &[HeldOutCheck]) -> String {
     let mut s = String::from(
-        "| job | statistic | held-out run | study (mean ± SD, runs) | 95% range for a new run | SDs from mean | verdict |\n|---|---|---:|---|---|---:|---|\n",
+        "| job | statistic | held-out run | study (mean ± SD; runs with a value of all) | 95% range for a new run | SDs from mean | verdict |\n|---|---|---:|---|---|---:|---|\n",
     );
     for c in checks {
         s.push_str(&format!(
-            "| {} | {} | {} | {} ± {} ({}) | {} … {} | {} | {} |\n",
+            "| {} | {} | {} | {} ± {} ({} of {}) | {} … {} | {} | {} |\n",
             c.id,
             c.statistic,
             num(c.value),
             num(c.mean),
             num(c.sd),
             c.n,
+            c.runs,
             num(c.lo),
             num(c.hi),
             if c.sds_from_mean.is_finite() {

@@ -132,10 +132,14 @@ pub struct NewRunRange {
     pub model: String,
     /// Condition: `TD 12` or the anchor pair `4-12`.
     pub condition: String,
-    /// `foc_mean`, `foc_cv` (FI) or `wf`, `dl`, `bp` (bisection).
+    /// `foc_mean`, `foc_cv` (FI) or `anchor_accuracy`, `wf`, `dl`, `bp` (bisection).
     pub statistic: String,
     /// Runs with a value.
     pub n: usize,
+    /// Runs of the condition, with a value or not (excluded by the paper's rule, fit
+    /// failed); 0 in files written before it existed.
+    #[serde(default)]
+    pub runs: usize,
     /// Mean over them.
     pub mean: f64,
     /// SD over them.
@@ -158,14 +162,16 @@ pub fn prediction_interval(s: &Spread) -> (f64, f64) {
     (s.mean - half, s.mean + half)
 }
 
-fn range(task: &str, model: &str, condition: String, statistic: &str, s: Spread) -> NewRunRange {
+fn range(c: ConditionStat) -> NewRunRange {
+    let s = c.spread;
     let (lo, hi) = prediction_interval(&s);
     NewRunRange {
-        task: task.into(),
-        model: model.into(),
-        condition,
-        statistic: statistic.into(),
+        task: c.task,
+        model: c.model,
+        condition: c.condition,
+        statistic: c.statistic.into(),
         n: s.n,
+        runs: c.runs,
         mean: s.mean,
         sd: s.sd,
         lo,
@@ -182,23 +188,27 @@ pub struct ConditionStat {
     pub model: String,
     /// Condition: `TD 12` or the anchor pair `4-12`.
     pub condition: String,
-    /// `foc_mean`, `foc_cv` (FI) or `wf`, `dl`, `bp` (bisection).
+    /// `foc_mean`, `foc_cv` (FI) or `anchor_accuracy`, `wf`, `dl`, `bp` (bisection).
     pub statistic: &'static str,
+    /// Runs of the condition (with a value or not).
+    pub runs: usize,
     /// The statistic over the runs (runs the paper's rules exclude, or whose fit fails,
     /// have no value).
     pub spread: Spread,
 }
 
 /// Every FI and bisection statistic per condition over `jobs`: FI each run's mean first
-/// oven check and its CV; bisection each run's WF, DL and bisection point.
+/// oven check and its CV; bisection each run's anchor accuracy (runs the notebook keeps),
+/// WF, DL and bisection point.
 pub fn condition_stats(jobs: &[CompactJob]) -> Vec<ConditionStat> {
     let mut out = Vec::new();
-    let mut push = |task: &str, model: &str, condition: &str, statistic, spread| {
+    let mut push = |task: &str, model: &str, condition: &str, runs, statistic, spread| {
         out.push(ConditionStat {
             task: task.into(),
             model: model.into(),
             condition: condition.into(),
             statistic,
+            runs,
             spread,
         })
     };
@@ -206,17 +216,26 @@ pub fn condition_stats(jobs: &[CompactJob]) -> Vec<ConditionStat> {
         for c in &m.cells {
             let cond = format!("TD {}", c.td);
             let t = "FixedInterval-v0";
-            push(t, &m.model, &cond, "foc_mean", c.run_mean);
-            push(t, &m.model, &cond, "foc_cv", c.run_cv);
+            push(t, &m.model, &cond, c.runs, "foc_mean", c.run_mean);
+            push(t, &m.model, &cond, c.runs, "foc_cv", c.run_cv);
         }
     }
     for m in analyse_bisection(jobs) {
         for c in &m.cells {
             let cond = format!("{}-{}", c.short, c.long);
             let t = "Bisection-v0";
-            push(t, &m.model, &cond, "wf", c.wf);
-            push(t, &m.model, &cond, "dl", c.dl);
-            push(t, &m.model, &cond, "bp", c.bp);
+            let runs = c.runs.len();
+            push(
+                t,
+                &m.model,
+                &cond,
+                runs,
+                "anchor_accuracy",
+                c.anchor_accuracy,
+            );
+            push(t, &m.model, &cond, runs, "wf", c.wf);
+            push(t, &m.model, &cond, runs, "dl", c.dl);
+            push(t, &m.model, &cond, runs, "bp", c.bp);
         }
     }
     out
@@ -227,6 +246,6 @@ pub fn new_run_ranges(jobs: &[CompactJob]) -> Vec<NewRunRange> {
     condition_stats(jobs)
         .into_iter()
         .filter(|c| c.spread.n >= 2)
-        .map(|c| range(&c.task, &c.model, c.condition, c.statistic, c.spread))
+        .map(range)
         .collect()
 }
