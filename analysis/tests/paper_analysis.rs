@@ -9,7 +9,7 @@ use chronocooked_analysis::paper::collect::{CompactJob, EpisodeRow, JobSummary};
 use chronocooked_analysis::paper::compare::{agree_mean, agree_sd};
 use chronocooked_analysis::paper::fi::analyse_fi;
 use chronocooked_analysis::paper::lsq::{LsqHow, fit_paper};
-use common::{curve_at, ep, job, mt_ep};
+use common::{curve_at, ep, job, lstm_fi_job, mt_ep};
 
 fn logistic(d: f64, x0: f64, k: f64) -> f64 {
     1.0 / (1.0 + (-(d - x0) / k).exp())
@@ -216,20 +216,13 @@ fn study_figures_and_comparison_come_out_of_constructed_jobs() {
     let mut jobs = Vec::new();
     for seed in 1..=3u64 {
         for td in [4u32, 12] {
-            jobs.push(CompactJob {
-                job: job(
-                    "FixedInterval-v0",
-                    "lstm125",
-                    seed,
-                    &[&format!("td={td}")],
-                    20.0,
-                ),
-                episodes: (0..12)
+            jobs.push(lstm_fi_job(
+                seed,
+                td,
+                (0..12)
                     .map(|c| ep("fi", td, (c, 0), Some((td + (c as u32 % 3)) as i32 - 1), 0))
                     .collect(),
-                curve: vec![],
-                levels: vec![],
-            });
+            ));
         }
         let mut b = bisection_job(seed, 30.0, 7 + seed as u32 % 2);
         b.job.model = "lstm125".into();

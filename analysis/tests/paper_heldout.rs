@@ -6,25 +6,18 @@ mod common;
 
 use chronocooked_analysis::paper::collect::CompactJob;
 use chronocooked_analysis::paper::heldout::{HeldOutError, HeldOutVerdict, check_held_out};
-use common::{ep, job};
+use common::{ep, job, lstm_fi_job};
 
 /// An LSTM125 FI run at `td` whose two start cells both check first at `foc`.
 fn fi_run(seed: u64, td: u32, foc: i32) -> CompactJob {
-    CompactJob {
-        job: job(
-            "FixedInterval-v0",
-            "lstm125",
-            seed,
-            &[&format!("td={td}")],
-            20.0,
-        ),
-        episodes: vec![
+    lstm_fi_job(
+        seed,
+        td,
+        vec![
             ep("fi", td, (0, 0), Some(foc), 0),
             ep("fi", td, (1, 1), Some(foc), 0),
         ],
-        curve: vec![],
-        levels: vec![],
-    }
+    )
 }
 
 /// A bisection run (pair 4-12) that answers "long" above probe `bp`; `ep_len` is its last

@@ -147,14 +147,15 @@ fn the_exact_timer_scores_each_test_buffer_per_run() {
 #[test]
 fn spreads_compare_the_first_four_seeds_with_every_run_by_hand() {
     use chronocooked_analysis::paper::spreads::spread_changes;
-    let fi_run = |seed: u64, foc: i32| CompactJob {
-        job: job("FixedInterval-v0", "lstm125", seed, &["td=4"], 20.0),
-        episodes: vec![
-            ep("fi", 4, (0, 0), Some(foc), 0),
-            ep("fi", 4, (1, 1), Some(foc), 0),
-        ],
-        curve: vec![],
-        levels: vec![],
+    let fi_run = |seed: u64, foc: i32| {
+        common::lstm_fi_job(
+            seed,
+            4,
+            vec![
+                ep("fi", 4, (0, 0), Some(foc), 0),
+                ep("fi", 4, (1, 1), Some(foc), 0),
+            ],
+        )
     };
     // Run means: seeds 1–4 → 4, 4, 5, 5; seeds 5, 6 → 2, 8.
     let mut jobs: Vec<CompactJob> = [(1, 4), (2, 4), (3, 5), (4, 5)]

@@ -66,3 +66,23 @@ pub fn curve_at(level: usize, ret: f64) -> chronocooked_analysis::paper::collect
         curriculum_level: level,
     }
 }
+
+/// A constructed LSTM125 fixed-interval job at `td` with these evaluation episodes.
+pub fn lstm_fi_job(
+    seed: u64,
+    td: u32,
+    episodes: Vec<EpisodeRow>,
+) -> chronocooked_analysis::paper::collect::CompactJob {
+    chronocooked_analysis::paper::collect::CompactJob {
+        job: job(
+            "FixedInterval-v0",
+            "lstm125",
+            seed,
+            &[&format!("td={td}")],
+            20.0,
+        ),
+        episodes,
+        curve: vec![],
+        levels: vec![],
+    }
+}
