@@ -359,7 +359,8 @@ pub fn summarise_job(dir: &Path) -> Result<Option<CompactJob>, CollectError> {
     }))
 }
 
-fn write_csv<T: Serialize>(path: &Path, rows: &[T]) -> Result<(), CollectError> {
+/// Writes `rows` as CSV (a header from the first row's fields) to `path`, atomically.
+pub(crate) fn write_csv<T: Serialize>(path: &Path, rows: &[T]) -> Result<(), CollectError> {
     let mut w = csv::Writer::from_writer(Vec::new());
     for r in rows {
         w.serialize(r).map_err(|e| err(path, e))?;

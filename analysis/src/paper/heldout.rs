@@ -50,7 +50,8 @@ pub struct HeldOutCheck {
     pub model: String,
     /// Condition: `TD 12` or the anchor pair `4-12`.
     pub condition: String,
-    /// `foc_mean`, `foc_cv` (FI; steps) or `wf`, `dl`, `bp` (bisection; `dl`, `bp` in steps).
+    /// `foc_mean`, `foc_cv` (FI; steps) or `anchor_accuracy`, `wf`, `dl`, `bp` (bisection;
+    /// `dl`, `bp` in steps).
     pub statistic: String,
     /// The held-out run's value (NaN when it has none).
     pub value: f64,
@@ -135,11 +136,16 @@ pub fn check_held_out(
             } else {
                 f64::NAN
             };
-            let (n, runs, mean, sd) = study_stat.map_or((0, 0, f64::NAN, f64::NAN), |s| {
-                (s.spread.n, s.runs, s.spread.mean, s.spread.sd)
-            });
-            let (lo, hi) =
-                study_stat.map_or((f64::NAN, f64::NAN), |s| prediction_interval(&s.spread));
+            let (n, runs, mean, sd, (lo, hi)) = match study_stat {
+                Some(s) => (
+                    s.spread.n,
+                    s.runs,
+                    s.spread.mean,
+                    s.spread.sd,
+                    prediction_interval(&s.spread),
+                ),
+                None => (0, 0, f64::NAN, f64::NAN, (f64::NAN, f64::NAN)),
+            };
             let verdict = if !value.is_finite() {
                 HeldOutVerdict::NoValue
             } else if !(lo.is_finite() && hi.is_finite()) {
@@ -183,16 +189,7 @@ pub fn write_held_out_csv(
     path: &std::path::Path,
     checks: &[HeldOutCheck],
 ) -> Result<(), super::collect::CollectError> {
-    let e = |m: String| super::collect::CollectError::File {
-        path: path.display().to_string(),
-        message: m,
-    };
-    let mut w = csv::Writer::from_writer(Vec::new());
-    for c in checks {
-        w.serialize(c).map_err(|x| e(x.to_string()))?;
-    }
-    let bytes = w.into_inner().map_err(|x| e(x.to_string()))?;
-    chronocooked_env::fs::write_atomic(path, &bytes).map_err(|x| e(x.error.to_string()))
+    super::collect::write_csv(path, checks)
 }
 
 fn num(x: f64) -> String {
@@ -203,8 +200,9 @@ fn num(x: f64) -> String {
     }
 }
 
-/// The checks as a Markdown table (job, statistic, held-out value, study mean ± SD and its
-/// runs with a value of all its runs, the 95% range for a new run, SDs from the mean, verdict) and a count line.
+/// The checks as a Markdown table (job, statistic, held-out value, study mean ± SD with its
+/// runs that have a value of all its runs, the 95% range for a new run, SDs from the mean,
+/// verdict) and a count line.
 pub fn held_out_markdown(checks: &[HeldOutCheck]) -> String {
     let mut s = String::from(
         "| job | statistic | held-out run | study (mean ± SD; runs with a value of all) | 95% range for a new run | SDs from mean | verdict |\n|---|---|---:|---|---|---:|---|\n",

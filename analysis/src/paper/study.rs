@@ -5,7 +5,7 @@
 
 use super::agreement::{Agreement, agreement};
 use super::bisection::{BisectionModel, analyse_bisection};
-use super::collect::{CollectError, CompactJob, read_compact};
+use super::collect::{CollectError, CompactJob, err, read_compact, write_csv};
 use super::compare::{ComparisonRow, compare};
 use super::fi::{FiModel, analyse_fi};
 use super::multitimer::{ExactTimerCell, MtCell, analyse_exact_timer, analyse_multitimer};
@@ -496,50 +496,24 @@ pub fn tables_markdown(s: &PaperStudy) -> String {
 /// 95% prediction interval of one new run per condition), `spreads.csv`
 /// (once a condition has more than the first four seeds' runs) and `tables.md` into `root`.
 pub fn write_study(root: &Path, s: &PaperStudy) -> Result<(), CollectError> {
-    let e = |p: &Path, m: String| CollectError::File {
-        path: p.display().to_string(),
-        message: m,
-    };
     let write = |name: &str, bytes: &[u8]| {
         let p = root.join(name);
-        chronocooked_env::fs::write_atomic(&p, bytes).map_err(|x| e(&p, x.error.to_string()))
+        chronocooked_env::fs::write_atomic(&p, bytes).map_err(|x| err(&p, x.error))
     };
-    let json = serde_json::to_string_pretty(s).map_err(|x| e(root, x.to_string()))?;
+    let json = serde_json::to_string_pretty(s).map_err(|x| err(root, x))?;
     write("analysis.json", json.as_bytes())?;
-    let mut w = csv::Writer::from_writer(Vec::new());
-    for r in &s.comparison {
-        w.serialize(r).map_err(|x| e(root, x.to_string()))?;
-    }
-    let bytes = w.into_inner().map_err(|x| e(root, x.to_string()))?;
-    write("comparison.csv", &bytes)?;
-    let json = serde_json::to_string_pretty(&s.agreement).map_err(|x| e(root, x.to_string()))?;
+    write_csv(&root.join("comparison.csv"), &s.comparison)?;
+    let json = serde_json::to_string_pretty(&s.agreement).map_err(|x| err(root, x))?;
     write("agreement.json", json.as_bytes())?;
-    let mut w = csv::Writer::from_writer(Vec::new());
-    for r in &s.pi {
-        w.serialize(r).map_err(|x| e(root, x.to_string()))?;
-    }
-    let bytes = w.into_inner().map_err(|x| e(root, x.to_string()))?;
-    write("pi.csv", &bytes)?;
-    let mut w = csv::Writer::from_writer(Vec::new());
-    for r in &s.ranges {
-        w.serialize(r).map_err(|x| e(root, x.to_string()))?;
-    }
-    let bytes = w.into_inner().map_err(|x| e(root, x.to_string()))?;
-    write("ranges.csv", &bytes)?;
+    write_csv(&root.join("pi.csv"), &s.pi)?;
+    write_csv(&root.join("ranges.csv"), &s.ranges)?;
+    let spreads = root.join("spreads.csv");
     if !s.spreads.is_empty() {
-        let mut w = csv::Writer::from_writer(Vec::new());
-        for r in &s.spreads {
-            w.serialize(r).map_err(|x| e(root, x.to_string()))?;
-        }
-        let bytes = w.into_inner().map_err(|x| e(root, x.to_string()))?;
-        write("spreads.csv", &bytes)?;
-    } else {
+        write_csv(&spreads, &s.spreads)?;
+    } else if spreads.is_file() {
         // No condition has more runs than the first seeds: no stale file from an earlier
         // analysis either.
-        let p = root.join("spreads.csv");
-        if p.is_file() {
-            std::fs::remove_file(&p).map_err(|x| e(&p, x.to_string()))?;
-        }
+        std::fs::remove_file(&spreads).map_err(|x| err(&spreads, x))?;
     }
     write("tables.md", tables_markdown(s).as_bytes())
 }
