@@ -12,6 +12,8 @@
 //! * [`compare`] — `comparison.csv` rows, the old agreement rule and the z rule;
 //! * [`agreement`] — `agreement.json`: verdict counts per table × source × rule and the
 //!   negative control;
+//! * [`claims`] — `claims.csv`: the paper's exact-timer and multi-timer statements in words,
+//!   each tested on the lab's runs;
 //! * [`pi`] — `pi.csv`: the peak-interval probes and the uniform-checking test;
 //! * [`spreads`] — `spreads.csv`: each condition's spread on the first four seeds and on
 //!   every run;
@@ -22,6 +24,7 @@
 
 pub mod agreement;
 pub mod bisection;
+pub mod claims;
 pub mod collect;
 pub mod compare;
 pub mod fi;

@@ -257,38 +257,20 @@ pub fn analyse_multitimer(jobs: &[CompactJob]) -> Vec<MtCell> {
 /// TD ± buffer pays 1, outside it the reduced reward, never delivered 0), as the mean over
 /// the start cells per run, then mean ± SD over runs.
 pub fn analyse_exact_timer(jobs: &[CompactJob]) -> Vec<ExactTimerCell> {
-    let mut groups: BTreeMap<(&str, u32), Vec<&CompactJob>> = BTreeMap::new();
-    for j in jobs.iter().filter(|j| j.job.task == "MultiTimer-v0") {
-        if let [td] = trained_tds(j)[..] {
-            groups.entry((j.job.label(), td)).or_default().push(j);
-        }
-    }
-    groups
+    exact_timer_groups(jobs)
         .into_iter()
         .map(|((model, td), js)| {
-            let mut fracs: Vec<f64> = js
-                .iter()
-                .flat_map(|j| j.episodes.iter())
-                .filter(|e| e.kind == ConditionKind::Buffer && e.td == td)
-                .filter_map(|e| e.factor)
-                .collect();
+            let per_run: Vec<Vec<(f64, f64)>> = js.iter().map(|j| buffer_rewards(j, td)).collect();
+            let mut fracs: Vec<f64> = per_run.iter().flatten().map(|b| b.0).collect();
             fracs.sort_by(f64::total_cmp);
             fracs.dedup();
             let buffers = fracs
                 .into_iter()
                 .map(|f| {
-                    let per_run = js.iter().filter_map(|j| {
-                        let r: Vec<f64> = j
-                            .episodes
-                            .iter()
-                            .filter(|e| {
-                                e.kind == ConditionKind::Buffer && e.td == td && e.factor == Some(f)
-                            })
-                            .map(|e| f64::from(e.reward))
-                            .collect();
-                        (!r.is_empty()).then(|| r.iter().sum::<f64>() / r.len() as f64)
-                    });
-                    (f, Spread::of(per_run))
+                    let runs = per_run
+                        .iter()
+                        .filter_map(|r| r.iter().find(|b| b.0 == f).map(|b| b.1));
+                    (f, Spread::of(runs))
                 })
                 .collect();
             ExactTimerCell {
@@ -299,4 +281,39 @@ pub fn analyse_exact_timer(jobs: &[CompactJob]) -> Vec<ExactTimerCell> {
             }
         })
         .collect()
+}
+
+/// The exact-timer jobs (multi-timer jobs trained on a single TD) grouped by (model, TD).
+pub fn exact_timer_groups(jobs: &[CompactJob]) -> BTreeMap<(&str, u32), Vec<&CompactJob>> {
+    let mut groups: BTreeMap<(&str, u32), Vec<&CompactJob>> = BTreeMap::new();
+    for j in jobs.iter().filter(|j| j.job.task == "MultiTimer-v0") {
+        if let [td] = trained_tds(j)[..] {
+            groups.entry((j.job.label(), td)).or_default().push(j);
+        }
+    }
+    groups
+}
+
+/// One run's mean reward over the start cells under each test buffer at `td`:
+/// `(buffer as a fraction of TD, mean reward)`, by increasing buffer (empty when the run has
+/// no `buffer` episodes at `td`).
+pub fn buffer_rewards(job: &CompactJob, td: u32) -> Vec<(f64, f64)> {
+    let mut by_frac: BTreeMap<u64, (f64, f64, usize)> = BTreeMap::new();
+    for e in job
+        .episodes
+        .iter()
+        .filter(|e| e.kind == ConditionKind::Buffer && e.td == td)
+    {
+        if let Some(f) = e.factor {
+            let slot = by_frac.entry(f.to_bits()).or_insert((f, 0.0, 0));
+            slot.1 += f64::from(e.reward);
+            slot.2 += 1;
+        }
+    }
+    let mut v: Vec<(f64, f64)> = by_frac
+        .into_values()
+        .map(|(f, sum, n)| (f, sum / n as f64))
+        .collect();
+    v.sort_by(|a, b| a.0.total_cmp(&b.0));
+    v
 }

@@ -2,6 +2,7 @@
 //! resources) with how many of the paper's numbers the lab reproduces per table, every
 //! comparison row, and the study's figures in the paper's form.
 
+use super::claims::{is_summary, z_text};
 use super::collect::{CollectError, err};
 use super::compare::ComparisonRow;
 use super::study::PaperStudy;
@@ -151,6 +152,25 @@ fn pi_table(s: &PaperStudy) -> Markup {
     }
 }
 
+/// The paper's statements in words, tested (`claims.csv`; the verdict rows).
+fn claims_table(s: &PaperStudy) -> Markup {
+    html! {
+        h2.group { "The paper's statements in words, tested (claims.csv)" }
+        table {
+            tr {
+                th { "statement" } th { "setting" } th { "test" } th { "lab" } th { "z" }
+                th { "verdict" }
+            }
+            @for r in s.claims.iter().filter(|r| is_summary(r)) {
+                tr {
+                    td { (r.statement) } td { (r.setting) } td { (r.test) } td { (r.lab) }
+                    td { (z_text(r.z)) } td { (r.verdict) }
+                }
+            }
+        }
+    }
+}
+
 /// Every comparison row (`comparison.csv`).
 fn comparison_table(s: &PaperStudy) -> Markup {
     html! {
@@ -201,6 +221,7 @@ pub fn write_paper_report(
             (agreement_table(s))
             (negative_control_table(s))
             @if !s.pi_verdicts.is_empty() { (pi_table(s)) }
+            @if !s.claims.is_empty() { (claims_table(s)) }
             @for f in &shown { (f) }
             (comparison_table(s))
         },

@@ -5,6 +5,7 @@
 
 use super::agreement::{Agreement, agreement};
 use super::bisection::{BisectionModel, analyse_bisection};
+use super::claims::{ClaimRow, claims_markdown, exact_timer_claims, multitimer_claims};
 use super::collect::{CollectError, CompactJob, err, read_compact, write_csv};
 use super::compare::{ComparisonRow, compare};
 use super::fi::{FiModel, analyse_fi};
@@ -53,6 +54,9 @@ pub struct PaperStudy {
     pub comparison: Vec<ComparisonRow>,
     /// Verdict counts under both rules and the negative control (`agreement.json`).
     pub agreement: Agreement,
+    /// The paper's exact-timer and multi-timer statements, tested (`claims.csv`).
+    #[serde(default)]
+    pub claims: Vec<ClaimRow>,
     /// Peak-interval probe curves (`pi.csv`).
     pub pi: Vec<PiRow>,
     /// Uniform-checking verdict per model × probe factor.
@@ -96,7 +100,10 @@ pub fn analyse(root: &Path) -> Result<PaperStudy, CollectError> {
     let agreement = agreement(&comparison, &fi, &bisection, &multitimer);
     let pi = analyse_pi(root, &jobs)?;
     let pi_verdicts = pi_verdicts(&pi);
+    let mut claims = exact_timer_claims(&jobs);
+    claims.extend(multitimer_claims(&multitimer));
     Ok(PaperStudy {
+        claims,
         jobs: jobs.len(),
         agreement,
         pi,
@@ -468,6 +475,7 @@ pub fn tables_markdown(s: &PaperStudy) -> String {
             );
         }
     }
+    claims_markdown(&mut m, &s.claims);
     spreads_markdown(&mut m, &s.spreads);
     super::agreement::agreement_markdown(&mut m, &s.agreement);
     super::pi::pi_markdown(&mut m, &s.pi_verdicts);
@@ -492,9 +500,21 @@ pub fn tables_markdown(s: &PaperStudy) -> String {
     m
 }
 
+/// Writes `rows` as CSV at `path`, or removes a stale `path` when there are none.
+fn write_if_any<T: Serialize>(path: &Path, rows: &[T]) -> Result<(), CollectError> {
+    if !rows.is_empty() {
+        write_csv(path, rows)
+    } else if path.is_file() {
+        std::fs::remove_file(path).map_err(|x| err(path, x))
+    } else {
+        Ok(())
+    }
+}
+
 /// Writes `analysis.json`, `comparison.csv`, `agreement.json`, `pi.csv`, `ranges.csv` (the
 /// 95% prediction interval of one new run per condition), `spreads.csv`
-/// (once a condition has more than the first four seeds' runs) and `tables.md` into `root`.
+/// (once a condition has more than the first four seeds' runs), `claims.csv` (with
+/// exact-timer or multi-timer runs) and `tables.md` into `root`.
 pub fn write_study(root: &Path, s: &PaperStudy) -> Result<(), CollectError> {
     let write = |name: &str, bytes: &[u8]| {
         let p = root.join(name);
@@ -507,13 +527,9 @@ pub fn write_study(root: &Path, s: &PaperStudy) -> Result<(), CollectError> {
     write("agreement.json", json.as_bytes())?;
     write_csv(&root.join("pi.csv"), &s.pi)?;
     write_csv(&root.join("ranges.csv"), &s.ranges)?;
-    let spreads = root.join("spreads.csv");
-    if !s.spreads.is_empty() {
-        write_csv(&spreads, &s.spreads)?;
-    } else if spreads.is_file() {
-        // No condition has more runs than the first seeds: no stale file from an earlier
-        // analysis either.
-        std::fs::remove_file(&spreads).map_err(|x| err(&spreads, x))?;
-    }
+    // `spreads.csv` only once a condition has more runs than the first seeds, `claims.csv`
+    // only with exact-timer or multi-timer runs: no stale file from an earlier analysis.
+    write_if_any(&root.join("spreads.csv"), &s.spreads)?;
+    write_if_any(&root.join("claims.csv"), &s.claims)?;
     write("tables.md", tables_markdown(s).as_bytes())
 }

@@ -1,0 +1,428 @@
+//! `claims.csv`: the paper's statements about the exact timer and the multi-timer, which it
+//! makes in words only (its exact-timer figure is empty in the source and its multi-timer
+//! figure has no table), each tested on the lab's runs.
+//!
+//! Every test is a z on means over runs, with the comparison's threshold
+//! ([`Z_AGREE`](super::compare::Z_AGREE) = 2): two models, `(a − b)/√(s_a²/n_a + s_b²/n_b)`;
+//! one model against a fixed value `v`, `(a − v)/(s_a/√n_a)`. A test with fewer than two runs
+//! on a side has no z (`n/a`). Verdicts:
+//!
+//! * `holds` — the data show what the statement says (`z` beyond the threshold in its
+//!   direction; for "equally well", `|z| ≤ 2`);
+//! * `contradicted` — they show the opposite (beyond the threshold the other way);
+//! * `not shown` — neither (too few runs or too small a difference to tell);
+//! * `n/a` — the study has no runs for it.
+//!
+//! An exact-timer run is summarised by its reward averaged over the test buffers (0, 25, 50
+//! and 75% of TD on either side: the paper's figure's x-axis), each buffer the mean over the
+//! start cells. The paper's CTRNN is the lab's reservoir CTRNN
+//! ([`lab_model`](super::reference::lab_model)); the lab's trained CTRNN is tested beside it
+//! in rows marked as not in the paper.
+
+use super::collect::CompactJob;
+use super::compare::{Z_AGREE, z_score};
+use super::multitimer::{LEVELS, MtCell, buffer_rewards, exact_timer_groups};
+use super::reference::lab_model;
+use crate::behaviour::aggregate::Spread;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+
+/// The minimum reward of a delivered soup in the exact timer (outside the window).
+pub const REDUCED_REWARD: f64 = 0.1;
+
+/// Reward over a curriculum level's trained TDs at which a run counts as performing them
+/// (the curriculum's pass threshold for two to five timers).
+pub const PERFORMS: f64 = 0.9;
+
+/// One line of `claims.csv`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ClaimRow {
+    /// Short id of the statement (`exact_lstm_best`, …).
+    pub claim: String,
+    /// What the paper says (its words, shortened).
+    pub statement: String,
+    /// Where it is tested: task and TD, or TD list (steps).
+    pub setting: String,
+    /// The test applied.
+    pub test: String,
+    /// The lab's numbers behind the verdict (mean ± SD over runs, runs in brackets).
+    pub lab: String,
+    /// The test's z (NaN where there is none).
+    pub z: f64,
+    /// `holds`, `contradicted`, `not shown` or `n/a`.
+    pub verdict: String,
+}
+
+/// Verdict of a one-directional statement from its z (positive: the statement's direction).
+pub fn directional(z: f64) -> &'static str {
+    if z.is_nan() {
+        "n/a"
+    } else if z > Z_AGREE {
+        "holds"
+    } else if z < -Z_AGREE {
+        "contradicted"
+    } else {
+        "not shown"
+    }
+}
+
+/// Verdict of an "equally well" statement from its z.
+pub fn equal(z: f64) -> &'static str {
+    if z.is_nan() {
+        "n/a"
+    } else if z.abs() <= Z_AGREE {
+        "holds"
+    } else {
+        "contradicted"
+    }
+}
+
+/// Verdict of a "generally" statement from its per-setting verdicts: `holds` when it holds
+/// in at least half the settings and is contradicted in none, `contradicted` when it is
+/// contradicted in at least half, `n/a` without a testable setting, else `not shown`.
+pub fn general<'a>(verdicts: impl IntoIterator<Item = &'a str>) -> &'static str {
+    let v: Vec<&str> = verdicts.into_iter().filter(|v| *v != "n/a").collect();
+    if v.is_empty() {
+        return "n/a";
+    }
+    let holds = v.iter().filter(|v| **v == "holds").count();
+    let against = v.iter().filter(|v| **v == "contradicted").count();
+    if 2 * against >= v.len() {
+        "contradicted"
+    } else if 2 * holds >= v.len() && against == 0 {
+        "holds"
+    } else {
+        "not shown"
+    }
+}
+
+fn fmt_spread(s: &Spread) -> String {
+    match s.n {
+        0 => "no runs".into(),
+        1 => format!("{:.2} (1)", s.mean),
+        n => format!("{:.2} ± {:.2} ({n})", s.mean, s.sd),
+    }
+}
+
+/// Rewards are stored as `f32`: means closer than this are the same reward (0.1 as `f32`
+/// is 1.5e-9 above 0.1, which over a zero SD would be an infinite z).
+const SAME: f64 = 1e-6;
+
+fn two_sample(a: &Spread, b: &Spread) -> f64 {
+    if a.n < 2 || b.n < 2 {
+        return f64::NAN;
+    }
+    if (a.mean - b.mean).abs() < SAME {
+        return 0.0;
+    }
+    z_score(a.mean, a.sd, a.n, b.mean, b.sd, b.n)
+}
+
+fn against_value(a: &Spread, v: f64) -> f64 {
+    if a.n < 2 {
+        return f64::NAN;
+    }
+    if (a.mean - v).abs() < SAME {
+        return 0.0;
+    }
+    z_score(a.mean, a.sd, a.n, v, f64::NAN, 0)
+}
+
+/// Per exact-timer (model, TD): each run's reward averaged over its test buffers.
+pub fn exact_timer_run_means(jobs: &[CompactJob]) -> BTreeMap<(String, u32), Spread> {
+    exact_timer_groups(jobs)
+        .into_iter()
+        .map(|((model, td), js)| {
+            let runs = js.iter().filter_map(|j| {
+                let b = buffer_rewards(j, td);
+                (!b.is_empty()).then(|| b.iter().map(|x| x.1).sum::<f64>() / b.len() as f64)
+            });
+            ((model.to_string(), td), Spread::of(runs))
+        })
+        .collect()
+}
+
+const LSTM: &str = "lstm125";
+const CNN: &str = "cnn-mlp";
+const TRAINED_CTRNN: &str = "ctrnn125";
+
+fn paper_ctrnn() -> &'static str {
+    lab_model("CTRNN125").unwrap_or("ctrnn-reservoir125")
+}
+
+/// The exact timer's statements (the paper's Results, "For the exact timing case …").
+pub fn exact_timer_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
+    let means = exact_timer_run_means(jobs);
+    if means.is_empty() {
+        return Vec::new();
+    }
+    let empty = Spread::of([]);
+    let get = |m: &str, td: u32| means.get(&(m.to_string(), td)).unwrap_or(&empty);
+    let mut tds: Vec<u32> = means.keys().map(|k| k.1).collect();
+    tds.sort_unstable();
+    tds.dedup();
+    let shortest = tds.first().copied();
+    let mut rows = Vec::new();
+
+    // LSTM125 generally outperforms the other two models.
+    let others = [
+        (paper_ctrnn(), "the paper's CTRNN125 (lab: reservoir)"),
+        (CNN, "the CNN"),
+        (
+            TRAINED_CTRNN,
+            "the lab's trained CTRNN125 (not in the paper)",
+        ),
+    ];
+    for (other, name) in others {
+        let mut per_td = Vec::new();
+        for &td in &tds {
+            let (a, b) = (get(LSTM, td), get(other, td));
+            let z = two_sample(a, b);
+            let verdict = if a.n == 0 || b.n == 0 {
+                "n/a"
+            } else {
+                directional(z)
+            };
+            per_td.push(verdict);
+            rows.push(ClaimRow {
+                claim: "exact_lstm_best".into(),
+                statement: format!("LSTM125 generally outperforms {name}"),
+                setting: format!("exact timer, TD {td}"),
+                test: format!("lstm125 − {other}, mean reward over buffers: z > 2"),
+                lab: format!("{} vs {}", fmt_spread(a), fmt_spread(b)),
+                z,
+                verdict: verdict.into(),
+            });
+        }
+        rows.push(ClaimRow {
+            claim: "exact_lstm_best".into(),
+            statement: format!("LSTM125 generally outperforms {name}"),
+            setting: "exact timer, every TD".into(),
+            test: "holds at ≥ half the TDs and contradicted at none".into(),
+            lab: format!(
+                "{} of {} TDs hold, {} contradicted",
+                per_td.iter().filter(|v| **v == "holds").count(),
+                per_td.iter().filter(|v| **v != "n/a").count(),
+                per_td.iter().filter(|v| **v == "contradicted").count()
+            ),
+            z: f64::NAN,
+            verdict: general(per_td).into(),
+        });
+    }
+
+    if let Some(td) = shortest {
+        // At the shortest TD, LSTM125 and CTRNN125 perform equally well.
+        for (other, name) in [
+            (paper_ctrnn(), "CTRNN125 (lab: reservoir)"),
+            (
+                TRAINED_CTRNN,
+                "the lab's trained CTRNN125 (not in the paper)",
+            ),
+        ] {
+            let (a, b) = (get(LSTM, td), get(other, td));
+            let z = two_sample(a, b);
+            rows.push(ClaimRow {
+                claim: "exact_shortest_equal".into(),
+                statement: format!("at the shortest TD, LSTM125 and {name} perform equally well"),
+                setting: format!("exact timer, TD {td}"),
+                test: format!("|lstm125 − {other}| mean reward over buffers: |z| ≤ 2"),
+                lab: format!("{} vs {}", fmt_spread(a), fmt_spread(b)),
+                z,
+                verdict: equal(z).into(),
+            });
+        }
+        // At the shortest TD the CNN earns above the minimum 0.1.
+        let a = get(CNN, td);
+        let z = against_value(a, REDUCED_REWARD);
+        rows.push(ClaimRow {
+            claim: "exact_cnn_above_min".into(),
+            statement: "at the shortest TD the CNN earns above the minimum reward 0.1".into(),
+            setting: format!("exact timer, TD {td}"),
+            test: "cnn-mlp mean reward over buffers − 0.1: z > 2".into(),
+            lab: fmt_spread(a),
+            z,
+            verdict: directional(z).into(),
+        });
+        // … and that does not generalise to longer TDs.
+        let mut per_td = Vec::new();
+        for &long in tds.iter().filter(|t| **t > td) {
+            let b = get(CNN, long);
+            // The statement's direction: at the longer TD the CNN is at the minimum, so
+            // its z against 0.1 is not above 2 (−z is the evidence for it).
+            let z = against_value(b, REDUCED_REWARD);
+            let verdict = if z.is_nan() {
+                "n/a"
+            } else if z > Z_AGREE {
+                "contradicted"
+            } else {
+                "holds"
+            };
+            per_td.push(verdict);
+            rows.push(ClaimRow {
+                claim: "exact_cnn_short_only".into(),
+                statement: "the CNN's timing does not generalise to longer TDs".into(),
+                setting: format!("exact timer, TD {long}"),
+                test: "cnn-mlp mean reward over buffers not above 0.1: z ≤ 2".into(),
+                lab: fmt_spread(b),
+                z,
+                verdict: verdict.into(),
+            });
+        }
+        let against = per_td.iter().filter(|v| **v == "contradicted").count();
+        let tested = per_td.iter().filter(|v| **v != "n/a").count();
+        rows.push(ClaimRow {
+            claim: "exact_cnn_short_only".into(),
+            statement: "the CNN's timing does not generalise to longer TDs".into(),
+            setting: "exact timer, every TD past the shortest".into(),
+            test: "holds at every longer TD".into(),
+            lab: format!("{} of {tested} longer TDs above 0.1", against),
+            z: f64::NAN,
+            verdict: match (tested, against) {
+                (0, _) => "n/a",
+                (_, 0) => "holds",
+                _ => "contradicted",
+            }
+            .into(),
+        });
+    }
+    rows
+}
+
+fn tds_label(tds: &[u32]) -> String {
+    tds.iter()
+        .map(u32::to_string)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The multi-timer's statements ("While LSTM125 generally performs better than other models,
+/// none of the models perform all the tasks successfully"), on every exact curriculum over
+/// the paper's number of timers.
+pub fn multitimer_claims(cells: &[MtCell]) -> Vec<ClaimRow> {
+    let mut lists: Vec<&[u32]> = cells
+        .iter()
+        .filter(|c| c.curriculum == "exact" && c.tds.len() == LEVELS - 1)
+        .map(|c| c.tds.as_slice())
+        .collect();
+    lists.sort_unstable();
+    lists.dedup();
+    let mut rows = Vec::new();
+    for tds in lists {
+        let cell = |m: &str| {
+            cells
+                .iter()
+                .find(|c| c.curriculum == "exact" && c.tds == tds && c.model == m)
+        };
+        let level = |m: &str| cell(m).map_or(Spread::of([]), |c| c.level);
+        let setting = format!("multi-timer exact, TDs {}", tds_label(tds));
+        for (other, name) in [
+            (paper_ctrnn(), "the paper's CTRNN125 (lab: reservoir)"),
+            (CNN, "the CNN"),
+            (
+                TRAINED_CTRNN,
+                "the lab's trained CTRNN125 (not in the paper)",
+            ),
+        ] {
+            let (a, b) = (level(LSTM), level(other));
+            let z = two_sample(&a, &b);
+            rows.push(ClaimRow {
+                claim: "multitimer_lstm_best".into(),
+                statement: format!("LSTM125 generally performs better than {name}"),
+                setting: setting.clone(),
+                test: format!("lstm125 − {other}, curriculum level reached: z > 2"),
+                lab: format!("{} vs {}", fmt_spread(&a), fmt_spread(&b)),
+                z,
+                verdict: if a.n == 0 || b.n == 0 {
+                    "n/a"
+                } else {
+                    directional(z)
+                }
+                .into(),
+            });
+        }
+        // None of the models performs every task: no run reaches five timers with its
+        // final policy earning ≥ 0.9 over the five trained TDs.
+        let runs: Vec<(&str, f64)> = cells
+            .iter()
+            .filter(|c| c.curriculum == "exact" && c.tds == tds)
+            .flat_map(|c| {
+                c.runs.iter().filter(|r| r.level == LEVELS - 1).map(|r| {
+                    let mean = r.per_td.iter().map(|x| x.1).sum::<f64>() / r.per_td.len() as f64;
+                    (c.model.as_str(), mean)
+                })
+            })
+            .collect();
+        let total: usize = cells
+            .iter()
+            .filter(|c| c.curriculum == "exact" && c.tds == tds)
+            .map(|c| c.runs.len())
+            .sum();
+        let performing = runs.iter().filter(|r| r.1 >= PERFORMS).count();
+        rows.push(ClaimRow {
+            claim: "multitimer_none_all".into(),
+            statement: "none of the models perform all the tasks successfully".into(),
+            setting,
+            test: format!(
+                "no run at five timers whose final policy earns ≥ {PERFORMS} over the five TDs"
+            ),
+            lab: format!(
+                "{} of {total} runs reach five timers, {performing} of them earn ≥ {PERFORMS}",
+                runs.len()
+            ),
+            z: f64::NAN,
+            verdict: match (total, performing) {
+                (0, _) => "n/a",
+                (_, 0) => "holds",
+                _ => "contradicted",
+            }
+            .into(),
+        });
+    }
+    rows
+}
+
+/// Markdown: the summary rows (and single-setting statements) with their verdicts.
+pub fn claims_markdown(m: &mut String, rows: &[ClaimRow]) {
+    if rows.is_empty() {
+        return;
+    }
+    let _ = writeln!(
+        m,
+        "\n## The paper's statements in words, tested (`claims.csv`)\n\nz on means over runs, threshold 2 (per-TD rows of the \"generally\" statements in `claims.csv`).\n"
+    );
+    let _ = writeln!(m, "| statement | setting | test | lab | z | verdict |");
+    let _ = writeln!(m, "|---|---|---|---|---:|---|");
+    for r in rows.iter().filter(|r| is_summary(r)) {
+        let _ = writeln!(
+            m,
+            "| {} | {} | {} | {} | {} | {} |",
+            r.statement,
+            r.setting,
+            r.test,
+            r.lab,
+            z_text(r.z),
+            r.verdict
+        );
+    }
+}
+
+/// Whether a row is a statement's verdict rather than one of the per-TD rows behind a
+/// "generally" verdict.
+pub fn is_summary(r: &ClaimRow) -> bool {
+    !(r.claim == "exact_lstm_best" || r.claim == "exact_cnn_short_only")
+        || r.setting.contains("every")
+}
+
+/// A z for tables: 2 decimals, `–` for none, `±∞`.
+pub fn z_text(z: f64) -> String {
+    if z.is_finite() {
+        format!("{z:.2}")
+    } else if z.is_nan() {
+        "–".into()
+    } else if z > 0.0 {
+        "+∞".into()
+    } else {
+        "−∞".into()
+    }
+}

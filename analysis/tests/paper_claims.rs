@@ -1,0 +1,251 @@
+//! The paper's statements in words (exact timer, multi-timer), tested on constructed runs
+//! whose verdicts are known by hand.
+
+mod common;
+
+use chronocooked_analysis::paper::claims::{
+    ClaimRow, exact_timer_claims, exact_timer_run_means, general, multitimer_claims,
+};
+use chronocooked_analysis::paper::collect::{CompactJob, EpisodeRow};
+use chronocooked_analysis::paper::multitimer::analyse_multitimer;
+use common::{job, mt_ep};
+
+/// An exact-timer run of `model` at `td` whose buffer-0 episodes earn `r0` and buffer-50%
+/// episodes earn `r50` (two start cells each): its mean over buffers is `(r0 + r50) / 2`.
+fn exact_run(model: &str, seed: u64, td: u32, r0: f32, r50: f32) -> CompactJob {
+    let mut episodes = Vec::new();
+    for (f, r) in [(0.0, r0), (0.5, r50)] {
+        for _ in 0..2 {
+            episodes.push(EpisodeRow {
+                kind: "buffer".parse().unwrap(),
+                factor: Some(f),
+                ..mt_ep(td, r, td as i32)
+            });
+        }
+    }
+    CompactJob {
+        job: job(
+            "MultiTimer-v0",
+            model,
+            seed,
+            &[&format!("tds={td}"), "num_timers=1", "mode=exact"],
+            20.0,
+        ),
+        episodes,
+        curve: vec![],
+        levels: vec![],
+    }
+}
+
+/// Four runs of `model` at `td` with these means over buffers (each run: buffer 0 earns
+/// `m − 0.05`, buffer 50% `m + 0.05`, so its mean is `m`).
+fn runs(model: &str, td: u32, means: [f32; 4]) -> Vec<CompactJob> {
+    means
+        .iter()
+        .enumerate()
+        .map(|(i, &m)| exact_run(model, i as u64 + 1, td, m - 0.05, m + 0.05))
+        .collect()
+}
+
+fn find<'a>(rows: &'a [ClaimRow], claim: &str, setting: &str, test: &str) -> &'a ClaimRow {
+    rows.iter()
+        .find(|r| r.claim == claim && r.setting == setting && r.test.contains(test))
+        .unwrap_or_else(|| panic!("no {claim} / {setting} / {test} in {rows:#?}"))
+}
+
+#[test]
+fn a_runs_exact_timer_score_is_its_mean_over_the_test_buffers() {
+    // Buffer 0: 0.1 twice; buffer 50%: 1 twice → (0.1 + 1) / 2 = 0.55. Second run: 0 and 1.
+    let jobs = [
+        exact_run("lstm125", 1, 4, 0.1, 1.0),
+        exact_run("lstm125", 2, 4, 0.0, 1.0),
+    ];
+    let m = exact_timer_run_means(&jobs);
+    let s = &m[&("lstm125".to_string(), 4)];
+    assert_eq!(s.n, 2);
+    assert!((s.mean - 0.525).abs() < 1e-6, "{s:?}");
+    // SD of 0.55 and 0.5: 0.05/√2.
+    assert!((s.sd - 0.05 / 2f64.sqrt()).abs() < 1e-6, "{s:?}");
+}
+
+#[test]
+fn exact_timer_statements_get_the_verdicts_worked_out_by_hand() {
+    let mut jobs = Vec::new();
+    // TD 4: LSTM 0.9, 0.8, 1.0, 0.9 and the reservoir 0.85, 0.95, 0.9, 0.8 (equal);
+    // the CNN 0.3, 0.4, 0.2, 0.3 (above 0.1).
+    jobs.extend(runs("lstm125", 4, [0.9, 0.8, 1.0, 0.9]));
+    jobs.extend(runs("ctrnn-reservoir125", 4, [0.85, 0.95, 0.9, 0.8]));
+    jobs.extend(runs("cnn-mlp", 4, [0.3, 0.4, 0.2, 0.3]));
+    // TD 10: LSTM 0.8, 0.7, 0.9, 0.8 against the reservoir 0.1, 0.1, 0.2, 0.1 (LSTM
+    // better); the CNN at the minimum 0.1 on every run; the trained CTRNN better than the
+    // LSTM (0.95, 1.0, 0.95, 1.0).
+    jobs.extend(runs("lstm125", 10, [0.8, 0.7, 0.9, 0.8]));
+    jobs.extend(runs("ctrnn-reservoir125", 10, [0.1, 0.1, 0.2, 0.1]));
+    jobs.extend(runs("cnn-mlp", 10, [0.1, 0.1, 0.1, 0.1]));
+    jobs.extend(runs("ctrnn125", 10, [0.95, 1.0, 0.95, 1.0]));
+    let rows = exact_timer_claims(&jobs);
+
+    // TD 4, LSTM vs reservoir: means 0.9 and 0.875, SDs √(0.02/3) and √(0.0125/3):
+    // z = 0.025 / √((0.02 + 0.0125)/12) = 0.4804.
+    let r = find(
+        &rows,
+        "exact_shortest_equal",
+        "exact timer, TD 4",
+        "ctrnn-reservoir125",
+    );
+    assert!(
+        (r.z - 0.025 / (0.0325f64 / 12.0).sqrt()).abs() < 1e-4,
+        "{r:?}"
+    );
+    assert_eq!(r.verdict, "holds");
+    let r = find(
+        &rows,
+        "exact_lstm_best",
+        "exact timer, TD 4",
+        "ctrnn-reservoir125",
+    );
+    assert_eq!(r.verdict, "not shown");
+    // TD 10: 0.8 vs 0.125 (SDs √(0.02/3), √(0.0075/3)): z = 0.675 / √(0.0275/12) ≈ 14.1.
+    let r = find(
+        &rows,
+        "exact_lstm_best",
+        "exact timer, TD 10",
+        "ctrnn-reservoir125",
+    );
+    assert!(
+        (r.z - 0.675 / (0.0275f64 / 12.0).sqrt()).abs() < 1e-3,
+        "{r:?}"
+    );
+    assert_eq!(r.verdict, "holds");
+    // Over both TDs: holds at one of two, contradicted at none → holds.
+    let r = find(&rows, "exact_lstm_best", "exact timer, every TD", "").clone();
+    assert!(r.statement.contains("CTRNN125 (lab: reservoir)"), "{r:?}");
+    assert_eq!(r.verdict, "holds");
+    // The trained CTRNN beats the LSTM at TD 10 (0.975 vs 0.8): contradicted there, and
+    // with no TD-4 runs it is contradicted at the only testable TD → contradicted overall.
+    let r = find(&rows, "exact_lstm_best", "exact timer, TD 10", "− ctrnn125");
+    assert_eq!(r.verdict, "contradicted");
+    let overall: Vec<&ClaimRow> = rows
+        .iter()
+        .filter(|r| r.claim == "exact_lstm_best" && r.setting == "exact timer, every TD")
+        .collect();
+    assert_eq!(overall.len(), 3);
+    assert_eq!(overall[2].verdict, "contradicted", "{:?}", overall[2]);
+    // CNN at TD 4: mean 0.3, SD √(0.02/3): z = 0.2 / (SD/2) = 4.899 → holds.
+    let r = find(&rows, "exact_cnn_above_min", "exact timer, TD 4", "");
+    assert!(
+        (r.z - 0.2 / ((0.02f64 / 3.0).sqrt() / 2.0)).abs() < 1e-3,
+        "{r:?}"
+    );
+    assert_eq!(r.verdict, "holds");
+    // CNN at TD 10 exactly at the minimum on every run (SD 0, mean 0.1): z 0 → holds.
+    let r = find(&rows, "exact_cnn_short_only", "exact timer, TD 10", "");
+    assert_eq!((r.z, r.verdict.as_str()), (0.0, "holds"));
+}
+
+#[test]
+fn a_cnn_that_times_long_durations_contradicts_the_short_only_statement() {
+    let mut jobs = runs("cnn-mlp", 4, [0.3, 0.4, 0.2, 0.3]);
+    jobs.extend(runs("cnn-mlp", 15, [0.6, 0.7, 0.5, 0.6]));
+    let rows = exact_timer_claims(&jobs);
+    assert_eq!(
+        find(&rows, "exact_cnn_short_only", "exact timer, TD 15", "").verdict,
+        "contradicted"
+    );
+    assert_eq!(
+        find(
+            &rows,
+            "exact_cnn_short_only",
+            "exact timer, every TD past the shortest",
+            ""
+        )
+        .verdict,
+        "contradicted"
+    );
+    // No LSTM runs: the LSTM statements cannot be tested.
+    assert!(
+        rows.iter()
+            .filter(|r| r.claim == "exact_lstm_best")
+            .all(|r| r.verdict == "n/a")
+    );
+}
+
+#[test]
+fn general_statements_need_half_the_settings_and_no_contradiction() {
+    assert_eq!(general(["holds", "not shown"]), "holds");
+    assert_eq!(general(["holds", "not shown", "not shown"]), "not shown");
+    assert_eq!(general(["holds", "holds", "contradicted"]), "not shown");
+    assert_eq!(general(["holds", "contradicted"]), "contradicted");
+    assert_eq!(general(["n/a", "n/a"]), "n/a");
+    assert_eq!(general(["n/a", "holds"]), "holds");
+}
+
+/// An exact multi-timer run on the notebook's list that reached `level`, its final policy
+/// earning `reward` at each of the five TDs.
+fn mt_run(model: &str, seed: u64, level: usize, reward: f32) -> CompactJob {
+    let mut j = job(
+        "MultiTimer-v0",
+        model,
+        seed,
+        &["tds=2,4,6,8,10", "mode=exact"],
+        20.0,
+    );
+    j.level_steps = (0..=level as u64).map(|l| l * 1000).collect();
+    CompactJob {
+        job: j,
+        episodes: [2, 4, 6, 8, 10]
+            .into_iter()
+            .map(|td| mt_ep(td, reward, td as i32))
+            .collect(),
+        curve: vec![],
+        levels: vec![],
+    }
+}
+
+#[test]
+fn multitimer_statements_compare_levels_and_look_for_a_run_that_does_everything() {
+    let mut jobs = Vec::new();
+    // LSTM levels 2, 3, 2, 3; reservoir 1, 1, 1, 1; CNN 2, 3, 3, 2 (equal to the LSTM).
+    for (s, l) in [(1, 2), (2, 3), (3, 2), (4, 3)] {
+        jobs.push(mt_run("lstm125", s, l, 0.0));
+    }
+    for s in 1..=4 {
+        jobs.push(mt_run("ctrnn-reservoir125", s, 1, 0.0));
+    }
+    for (s, l) in [(1, 2), (2, 3), (3, 3), (4, 2)] {
+        jobs.push(mt_run("cnn-mlp", s, l, 0.0));
+    }
+    let mt = analyse_multitimer(&jobs);
+    let rows = multitimer_claims(&mt);
+    let setting = "multi-timer exact, TDs 2, 4, 6, 8, 10";
+    // LSTM 2.5 ± 0.577 vs reservoir 1 ± 0: z = 1.5 / (0.57735/2) = 5.196.
+    let r = find(&rows, "multitimer_lstm_best", setting, "ctrnn-reservoir125");
+    assert!((r.z - 1.5 / (0.57735 / 2.0)).abs() < 1e-3, "{r:?}");
+    assert_eq!(r.verdict, "holds");
+    assert_eq!(
+        find(&rows, "multitimer_lstm_best", setting, "cnn-mlp").verdict,
+        "not shown"
+    );
+    assert_eq!(
+        find(&rows, "multitimer_lstm_best", setting, "− ctrnn125,").verdict,
+        "n/a"
+    );
+    assert_eq!(
+        find(&rows, "multitimer_none_all", setting, "").verdict,
+        "holds"
+    );
+
+    // One reservoir run at five timers earning 0.95 at every TD: someone does it all.
+    jobs.push(mt_run("ctrnn-reservoir125", 5, 5, 0.95));
+    let rows = multitimer_claims(&analyse_multitimer(&jobs));
+    let r = find(&rows, "multitimer_none_all", setting, "");
+    assert_eq!(r.verdict, "contradicted", "{r:?}");
+    // At five timers but earning 0.5: reaching the level is not performing it.
+    jobs.pop();
+    jobs.push(mt_run("ctrnn-reservoir125", 5, 5, 0.5));
+    let rows = multitimer_claims(&analyse_multitimer(&jobs));
+    assert_eq!(
+        find(&rows, "multitimer_none_all", setting, "").verdict,
+        "holds"
+    );
+}
