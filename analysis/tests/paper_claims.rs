@@ -4,11 +4,12 @@
 mod common;
 
 use chronocooked_analysis::paper::claims::{
-    ClaimRow, exact_timer_claims, exact_timer_run_means, general, multitimer_claims,
+    ClaimRow, exact_timer_claims, exact_timer_run_means, fi_claims, fi_run_stat, general,
+    is_summary, multitimer_claims,
 };
 use chronocooked_analysis::paper::collect::{CompactJob, EpisodeRow};
 use chronocooked_analysis::paper::multitimer::analyse_multitimer;
-use common::{job, mt_ep};
+use common::{ep, job, mt_ep};
 
 /// An exact-timer run of `model` at `td` whose buffer-0 episodes earn `r0` and buffer-50%
 /// episodes earn `r50` (two start cells each): its mean over buffers is `(r0 + r50) / 2`.
@@ -51,6 +52,15 @@ fn find<'a>(rows: &'a [ClaimRow], claim: &str, setting: &str, test: &str) -> &'a
     rows.iter()
         .find(|r| r.claim == claim && r.setting == setting && r.test.contains(test))
         .unwrap_or_else(|| panic!("no {claim} / {setting} / {test} in {rows:#?}"))
+}
+
+/// The verdict row over every TD of the statement `claim` whose wording contains `about`.
+fn overall<'a>(rows: &'a [ClaimRow], claim: &str, about: &str) -> &'a ClaimRow {
+    rows.iter()
+        .find(|r| {
+            r.claim == claim && r.setting.ends_with("every TD") && r.statement.contains(about)
+        })
+        .unwrap_or_else(|| panic!("no {claim} over every TD about {about}"))
 }
 
 #[test]
@@ -247,5 +257,115 @@ fn multitimer_statements_compare_levels_and_look_for_a_run_that_does_everything(
     assert_eq!(
         find(&rows, "multitimer_none_all", setting, "").verdict,
         "holds"
+    );
+}
+
+/// A fixed-interval run of `model` at `td` with these first oven checks (one start cell
+/// each; `None`: an episode without a check).
+fn fi_run(model: &str, seed: u64, td: u32, focs: &[Option<i32>]) -> CompactJob {
+    CompactJob {
+        job: job(
+            "FixedInterval-v0",
+            model,
+            seed,
+            &[&format!("td={td}")],
+            20.0,
+        ),
+        episodes: focs
+            .iter()
+            .enumerate()
+            .map(|(i, f)| ep("fi", td, (i, 0), *f, 0))
+            .collect(),
+        curve: vec![],
+        levels: vec![],
+    }
+}
+
+#[test]
+fn a_fi_runs_statistics_are_its_zero_share_and_mean_foc_over_td() {
+    // FOCs 0, 0, 6 and one episode without a check: share 2/3 at 0, mean 2 → 2/6.
+    let j = fi_run("cnn-mlp", 1, 6, &[Some(0), Some(0), Some(6), None]);
+    let (zero, ratio) = fi_run_stat(&j, 6).unwrap();
+    assert!((zero - 2.0 / 3.0).abs() < 1e-12 && (ratio - 1.0 / 3.0).abs() < 1e-12);
+    assert_eq!(
+        fi_run_stat(&fi_run("cnn-mlp", 2, 6, &[None, None]), 6),
+        None
+    );
+}
+
+#[test]
+fn fixed_interval_statements_get_the_verdicts_worked_out_by_hand() {
+    let mut jobs = Vec::new();
+    // TD 8. The CNN: three runs checking from the start on all four cells, one on none of
+    // them (FOC 8 everywhere): shares 1, 1, 1, 0 → 0.75 ± 0.5, z = 0.25/0.25 = 1 → not
+    // shown. The LSTM: mean FOC 8, 7, 9, 8 (ratios 1, 0.875, 1.125, 1 → |ratio − 1| 0,
+    // 0.125, 0.125, 0). The reservoir: mean FOC 2, 3, 2, 1 (ratios 0.25, 0.375, 0.25,
+    // 0.125; deviations 0.75, 0.625, 0.75, 0.875).
+    for (s, f) in [(1, 0), (2, 0), (3, 0), (4, 8)] {
+        jobs.push(fi_run("cnn-mlp", s, 8, &[Some(f); 4]));
+    }
+    for (s, f) in [(1, 8), (2, 7), (3, 9), (4, 8)] {
+        jobs.push(fi_run("lstm125", s, 8, &[Some(f); 4]));
+    }
+    for (s, f) in [(1, 2), (2, 3), (3, 2), (4, 1)] {
+        jobs.push(fi_run("ctrnn-reservoir125", s, 8, &[Some(f); 4]));
+    }
+    let rows = fi_claims(&jobs);
+    let r = find(&rows, "fi_cnn_foc_zero", "fixed interval, TD 8", "");
+    assert!((r.z - 1.0).abs() < 1e-9, "{r:?}");
+    assert_eq!(r.verdict, "not shown");
+    // Earlier: LSTM ratio 1 ± 0.1021 vs reservoir 0.25 ± 0.1021: z = 0.75 / √(2·0.010417/4).
+    let r = find(
+        &rows,
+        "fi_ctrnn_earlier",
+        "fixed interval, TD 8",
+        "ctrnn-reservoir125",
+    );
+    let se = (2.0 * (0.125f64.powi(2) * 2.0 / 3.0) / 4.0).sqrt();
+    assert!((r.z - 0.75 / se).abs() < 1e-6, "{r:?}");
+    assert_eq!(r.verdict, "holds");
+    // Closer: deviations 0.75 ± 0.1021 (reservoir) vs 0.0625 ± 0.0722 (LSTM).
+    let r = find(
+        &rows,
+        "fi_lstm_closer",
+        "fixed interval, TD 8",
+        "ctrnn-reservoir125",
+    );
+    let se = ((0.125f64.powi(2) * 2.0 / 3.0) / 4.0 + (0.125f64.powi(2) / 3.0) / 4.0).sqrt();
+    assert!((r.z - 0.6875 / se).abs() < 1e-6, "{r:?}");
+    assert_eq!(r.verdict, "holds");
+    // No size-256 or trained-CTRNN runs: those statements cannot be tested.
+    assert!(
+        rows.iter()
+            .filter(|r| r.claim == "fi_ctrnn256_better")
+            .all(|r| r.verdict == "n/a")
+    );
+    assert_eq!(overall(&rows, "fi_ctrnn_earlier", "trained").verdict, "n/a");
+    // The tables show the verdict rows, not the per-TD rows behind a "generally".
+    assert!(is_summary(overall(&rows, "fi_ctrnn_earlier", "reservoir")));
+    assert!(!is_summary(find(
+        &rows,
+        "fi_ctrnn_earlier",
+        "fixed interval, TD 8",
+        "reservoir"
+    )));
+
+    // A CNN checking from the start on every run: z against 0.5 is +∞ → holds; a reservoir
+    // later than the LSTM contradicts "earlier".
+    let mut jobs: Vec<CompactJob> = (1..=4)
+        .map(|s| fi_run("cnn-mlp", s, 8, &[Some(0); 3]))
+        .collect();
+    for (s, f) in [(1, 8), (2, 7), (3, 9), (4, 8)] {
+        jobs.push(fi_run("lstm125", s, 8, &[Some(f); 2]));
+        jobs.push(fi_run("ctrnn-reservoir125", s, 8, &[Some(f + 8); 2]));
+    }
+    let rows = fi_claims(&jobs);
+    assert_eq!(
+        find(&rows, "fi_cnn_foc_zero", "fixed interval, every TD", "").verdict,
+        "holds"
+    );
+    assert_eq!(
+        overall(&rows, "fi_ctrnn_earlier", "reservoir").verdict,
+        "contradicted"
     );
 }

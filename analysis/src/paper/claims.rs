@@ -1,6 +1,6 @@
-//! `claims.csv`: the paper's statements about the exact timer and the multi-timer, which it
-//! makes in words only (its exact-timer figure is empty in the source and its multi-timer
-//! figure has no table), each tested on the lab's runs.
+//! `claims.csv`: the paper's statements in words about fixed interval, the exact timer and
+//! the multi-timer — made without a number (its exact-timer figure is empty in the source,
+//! its FI and multi-timer figures have no table) — each tested on the lab's runs.
 //!
 //! Every test is a z on means over runs, with the comparison's threshold
 //! ([`Z_AGREE`](super::compare::Z_AGREE) = 2): two models, `(a − b)/√(s_a²/n_a + s_b²/n_b)`;
@@ -13,7 +13,9 @@
 //! * `not shown` — neither (too few runs or too small a difference to tell);
 //! * `n/a` — the study has no runs for it.
 //!
-//! An exact-timer run is summarised by its reward averaged over the test buffers (0, 25, 50
+//! A fixed-interval run is summarised by its share of first oven checks at 0 (checking from
+//! the oven's start) and its mean FOC / TD, over its episodes with a check. An exact-timer
+//! run is summarised by its reward averaged over the test buffers (0, 25, 50
 //! and 75% of TD on either side: the paper's figure's x-axis), each buffer the mean over the
 //! start cells. The paper's CTRNN is the lab's reservoir CTRNN
 //! ([`lab_model`](super::reference::lab_model)); the lab's trained CTRNN is tested beside it
@@ -21,6 +23,7 @@
 
 use super::collect::CompactJob;
 use super::compare::{Z_AGREE, z_score};
+use super::fi::{fi_runs, run_focs};
 use super::multitimer::{LEVELS, MtCell, buffer_rewards, exact_timer_groups};
 use super::reference::lab_model;
 use crate::behaviour::aggregate::Spread;
@@ -175,40 +178,16 @@ pub fn exact_timer_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
         ),
     ];
     for (other, name) in others {
-        let mut per_td = Vec::new();
-        for &td in &tds {
-            let (a, b) = (get(LSTM, td), get(other, td));
-            let z = two_sample(a, b);
-            let verdict = if a.n == 0 || b.n == 0 {
-                "n/a"
-            } else {
-                directional(z)
-            };
-            per_td.push(verdict);
-            rows.push(ClaimRow {
-                claim: "exact_lstm_best".into(),
-                statement: format!("LSTM125 generally outperforms {name}"),
-                setting: format!("exact timer, TD {td}"),
-                test: format!("lstm125 − {other}, mean reward over buffers: z > 2"),
-                lab: format!("{} vs {}", fmt_spread(a), fmt_spread(b)),
-                z,
-                verdict: verdict.into(),
-            });
-        }
-        rows.push(ClaimRow {
-            claim: "exact_lstm_best".into(),
-            statement: format!("LSTM125 generally outperforms {name}"),
-            setting: "exact timer, every TD".into(),
-            test: "holds at ≥ half the TDs and contradicted at none".into(),
-            lab: format!(
-                "{} of {} TDs hold, {} contradicted",
-                per_td.iter().filter(|v| **v == "holds").count(),
-                per_td.iter().filter(|v| **v != "n/a").count(),
-                per_td.iter().filter(|v| **v == "contradicted").count()
-            ),
-            z: f64::NAN,
-            verdict: general(per_td).into(),
-        });
+        per_td_statement(
+            &mut rows,
+            "exact_lstm_best",
+            &format!("LSTM125 generally outperforms {name}"),
+            "exact timer",
+            &format!("lstm125 − {other}, mean reward over buffers: z > 2"),
+            &tds,
+            |td| vec![*get(LSTM, td), *get(other, td)],
+            |v| two_sample(&v[0], &v[1]),
+        );
     }
 
     if let Some(td) = shortest {
@@ -286,6 +265,143 @@ pub fn exact_timer_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
             .into(),
         });
     }
+    rows
+}
+
+/// One FI run's statistics: share of its FOCs at 0 and its mean FOC / TD, over its
+/// episodes with a check (`None` for a run without one).
+pub fn fi_run_stat(job: &CompactJob, td: u32) -> Option<(f64, f64)> {
+    let f = run_focs(job, false);
+    (!f.is_empty()).then(|| {
+        let n = f.len() as f64;
+        let zero = f.iter().filter(|x| **x == 0.0).count() as f64 / n;
+        (zero, f.iter().sum::<f64>() / n / f64::from(td))
+    })
+}
+
+/// A "generally" statement over TDs: one row per TD (`sides` gives the per-run statistic of
+/// each side the test names, `z_of` the statement's z from them; `n/a` where a side has no
+/// runs) and a verdict row over every TD by [`general`].
+#[allow(clippy::too_many_arguments)]
+fn per_td_statement(
+    rows: &mut Vec<ClaimRow>,
+    claim: &str,
+    statement: &str,
+    task: &str,
+    test: &str,
+    tds: &[u32],
+    sides: impl Fn(u32) -> Vec<Spread>,
+    z_of: impl Fn(&[Spread]) -> f64,
+) {
+    let mut verdicts = Vec::new();
+    for &td in tds {
+        let v = sides(td);
+        let z = z_of(&v);
+        let verdict = if v.iter().any(|s| s.n == 0) {
+            "n/a"
+        } else {
+            directional(z)
+        };
+        verdicts.push(verdict);
+        rows.push(ClaimRow {
+            claim: claim.into(),
+            statement: statement.into(),
+            setting: format!("{task}, TD {td}"),
+            test: test.into(),
+            lab: v.iter().map(fmt_spread).collect::<Vec<_>>().join(" vs "),
+            z,
+            verdict: verdict.into(),
+        });
+    }
+    rows.push(ClaimRow {
+        claim: claim.into(),
+        statement: statement.into(),
+        setting: format!("{task}, every TD"),
+        test: "holds at ≥ half the TDs and contradicted at none".into(),
+        lab: format!(
+            "{} of {} TDs hold, {} contradicted",
+            verdicts.iter().filter(|v| **v == "holds").count(),
+            verdicts.iter().filter(|v| **v != "n/a").count(),
+            verdicts.iter().filter(|v| **v == "contradicted").count()
+        ),
+        z: f64::NAN,
+        verdict: general(verdicts).into(),
+    });
+}
+
+/// The fixed-interval statements (the paper's Results, "Fixed interval").
+pub fn fi_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
+    let runs = fi_runs(jobs);
+    if runs.is_empty() {
+        return Vec::new();
+    }
+    // Per-run statistic `stat` of (model, TD) across its runs.
+    let across = |m: &str, td: u32, stat: fn((f64, f64)) -> f64| {
+        let js = runs.get(m).and_then(|t| t.get(&td));
+        Spread::of(
+            js.into_iter()
+                .flatten()
+                .filter_map(|j| fi_run_stat(j, td).map(stat)),
+        )
+    };
+    let zero = |s: (f64, f64)| s.0;
+    let ratio = |s: (f64, f64)| s.1;
+    let off = |s: (f64, f64)| (s.1 - 1.0).abs();
+    let mut tds: Vec<u32> = runs.values().flat_map(|t| t.keys().copied()).collect();
+    tds.sort_unstable();
+    tds.dedup();
+    let task = "fixed interval";
+    let mut rows = Vec::new();
+    per_td_statement(
+        &mut rows,
+        "fi_cnn_foc_zero",
+        "in most cases the CNN's first oven check is at 0 (checking from the start)",
+        task,
+        "cnn-mlp share of FOCs at 0 per run, against 0.5: z > 2",
+        &tds,
+        |td| vec![across(CNN, td, zero)],
+        |v| against_value(&v[0], 0.5),
+    );
+    let reservoir = paper_ctrnn();
+    for (other, name) in [
+        (reservoir, "CTRNN125 (lab: reservoir)"),
+        (
+            TRAINED_CTRNN,
+            "the lab's trained CTRNN125 (not in the paper)",
+        ),
+    ] {
+        per_td_statement(
+            &mut rows,
+            "fi_lstm_closer",
+            &format!("LSTM125's FOCs are closer to the TD than {name}'s"),
+            task,
+            &format!("|FOC/TD − 1| per run, {other} − lstm125: z > 2"),
+            &tds,
+            |td| vec![across(other, td, off), across(LSTM, td, off)],
+            |v| two_sample(&v[0], &v[1]),
+        );
+        per_td_statement(
+            &mut rows,
+            "fi_ctrnn_earlier",
+            &format!("{name} checks the oven earlier than LSTM125"),
+            task,
+            &format!("FOC/TD per run, lstm125 − {other}: z > 2"),
+            &tds,
+            |td| vec![across(LSTM, td, ratio), across(other, td, ratio)],
+            |v| two_sample(&v[0], &v[1]),
+        );
+    }
+    let big = lab_model("CTRNN256").unwrap_or("ctrnn-reservoir256");
+    per_td_statement(
+        &mut rows,
+        "fi_ctrnn256_better",
+        "at a higher memory size CTRNN256's FOCs improve on CTRNN125's (lab: reservoirs)",
+        task,
+        &format!("|FOC/TD − 1| per run, {reservoir} − {big}: z > 2"),
+        &tds,
+        |td| vec![across(reservoir, td, off), across(big, td, off)],
+        |v| two_sample(&v[0], &v[1]),
+    );
     rows
 }
 
@@ -410,8 +526,8 @@ pub fn claims_markdown(m: &mut String, rows: &[ClaimRow]) {
 /// Whether a row is a statement's verdict rather than one of the per-TD rows behind a
 /// "generally" verdict.
 pub fn is_summary(r: &ClaimRow) -> bool {
-    !(r.claim == "exact_lstm_best" || r.claim == "exact_cnn_short_only")
-        || r.setting.contains("every")
+    !r.setting.contains(", TD ")
+        || ["exact_shortest_equal", "exact_cnn_above_min"].contains(&r.claim.as_str())
 }
 
 /// A z for tables: 2 decimals, `–` for none, `±∞`.

@@ -82,8 +82,8 @@ fn run_focs_by(
     out
 }
 
-/// FI analysis of every model among `jobs` (jobs of other tasks are ignored).
-pub fn analyse_fi(jobs: &[CompactJob]) -> Vec<FiModel> {
+/// The FI jobs among `jobs` by model, then TD (steps).
+pub fn fi_runs(jobs: &[CompactJob]) -> BTreeMap<&str, BTreeMap<u32, Vec<&CompactJob>>> {
     let mut by_model: BTreeMap<&str, BTreeMap<u32, Vec<&CompactJob>>> = BTreeMap::new();
     for j in jobs.iter().filter(|j| j.job.task == "FixedInterval-v0") {
         let Some(td) = j.env_value("td").and_then(|v| v.parse().ok()) else {
@@ -97,6 +97,11 @@ pub fn analyse_fi(jobs: &[CompactJob]) -> Vec<FiModel> {
             .push(j);
     }
     by_model
+}
+
+/// FI analysis of every model among `jobs` (jobs of other tasks are ignored).
+pub fn analyse_fi(jobs: &[CompactJob]) -> Vec<FiModel> {
+    fi_runs(jobs)
         .into_iter()
         .map(|(model, tds)| {
             let mut cells = Vec::new();

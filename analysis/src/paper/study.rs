@@ -5,7 +5,7 @@
 
 use super::agreement::{Agreement, agreement};
 use super::bisection::{BisectionModel, analyse_bisection};
-use super::claims::{ClaimRow, claims_markdown, exact_timer_claims, multitimer_claims};
+use super::claims::{ClaimRow, claims_markdown, exact_timer_claims, fi_claims, multitimer_claims};
 use super::collect::{CollectError, CompactJob, err, read_compact, write_csv};
 use super::compare::{ComparisonRow, compare};
 use super::fi::{FiModel, analyse_fi};
@@ -100,7 +100,8 @@ pub fn analyse(root: &Path) -> Result<PaperStudy, CollectError> {
     let agreement = agreement(&comparison, &fi, &bisection, &multitimer);
     let pi = analyse_pi(root, &jobs)?;
     let pi_verdicts = pi_verdicts(&pi);
-    let mut claims = exact_timer_claims(&jobs);
+    let mut claims = fi_claims(&jobs);
+    claims.extend(exact_timer_claims(&jobs));
     claims.extend(multitimer_claims(&multitimer));
     Ok(PaperStudy {
         claims,
