@@ -333,7 +333,12 @@ pub fn agreement_markdown(m: &mut String, a: &Agreement) {
         "| pairing | matched | source | rows | old rule: agree | z rule: agree |"
     );
     let _ = writeln!(m, "|---|---|---|---:|---:|---:|");
-    for c in a.negative_control.iter().filter(|c| c.rule == "old") {
+    // Pairings without a number in this study (e.g. a study of one task) are left out.
+    for c in a
+        .negative_control
+        .iter()
+        .filter(|c| c.rule == "old" && c.counts.rows > 0)
+    {
         let Some(z) = a
             .negative_control
             .iter()

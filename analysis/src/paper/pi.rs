@@ -321,9 +321,12 @@ fn f(x: f64) -> String {
 }
 
 /// The peak-interval section of `tables.md`: the uniform-checking verdict per model ×
-/// probe factor.
+/// probe factor (nothing in a study without FI probes).
 pub fn pi_markdown(m: &mut String, v: &[PiVerdict]) {
     use std::fmt::Write as _;
+    if v.is_empty() {
+        return;
+    }
     let _ = writeln!(
         m,
         "\n## Peak interval: does the agent check uniformly after the TD?\n\nPer run × TD \
