@@ -5,10 +5,11 @@ mod common;
 
 use chronocooked_analysis::paper::claims::{
     ClaimRow, exact_timer_claims, exact_timer_run_means, fi_claims, fi_run_stat, general,
-    is_summary, multitimer_claims,
+    multitimer_claims, shift_claims,
 };
+use chronocooked_analysis::paper::collect::LevelEpisode;
 use chronocooked_analysis::paper::collect::{CompactJob, EpisodeRow};
-use chronocooked_analysis::paper::multitimer::analyse_multitimer;
+use chronocooked_analysis::paper::multitimer::{LevelTd, analyse_multitimer, timers_stored};
 use common::{ep, job, mt_ep};
 
 /// An exact-timer run of `model` at `td` whose buffer-0 episodes earn `r0` and buffer-50%
@@ -342,13 +343,16 @@ fn fixed_interval_statements_get_the_verdicts_worked_out_by_hand() {
     );
     assert_eq!(overall(&rows, "fi_ctrnn_earlier", "trained").verdict, "n/a");
     // The tables show the verdict rows, not the per-TD rows behind a "generally".
-    assert!(is_summary(overall(&rows, "fi_ctrnn_earlier", "reservoir")));
-    assert!(!is_summary(find(
-        &rows,
-        "fi_ctrnn_earlier",
-        "fixed interval, TD 8",
-        "reservoir"
-    )));
+    assert!(overall(&rows, "fi_ctrnn_earlier", "reservoir").summary);
+    assert!(
+        !find(
+            &rows,
+            "fi_ctrnn_earlier",
+            "fixed interval, TD 8",
+            "reservoir"
+        )
+        .summary
+    );
 
     // A CNN checking from the start on every run: z against 0.5 is +∞ → holds; a reservoir
     // later than the LSTM contradicts "earlier".
@@ -368,4 +372,145 @@ fn fixed_interval_statements_get_the_verdicts_worked_out_by_hand() {
         overall(&rows, "fi_ctrnn_earlier", "reservoir").verdict,
         "contradicted"
     );
+}
+
+/// A curve point: `td` where the soup is taken on `taken` of the cells at mean `off`.
+fn point(td: u32, taken: f64, off: f64) -> LevelTd {
+    LevelTd {
+        td,
+        trained: false,
+        reward: 0.0,
+        taken,
+        off_time: off,
+    }
+}
+
+#[test]
+fn timers_stored_counts_distinct_oven_off_plateaus() {
+    // A perfect timer over TDs 1 … 11: eleven plateaus.
+    let perfect: Vec<LevelTd> = (1..=11).map(|t| point(t, 1.0, f64::from(t))).collect();
+    assert_eq!(timers_stored(&perfect), 11);
+    // The paper's CTRNN example: ≈ 2 at TD 2, ≈ 5 from TD 3 to 8, back to 2 at TD 9 → 2.
+    let mut ctrnn = vec![point(1, 1.0, 2.0), point(2, 1.0, 2.1)];
+    ctrnn.extend((3..=8).map(|t| point(t, 1.0, 4.8 + 0.1 * f64::from(t % 2))));
+    ctrnn.push(point(9, 1.0, 1.9));
+    assert_eq!(timers_stored(&ctrnn), 2);
+    // Means within half a step are one timer; 0.6 apart are two.
+    assert_eq!(timers_stored(&[point(1, 1.0, 4.8), point(2, 1.0, 5.2)]), 1);
+    assert_eq!(timers_stored(&[point(1, 1.0, 4.8), point(2, 1.0, 5.4)]), 2);
+    // A TD where the soup is taken on fewer than half the cells does not count.
+    assert_eq!(timers_stored(&[point(1, 1.0, 2.0), point(2, 0.4, 7.0)]), 1);
+    assert_eq!(timers_stored(&[point(1, 0.0, f64::NAN)]), 0);
+}
+
+fn level_episode(level: usize, td: u32, off: i32) -> LevelEpisode {
+    LevelEpisode {
+        level,
+        td,
+        row: 0,
+        col: 0,
+        steps: 20,
+        reward: if off == td as i32 { 1.0 } else { 0.0 },
+        success: off == td as i32,
+        oven_off_time: off,
+    }
+}
+
+/// A run on the notebook's list whose level-1 … `top` policies take the soup at `off(level,
+/// td)` at every TD 1 … longest + 1 (two start cells each).
+fn shifting_run(model: &str, seed: u64, top: usize, off: impl Fn(usize, u32) -> i32) -> CompactJob {
+    let tds = [2u32, 4, 6, 8, 10];
+    let mut levels = vec![level_episode(0, 2, 2)];
+    for level in 1..=top {
+        let longest = tds[..level].iter().copied().max().unwrap();
+        for td in 1..=longest + 1 {
+            for _ in 0..2 {
+                levels.push(level_episode(level, td, off(level, td)));
+            }
+        }
+    }
+    let mut j = job(
+        "MultiTimer-v0",
+        model,
+        seed,
+        &["tds=2,4,6,8,10", "mode=exact"],
+        20.0,
+    );
+    j.level_steps = (0..=top as u64).map(|l| l * 1000).collect();
+    CompactJob {
+        job: j,
+        episodes: vec![],
+        curve: vec![],
+        levels,
+    }
+}
+
+#[test]
+fn untrained_tds_leave_the_level_reward_alone_and_give_the_timers_stored() {
+    // Level 2 (TDs 2, 4) timed perfectly at its trained TDs, at 4 everywhere else (1, 3, 5):
+    // its level reward is 1 (trained TDs only), its untrained reward 0, and its oven-off
+    // curve 4, 2, 4, 4, 4 holds two timers.
+    let j = shifting_run("lstm125", 1, 2, |_, td| if td == 2 { 2 } else { 4 });
+    let mt = analyse_multitimer(&[j]);
+    let r = &mt[0].runs[0];
+    assert_eq!(r.level_eval[2], Some(1.0));
+    assert_eq!(r.level_timers[2], Some(2));
+    let trained: Vec<u32> = r.level_curves[2]
+        .iter()
+        .filter(|c| c.trained)
+        .map(|c| c.td)
+        .collect();
+    assert_eq!(trained, [2, 4]);
+    assert_eq!(mt[0].level_untrained_reward[2].mean, 0.0);
+    // Level 1 (TD 2) on 1, 2, 3: 4, 2, 4 → reward 1 at its TD, two timers; level 0 none.
+    assert_eq!((r.level_eval[1], r.level_timers[1]), (Some(1.0), Some(2)));
+    assert_eq!(r.level_timers[0], Some(1));
+    assert_eq!(r.level_timers[3], None);
+}
+
+#[test]
+fn more_shifts_is_tested_level_by_level() {
+    let mut jobs = Vec::new();
+    // LSTM: one timer at every level (always 4). Reservoir: a perfect timer at every TD
+    // (level L stores 2L + 1 timers: TDs 1 … 2L + 1).
+    for s in 1..=4 {
+        jobs.push(shifting_run("lstm125", s, 3, |_, _| 4));
+        jobs.push(shifting_run("ctrnn-reservoir125", s, 3, |_, td| td as i32));
+    }
+    let rows = shift_claims(&analyse_multitimer(&jobs));
+    let task = "multi-timer exact, TDs 2, 4, 6, 8, 10";
+    // Equal counts on every run (SD 0) and a difference: z = +∞ → holds at levels 1–3;
+    // levels 4–5 were never reached → n/a; over the levels: 3 of 3 → holds.
+    let r = find(
+        &rows,
+        "multitimer_ctrnn_more_shifts",
+        &format!("{task}, level 2"),
+        "reservoir",
+    );
+    assert_eq!((r.z, r.verdict.as_str()), (f64::INFINITY, "holds"));
+    assert!(
+        r.lab.starts_with("5.00 ± 0.00 (4) vs 1.00 ± 0.00 (4)"),
+        "{r:?}"
+    );
+    let r = find(
+        &rows,
+        "multitimer_ctrnn_more_shifts",
+        &format!("{task}, level 5"),
+        "reservoir",
+    );
+    assert_eq!(r.verdict, "n/a");
+    let r = rows
+        .iter()
+        .find(|r| r.summary && r.statement.contains("reservoir"))
+        .unwrap();
+    assert_eq!(
+        (r.setting.as_str(), r.verdict.as_str()),
+        (format!("{task}, every level").as_str(), "holds")
+    );
+    // No trained-CTRNN runs.
+    let r = rows
+        .iter()
+        .find(|r| r.summary && r.statement.contains("trained"))
+        .unwrap();
+    assert_eq!(r.verdict, "n/a");
 }

@@ -1,5 +1,6 @@
 //! A multi-timer curriculum run's per-level policies evaluated as the paper's notebooks do:
-//! each level's policy on exactly the TDs trained at that level, from every start cell.
+//! each level's policy on the TDs trained at that level, from every start cell, then (past
+//! the warm-up) on every untrained TD from 1 to one past the level's longest.
 
 use chronocooked_analysis::paper::collect::{LEVELS_CSV, read_level_episodes};
 use chronocooked_pipeline::stages::levels::evaluate_levels;
@@ -7,7 +8,7 @@ use chronocooked_training::{Silent, resolve, run_training};
 use std::collections::BTreeMap;
 
 #[test]
-fn every_kept_level_is_evaluated_on_its_own_tds_from_every_start_cell() {
+fn every_kept_level_is_evaluated_on_its_own_tds_then_the_untrained_ones_from_every_start_cell() {
     let dir = std::env::temp_dir().join(format!("cc-levels-eval-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let cfg = resolve(
@@ -53,10 +54,42 @@ fn every_kept_level_is_evaluated_on_its_own_tds_from_every_start_cell() {
         ((3, 2), 12),
         ((3, 4), 12),
         ((3, 6), 12),
+        // Untrained: level 1 (TD 2) on 1 and 3; level 2 (2, 4) on 1, 3, 5; level 3 (2, 4,
+        // 6) on 1, 3, 5, 7.
+        ((1, 1), 12),
+        ((1, 3), 12),
+        ((2, 1), 12),
+        ((2, 3), 12),
+        ((2, 5), 12),
+        ((3, 1), 12),
+        ((3, 3), 12),
+        ((3, 5), 12),
+        ((3, 7), 12),
     ]
     .into_iter()
     .collect();
     assert_eq!(per, expected);
+    // Within a level the trained TDs come first (their episodes do not depend on the
+    // untrained ones): every trained row precedes every untrained row.
+    let trained = [2u32, 4, 6];
+    for level in 1..=3 {
+        let tds: Vec<u32> = rows
+            .iter()
+            .filter(|r| r.level == level)
+            .map(|r| r.td)
+            .collect();
+        let first_ood = tds
+            .iter()
+            .position(|t| !trained[..level].contains(t))
+            .unwrap();
+        assert!(
+            tds[first_ood..]
+                .iter()
+                .all(|t| !trained[..level].contains(t)),
+            "{tds:?}"
+        );
+        assert_eq!(first_ood, 12 * level, "{tds:?}");
+    }
     // The rerun is the same (greedy policies, seeded episodes).
     let again = dir.join("eval2");
     evaluate_levels(&run, &again, 7).unwrap();

@@ -55,6 +55,8 @@ pub struct ClaimRow {
     pub z: f64,
     /// `holds`, `contradicted`, `not shown` or `n/a`.
     pub verdict: String,
+    /// A statement's verdict (`true`) or one setting behind a "generally" verdict.
+    pub summary: bool,
 }
 
 /// Verdict of a one-directional statement from its z (positive: the statement's direction).
@@ -178,11 +180,11 @@ pub fn exact_timer_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
         ),
     ];
     for (other, name) in others {
-        per_td_statement(
+        per_setting_statement(
             &mut rows,
             "exact_lstm_best",
             &format!("LSTM125 generally outperforms {name}"),
-            "exact timer",
+            ("exact timer", "TD"),
             &format!("lstm125 − {other}, mean reward over buffers: z > 2"),
             &tds,
             |td| vec![*get(LSTM, td), *get(other, td)],
@@ -209,6 +211,7 @@ pub fn exact_timer_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
                 lab: format!("{} vs {}", fmt_spread(a), fmt_spread(b)),
                 z,
                 verdict: equal(z).into(),
+                summary: true,
             });
         }
         // At the shortest TD the CNN earns above the minimum 0.1.
@@ -222,6 +225,7 @@ pub fn exact_timer_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
             lab: fmt_spread(a),
             z,
             verdict: directional(z).into(),
+            summary: true,
         });
         // … and that does not generalise to longer TDs.
         let mut per_td = Vec::new();
@@ -246,6 +250,7 @@ pub fn exact_timer_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
                 lab: fmt_spread(b),
                 z,
                 verdict: verdict.into(),
+                summary: false,
             });
         }
         let against = per_td.iter().filter(|v| **v == "contradicted").count();
@@ -263,6 +268,7 @@ pub fn exact_timer_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
                 _ => "contradicted",
             }
             .into(),
+            summary: true,
         });
     }
     rows
@@ -279,15 +285,16 @@ pub fn fi_run_stat(job: &CompactJob, td: u32) -> Option<(f64, f64)> {
     })
 }
 
-/// A "generally" statement over TDs: one row per TD (`sides` gives the per-run statistic of
+/// A "generally" statement over settings (TDs, levels): one row per setting `unit x` of
+/// `task` (`sides` gives the per-run statistic of
 /// each side the test names, `z_of` the statement's z from them; `n/a` where a side has no
-/// runs) and a verdict row over every TD by [`general`].
+/// runs) and a verdict row over every setting by [`general`].
 #[allow(clippy::too_many_arguments)]
-fn per_td_statement(
+fn per_setting_statement(
     rows: &mut Vec<ClaimRow>,
     claim: &str,
     statement: &str,
-    task: &str,
+    (task, unit): (&str, &str),
     test: &str,
     tds: &[u32],
     sides: impl Fn(u32) -> Vec<Spread>,
@@ -306,26 +313,28 @@ fn per_td_statement(
         rows.push(ClaimRow {
             claim: claim.into(),
             statement: statement.into(),
-            setting: format!("{task}, TD {td}"),
+            setting: format!("{task}, {unit} {td}"),
             test: test.into(),
             lab: v.iter().map(fmt_spread).collect::<Vec<_>>().join(" vs "),
             z,
             verdict: verdict.into(),
+            summary: false,
         });
     }
     rows.push(ClaimRow {
         claim: claim.into(),
         statement: statement.into(),
-        setting: format!("{task}, every TD"),
-        test: "holds at ≥ half the TDs and contradicted at none".into(),
+        setting: format!("{task}, every {unit}"),
+        test: format!("holds at ≥ half the {unit}s and contradicted at none"),
         lab: format!(
-            "{} of {} TDs hold, {} contradicted",
+            "{} of {} {unit}s hold, {} contradicted",
             verdicts.iter().filter(|v| **v == "holds").count(),
             verdicts.iter().filter(|v| **v != "n/a").count(),
             verdicts.iter().filter(|v| **v == "contradicted").count()
         ),
         z: f64::NAN,
         verdict: general(verdicts).into(),
+        summary: true,
     });
 }
 
@@ -352,11 +361,11 @@ pub fn fi_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
     tds.dedup();
     let task = "fixed interval";
     let mut rows = Vec::new();
-    per_td_statement(
+    per_setting_statement(
         &mut rows,
         "fi_cnn_foc_zero",
         "in most cases the CNN's first oven check is at 0 (checking from the start)",
-        task,
+        (task, "TD"),
         "cnn-mlp share of FOCs at 0 per run, against 0.5: z > 2",
         &tds,
         |td| vec![across(CNN, td, zero)],
@@ -370,21 +379,21 @@ pub fn fi_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
             "the lab's trained CTRNN125 (not in the paper)",
         ),
     ] {
-        per_td_statement(
+        per_setting_statement(
             &mut rows,
             "fi_lstm_closer",
             &format!("LSTM125's FOCs are closer to the TD than {name}'s"),
-            task,
+            (task, "TD"),
             &format!("|FOC/TD − 1| per run, {other} − lstm125: z > 2"),
             &tds,
             |td| vec![across(other, td, off), across(LSTM, td, off)],
             |v| two_sample(&v[0], &v[1]),
         );
-        per_td_statement(
+        per_setting_statement(
             &mut rows,
             "fi_ctrnn_earlier",
             &format!("{name} checks the oven earlier than LSTM125"),
-            task,
+            (task, "TD"),
             &format!("FOC/TD per run, lstm125 − {other}: z > 2"),
             &tds,
             |td| vec![across(LSTM, td, ratio), across(other, td, ratio)],
@@ -392,11 +401,11 @@ pub fn fi_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
         );
     }
     let big = lab_model("CTRNN256").unwrap_or("ctrnn-reservoir256");
-    per_td_statement(
+    per_setting_statement(
         &mut rows,
         "fi_ctrnn256_better",
         "at a higher memory size CTRNN256's FOCs improve on CTRNN125's (lab: reservoirs)",
-        task,
+        (task, "TD"),
         &format!("|FOC/TD − 1| per run, {reservoir} − {big}: z > 2"),
         &tds,
         |td| vec![across(reservoir, td, off), across(big, td, off)],
@@ -455,6 +464,7 @@ pub fn multitimer_claims(cells: &[MtCell]) -> Vec<ClaimRow> {
                     directional(z)
                 }
                 .into(),
+                summary: true,
             });
         }
         // None of the models performs every task: no run reaches five timers with its
@@ -493,7 +503,54 @@ pub fn multitimer_claims(cells: &[MtCell]) -> Vec<ClaimRow> {
                 _ => "contradicted",
             }
             .into(),
+            summary: true,
         });
+    }
+    rows
+}
+
+/// "CTRNN125 generally shows more shifts than LSTM125" (the multi-timer's oven-off curves,
+/// each level's policy on every TD 1 … its longest + 1): per curriculum and five-TD list, the
+/// timers each level's policy stores ([`timers_stored`](super::multitimer::timers_stored)),
+/// CTRNN − LSTM per level 1 … 5 with the runs that kept that level, then over the levels.
+/// The paper's figures do not say which curriculum they show, so both are tested.
+pub fn shift_claims(cells: &[MtCell]) -> Vec<ClaimRow> {
+    let mut keys: Vec<(&str, &[u32])> = cells
+        .iter()
+        .filter(|c| c.tds.len() == LEVELS - 1 && c.level_timers.iter().any(|t| t.n > 0))
+        .map(|c| (c.curriculum.as_str(), c.tds.as_slice()))
+        .collect();
+    keys.sort_unstable();
+    keys.dedup();
+    let mut rows = Vec::new();
+    let levels: Vec<u32> = (1..LEVELS as u32).collect();
+    for (curriculum, tds) in keys {
+        let timers = |m: &str, level: u32| {
+            cells
+                .iter()
+                .find(|c| c.curriculum == curriculum && c.tds == tds && c.model == m)
+                .and_then(|c| c.level_timers.get(level as usize).copied())
+                .unwrap_or(Spread::of([]))
+        };
+        let task = format!("multi-timer {curriculum}, TDs {}", tds_label(tds));
+        for (ctrnn, name) in [
+            (paper_ctrnn(), "CTRNN125 (lab: reservoir)"),
+            (
+                TRAINED_CTRNN,
+                "the lab's trained CTRNN125 (not in the paper)",
+            ),
+        ] {
+            per_setting_statement(
+                &mut rows,
+                "multitimer_ctrnn_more_shifts",
+                &format!("{name} generally shows more shifts (timers stored) than LSTM125"),
+                (&task, "level"),
+                &format!("timers stored per run, {ctrnn} − lstm125: z > 2"),
+                &levels,
+                |l| vec![timers(ctrnn, l), timers(LSTM, l)],
+                |v| two_sample(&v[0], &v[1]),
+            );
+        }
     }
     rows
 }
@@ -509,7 +566,7 @@ pub fn claims_markdown(m: &mut String, rows: &[ClaimRow]) {
     );
     let _ = writeln!(m, "| statement | setting | test | lab | z | verdict |");
     let _ = writeln!(m, "|---|---|---|---|---:|---|");
-    for r in rows.iter().filter(|r| is_summary(r)) {
+    for r in rows.iter().filter(|r| r.summary) {
         let _ = writeln!(
             m,
             "| {} | {} | {} | {} | {} | {} |",
@@ -521,13 +578,6 @@ pub fn claims_markdown(m: &mut String, rows: &[ClaimRow]) {
             r.verdict
         );
     }
-}
-
-/// Whether a row is a statement's verdict rather than one of the per-TD rows behind a
-/// "generally" verdict.
-pub fn is_summary(r: &ClaimRow) -> bool {
-    !r.setting.contains(", TD ")
-        || ["exact_shortest_equal", "exact_cnn_above_min"].contains(&r.claim.as_str())
 }
 
 /// A z for tables: 2 decimals, `–` for none, `±∞`.

@@ -7,7 +7,7 @@
 //! test setting (`levels.csv`, the notebooks' per-level evaluation). Runs trained on one TD
 //! are the exact timer ([`analyse_exact_timer`]): reward against the test buffer.
 
-use super::collect::CompactJob;
+use super::collect::{CompactJob, LevelEpisode};
 use crate::behaviour::aggregate::Spread;
 use crate::records::ConditionKind;
 use serde::{Deserialize, Serialize};
@@ -38,6 +38,13 @@ pub struct MtRun {
     /// TDs and start cells (`None`: no policy kept for that level).
     #[serde(default)]
     pub level_eval: Vec<Option<f64>>,
+    /// Each level 0 … 5's policy at every TD it was tested on, trained and untrained
+    /// (empty for a level without a kept policy).
+    #[serde(default)]
+    pub level_curves: Vec<Vec<LevelTd>>,
+    /// [`timers_stored`] of each level's curve (`None`: no policy kept for that level).
+    #[serde(default)]
+    pub level_timers: Vec<Option<usize>>,
 }
 
 /// One model under one curriculum.
@@ -69,6 +76,13 @@ pub struct MtCell {
     /// Each level's policy in its test setting, across the runs that kept one.
     #[serde(default)]
     pub level_eval: Vec<Spread>,
+    /// Timers each level's policy stores ([`timers_stored`]), across the runs that kept one.
+    #[serde(default)]
+    pub level_timers: Vec<Spread>,
+    /// Each level's policy's mean reward at the untrained TDs 1 … max + 1 of its level,
+    /// across the runs that kept one.
+    #[serde(default)]
+    pub level_untrained_reward: Vec<Spread>,
 }
 
 /// The exact timer at one TD: reward against the test buffer.
@@ -133,19 +147,99 @@ fn level_reward_of(job: &CompactJob) -> Vec<Option<f64>> {
         .collect()
 }
 
-/// Mean reward of each level's own policy in that level's test setting.
+/// The TDs level `level` trains on: the warm-up the first TD, level `L ≥ 1` the first `L`.
+pub fn level_tds(level: usize, tds: &[u32]) -> &[u32] {
+    &tds[..level.max(1).min(tds.len())]
+}
+
+/// Mean reward of each level's own policy in that level's test setting, on the TDs it was
+/// trained on (its episodes at untrained TDs are in [`level_curves_of`]).
 fn level_eval_of(job: &CompactJob) -> Vec<Option<f64>> {
+    let tds = trained_tds(job);
     (0..LEVELS)
         .map(|l| {
             let r: Vec<f64> = job
                 .levels
                 .iter()
-                .filter(|e| e.level == l)
+                .filter(|e| e.level == l && level_tds(l, &tds).contains(&e.td))
                 .map(|e| f64::from(e.reward))
                 .collect();
             (!r.is_empty()).then(|| r.iter().sum::<f64>() / r.len() as f64)
         })
         .collect()
+}
+
+/// One level's policy at one tested TD, trained or not.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct LevelTd {
+    /// Tested TD (steps).
+    pub td: u32,
+    /// Whether the level trained on it.
+    pub trained: bool,
+    /// Mean reward over the start cells.
+    pub reward: f64,
+    /// Share of the start cells where the soup was taken.
+    pub taken: f64,
+    /// Mean oven-off time (steps) over the cells where it was taken (NaN: never).
+    pub off_time: f64,
+}
+
+/// Each level 0 … 5's policy at every TD it was tested on, ascending (empty: not kept).
+fn level_curves_of(job: &CompactJob) -> Vec<Vec<LevelTd>> {
+    let tds = trained_tds(job);
+    (0..LEVELS)
+        .map(|l| {
+            let mut at: BTreeMap<u32, Vec<&LevelEpisode>> = BTreeMap::new();
+            for e in job.levels.iter().filter(|e| e.level == l) {
+                at.entry(e.td).or_default().push(e);
+            }
+            at.into_iter()
+                .map(|(td, eps)| {
+                    let n = eps.len() as f64;
+                    let taken: Vec<f64> = eps
+                        .iter()
+                        .filter(|e| e.oven_off_time >= 0)
+                        .map(|e| f64::from(e.oven_off_time))
+                        .collect();
+                    LevelTd {
+                        td,
+                        trained: level_tds(l, &tds).contains(&td),
+                        reward: eps.iter().map(|e| f64::from(e.reward)).sum::<f64>() / n,
+                        taken: taken.len() as f64 / n,
+                        off_time: if taken.is_empty() {
+                            f64::NAN
+                        } else {
+                            taken.iter().sum::<f64>() / taken.len() as f64
+                        },
+                    }
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Steps by which two oven-off plateaus must differ to count as two timers: oven-off times
+/// are whole steps, so two timers differ by at least 1; means over start cells within half a
+/// step of each other are one.
+pub const PLATEAU_GAP: f64 = 0.5;
+
+/// The paper's "number of distinct shifts" in a level's oven-off curve — how many timers the
+/// policy stores: the mean oven-off times at the tested TDs where the soup was taken on at
+/// least half the start cells, sorted, split wherever two neighbours differ by more than
+/// [`PLATEAU_GAP`] steps; the number of groups (0 when it is taken at no TD). A policy that
+/// times every TD of 1 … 11 has 11; one that takes the soup at 2 below TD 3 and at 5 from
+/// there on has 2 (the paper's CTRNN125 example: "it stores 2 timers").
+pub fn timers_stored(curve: &[LevelTd]) -> usize {
+    let mut off: Vec<f64> = curve
+        .iter()
+        .filter(|c| c.taken >= 0.5 && c.off_time.is_finite())
+        .map(|c| c.off_time)
+        .collect();
+    off.sort_by(f64::total_cmp);
+    if off.is_empty() {
+        return 0;
+    }
+    1 + off.windows(2).filter(|w| w[1] - w[0] > PLATEAU_GAP).count()
 }
 
 /// The TD list a multi-timer job trained on (the task's default list when not set).
@@ -166,6 +260,7 @@ fn run_of(job: &CompactJob) -> MtRun {
     evaluated.dedup();
     let trained = trained_tds(job);
     let tested = per_td_of(job, &evaluated);
+    let curves = level_curves_of(job);
     MtRun {
         seed: job.job.seed,
         level: job.job.level_steps.len().saturating_sub(1),
@@ -178,6 +273,11 @@ fn run_of(job: &CompactJob) -> MtRun {
         tested,
         level_reward: level_reward_of(job),
         level_eval: level_eval_of(job),
+        level_timers: curves
+            .iter()
+            .map(|c| (!c.is_empty()).then(|| timers_stored(c)))
+            .collect(),
+        level_curves: curves,
     }
 }
 
@@ -235,7 +335,32 @@ pub fn analyse_multitimer(jobs: &[CompactJob]) -> Vec<MtCell> {
             let level_eval = (0..LEVELS)
                 .map(|l| Spread::of(runs.iter().filter_map(|r| *r.level_eval.get(l)?)))
                 .collect();
+            let level_timers = (0..LEVELS)
+                .map(|l| {
+                    Spread::of(
+                        runs.iter()
+                            .filter_map(|r| r.level_timers.get(l).copied().flatten())
+                            .map(|n| n as f64),
+                    )
+                })
+                .collect();
+            let level_untrained_reward = (0..LEVELS)
+                .map(|l| {
+                    Spread::of(runs.iter().filter_map(|r| {
+                        let v: Vec<f64> = r
+                            .level_curves
+                            .get(l)?
+                            .iter()
+                            .filter(|c| !c.trained)
+                            .map(|c| c.reward)
+                            .collect();
+                        (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
+                    }))
+                })
+                .collect();
             MtCell {
+                level_timers,
+                level_untrained_reward,
                 model: model.to_string(),
                 curriculum: curriculum.to_string(),
                 tds,

@@ -2,7 +2,7 @@
 //! resources) with how many of the paper's numbers the lab reproduces per table, every
 //! comparison row, and the study's figures in the paper's form.
 
-use super::claims::{is_summary, z_text};
+use super::claims::z_text;
 use super::collect::{CollectError, err};
 use super::compare::ComparisonRow;
 use super::study::PaperStudy;
@@ -161,7 +161,7 @@ fn claims_table(s: &PaperStudy) -> Markup {
                 th { "statement" } th { "setting" } th { "test" } th { "lab" } th { "z" }
                 th { "verdict" }
             }
-            @for r in s.claims.iter().filter(|r| is_summary(r)) {
+            @for r in s.claims.iter().filter(|r| r.summary) {
                 tr {
                     td { (r.statement) } td { (r.setting) } td { (r.test) } td { (r.lab) }
                     td { (z_text(r.z)) } td { (r.verdict) }

@@ -5,11 +5,15 @@
 
 use super::agreement::{Agreement, agreement};
 use super::bisection::{BisectionModel, analyse_bisection};
-use super::claims::{ClaimRow, claims_markdown, exact_timer_claims, fi_claims, multitimer_claims};
+use super::claims::{
+    ClaimRow, claims_markdown, exact_timer_claims, fi_claims, multitimer_claims, shift_claims,
+};
 use super::collect::{CollectError, CompactJob, err, read_compact, write_csv};
 use super::compare::{ComparisonRow, compare};
 use super::fi::{FiModel, analyse_fi};
-use super::multitimer::{ExactTimerCell, MtCell, analyse_exact_timer, analyse_multitimer};
+use super::multitimer::{
+    ExactTimerCell, LEVELS, MtCell, PLATEAU_GAP, analyse_exact_timer, analyse_multitimer,
+};
 use super::pi::{PiRow, PiVerdict, analyse_pi, pi_verdicts};
 use super::reference::HUMAN_WF_VS_RATIO;
 use super::spreads::{NewRunRange, SpreadChange, new_run_ranges, spread_changes};
@@ -103,6 +107,7 @@ pub fn analyse(root: &Path) -> Result<PaperStudy, CollectError> {
     let mut claims = fi_claims(&jobs);
     claims.extend(exact_timer_claims(&jobs));
     claims.extend(multitimer_claims(&multitimer));
+    claims.extend(shift_claims(&multitimer));
     Ok(PaperStudy {
         claims,
         jobs: jobs.len(),
@@ -228,6 +233,37 @@ fn tds_label(tds: &[u32]) -> String {
         .map(u32::to_string)
         .collect::<Vec<_>>()
         .join(", ")
+}
+
+/// The per-level policies at the untrained TDs 1 … max + 1 of their level and the timers
+/// they store (levels 1 … 5; runs whose levels were tested there only).
+fn level_ood_markdown(m: &mut String, cells: &[MtCell]) {
+    let with: Vec<&MtCell> = cells
+        .iter()
+        .filter(|c| c.level_timers.iter().skip(1).any(|x| x.n > 0))
+        .collect();
+    if with.is_empty() {
+        return;
+    }
+    let _ = writeln!(
+        m,
+        "\nEach level's policy (levels 1 … 5) also on the TDs it was not trained on, 1 … its longest + 1 (the paper's figures' out-of-distribution TDs): mean reward there, and the timers it stores — the paper's \"number of distinct shifts\" in the oven-off curve over every tested TD (mean oven-off times where the soup is taken on ≥ half the cells, grouped when within {PLATEAU_GAP} step) — as reward at untrained TDs / timers, mean over runs (runs):\n"
+    );
+    let _ = writeln!(m, "| model | curriculum | TDs | 1 | 2 | 3 | 4 | 5 |");
+    let _ = writeln!(m, "|---|---|---|---:|---:|---:|---:|---:|");
+    for c in with {
+        let r: Vec<String> = (1..LEVELS)
+            .map(
+                |l| match (c.level_untrained_reward.get(l), c.level_timers.get(l)) {
+                    (Some(u), Some(t)) if t.n > 0 => {
+                        format!("{} / {} ({})", f(u.mean, 2), f(t.mean, 1), t.n)
+                    }
+                    _ => "–".into(),
+                },
+            )
+            .collect();
+        mt_row(m, c, &r);
+    }
 }
 
 /// Markdown tables of the study (what `RESULTS.md` quotes).
@@ -412,6 +448,7 @@ pub fn tables_markdown(s: &PaperStudy) -> String {
             mt_row(&mut m, c, &r);
         }
     }
+    level_ood_markdown(&mut m, &s.multitimer);
     let _ = writeln!(
         m,
         "\nFinal policy per trained TD, mean over runs of the 12-start-cell means: reward / oven-off time (steps since the onion went in; a soup never taken counts −1, as in the notebook):\n"

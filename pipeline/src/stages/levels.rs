@@ -10,6 +10,13 @@
 //!   early buffer): reduced reward 0.1 and an early buffer of 2 steps, as the categorical
 //!   notebook tests (its training used 3 and 0).
 //!
+//! Then, as the paper's multi-timer figures show it (an earlier version of the notebooks
+//! swept every integer TD 1 … max(level's TDs) + 1: "Some additional out-of-distribution
+//! (OOD) durations are also shown"), each level `L ≥ 1` policy in the same setting on the
+//! TDs 1 … max(`TD[0..L]`) + 1 it was not trained on (value cue only: a categorical cue has
+//! no code for an untrained TD) — after the trained TDs, so their episodes do not depend on
+//! the sweep. The analysis tells them apart by the run's TD list.
+//!
 //! Written as `levels.csv` ([`LevelEpisode`] rows) in the evaluation folder.
 
 use crate::PipelineError;
@@ -17,7 +24,7 @@ use chronocooked_analysis::paper::collect::{
     LEVELS_CSV, LevelEpisode, read_curve, write_level_episodes,
 };
 use chronocooked_analysis::{Condition, ConditionKind, Mode, run_protocol};
-use chronocooked_env::{RewardMode, TaskParams, make_config};
+use chronocooked_env::{CueMode, RewardMode, TaskParams, make_config};
 use chronocooked_models::run_folder;
 use chronocooked_training::ppo::agent::PpoAgent;
 use chronocooked_training::ppo::config::Curriculum;
@@ -67,6 +74,17 @@ pub fn level_test_setting(
     (env, tds[..n].to_vec())
 }
 
+/// The untrained TDs level `level` is also tested on: 1 … max(`tds[..level]`) + 1 minus the
+/// trained ones (none for the warm-up level 0 or without the value cue).
+pub fn level_ood_tds(level: usize, tds: &[u32], value_cue: bool) -> Vec<u32> {
+    if level == 0 || !value_cue {
+        return Vec::new();
+    }
+    let trained = &tds[..level.min(tds.len())];
+    let max = trained.iter().copied().max().unwrap_or(0);
+    (1..=max + 1).filter(|t| !trained.contains(t)).collect()
+}
+
 /// Evaluates every per-level policy the PPO run folder `run` kept into
 /// `out/levels.csv`; returns the number of levels evaluated (`None`: the run is not a
 /// multi-timer curriculum run, or kept no per-level policies). The kept levels must be
@@ -108,6 +126,7 @@ pub fn evaluate_levels(run: &Path, out: &Path, seed: u64) -> Result<Option<usize
         under_buffer,
         mode,
         reduced_reward,
+        cue,
         ..
     } = &task.params
     else {
@@ -125,19 +144,26 @@ pub fn evaluate_levels(run: &Path, out: &Path, seed: u64) -> Result<Option<usize
         let env: Vec<String> = cfg.env.iter().cloned().chain(extra).collect();
         let config = make_config(&cfg.task, &env)?;
         let mut agent = PpoAgent::load_level(run, level, &config)?;
-        let conditions: Vec<Condition> = test_tds
-            .iter()
-            .map(|&td| Condition {
-                kind: ConditionKind::MultiTimer,
-                task: cfg.task.clone(),
-                env: env.clone(),
-                td,
-                never_ready: None,
-                factor: None,
-            })
-            .collect();
-        let records = run_protocol(&mut agent, &conditions, Mode::Reference, seed)?;
-        rows.extend(records.iter().map(|r| LevelEpisode::of(level, r)));
+        let conditions = |tds: &[u32]| -> Vec<Condition> {
+            tds.iter()
+                .map(|&td| Condition {
+                    kind: ConditionKind::MultiTimer,
+                    task: cfg.task.clone(),
+                    env: env.clone(),
+                    td,
+                    never_ready: None,
+                    factor: None,
+                })
+                .collect()
+        };
+        let ood = level_ood_tds(level, tds, *cue == CueMode::Value);
+        for probe in [test_tds, ood] {
+            if probe.is_empty() {
+                continue;
+            }
+            let records = run_protocol(&mut agent, &conditions(&probe), Mode::Reference, seed)?;
+            rows.extend(records.iter().map(|r| LevelEpisode::of(level, r)));
+        }
     }
     std::fs::create_dir_all(out)
         .map_err(|e| PipelineError::Analysis(format!("{}: {e}", out.display())))?;
@@ -169,5 +195,17 @@ mod tests {
         let (env, t) = level_test_setting(1, &[4], 0, 0.1);
         assert_eq!(t, [4]);
         assert!(env.contains(&"reduced_reward=0.1".to_string()));
+    }
+
+    #[test]
+    fn levels_past_the_warm_up_also_test_every_untrained_td_up_to_one_past_their_longest() {
+        let tds = [2, 4, 6, 8, 10];
+        assert_eq!(level_ood_tds(0, &tds, true), Vec::<u32>::new());
+        assert_eq!(level_ood_tds(1, &tds, true), [1, 3]);
+        assert_eq!(level_ood_tds(3, &tds, true), [1, 3, 5, 7]);
+        assert_eq!(level_ood_tds(5, &tds, true), [1, 3, 5, 7, 9, 11]);
+        // An unsorted list: up to one past the longest trained TD.
+        assert_eq!(level_ood_tds(2, &[6, 3], true), [1, 2, 4, 5, 7]);
+        assert_eq!(level_ood_tds(3, &tds, false), Vec::<u32>::new());
     }
 }
