@@ -514,3 +514,44 @@ fn more_shifts_is_tested_level_by_level() {
         .unwrap();
     assert_eq!(r.verdict, "n/a");
 }
+
+#[test]
+fn the_papers_level_figure_has_a_reward_and_an_off_time_panel_per_reached_level() {
+    use chronocooked_analysis::paper::figures::level_panels;
+    use chronocooked_analysis::paper::study::PaperStudy;
+    let jobs: Vec<CompactJob> = (1..=2)
+        .map(|s| shifting_run("lstm125", s, 2, |_, td| td as i32))
+        .collect();
+    let study = PaperStudy {
+        jobs: jobs.len(),
+        fi: vec![],
+        bisection: vec![],
+        multitimer: analyse_multitimer(&jobs),
+        exact_timer: vec![],
+        claims: vec![],
+        comparison: vec![],
+        agreement: Default::default(),
+        pi: vec![],
+        pi_verdicts: vec![],
+        cost: vec![],
+        spreads: vec![],
+        ranges: vec![],
+    };
+    let (grid, panels) = level_panels(&study);
+    // One curriculum × TD list: a reward row and an oven-off row, levels 1 … 5.
+    assert_eq!(grid, (2, 5));
+    assert_eq!(panels.len(), 10);
+    let present: Vec<bool> = panels.iter().map(Option::is_some).collect();
+    assert_eq!(
+        present,
+        [true, true, false, false, false, true, true, false, false, false]
+    );
+    // Level 2's oven-off panel: the perfect timer's curve is the diagonal over TDs 1 … 5,
+    // and its trained TDs 2 and 4 are marked.
+    let c = panels[6].as_ref().unwrap();
+    assert_eq!(c.series.len(), 1);
+    let want: Vec<(f64, f64)> = (1..=5).map(|t| (f64::from(t), f64::from(t))).collect();
+    assert_eq!(c.series[0].points, want);
+    let marks: Vec<f64> = c.markers.iter().map(|m| m.0).collect();
+    assert_eq!(marks, [2.0, 4.0]);
+}

@@ -6,9 +6,11 @@
 
 use super::bisection::BisectionModel;
 use super::fi::FiModel;
+use super::multitimer::LEVELS;
 use super::study::PaperStudy;
 use crate::behaviour::foc::linear_fit;
 use crate::report::figures::{Chart, FigureError, Series, write_chart, write_panels};
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 fn series(label: &str, points: Vec<(f64, f64)>, line: bool, color: usize) -> Series {
@@ -423,6 +425,91 @@ pub fn exact_timer_panels(s: &PaperStudy) -> Vec<Option<Chart>> {
         .collect()
 }
 
+/// The paper's multi-timer figures ("Timers = 1 … 5": reward and average oven-off time
+/// against the tested TD, untrained TDs included): per curriculum and TD list two rows —
+/// each level's policy's mean reward, then its mean oven-off time over the cells where the
+/// soup was taken — and one column per level 1 … 5, a line per model (mean over the runs
+/// that kept that level), the level's trained TDs as markers. Returns the grid shape and
+/// its panels (none without per-level curves).
+pub fn level_panels(s: &PaperStudy) -> ((usize, usize), Vec<Option<Chart>>) {
+    let mut keys: Vec<(&str, &[u32])> = s
+        .multitimer
+        .iter()
+        .filter(|c| {
+            c.runs
+                .iter()
+                .any(|r| r.level_curves.iter().skip(1).any(|v| !v.is_empty()))
+        })
+        .map(|c| (c.curriculum.as_str(), c.tds.as_slice()))
+        .collect();
+    keys.sort_unstable();
+    keys.dedup();
+    let mut models: Vec<&str> = Vec::new();
+    for c in &s.multitimer {
+        if !models.contains(&c.model.as_str()) {
+            models.push(&c.model);
+        }
+    }
+    let mut panels = Vec::new();
+    for &(curriculum, tds) in &keys {
+        for (row, y_label) in [(0, "mean reward"), (1, "mean oven-off time (taken)")] {
+            for level in 1..LEVELS {
+                let mut ser = Vec::new();
+                for (k, &model) in models.iter().enumerate() {
+                    let Some(c) = s
+                        .multitimer
+                        .iter()
+                        .find(|c| c.model == model && c.curriculum == curriculum && c.tds == tds)
+                    else {
+                        continue;
+                    };
+                    let mut at: BTreeMap<u32, Vec<f64>> = BTreeMap::new();
+                    let mut runs = 0;
+                    for r in &c.runs {
+                        let Some(curve) = r.level_curves.get(level).filter(|v| !v.is_empty())
+                        else {
+                            continue;
+                        };
+                        runs += 1;
+                        for p in curve {
+                            let y = if row == 0 { p.reward } else { p.off_time };
+                            if y.is_finite() {
+                                at.entry(p.td).or_default().push(y);
+                            }
+                        }
+                    }
+                    if runs == 0 {
+                        continue;
+                    }
+                    let pts = at
+                        .into_iter()
+                        .map(|(td, v)| (f64::from(td), v.iter().sum::<f64>() / v.len() as f64))
+                        .collect();
+                    ser.push(series(&format!("{model} ({runs} runs)"), pts, true, k));
+                }
+                let trained = &tds[..level.min(tds.len())];
+                panels.push((!ser.is_empty()).then(|| {
+                    Chart {
+                        title: format!("{curriculum}, Timers = {level} ({})", {
+                            let t: Vec<String> = trained.iter().map(u32::to_string).collect();
+                            t.join(",")
+                        }),
+                        x_label: "tested TD (steps)".into(),
+                        y_label: y_label.into(),
+                        series: ser,
+                        markers: trained
+                            .iter()
+                            .map(|&t| (f64::from(t), "trained".to_string()))
+                            .collect(),
+                        y_range: (row == 0).then_some((-0.05, 1.05)),
+                    }
+                }));
+            }
+        }
+    }
+    ((keys.len() * 2, LEVELS - 1), panels)
+}
+
 /// Writes every figure into `dir`; returns the files written.
 pub fn write_figures(dir: &Path, s: &PaperStudy) -> Result<Vec<PathBuf>, FigureError> {
     let mut out = Vec::new();
@@ -448,6 +535,10 @@ pub fn write_figures(dir: &Path, s: &PaperStudy) -> Result<Vec<PathBuf>, FigureE
     if !s.multitimer.is_empty() {
         let (grid, panels) = multitimer_panels(s);
         out.extend(write_panels(&dir.join("multitimer"), grid, &panels)?);
+        let (grid, panels) = level_panels(s);
+        if panels.iter().any(Option::is_some) {
+            out.extend(write_panels(&dir.join("multitimer_levels"), grid, &panels)?);
+        }
     }
     if !s.exact_timer.is_empty() {
         let panels = exact_timer_panels(s);

@@ -13,7 +13,7 @@ use maud::{Markup, html};
 use std::path::{Path, PathBuf};
 
 /// The figures the page shows, in order: (file stem, caption, full width).
-const FIGURES: [(&str, &str, bool); 6] = [
+const FIGURES: [(&str, &str, bool); 7] = [
     (
         "fi_foc",
         "Fixed interval: every first oven check per TD (dots, pooled over runs × start cells), the per-TD mean and FOC = TD",
@@ -37,6 +37,11 @@ const FIGURES: [(&str, &str, bool); 6] = [
     (
         "multitimer",
         "Multi-timer: training reward per curriculum level (and, where the run kept them, each level's own policy in the notebook's test setting), the final policy's reward and oven-off time at every tested TD (vertical lines: trained TDs; the rest are out of distribution)",
+        true,
+    ),
+    (
+        "multitimer_levels",
+        "Multi-timer, the paper's form: each curriculum level's policy (Timers = 1 … 5) on every TD 1 … its longest + 1 — mean reward and mean oven-off time (cells where the soup was taken) per model; the level's trained TDs marked",
         true,
     ),
     (
