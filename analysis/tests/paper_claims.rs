@@ -544,7 +544,9 @@ fn the_papers_level_figure_has_a_reward_and_an_off_time_panel_per_reached_level(
     let present: Vec<bool> = panels.iter().map(Option::is_some).collect();
     assert_eq!(
         present,
-        [true, true, false, false, false, true, true, false, false, false]
+        [
+            true, true, false, false, false, true, true, false, false, false
+        ]
     );
     // Level 2's oven-off panel: the perfect timer's curve is the diagonal over TDs 1 … 5,
     // and its trained TDs 2 and 4 are marked.

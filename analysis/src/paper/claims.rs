@@ -83,6 +83,16 @@ pub fn equal(z: f64) -> &'static str {
     }
 }
 
+/// Verdict of a statement that no case out of `cases` goes against it: `n/a` without cases,
+/// `holds` when none of them does (`against` = 0), else `contradicted`.
+pub fn unless_any(cases: usize, against: usize) -> &'static str {
+    match (cases, against) {
+        (0, _) => "n/a",
+        (_, 0) => "holds",
+        _ => "contradicted",
+    }
+}
+
 /// Verdict of a "generally" statement from its per-setting verdicts: `holds` when it holds
 /// in at least half the settings and is contradicted in none, `contradicted` when it is
 /// contradicted in at least half, `n/a` without a testable setting, else `not shown`.
@@ -262,12 +272,7 @@ pub fn exact_timer_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
             test: "holds at every longer TD".into(),
             lab: format!("{} of {tested} longer TDs above 0.1", against),
             z: f64::NAN,
-            verdict: match (tested, against) {
-                (0, _) => "n/a",
-                (_, 0) => "holds",
-                _ => "contradicted",
-            }
-            .into(),
+            verdict: unless_any(tested, against).into(),
             summary: true,
         });
     }
@@ -497,12 +502,7 @@ pub fn multitimer_claims(cells: &[MtCell]) -> Vec<ClaimRow> {
                 runs.len()
             ),
             z: f64::NAN,
-            verdict: match (total, performing) {
-                (0, _) => "n/a",
-                (_, 0) => "holds",
-                _ => "contradicted",
-            }
-            .into(),
+            verdict: unless_any(total, performing).into(),
             summary: true,
         });
     }
