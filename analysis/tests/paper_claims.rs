@@ -4,8 +4,8 @@
 mod common;
 
 use chronocooked_analysis::paper::claims::{
-    ClaimRow, exact_timer_claims, exact_timer_run_means, fi_claims, fi_run_stat, general,
-    multitimer_claims, shift_claims,
+    ClaimRow, capacity_claims, exact_timer_claims, exact_timer_run_means, fi_claims, fi_run_stat,
+    general, multitimer_claims, shift_claims,
 };
 use chronocooked_analysis::paper::collect::LevelEpisode;
 use chronocooked_analysis::paper::collect::{CompactJob, EpisodeRow};
@@ -556,4 +556,35 @@ fn the_papers_level_figure_has_a_reward_and_an_off_time_panel_per_reached_level(
     assert_eq!(c.series[0].points, want);
     let marks: Vec<f64> = c.markers.iter().map(|m| m.0).collect();
     assert_eq!(marks, [2.0, 4.0]);
+}
+
+#[test]
+fn a_five_timer_policy_that_times_everything_goes_against_no_strong_capacity() {
+    // Always at 4: level 5 earns 1 at TD 4 only (0.2 over the five trained TDs) and 0 at
+    // the untrained ones → the statement holds.
+    let weak: Vec<CompactJob> = (1..=2)
+        .map(|s| shifting_run("lstm125", s, 5, |_, _| 4))
+        .collect();
+    let rows = capacity_claims(&analyse_multitimer(&weak));
+    assert_eq!(rows.len(), 1);
+    assert_eq!(rows[0].verdict, "holds", "{:?}", rows[0]);
+    assert!(
+        rows[0].lab.contains("lstm125 0.20 / 0.00 (2)"),
+        "{:?}",
+        rows[0]
+    );
+    // A perfect timer at every TD 1 … 11 → contradicted, naming the model.
+    let mut jobs = weak;
+    jobs.extend((1..=2).map(|s| shifting_run("ctrnn125", s, 5, |_, td| td as i32)));
+    let rows = capacity_claims(&analyse_multitimer(&jobs));
+    assert_eq!(rows[0].verdict, "contradicted");
+    assert!(rows[0].lab.ends_with("against: ctrnn125"), "{:?}", rows[0]);
+    // No run kept a five-timer policy: n/a.
+    let short: Vec<CompactJob> = (1..=2)
+        .map(|s| shifting_run("lstm125", s, 3, |_, td| td as i32))
+        .collect();
+    assert_eq!(
+        capacity_claims(&analyse_multitimer(&short))[0].verdict,
+        "n/a"
+    );
 }

@@ -555,6 +555,68 @@ pub fn shift_claims(cells: &[MtCell]) -> Vec<ClaimRow> {
     rows
 }
 
+/// "None of the models demonstrate a strong capacity to store multiple intervals or
+/// generalize reliably to OOD durations": per curriculum and five-TD list, a model goes
+/// against it when its five-timer policies (the runs that kept level 5) earn on average at
+/// least [`PERFORMS`] at the five trained TDs (stores the intervals) or at the untrained TDs
+/// 1 … 11 (generalises).
+pub fn capacity_claims(cells: &[MtCell]) -> Vec<ClaimRow> {
+    let top = LEVELS - 1;
+    let mut keys: Vec<(&str, &[u32])> = cells
+        .iter()
+        .filter(|c| c.tds.len() == top)
+        .map(|c| (c.curriculum.as_str(), c.tds.as_slice()))
+        .collect();
+    keys.sort_unstable();
+    keys.dedup();
+    keys.into_iter()
+        .map(|(curriculum, tds)| {
+            let at_top: Vec<&MtCell> = cells
+                .iter()
+                .filter(|c| c.curriculum == curriculum && c.tds == tds)
+                .filter(|c| c.level_eval.get(top).is_some_and(|x| x.n > 0))
+                .collect();
+            let strong: Vec<String> = at_top
+                .iter()
+                .filter(|c| {
+                    c.level_eval[top].mean >= PERFORMS
+                        || c.level_untrained_reward
+                            .get(top)
+                            .is_some_and(|x| x.n > 0 && x.mean >= PERFORMS)
+                })
+                .map(|c| c.model.clone())
+                .collect();
+            let lab = at_top
+                .iter()
+                .map(|c| {
+                    let u = c.level_untrained_reward.get(top).map_or(f64::NAN, |x| x.mean);
+                    format!(
+                        "{} {:.2} / {:.2} ({})",
+                        c.model, c.level_eval[top].mean, u, c.level_eval[top].n
+                    )
+                })
+                .collect::<Vec<_>>()
+                .join("; ");
+            ClaimRow {
+                claim: "multitimer_no_strong_capacity".into(),
+                statement: "none of the models store multiple intervals strongly or generalise reliably to OOD durations".into(),
+                setting: format!("multi-timer {curriculum}, TDs {}", tds_label(tds)),
+                test: format!(
+                    "no model's five-timer policies earn ≥ {PERFORMS} on average at the trained / untrained TDs"
+                ),
+                lab: if lab.is_empty() {
+                    "no run kept a five-timer policy".into()
+                } else {
+                    format!("{lab}{}", if strong.is_empty() { String::new() } else { format!("; against: {}", strong.join(", ")) })
+                },
+                z: f64::NAN,
+                verdict: unless_any(at_top.len(), strong.len()).into(),
+                summary: true,
+            }
+        })
+        .collect()
+}
+
 /// Markdown: the summary rows (and single-setting statements) with their verdicts.
 pub fn claims_markdown(m: &mut String, rows: &[ClaimRow]) {
     if rows.is_empty() {

@@ -6,7 +6,8 @@
 use super::agreement::{Agreement, agreement};
 use super::bisection::{BisectionModel, analyse_bisection};
 use super::claims::{
-    ClaimRow, claims_markdown, exact_timer_claims, fi_claims, multitimer_claims, shift_claims,
+    ClaimRow, capacity_claims, claims_markdown, exact_timer_claims, fi_claims, multitimer_claims,
+    shift_claims,
 };
 use super::collect::{CollectError, CompactJob, err, read_compact, write_csv};
 use super::compare::{ComparisonRow, compare};
@@ -108,6 +109,7 @@ pub fn analyse(root: &Path) -> Result<PaperStudy, CollectError> {
     claims.extend(exact_timer_claims(&jobs));
     claims.extend(multitimer_claims(&multitimer));
     claims.extend(shift_claims(&multitimer));
+    claims.extend(capacity_claims(&multitimer));
     Ok(PaperStudy {
         claims,
         jobs: jobs.len(),
