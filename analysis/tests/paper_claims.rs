@@ -97,7 +97,8 @@ fn exact_timer_statements_get_the_verdicts_worked_out_by_hand() {
     let rows = exact_timer_claims(&jobs);
 
     // TD 4, LSTM vs reservoir: means 0.9 and 0.875, SDs √(0.02/3) and √(0.0125/3):
-    // z = 0.025 / √((0.02 + 0.0125)/12) = 0.4804.
+    // z = 0.025 / √((0.02 + 0.0125)/12) = 0.4804 — not a difference, but d ± 2·se =
+    // 0.025 ± 0.104 reaches past the 0.1 margin: equality is not shown either.
     let r = find(
         &rows,
         "exact_shortest_equal",
@@ -108,7 +109,17 @@ fn exact_timer_statements_get_the_verdicts_worked_out_by_hand() {
         (r.z - 0.025 / (0.0325f64 / 12.0).sqrt()).abs() < 1e-4,
         "{r:?}"
     );
-    assert_eq!(r.verdict, "holds");
+    assert_eq!(r.verdict, "not shown");
+    assert_eq!(
+        find(
+            &rows,
+            "exact_shortest_equal",
+            "exact timer, TD 4",
+            "− ctrnn125,"
+        )
+        .verdict,
+        "n/a"
+    );
     let r = find(
         &rows,
         "exact_lstm_best",
@@ -149,9 +160,54 @@ fn exact_timer_statements_get_the_verdicts_worked_out_by_hand() {
         "{r:?}"
     );
     assert_eq!(r.verdict, "holds");
-    // CNN at TD 10 exactly at the minimum on every run (SD 0, mean 0.1): z 0 → holds.
+    // CNN at TD 10 exactly at the minimum on every run (SD 0, mean 0.1): z 0 and the
+    // interval 0.1 ± 0 within the margin → holds.
     let r = find(&rows, "exact_cnn_short_only", "exact timer, TD 10", "");
     assert_eq!((r.z, r.verdict.as_str()), (0.0, "holds"));
+}
+
+#[test]
+fn equally_well_needs_the_whole_interval_inside_the_margin() {
+    // Tight runs: LSTM 0.90, 0.91, 0.90, 0.91 and reservoir 0.90, 0.90, 0.91, 0.91 → d = 0,
+    // 2·se ≈ 0.008 → holds. A reservoir at 0.5 → contradicted.
+    let mut jobs = runs("lstm125", 4, [0.9, 0.91, 0.9, 0.91]);
+    jobs.extend(runs("ctrnn-reservoir125", 4, [0.9, 0.9, 0.91, 0.91]));
+    let rows = exact_timer_claims(&jobs);
+    let r = find(
+        &rows,
+        "exact_shortest_equal",
+        "exact timer, TD 4",
+        "ctrnn-reservoir125",
+    );
+    assert_eq!(r.verdict, "holds", "{r:?}");
+    let mut jobs = runs("lstm125", 4, [0.9, 0.91, 0.9, 0.91]);
+    jobs.extend(runs("ctrnn-reservoir125", 4, [0.5, 0.5, 0.51, 0.51]));
+    let rows = exact_timer_claims(&jobs);
+    let r = find(
+        &rows,
+        "exact_shortest_equal",
+        "exact timer, TD 4",
+        "ctrnn-reservoir125",
+    );
+    assert_eq!(r.verdict, "contradicted", "{r:?}");
+    // A noisy CNN at a longer TD, 0.1 … 0.5: neither above 0.1 (z < 2) nor shown at it.
+    let mut jobs = runs("cnn-mlp", 4, [0.3, 0.4, 0.2, 0.3]);
+    jobs.extend(runs("cnn-mlp", 10, [0.1, 0.1, 0.5, 0.1]));
+    let rows = exact_timer_claims(&jobs);
+    assert_eq!(
+        find(&rows, "exact_cnn_short_only", "exact timer, TD 10", "").verdict,
+        "not shown"
+    );
+    assert_eq!(
+        find(
+            &rows,
+            "exact_cnn_short_only",
+            "exact timer, every TD past the shortest",
+            ""
+        )
+        .verdict,
+        "not shown"
+    );
 }
 
 #[test]
@@ -230,15 +286,20 @@ fn multitimer_statements_compare_levels_and_look_for_a_run_that_does_everything(
     let rows = multitimer_claims(&mt);
     let setting = "multi-timer exact, TDs 2, 4, 6, 8, 10";
     // LSTM 2.5 ± 0.577 vs reservoir 1 ± 0: z = 1.5 / (0.57735/2) = 5.196.
-    let r = find(&rows, "multitimer_lstm_best", setting, "ctrnn-reservoir125");
+    let r = find(
+        &rows,
+        "multitimer_lstm_further",
+        setting,
+        "ctrnn-reservoir125",
+    );
     assert!((r.z - 1.5 / (0.57735 / 2.0)).abs() < 1e-3, "{r:?}");
     assert_eq!(r.verdict, "holds");
     assert_eq!(
-        find(&rows, "multitimer_lstm_best", setting, "cnn-mlp").verdict,
+        find(&rows, "multitimer_lstm_further", setting, "cnn-mlp").verdict,
         "not shown"
     );
     assert_eq!(
-        find(&rows, "multitimer_lstm_best", setting, "− ctrnn125,").verdict,
+        find(&rows, "multitimer_lstm_further", setting, "− ctrnn125,").verdict,
         "n/a"
     );
     assert_eq!(
@@ -251,6 +312,16 @@ fn multitimer_statements_compare_levels_and_look_for_a_run_that_does_everything(
     let rows = multitimer_claims(&analyse_multitimer(&jobs));
     let r = find(&rows, "multitimer_none_all", setting, "");
     assert_eq!(r.verdict, "contradicted", "{r:?}");
+    // At five timers earning 0.95 at four TDs and 0.5 at one: not every task.
+    jobs.pop();
+    let mut j = mt_run("ctrnn-reservoir125", 5, 5, 0.95);
+    j.episodes[4].reward = 0.5;
+    jobs.push(j);
+    let rows = multitimer_claims(&analyse_multitimer(&jobs));
+    assert_eq!(
+        find(&rows, "multitimer_none_all", setting, "").verdict,
+        "holds"
+    );
     // At five timers but earning 0.5: reaching the level is not performing it.
     jobs.pop();
     jobs.push(mt_run("ctrnn-reservoir125", 5, 5, 0.5));
@@ -401,6 +472,13 @@ fn timers_stored_counts_distinct_oven_off_plateaus() {
     // A TD where the soup is taken on fewer than half the cells does not count.
     assert_eq!(timers_stored(&[point(1, 1.0, 2.0), point(2, 0.4, 7.0)]), 1);
     assert_eq!(timers_stored(&[point(1, 0.0, f64::NAN)]), 0);
+    // A ramp in steps of 0.4 from 2.0 to 6.0 is not one plateau: groups span at most half a
+    // step from their first value — [2.0, 2.4], [2.8, 3.2], [3.6, 4.0], [4.4, 4.8],
+    // [5.2, 5.6], [6.0].
+    let ramp: Vec<LevelTd> = (0..=10)
+        .map(|k| point(k + 1, 1.0, 2.0 + 0.4 * f64::from(k)))
+        .collect();
+    assert_eq!(timers_stored(&ramp), 6);
 }
 
 fn level_episode(level: usize, td: u32, off: i32) -> LevelEpisode {
@@ -462,7 +540,8 @@ fn untrained_tds_leave_the_level_reward_alone_and_give_the_timers_stored() {
         .collect();
     assert_eq!(trained, [2, 4]);
     assert_eq!(mt[0].level_untrained_reward[2].mean, 0.0);
-    // Level 1 (TD 2) on 1, 2, 3: 4, 2, 4 → reward 1 at its TD, two timers; level 0 none.
+    // Level 1 (TD 2) on 1, 2, 3: 4, 2, 4 → reward 1 at its TD, two timers; level 0 (TD 2
+    // only, taken at 2): one.
     assert_eq!((r.level_eval[1], r.level_timers[1]), (Some(1.0), Some(2)));
     assert_eq!(r.level_timers[0], Some(1));
     assert_eq!(r.level_timers[3], None);
@@ -560,16 +639,33 @@ fn the_papers_level_figure_has_a_reward_and_an_off_time_panel_per_reached_level(
 
 #[test]
 fn a_five_timer_policy_that_times_everything_goes_against_no_strong_capacity() {
-    // Always at 4: level 5 earns 1 at TD 4 only (0.2 over the five trained TDs) and 0 at
-    // the untrained ones → the statement holds.
+    // Always at 4: level 5 earns 1 at TD 4 only and 0 at every other TD → it holds.
     let weak: Vec<CompactJob> = (1..=2)
         .map(|s| shifting_run("lstm125", s, 5, |_, _| 4))
         .collect();
     let rows = capacity_claims(&analyse_multitimer(&weak));
     assert_eq!(rows.len(), 1);
     assert_eq!(rows[0].verdict, "holds", "{:?}", rows[0]);
+    // Worst trained TD (2, 6, 8 or 10) and worst untrained TD: 0.
     assert!(
-        rows[0].lab.contains("lstm125 0.20 / 0.00 (2)"),
+        rows[0].lab.contains("lstm125 0.00 / 0.00 (2)"),
+        "{:?}",
+        rows[0]
+    );
+    // Timing only its trained (even) TDs: stores the intervals → against it.
+    let mut even = weak.clone();
+    even.extend((1..=2).map(|s| {
+        shifting_run(
+            "cnn-mlp",
+            s,
+            5,
+            |_, td| if td % 2 == 0 { td as i32 } else { 99 },
+        )
+    }));
+    let rows = capacity_claims(&analyse_multitimer(&even));
+    assert_eq!(rows[0].verdict, "contradicted");
+    assert!(
+        rows[0].lab.contains("cnn-mlp 1.00 / 0.00 (2)"),
         "{:?}",
         rows[0]
     );

@@ -225,10 +225,12 @@ pub const PLATEAU_GAP: f64 = 0.5;
 
 /// The paper's "number of distinct shifts" in a level's oven-off curve — how many timers the
 /// policy stores: the mean oven-off times at the tested TDs where the soup was taken on at
-/// least half the start cells, sorted, split wherever two neighbours differ by more than
-/// [`PLATEAU_GAP`] steps; the number of groups (0 when it is taken at no TD). A policy that
-/// times every TD of 1 … 11 has 11; one that takes the soup at 2 below TD 3 and at 5 from
-/// there on has 2 (the paper's CTRNN125 example: "it stores 2 timers").
+/// least half the start cells, sorted, grouped from the smallest up, a group spanning at most
+/// [`PLATEAU_GAP`] steps from its first value (no chaining: a curve that ramps in small steps
+/// counts a timer per half step it climbs); the number of groups (0 when it is taken at no
+/// TD). A TD where the soup is mostly never taken (the notebook's −1) holds no timer. A
+/// policy that times every TD of 1 … 11 has 11; one that takes the soup at 2 below TD 3 and
+/// at 5 from there on has 2 (the paper's CTRNN125 example: "it stores 2 timers").
 pub fn timers_stored(curve: &[LevelTd]) -> usize {
     let mut off: Vec<f64> = curve
         .iter()
@@ -236,10 +238,15 @@ pub fn timers_stored(curve: &[LevelTd]) -> usize {
         .map(|c| c.off_time)
         .collect();
     off.sort_by(f64::total_cmp);
-    if off.is_empty() {
-        return 0;
+    let mut groups = 0;
+    let mut start = f64::NEG_INFINITY;
+    for v in off {
+        if v - start > PLATEAU_GAP {
+            groups += 1;
+            start = v;
+        }
     }
-    1 + off.windows(2).filter(|w| w[1] - w[0] > PLATEAU_GAP).count()
+    groups
 }
 
 /// The TD list a multi-timer job trained on (the task's default list when not set).

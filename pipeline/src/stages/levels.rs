@@ -14,8 +14,9 @@
 //! swept every integer TD 1 … max(level's TDs) + 1: "Some additional out-of-distribution
 //! (OOD) durations are also shown"), each level `L ≥ 1` policy in the same setting on the
 //! TDs 1 … max(`TD[0..L]`) + 1 it was not trained on (value cue only: a categorical cue has
-//! no code for an untrained TD) — after the trained TDs, so their episodes do not depend on
-//! the sweep. The analysis tells them apart by the run's TD list.
+//! no code for an untrained TD) — after the trained TDs, so those keep their episodes. (The
+//! final policy's own evaluation goes to max + 3, the lab's OOD range.) The analysis tells
+//! them apart by the run's TD list.
 //!
 //! Written as `levels.csv` ([`LevelEpisode`] rows) in the evaluation folder.
 
@@ -156,14 +157,12 @@ pub fn evaluate_levels(run: &Path, out: &Path, seed: u64) -> Result<Option<usize
                 })
                 .collect()
         };
-        let ood = level_ood_tds(level, tds, *cue == CueMode::Value);
-        for probe in [test_tds, ood] {
-            if probe.is_empty() {
-                continue;
-            }
-            let records = run_protocol(&mut agent, &conditions(&probe), Mode::Reference, seed)?;
-            rows.extend(records.iter().map(|r| LevelEpisode::of(level, r)));
-        }
+        // Trained TDs first: their conditions keep the indices (and so the episode seeds)
+        // they had before the untrained ones were added.
+        let mut probe = test_tds;
+        probe.extend(level_ood_tds(level, tds, *cue == CueMode::Value));
+        let records = run_protocol(&mut agent, &conditions(&probe), Mode::Reference, seed)?;
+        rows.extend(records.iter().map(|r| LevelEpisode::of(level, r)));
     }
     std::fs::create_dir_all(out)
         .map_err(|e| PipelineError::Analysis(format!("{}: {e}", out.display())))?;
