@@ -684,3 +684,28 @@ fn a_five_timer_policy_that_times_everything_goes_against_no_strong_capacity() {
         "n/a"
     );
 }
+
+#[test]
+fn performing_every_timer_is_judged_in_the_notebooks_test_setting_where_the_run_kept_it() {
+    // Final policy perfect in its training setting (1 at every trained TD), but its kept
+    // five-timer policy in the test setting takes the soup at 4 everywhere (0 at TDs 2, 6, 8,
+    // 10): it does not perform every task.
+    let mut j = shifting_run("lstm125", 1, 5, |_, _| 4);
+    j.episodes = [2, 4, 6, 8, 10]
+        .into_iter()
+        .map(|td| mt_ep(td, 1.0, td as i32))
+        .collect();
+    let rows = multitimer_claims(&analyse_multitimer(&[j.clone()]));
+    let setting = "multi-timer exact, TDs 2, 4, 6, 8, 10";
+    assert_eq!(
+        find(&rows, "multitimer_none_all", setting, "").verdict,
+        "holds"
+    );
+    // Without kept level policies the final policy decides: every TD at 1 → against it.
+    j.levels.clear();
+    let rows = multitimer_claims(&analyse_multitimer(&[j]));
+    assert_eq!(
+        find(&rows, "multitimer_none_all", setting, "").verdict,
+        "contradicted"
+    );
+}

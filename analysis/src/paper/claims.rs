@@ -500,8 +500,9 @@ fn cell_of<'a>(
 /// none of the models perform all the tasks successfully"), per five-timer curriculum: the
 /// reward of each level's policy at its trained TDs (the figure's "Timers = L" panels) per
 /// level, the curriculum level reached (`multitimer_lstm_further`, a coarser proxy), and
-/// whether any run performs every timer — reached five timers with its final policy earning
-/// ≥ [`PERFORMS`] at each of the five trained TDs.
+/// whether any run performs every timer — reached five timers with its five-timer policy
+/// earning ≥ [`PERFORMS`] at each of the five trained TDs (in the notebooks' test setting
+/// where the run kept its level policies, else the final policy in its training setting).
 pub fn multitimer_claims(cells: &[MtCell]) -> Vec<ClaimRow> {
     let mut rows = Vec::new();
     let levels: Vec<u32> = (1..LEVELS as u32).collect();
@@ -556,8 +557,22 @@ pub fn multitimer_claims(cells: &[MtCell]) -> Vec<ClaimRow> {
             .iter()
             .flat_map(|c| {
                 c.runs.iter().filter(|r| r.level == LEVELS - 1).map(|r| {
-                    let worst = r.per_td.iter().map(|x| x.1).fold(f64::INFINITY, f64::min);
-                    (c.model.as_str(), worst)
+                    // The five-timer policy in the notebooks' test setting where the run
+                    // kept it, else the final policy in the training setting.
+                    let kept: Vec<f64> = r
+                        .level_curves
+                        .get(LEVELS - 1)
+                        .map(|v| v.iter().filter(|p| p.trained).map(|p| p.reward).collect())
+                        .unwrap_or_default();
+                    let rewards = if kept.is_empty() {
+                        r.per_td.iter().map(|x| x.1).collect()
+                    } else {
+                        kept
+                    };
+                    (
+                        c.model.as_str(),
+                        rewards.into_iter().fold(f64::INFINITY, f64::min),
+                    )
                 })
             })
             .collect();
@@ -571,7 +586,7 @@ pub fn multitimer_claims(cells: &[MtCell]) -> Vec<ClaimRow> {
             statement: "none of the models perform all the tasks successfully".into(),
             setting: task,
             test: format!(
-                "no run at five timers whose final policy earns ≥ {PERFORMS} at each of the five TDs"
+                "no run at five timers whose five-timer policy earns ≥ {PERFORMS} at each of the five TDs (notebooks' test setting)"
             ),
             lab: format!(
                 "{} of {total} runs reach five timers, {} of them earn ≥ {PERFORMS} at every TD{}",
