@@ -161,7 +161,7 @@ fn pi_table(s: &PaperStudy) -> Markup {
 fn claims_table(s: &PaperStudy) -> Markup {
     html! {
         h2.group { "The paper's statements in words, tested (claims.csv)" }
-        table {
+        table.text {
             tr {
                 th { "statement" } th { "setting" } th { "test" } th { "lab" } th { "z" }
                 th { "verdict" }
