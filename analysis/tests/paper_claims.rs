@@ -1,11 +1,11 @@
-//! The paper's statements in words (exact timer, multi-timer), tested on constructed runs
-//! whose verdicts are known by hand.
+//! The paper's statements in words (fixed interval, bisection, exact timer, multi-timer),
+//! tested on constructed runs whose verdicts are known by hand.
 
 mod common;
 
 use chronocooked_analysis::paper::claims::{
-    ClaimRow, capacity_claims, exact_timer_claims, exact_timer_run_means, fi_claims, fi_run_stat,
-    general, multitimer_claims, shift_claims,
+    ClaimRow, bisection_claims, capacity_claims, exact_timer_claims, exact_timer_run_means,
+    fi_claims, fi_run_stat, general, multitimer_claims, shift_claims,
 };
 use chronocooked_analysis::paper::collect::LevelEpisode;
 use chronocooked_analysis::paper::collect::{CompactJob, EpisodeRow};
@@ -708,4 +708,78 @@ fn performing_every_timer_is_judged_in_the_notebooks_test_setting_where_the_run_
         find(&rows, "multitimer_none_all", setting, "").verdict,
         "contradicted"
     );
+}
+
+/// A bisection run of `model` on 4-8 answering `right` of its 4 short-anchor and 4
+/// long-anchor episodes correctly (the wrong ones to the other counter).
+fn bisection_run(model: &str, seed: u64, right: usize) -> CompactJob {
+    let mut episodes = Vec::new();
+    for (d, correct, wrong) in [(4, 1, 2), (8, 2, 1)] {
+        for k in 0..4 {
+            let counter = if k < right { correct } else { wrong };
+            episodes.push(ep("bisection", d, (k, 0), None, counter));
+        }
+    }
+    CompactJob {
+        job: job("Bisection-v0", model, seed, &["short=4", "long=8"], 20.0),
+        episodes,
+        curve: vec![],
+        levels: vec![],
+    }
+}
+
+#[test]
+fn bisection_statements_compare_anchor_accuracy_per_pair() {
+    let mut jobs = Vec::new();
+    // LSTM125 accuracy 1, 1, 0.75, 1 (4 of 4, 3 of 4 per anchor); reservoir 0.5 on every run:
+    // LSTM better (z = 0.4375 / (0.125/2) = 7). LSTM256 and the reservoir256 both 1, 1, 1, 1:
+    // d = 0 ± 0 → comparable.
+    for (s, r) in [(1, 4), (2, 4), (3, 3), (4, 4)] {
+        jobs.push(bisection_run("lstm125", s, r));
+        jobs.push(bisection_run("ctrnn-reservoir125", s, 2));
+        jobs.push(bisection_run("lstm256", s, 4));
+        jobs.push(bisection_run("ctrnn-reservoir256", s, 4));
+    }
+    let rows = bisection_claims(&jobs);
+    let r = find(
+        &rows,
+        "bisection_lstm_better",
+        "bisection, pair 4-8",
+        "reservoir",
+    );
+    assert!((r.z - 0.4375 / (0.125 / 2.0)).abs() < 1e-9, "{r:?}");
+    assert_eq!(r.verdict, "holds");
+    assert_eq!(
+        overall_pair(&rows, "bisection_lstm_better", "reservoir").verdict,
+        "holds"
+    );
+    assert_eq!(
+        overall_pair(&rows, "bisection_lstm_better", "trained").verdict,
+        "n/a"
+    );
+    assert_eq!(
+        overall_pair(&rows, "bisection_256_comparable", "256").verdict,
+        "holds"
+    );
+    // A reservoir256 at 0.5: not comparable → contradicted.
+    for j in jobs
+        .iter_mut()
+        .filter(|j| j.job.model == "ctrnn-reservoir256")
+    {
+        *j = bisection_run("ctrnn-reservoir256", j.job.seed, 2);
+    }
+    let rows = bisection_claims(&jobs);
+    assert_eq!(
+        overall_pair(&rows, "bisection_256_comparable", "256").verdict,
+        "contradicted"
+    );
+}
+
+/// The verdict row over every anchor pair of `claim` whose wording contains `about`.
+fn overall_pair<'a>(rows: &'a [ClaimRow], claim: &str, about: &str) -> &'a ClaimRow {
+    rows.iter()
+        .find(|r| {
+            r.claim == claim && r.setting == "bisection, every pair" && r.statement.contains(about)
+        })
+        .unwrap_or_else(|| panic!("no {claim} over every pair about {about}: {rows:#?}"))
 }

@@ -27,6 +27,7 @@ use super::compare::{Z_AGREE, z_score};
 use super::fi::{fi_runs, run_focs};
 use super::multitimer::{LEVELS, MtCell, buffer_rewards, exact_timer_groups};
 use super::reference::lab_model;
+use super::spreads::{ConditionStat, condition_stats};
 use crate::behaviour::aggregate::Spread;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -340,14 +341,14 @@ pub fn fi_run_stat(job: &CompactJob, td: u32) -> Option<(f64, f64)> {
 /// each side the test names, `z_of` the statement's z from them; `n/a` where a side has no
 /// runs) and a verdict row over every setting by [`general`].
 #[allow(clippy::too_many_arguments)]
-fn per_setting_statement(
+fn per_setting_statement<T: Copy + std::fmt::Display>(
     rows: &mut Vec<ClaimRow>,
     claim: &str,
     statement: &str,
     (task, unit): (&str, &str),
     test: &str,
-    tds: &[u32],
-    sides: impl Fn(u32) -> Vec<Spread>,
+    tds: &[T],
+    sides: impl Fn(T) -> Vec<Spread>,
     z_of: impl Fn(&[Spread]) -> f64,
 ) {
     let mut verdicts = Vec::new();
@@ -371,21 +372,113 @@ fn per_setting_statement(
             summary: false,
         });
     }
-    rows.push(ClaimRow {
+    rows.push(general_row(claim, statement, (task, unit), &verdicts));
+}
+
+/// The verdict row of a "generally" statement over every setting (`unit`s of `task`) from
+/// the settings' `verdicts` ([`general`]).
+fn general_row(
+    claim: &str,
+    statement: &str,
+    (task, unit): (&str, &str),
+    verdicts: &[&str],
+) -> ClaimRow {
+    let count = |v: &str| verdicts.iter().filter(|x| **x == v).count();
+    ClaimRow {
         claim: claim.into(),
         statement: statement.into(),
         setting: format!("{task}, every {unit}"),
         test: format!("holds at ≥ half the {unit}s and contradicted at none"),
         lab: format!(
             "{} of {} {unit}s hold, {} contradicted",
-            verdicts.iter().filter(|v| **v == "holds").count(),
-            verdicts.iter().filter(|v| **v != "n/a").count(),
-            verdicts.iter().filter(|v| **v == "contradicted").count()
+            count("holds"),
+            verdicts.len() - count("n/a"),
+            count("contradicted")
         ),
         z: f64::NAN,
-        verdict: general(verdicts).into(),
+        verdict: general(verdicts.iter().copied()).into(),
         summary: true,
+    }
+}
+
+/// The bisection statements (the paper's Results, "Bisection task"): "LSTM125 performs
+/// better than its biologically plausible recurrent counterpart CTRNN125" and "for a higher
+/// memory size (256) the two models have comparable performance", on the psychometric
+/// curves' anchor accuracy (each kept run's share of correct answers at the two anchors:
+/// `spreads::condition_stats`), per anchor pair; "comparable" is the equivalence test
+/// ([`equal`]).
+pub fn bisection_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
+    let stats: Vec<ConditionStat> = condition_stats(jobs)
+        .into_iter()
+        .filter(|c| c.task == "Bisection-v0" && c.statistic == "anchor_accuracy")
+        .collect();
+    if stats.is_empty() {
+        return Vec::new();
+    }
+    let mut pairs: Vec<&str> = stats.iter().map(|c| c.condition.as_str()).collect();
+    pairs.sort_by_key(|p| {
+        let (a, b) = p.split_once('-').unwrap_or((p, ""));
+        (a.parse::<u32>().unwrap_or(0), b.parse::<u32>().unwrap_or(0))
     });
+    pairs.dedup();
+    let acc = |m: &str, pair: &str| {
+        stats
+            .iter()
+            .find(|c| c.model == m && c.condition == pair)
+            .map_or(Spread::of([]), |c| c.spread)
+    };
+    let task = "bisection";
+    let mut rows = Vec::new();
+    let reservoir = paper_ctrnn();
+    for (other, name) in [
+        (reservoir, "CTRNN125 (lab: reservoir)"),
+        (
+            TRAINED_CTRNN,
+            "the lab's trained CTRNN125 (not in the paper)",
+        ),
+    ] {
+        per_setting_statement(
+            &mut rows,
+            "bisection_lstm_better",
+            &format!("LSTM125 performs better than {name}"),
+            (task, "pair"),
+            &format!("anchor accuracy per kept run, lstm125 − {other}: z > 2"),
+            &pairs,
+            |p| vec![acc(LSTM, p), acc(other, p)],
+            |v| two_sample(&v[0], &v[1]),
+        );
+    }
+    let (lstm256, ctrnn256) = (
+        lab_model("LSTM256").unwrap_or("lstm256"),
+        lab_model("CTRNN256").unwrap_or("ctrnn-reservoir256"),
+    );
+    let statement = "at size 256, LSTM256 and CTRNN256 (lab: reservoir) perform comparably";
+    let mut verdicts = Vec::new();
+    for &pair in &pairs {
+        let (a, b) = (acc(lstm256, pair), acc(ctrnn256, pair));
+        let (d, se) = difference(&a, &b);
+        let verdict = equal(d, se);
+        verdicts.push(verdict);
+        rows.push(ClaimRow {
+            claim: "bisection_256_comparable".into(),
+            statement: statement.into(),
+            setting: format!("{task}, pair {pair}"),
+            test: format!(
+                "anchor accuracy per kept run, {lstm256} − {ctrnn256}: d ± 2·se within ±{EQUIVALENCE_MARGIN}"
+            ),
+            lab: format!("{} vs {}", fmt_spread(&a), fmt_spread(&b)),
+            z: two_sample(&a, &b),
+            verdict: verdict.into(),
+            summary: false,
+        });
+    }
+    rows.push(general_row(
+        "bisection_256_comparable",
+        statement,
+        (task, "pair"),
+        &verdicts,
+    ));
+    rows
 }
 
 /// The fixed-interval statements (the paper's Results, "Fixed interval").

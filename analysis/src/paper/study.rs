@@ -6,8 +6,8 @@
 use super::agreement::{Agreement, agreement};
 use super::bisection::{BisectionModel, analyse_bisection};
 use super::claims::{
-    ClaimRow, capacity_claims, claims_markdown, exact_timer_claims, fi_claims, multitimer_claims,
-    shift_claims,
+    ClaimRow, bisection_claims, capacity_claims, claims_markdown, exact_timer_claims, fi_claims,
+    multitimer_claims, shift_claims,
 };
 use super::collect::{CollectError, CompactJob, err, read_compact, write_csv};
 use super::compare::{ComparisonRow, compare};
@@ -106,6 +106,7 @@ pub fn analyse(root: &Path) -> Result<PaperStudy, CollectError> {
     let pi = analyse_pi(root, &jobs)?;
     let pi_verdicts = pi_verdicts(&pi);
     let mut claims = fi_claims(&jobs);
+    claims.extend(bisection_claims(&jobs));
     claims.extend(exact_timer_claims(&jobs));
     claims.extend(multitimer_claims(&multitimer));
     claims.extend(shift_claims(&multitimer));
