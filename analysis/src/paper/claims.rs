@@ -190,6 +190,31 @@ fn paper_ctrnn() -> &'static str {
     lab_model("CTRNN125").unwrap_or("ctrnn-reservoir125")
 }
 
+/// The models LSTM125 is compared with ("the other two models"), with the lab's trained
+/// CTRNN beside them.
+fn others() -> [(&'static str, &'static str); 3] {
+    [
+        (paper_ctrnn(), "the paper's CTRNN125 (lab: reservoir)"),
+        (CNN, "the CNN"),
+        (
+            TRAINED_CTRNN,
+            "the lab's trained CTRNN125 (not in the paper)",
+        ),
+    ]
+}
+
+/// The CTRNNs a statement about "CTRNN125" is tested on, with their names in the rows: the
+/// paper's (the lab's reservoir) and the lab's trained one.
+fn ctrnns() -> [(&'static str, &'static str); 2] {
+    [
+        (paper_ctrnn(), "CTRNN125 (lab: reservoir)"),
+        (
+            TRAINED_CTRNN,
+            "the lab's trained CTRNN125 (not in the paper)",
+        ),
+    ]
+}
+
 /// The exact timer's statements (the paper's Results, "For the exact timing case …").
 pub fn exact_timer_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
     let means = exact_timer_run_means(jobs);
@@ -204,15 +229,7 @@ pub fn exact_timer_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
     let mut rows = Vec::new();
 
     // LSTM125 generally outperforms the other two models.
-    let others = [
-        (paper_ctrnn(), "the paper's CTRNN125 (lab: reservoir)"),
-        (CNN, "the CNN"),
-        (
-            TRAINED_CTRNN,
-            "the lab's trained CTRNN125 (not in the paper)",
-        ),
-    ];
-    for (other, name) in others {
+    for (other, name) in others() {
         per_setting_statement(
             &mut rows,
             "exact_lstm_best",
@@ -228,13 +245,7 @@ pub fn exact_timer_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
     {
         let td = PAPER_SHORTEST_TD;
         // At the shortest TD, LSTM125 and CTRNN125 perform equally well.
-        for (other, name) in [
-            (paper_ctrnn(), "CTRNN125 (lab: reservoir)"),
-            (
-                TRAINED_CTRNN,
-                "the lab's trained CTRNN125 (not in the paper)",
-            ),
-        ] {
+        for (other, name) in ctrnns() {
             let (a, b) = (get(LSTM, td), get(other, td));
             let z = two_sample(a, b);
             let (d, se) = difference(a, b);
@@ -429,14 +440,7 @@ pub fn bisection_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
     };
     let task = "bisection";
     let mut rows = Vec::new();
-    let reservoir = paper_ctrnn();
-    for (other, name) in [
-        (reservoir, "CTRNN125 (lab: reservoir)"),
-        (
-            TRAINED_CTRNN,
-            "the lab's trained CTRNN125 (not in the paper)",
-        ),
-    ] {
+    for (other, name) in ctrnns() {
         per_setting_statement(
             &mut rows,
             "bisection_lstm_better",
@@ -515,13 +519,7 @@ pub fn fi_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
         |v| against_value(&v[0], 0.5),
     );
     let reservoir = paper_ctrnn();
-    for (other, name) in [
-        (reservoir, "CTRNN125 (lab: reservoir)"),
-        (
-            TRAINED_CTRNN,
-            "the lab's trained CTRNN125 (not in the paper)",
-        ),
-    ] {
+    for (other, name) in ctrnns() {
         per_setting_statement(
             &mut rows,
             "fi_lstm_closer",
@@ -602,14 +600,7 @@ pub fn multitimer_claims(cells: &[MtCell]) -> Vec<ClaimRow> {
     for (curriculum, tds) in five_timer_lists(cells) {
         let cell = |m: &str| cell_of(cells, curriculum, tds, m);
         let task = format!("multi-timer {curriculum}, TDs {}", tds_label(tds));
-        for (other, name) in [
-            (paper_ctrnn(), "the paper's CTRNN125 (lab: reservoir)"),
-            (CNN, "the CNN"),
-            (
-                TRAINED_CTRNN,
-                "the lab's trained CTRNN125 (not in the paper)",
-            ),
-        ] {
+        for (other, name) in others() {
             let reward = |m: &str, l: u32| {
                 cell(m)
                     .and_then(|c| c.level_eval.get(l as usize).copied())
@@ -710,13 +701,7 @@ pub fn shift_claims(cells: &[MtCell]) -> Vec<ClaimRow> {
                 .unwrap_or(Spread::of([]))
         };
         let task = format!("multi-timer {curriculum}, TDs {}", tds_label(tds));
-        for (ctrnn, name) in [
-            (paper_ctrnn(), "CTRNN125 (lab: reservoir)"),
-            (
-                TRAINED_CTRNN,
-                "the lab's trained CTRNN125 (not in the paper)",
-            ),
-        ] {
+        for (ctrnn, name) in ctrnns() {
             per_setting_statement(
                 &mut rows,
                 "multitimer_ctrnn_more_shifts",
