@@ -1,0 +1,78 @@
+//! The bisection statements.
+
+use super::*;
+use crate::paper::collect::CompactJob;
+use crate::paper::spreads::{ConditionStat, condition_stats};
+
+/// The bisection statements (the paper's Results, "Bisection task"): "LSTM125 performs
+/// better than its biologically plausible recurrent counterpart CTRNN125" and "for a higher
+/// memory size (256) the two models have comparable performance", on the psychometric
+/// curves' anchor accuracy (each kept run's share of correct answers at the two anchors:
+/// `spreads::condition_stats`), per anchor pair; "comparable" is the equivalence test
+/// ([`equal`]).
+pub fn bisection_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
+    let stats: Vec<ConditionStat> = condition_stats(jobs)
+        .into_iter()
+        .filter(|c| c.task == "Bisection-v0" && c.statistic == "anchor_accuracy")
+        .collect();
+    if stats.is_empty() {
+        return Vec::new();
+    }
+    let mut pairs: Vec<&str> = stats.iter().map(|c| c.condition.as_str()).collect();
+    pairs.sort_by_key(|p| {
+        let (a, b) = p.split_once('-').unwrap_or((p, ""));
+        (a.parse::<u32>().unwrap_or(0), b.parse::<u32>().unwrap_or(0))
+    });
+    pairs.dedup();
+    let acc = |m: &str, pair: &str| {
+        stats
+            .iter()
+            .find(|c| c.model == m && c.condition == pair)
+            .map_or(Spread::of([]), |c| c.spread)
+    };
+    let task = "bisection";
+    let mut rows = Vec::new();
+    for (other, name) in ctrnns() {
+        per_setting_statement(
+            &mut rows,
+            "bisection_lstm_better",
+            &format!("LSTM125 performs better than {name}"),
+            (task, "pair"),
+            &format!("anchor accuracy per kept run, lstm125 − {other}: z > 2"),
+            &pairs,
+            |p| vec![acc(LSTM, p), acc(other, p)],
+            |v| two_sample(&v[0], &v[1]),
+        );
+    }
+    let (lstm256, ctrnn256) = (
+        lab_model("LSTM256").unwrap_or("lstm256"),
+        lab_model("CTRNN256").unwrap_or("ctrnn-reservoir256"),
+    );
+    let statement = "at size 256, LSTM256 and CTRNN256 (lab: reservoir) perform comparably";
+    let mut verdicts = Vec::new();
+    for &pair in &pairs {
+        let (a, b) = (acc(lstm256, pair), acc(ctrnn256, pair));
+        let (d, se) = difference(&a, &b);
+        let verdict = equal(d, se);
+        verdicts.push(verdict);
+        rows.push(ClaimRow {
+            claim: "bisection_256_comparable".into(),
+            statement: statement.into(),
+            setting: format!("{task}, pair {pair}"),
+            test: format!(
+                "anchor accuracy per kept run, {lstm256} − {ctrnn256}: d ± 2·se within ±{EQUIVALENCE_MARGIN}"
+            ),
+            lab: format!("{} vs {}", fmt_spread(&a), fmt_spread(&b)),
+            z: two_sample(&a, &b),
+            verdict: verdict.into(),
+            summary: false,
+        });
+    }
+    rows.push(general_row(
+        "bisection_256_comparable",
+        statement,
+        (task, "pair"),
+        &verdicts,
+    ));
+    rows
+}

@@ -1,0 +1,86 @@
+//! The fixed-interval statements.
+
+use super::*;
+use crate::paper::collect::CompactJob;
+use crate::paper::fi::{fi_runs, run_focs};
+
+/// One FI run's statistics: share of its FOCs at 0 and its mean FOC / TD, over its
+/// episodes with a check (`None` for a run without one).
+pub fn fi_run_stat(job: &CompactJob, td: u32) -> Option<(f64, f64)> {
+    let f = run_focs(job, false);
+    (!f.is_empty()).then(|| {
+        let n = f.len() as f64;
+        let zero = f.iter().filter(|x| **x == 0.0).count() as f64 / n;
+        (zero, f.iter().sum::<f64>() / n / f64::from(td))
+    })
+}
+
+/// The fixed-interval statements (the paper's Results, "Fixed interval").
+pub fn fi_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
+    let runs = fi_runs(jobs);
+    if runs.is_empty() {
+        return Vec::new();
+    }
+    // Per-run statistic `stat` of (model, TD) across its runs.
+    let across = |m: &str, td: u32, stat: fn((f64, f64)) -> f64| {
+        let js = runs.get(m).and_then(|t| t.get(&td));
+        Spread::of(
+            js.into_iter()
+                .flatten()
+                .filter_map(|j| fi_run_stat(j, td).map(stat)),
+        )
+    };
+    let zero = |s: (f64, f64)| s.0;
+    let ratio = |s: (f64, f64)| s.1;
+    let off = |s: (f64, f64)| (s.1 - 1.0).abs();
+    let mut tds: Vec<u32> = runs.values().flat_map(|t| t.keys().copied()).collect();
+    tds.sort_unstable();
+    tds.dedup();
+    let task = "fixed interval";
+    let mut rows = Vec::new();
+    per_setting_statement(
+        &mut rows,
+        "fi_cnn_foc_zero",
+        "in most cases the CNN's first oven check is at 0 (checking from the start)",
+        (task, "TD"),
+        "cnn-mlp share of FOCs at 0 per run, against 0.5: z > 2",
+        &tds,
+        |td| vec![across(CNN, td, zero)],
+        |v| against_value(&v[0], 0.5),
+    );
+    let reservoir = paper_ctrnn();
+    for (other, name) in ctrnns() {
+        per_setting_statement(
+            &mut rows,
+            "fi_lstm_closer",
+            &format!("LSTM125's FOCs are closer to the TD than {name}'s"),
+            (task, "TD"),
+            &format!("|FOC/TD − 1| per run, {other} − lstm125: z > 2"),
+            &tds,
+            |td| vec![across(other, td, off), across(LSTM, td, off)],
+            |v| two_sample(&v[0], &v[1]),
+        );
+        per_setting_statement(
+            &mut rows,
+            "fi_ctrnn_earlier",
+            &format!("{name} checks the oven earlier than LSTM125"),
+            (task, "TD"),
+            &format!("FOC/TD per run, lstm125 − {other}: z > 2"),
+            &tds,
+            |td| vec![across(LSTM, td, ratio), across(other, td, ratio)],
+            |v| two_sample(&v[0], &v[1]),
+        );
+    }
+    let big = lab_model("CTRNN256").unwrap_or("ctrnn-reservoir256");
+    per_setting_statement(
+        &mut rows,
+        "fi_ctrnn256_better",
+        "at a higher memory size CTRNN256's FOCs improve on CTRNN125's (lab: reservoirs)",
+        (task, "TD"),
+        &format!("|FOC/TD − 1| per run, {reservoir} − {big}: z > 2"),
+        &tds,
+        |td| vec![across(reservoir, td, off), across(big, td, off)],
+        |v| two_sample(&v[0], &v[1]),
+    );
+    rows
+}

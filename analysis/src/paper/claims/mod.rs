@@ -1,0 +1,320 @@
+//! `claims.csv`: the paper's statements in words about fixed interval, the exact timer and
+//! the multi-timer — made without a number (its exact-timer figure is empty in the source,
+//! its FI and multi-timer figures have no table) — each tested on the lab's runs.
+//!
+//! Every test is a z on means over runs, with the comparison's threshold
+//! ([`Z_AGREE`] = 2): two models, `(a − b)/√(s_a²/n_a + s_b²/n_b)`;
+//! one model against a fixed value `v`, `(a − v)/(s_a/√n_a)`. Verdicts:
+//!
+//! * `holds` — the data show what the statement says (`z` beyond the threshold in its
+//!   direction; for "equally well" and "at the minimum", an equivalence test: the difference
+//!   ± 2 standard errors within [`EQUIVALENCE_MARGIN`]);
+//! * `contradicted` — they show the opposite (beyond the threshold the other way);
+//! * `not shown` — neither (a difference too small, or too noisy, to tell);
+//! * `n/a` — no test: a side without at least two runs. A "generally" verdict counts only
+//!   the settings with a test.
+//!
+//! A fixed-interval run is summarised by its share of first oven checks at 0 (checking from
+//! the oven's start) and its mean FOC / TD, over its episodes with a check. An exact-timer
+//! run is summarised by its reward averaged over the test buffers (0, 25, 50
+//! and 75% of TD on either side: the paper's figure's x-axis), each buffer the mean over the
+//! start cells. The paper's CTRNN is the lab's reservoir CTRNN
+//! ([`lab_model`]); the lab's trained CTRNN is tested beside it
+//! in rows marked as not in the paper.
+//!
+//! One file per task family: `fi.rs`, `bisection.rs`, `exact.rs` (the exact timer),
+//! `multitimer.rs`; here the row, the verdict rules and the shared tests.
+
+use super::compare::{Z_AGREE, z_score};
+use super::reference::lab_model;
+use crate::behaviour::aggregate::Spread;
+use serde::{Deserialize, Serialize};
+use std::fmt::Write as _;
+
+mod bisection;
+mod exact;
+mod fi;
+mod multitimer;
+
+pub use bisection::bisection_claims;
+pub use exact::{exact_timer_claims, exact_timer_run_means};
+pub use fi::{fi_claims, fi_run_stat};
+pub use multitimer::{capacity_claims, multitimer_claims, shift_claims};
+
+/// The minimum reward of a delivered soup in the exact timer (outside the window).
+pub const REDUCED_REWARD: f64 = 0.1;
+
+/// The shortest TD of the paper's exact-timer statements ("at the shortest target duration
+/// (TD = 4)").
+pub const PAPER_SHORTEST_TD: u32 = 4;
+
+/// Reward over a curriculum level's trained TDs at which a run counts as performing them
+/// (the curriculum's pass threshold for two to five timers).
+pub const PERFORMS: f64 = 0.9;
+
+/// One line of `claims.csv`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ClaimRow {
+    /// Short id of the statement (`exact_lstm_best`, …).
+    pub claim: String,
+    /// What the paper says (its words, shortened).
+    pub statement: String,
+    /// Where it is tested: task and TD, or TD list (steps).
+    pub setting: String,
+    /// The test applied.
+    pub test: String,
+    /// The lab's numbers behind the verdict (mean ± SD over runs, runs in brackets).
+    pub lab: String,
+    /// The test's z (NaN where there is none).
+    pub z: f64,
+    /// `holds`, `contradicted`, `not shown` or `n/a`.
+    pub verdict: String,
+    /// A statement's verdict (`true`) or one setting behind a "generally" verdict.
+    pub summary: bool,
+}
+
+/// Verdict of a one-directional statement from its z (positive: the statement's direction).
+pub fn directional(z: f64) -> &'static str {
+    if z.is_nan() {
+        "n/a"
+    } else if z > Z_AGREE {
+        "holds"
+    } else if z < -Z_AGREE {
+        "contradicted"
+    } else {
+        "not shown"
+    }
+}
+
+/// Reward difference within which two means count as "equally well" / "at the minimum":
+/// one reduced reward (0.1), the task's own smallest step of reward.
+pub const EQUIVALENCE_MARGIN: f64 = 0.1;
+
+/// Verdict of an "equally well" statement on the difference `d` of two means with standard
+/// error `se`: `contradicted` when `|d/se| > 2`; `holds` when the whole interval `d ± 2·se`
+/// lies within ±[`EQUIVALENCE_MARGIN`] (an equivalence test: a non-significant difference
+/// alone is not evidence of equality); else `not shown`; `n/a` without a standard error.
+pub fn equal(d: f64, se: f64) -> &'static str {
+    if d.is_nan() || se.is_nan() {
+        "n/a"
+    } else if d.abs() > Z_AGREE * se {
+        "contradicted"
+    } else if d.abs() + Z_AGREE * se <= EQUIVALENCE_MARGIN + 1e-12 {
+        "holds"
+    } else {
+        "not shown"
+    }
+}
+
+/// Verdict of a statement that no case out of `cases` goes against it: `n/a` without cases,
+/// `holds` when none of them does (`against` = 0), else `contradicted`.
+pub fn unless_any(cases: usize, against: usize) -> &'static str {
+    match (cases, against) {
+        (0, _) => "n/a",
+        (_, 0) => "holds",
+        _ => "contradicted",
+    }
+}
+
+/// Verdict of a "generally" statement from its per-setting verdicts: `holds` when it holds
+/// in at least half the settings and is contradicted in none, `contradicted` when it is
+/// contradicted in at least half, `n/a` without a testable setting, else `not shown`.
+pub fn general<'a>(verdicts: impl IntoIterator<Item = &'a str>) -> &'static str {
+    let v: Vec<&str> = verdicts.into_iter().filter(|v| *v != "n/a").collect();
+    if v.is_empty() {
+        return "n/a";
+    }
+    let holds = v.iter().filter(|v| **v == "holds").count();
+    let against = v.iter().filter(|v| **v == "contradicted").count();
+    if 2 * against >= v.len() {
+        "contradicted"
+    } else if 2 * holds >= v.len() && against == 0 {
+        "holds"
+    } else {
+        "not shown"
+    }
+}
+
+fn fmt_spread(s: &Spread) -> String {
+    match s.n {
+        0 => "no runs".into(),
+        1 => format!("{:.2} (1)", s.mean),
+        n => format!("{:.2} ± {:.2} ({n})", s.mean, s.sd),
+    }
+}
+
+/// Rewards are stored as `f32`: means closer than this are the same reward (0.1 as `f32`
+/// is 1.5e-9 above 0.1, which over a zero SD would be an infinite z).
+const SAME: f64 = 1e-6;
+
+/// `(a − b, its standard error)` of two means over runs (NaN below two runs on a side).
+fn difference(a: &Spread, b: &Spread) -> (f64, f64) {
+    if a.n < 2 || b.n < 2 {
+        return (f64::NAN, f64::NAN);
+    }
+    let se = (a.sd * a.sd / a.n as f64 + b.sd * b.sd / b.n as f64).sqrt();
+    (a.mean - b.mean, se)
+}
+
+fn two_sample(a: &Spread, b: &Spread) -> f64 {
+    if a.n < 2 || b.n < 2 {
+        return f64::NAN;
+    }
+    if (a.mean - b.mean).abs() < SAME {
+        return 0.0;
+    }
+    z_score(a.mean, a.sd, a.n, b.mean, b.sd, b.n)
+}
+
+fn against_value(a: &Spread, v: f64) -> f64 {
+    if a.n < 2 {
+        return f64::NAN;
+    }
+    if (a.mean - v).abs() < SAME {
+        return 0.0;
+    }
+    z_score(a.mean, a.sd, a.n, v, f64::NAN, 0)
+}
+
+const LSTM: &str = "lstm125";
+const CNN: &str = "cnn-mlp";
+const TRAINED_CTRNN: &str = "ctrnn125";
+
+fn paper_ctrnn() -> &'static str {
+    lab_model("CTRNN125").unwrap_or("ctrnn-reservoir125")
+}
+
+/// The models LSTM125 is compared with ("the other two models"), with the lab's trained
+/// CTRNN beside them.
+fn others() -> [(&'static str, &'static str); 3] {
+    [
+        (paper_ctrnn(), "the paper's CTRNN125 (lab: reservoir)"),
+        (CNN, "the CNN"),
+        (
+            TRAINED_CTRNN,
+            "the lab's trained CTRNN125 (not in the paper)",
+        ),
+    ]
+}
+
+/// The CTRNNs a statement about "CTRNN125" is tested on, with their names in the rows: the
+/// paper's (the lab's reservoir) and the lab's trained one.
+fn ctrnns() -> [(&'static str, &'static str); 2] {
+    [
+        (paper_ctrnn(), "CTRNN125 (lab: reservoir)"),
+        (
+            TRAINED_CTRNN,
+            "the lab's trained CTRNN125 (not in the paper)",
+        ),
+    ]
+}
+
+/// A "generally" statement over settings (TDs, levels): one row per setting `unit x` of
+/// `task` (`sides` gives the per-run statistic of
+/// each side the test names, `z_of` the statement's z from them; `n/a` where a side has no
+/// runs) and a verdict row over every setting by [`general`].
+#[allow(clippy::too_many_arguments)]
+fn per_setting_statement<T: Copy + std::fmt::Display>(
+    rows: &mut Vec<ClaimRow>,
+    claim: &str,
+    statement: &str,
+    (task, unit): (&str, &str),
+    test: &str,
+    tds: &[T],
+    sides: impl Fn(T) -> Vec<Spread>,
+    z_of: impl Fn(&[Spread]) -> f64,
+) {
+    let mut verdicts = Vec::new();
+    for &td in tds {
+        let v = sides(td);
+        let z = z_of(&v);
+        let verdict = if v.iter().any(|s| s.n == 0) {
+            "n/a"
+        } else {
+            directional(z)
+        };
+        verdicts.push(verdict);
+        rows.push(ClaimRow {
+            claim: claim.into(),
+            statement: statement.into(),
+            setting: format!("{task}, {unit} {td}"),
+            test: test.into(),
+            lab: v.iter().map(fmt_spread).collect::<Vec<_>>().join(" vs "),
+            z,
+            verdict: verdict.into(),
+            summary: false,
+        });
+    }
+    rows.push(general_row(claim, statement, (task, unit), &verdicts));
+}
+
+/// The verdict row of a "generally" statement over every setting (`unit`s of `task`) from
+/// the settings' `verdicts` ([`general`]).
+fn general_row(
+    claim: &str,
+    statement: &str,
+    (task, unit): (&str, &str),
+    verdicts: &[&str],
+) -> ClaimRow {
+    let count = |v: &str| verdicts.iter().filter(|x| **x == v).count();
+    ClaimRow {
+        claim: claim.into(),
+        statement: statement.into(),
+        setting: format!("{task}, every {unit}"),
+        test: format!("holds at ≥ half the {unit}s and contradicted at none"),
+        lab: format!(
+            "{} of {} {unit}s hold, {} contradicted",
+            count("holds"),
+            verdicts.len() - count("n/a"),
+            count("contradicted")
+        ),
+        z: f64::NAN,
+        verdict: general(verdicts.iter().copied()).into(),
+        summary: true,
+    }
+}
+
+fn tds_label(tds: &[u32]) -> String {
+    tds.iter()
+        .map(u32::to_string)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Markdown: the summary rows (and single-setting statements) with their verdicts.
+pub fn claims_markdown(m: &mut String, rows: &[ClaimRow]) {
+    if rows.is_empty() {
+        return;
+    }
+    let _ = writeln!(
+        m,
+        "\n## The paper's statements in words, tested (`claims.csv`)\n\nz on means over runs, threshold 2; \"equally well\" and \"at the minimum\": the difference ± 2 SE within 0.1 (each TD or level behind a \"generally\" verdict is a row of `claims.csv`).\n"
+    );
+    let _ = writeln!(m, "| statement | setting | test | lab | z | verdict |");
+    let _ = writeln!(m, "|---|---|---|---|---:|---|");
+    for r in rows.iter().filter(|r| r.summary) {
+        let _ = writeln!(
+            m,
+            "| {} | {} | {} | {} | {} | {} |",
+            r.statement,
+            r.setting,
+            r.test,
+            r.lab,
+            z_text(r.z),
+            r.verdict
+        );
+    }
+}
+
+/// A z for tables: 2 decimals, `–` for none, `±∞`.
+pub fn z_text(z: f64) -> String {
+    if z.is_finite() {
+        format!("{z:.2}")
+    } else if z.is_nan() {
+        "–".into()
+    } else if z > 0.0 {
+        "+∞".into()
+    } else {
+        "−∞".into()
+    }
+}
