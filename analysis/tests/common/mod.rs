@@ -86,3 +86,15 @@ pub fn lstm_fi_job(
         levels: vec![],
     }
 }
+
+/// The `claims.csv` row of `claim` in `setting` whose test mentions `test`.
+pub fn find_claim<'a>(
+    rows: &'a [chronocooked_analysis::paper::claims::ClaimRow],
+    claim: &str,
+    setting: &str,
+    test: &str,
+) -> &'a chronocooked_analysis::paper::claims::ClaimRow {
+    rows.iter()
+        .find(|r| r.claim == claim && r.setting == setting && r.test.contains(test))
+        .unwrap_or_else(|| panic!("no {claim} / {setting} / {test} in {rows:#?}"))
+}
