@@ -230,6 +230,17 @@ fn curriculum_color(curriculum: &str) -> usize {
     if curriculum == "exact" { 3 } else { 0 }
 }
 
+/// The distinct `names` in the order first seen (a figure's models, in legend order).
+fn first_seen<'a>(names: impl Iterator<Item = &'a str>) -> Vec<&'a str> {
+    let mut out: Vec<&str> = Vec::new();
+    for n in names {
+        if !out.contains(&n) {
+            out.push(n);
+        }
+    }
+    out
+}
+
 /// Multi-timer small multiples, one column per model: the training reward at each
 /// curriculum level (run means as dots, their mean as a line), the final policy's reward at
 /// every evaluated TD (trained TDs marked; the others are out of distribution, as in the
@@ -237,12 +248,7 @@ fn curriculum_color(curriculum: &str) -> usize {
 /// categorical blue, the legend in the top row. Returns the grid
 /// shape (3 rows × models) and its panels.
 pub fn multitimer_panels(s: &PaperStudy) -> ((usize, usize), Vec<Option<Chart>>) {
-    let mut models: Vec<&str> = Vec::new();
-    for c in &s.multitimer {
-        if !models.contains(&c.model.as_str()) {
-            models.push(&c.model);
-        }
-    }
+    let models = first_seen(s.multitimer.iter().map(|c| c.model.as_str()));
     let mut levels = Vec::new();
     let mut rewards = Vec::new();
     let mut offs = Vec::new();
@@ -375,12 +381,7 @@ pub fn exact_timer_panels(s: &PaperStudy) -> Vec<Option<Chart>> {
     let mut tds: Vec<u32> = s.exact_timer.iter().map(|c| c.td).collect();
     tds.sort_unstable();
     tds.dedup();
-    let mut models: Vec<&str> = Vec::new();
-    for c in &s.exact_timer {
-        if !models.contains(&c.model.as_str()) {
-            models.push(&c.model);
-        }
-    }
+    let models = first_seen(s.exact_timer.iter().map(|c| c.model.as_str()));
     tds.iter()
         .map(|&td| {
             let mut ser = vec![series(
@@ -444,12 +445,7 @@ pub fn level_panels(s: &PaperStudy) -> ((usize, usize), Vec<Option<Chart>>) {
         .collect();
     keys.sort_unstable();
     keys.dedup();
-    let mut models: Vec<&str> = Vec::new();
-    for c in &s.multitimer {
-        if !models.contains(&c.model.as_str()) {
-            models.push(&c.model);
-        }
-    }
+    let models = first_seen(s.multitimer.iter().map(|c| c.model.as_str()));
     let mut panels = Vec::new();
     for &(curriculum, tds) in &keys {
         for (row, y_label) in [(0, "mean reward"), (1, "mean oven-off time (taken)")] {
