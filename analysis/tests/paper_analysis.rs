@@ -414,7 +414,7 @@ fn multitimer_analysis_reads_levels_rewards_and_oven_off_times() {
     let (grid, panels) = multitimer_panels(&study);
     assert_eq!(grid, (3, 1));
     assert_eq!(panels.len(), 3);
-    let md = tables_markdown(&study);
+    let md = tables_markdown(&study, "paper-core");
     assert!(
         md.contains("| model | curriculum | TDs | TD 3 | TD 6 |"),
         "{md}"

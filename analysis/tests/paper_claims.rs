@@ -90,8 +90,9 @@ fn exact_timer_statements_get_the_verdicts_worked_out_by_hand() {
     let rows = exact_timer_claims(&jobs);
 
     // TD 4, LSTM vs reservoir: means 0.9 and 0.875, SDs √(0.02/3) and √(0.0125/3):
-    // z = 0.025 / √((0.02 + 0.0125)/12) = 0.4804 — not a difference, but d ± 2·se =
-    // 0.025 ± 0.104 reaches past the 0.1 margin: equality is not shown either.
+    // z = 0.025 / √((0.02 + 0.0125)/12) = 0.4804, Welch df 5.697, p 0.6488 (scipy
+    // `ttest_ind(equal_var=False)`) — not a difference, but the 95% interval 0.025 ± 0.1290
+    // reaches past the 0.1 margin: equality is not shown either.
     let r = find(
         &rows,
         "exact_shortest_equal",
@@ -102,6 +103,8 @@ fn exact_timer_statements_get_the_verdicts_worked_out_by_hand() {
         (r.z - 0.025 / (0.0325f64 / 12.0).sqrt()).abs() < 1e-4,
         "{r:?}"
     );
+    assert!((r.p - 0.648842).abs() < 1e-5, "{r:?}");
+    assert!(r.lab.ends_with("d = 0.025 ± 0.129"), "{r:?}");
     assert_eq!(r.verdict, "not shown");
     assert_eq!(
         find(
@@ -120,7 +123,8 @@ fn exact_timer_statements_get_the_verdicts_worked_out_by_hand() {
         "ctrnn-reservoir125",
     );
     assert_eq!(r.verdict, "not shown");
-    // TD 10: 0.8 vs 0.125 (SDs √(0.02/3), √(0.0075/3)): z = 0.675 / √(0.0275/12) ≈ 14.1.
+    // TD 10: 0.8 vs 0.125 (SDs √(0.02/3), √(0.0075/3)): z = 0.675 / √(0.0275/12) ≈ 14.1,
+    // df 4.97, p 3.36e-5.
     let r = find(
         &rows,
         "exact_lstm_best",
@@ -131,38 +135,87 @@ fn exact_timer_statements_get_the_verdicts_worked_out_by_hand() {
         (r.z - 0.675 / (0.0275f64 / 12.0).sqrt()).abs() < 1e-3,
         "{r:?}"
     );
+    assert!((r.p - 3.36016e-5).abs() < 1e-8, "{r:?}");
     assert_eq!(r.verdict, "holds");
-    // Over both TDs: holds at one of two, contradicted at none → holds.
+    // Over both TDs: holds at one of two — two settings are not a generality (at least
+    // three are needed) → not shown.
     let r = find(&rows, "exact_lstm_best", "exact timer, every TD", "").clone();
     assert!(r.statement.contains("CTRNN125 (lab: reservoir)"), "{r:?}");
-    assert_eq!(r.verdict, "holds");
-    // The trained CTRNN beats the LSTM at TD 10 (0.975 vs 0.8): contradicted there, and
-    // with no TD-4 runs it is contradicted at the only testable TD → contradicted overall.
+    assert_eq!(r.verdict, "not shown");
+    // The trained CTRNN beats the LSTM at TD 10 (0.975 vs 0.8): z −4.04, df 3.74, p 0.0178
+    // → contradicted there; with no TD-4 runs that is the only testable TD → not shown
+    // overall.
     let r = find(&rows, "exact_lstm_best", "exact timer, TD 10", "− ctrnn125");
+    assert!((r.p - 0.0178256).abs() < 1e-6, "{r:?}");
     assert_eq!(r.verdict, "contradicted");
     let overall: Vec<&ClaimRow> = rows
         .iter()
         .filter(|r| r.claim == "exact_lstm_best" && r.setting == "exact timer, every TD")
         .collect();
     assert_eq!(overall.len(), 3);
-    assert_eq!(overall[2].verdict, "contradicted", "{:?}", overall[2]);
-    // CNN at TD 4: mean 0.3, SD √(0.02/3): z = 0.2 / (SD/2) = 4.899 → holds.
+    assert_eq!(overall[2].verdict, "not shown", "{:?}", overall[2]);
+    assert!(
+        overall[2]
+            .lab
+            .contains("0 of 1 TDs hold, 1 contradicted (1 untested"),
+        "{:?}",
+        overall[2]
+    );
+    // CNN at TD 4: mean 0.3, SD √(0.02/3): z = 0.2 / (SD/2) = 4.899, t on 3 df: p 0.01628
+    // → holds.
     let r = find(&rows, "exact_cnn_above_min", "exact timer, TD 4", "");
     assert!(
         (r.z - 0.2 / ((0.02f64 / 3.0).sqrt() / 2.0)).abs() < 1e-3,
         "{r:?}"
     );
+    assert!((r.p - 0.0162766).abs() < 1e-6, "{r:?}");
     assert_eq!(r.verdict, "holds");
-    // CNN at TD 10 exactly at the minimum on every run (SD 0, mean 0.1): z 0 and the
-    // interval 0.1 ± 0 within the margin → holds.
+    // CNN at TD 10 exactly at the minimum on every run (SD 0, mean 0.1): z 0, p 1 and the
+    // interval 0 ± 0 within the margin → holds; the premise holds → holds overall.
     let r = find(&rows, "exact_cnn_short_only", "exact timer, TD 10", "");
-    assert_eq!((r.z, r.verdict.as_str()), (0.0, "holds"));
+    assert_eq!((r.z, r.p, r.verdict.as_str()), (0.0, 1.0, "holds"));
+    let r = find(
+        &rows,
+        "exact_cnn_short_only",
+        "exact timer, every TD past the shortest",
+        "",
+    );
+    assert_eq!(r.verdict, "holds", "{r:?}");
+}
+
+#[test]
+fn a_cnn_without_the_capacity_at_the_shortest_td_has_nothing_to_generalise() {
+    // The CNN never delivers at TD 4 (0 on all four runs) and earns the minimum at TD 10.
+    let mut jobs = runs("cnn-mlp", 4, [0.05, 0.05, 0.05, 0.05]);
+    for j in &mut jobs {
+        for e in &mut j.episodes {
+            e.reward = 0.0;
+        }
+    }
+    jobs.extend(runs("cnn-mlp", 10, [0.1, 0.1, 0.1, 0.1]));
+    let rows = exact_timer_claims(&jobs);
+    // Four runs all at 0 against 0.1: no variance, so the exact sign-flip test: all four
+    // signs agree in 2 of 2⁴ patterns, p = 0.125 — four runs cannot show it at 5%.
+    let r = find(&rows, "exact_cnn_above_min", "exact timer, TD 4", "");
+    assert_eq!(
+        (r.z, r.p, r.verdict.as_str()),
+        (f64::NEG_INFINITY, 0.125, "not shown")
+    );
+    let r = find(
+        &rows,
+        "exact_cnn_short_only",
+        "exact timer, every TD past the shortest",
+        "",
+    );
+    assert_eq!(r.verdict, "n/a", "{r:?}");
+    assert!(r.lab.starts_with("no capacity at TD 4"), "{r:?}");
 }
 
 #[test]
 fn equally_well_needs_the_whole_interval_inside_the_margin() {
     // Tight runs: LSTM 0.90, 0.91, 0.90, 0.91 and reservoir 0.90, 0.90, 0.91, 0.91 → d = 0,
-    // 2·se ≈ 0.008 → holds. A reservoir at 0.5 → contradicted.
+    // 95% half-width t(6)·se = 0.00999 → holds. A reservoir at 0.5: d = 0.4, its whole
+    // interval beyond the margin → contradicted.
     let mut jobs = runs("lstm125", 4, [0.9, 0.91, 0.9, 0.91]);
     jobs.extend(runs("ctrnn-reservoir125", 4, [0.9, 0.9, 0.91, 0.91]));
     let rows = exact_timer_claims(&jobs);
@@ -183,7 +236,8 @@ fn equally_well_needs_the_whole_interval_inside_the_margin() {
         "ctrnn-reservoir125",
     );
     assert_eq!(r.verdict, "contradicted", "{r:?}");
-    // A noisy CNN at a longer TD, 0.1 … 0.5: neither above 0.1 (z < 2) nor shown at it.
+    // A noisy CNN at a longer TD, 0.1, 0.1, 0.5, 0.1: d = 0.1 above the minimum with
+    // half-width t(3)·0.1 = 0.318 — neither wholly above the margin nor within it.
     let mut jobs = runs("cnn-mlp", 4, [0.3, 0.4, 0.2, 0.3]);
     jobs.extend(runs("cnn-mlp", 10, [0.1, 0.1, 0.5, 0.1]));
     let rows = exact_timer_claims(&jobs);
@@ -231,13 +285,71 @@ fn a_cnn_that_times_long_durations_contradicts_the_short_only_statement() {
 }
 
 #[test]
-fn general_statements_need_half_the_settings_and_no_contradiction() {
-    assert_eq!(general(["holds", "not shown"]), "holds");
-    assert_eq!(general(["holds", "not shown", "not shown"]), "not shown");
-    assert_eq!(general(["holds", "holds", "contradicted"]), "not shown");
-    assert_eq!(general(["holds", "contradicted"]), "contradicted");
+fn general_statements_need_a_majority_of_at_least_three_settings_and_no_contradiction() {
+    // Fewer than three tested settings are not a generality.
+    assert_eq!(general(["holds", "holds"]), "not shown");
+    assert_eq!(
+        general(["contradicted", "contradicted", "n/a"]),
+        "not shown"
+    );
     assert_eq!(general(["n/a", "n/a"]), "n/a");
-    assert_eq!(general(["n/a", "holds"]), "holds");
+    // A strict majority: 2 of 3 holds, 2 of 4 does not.
+    assert_eq!(general(["holds", "holds", "not shown"]), "holds");
+    assert_eq!(
+        general(["holds", "holds", "not shown", "not shown"]),
+        "not shown"
+    );
+    assert_eq!(general(["holds", "not shown", "not shown"]), "not shown");
+    // One contradiction blocks "holds"; a majority of them is "contradicted".
+    assert_eq!(general(["holds", "holds", "contradicted"]), "not shown");
+    assert_eq!(
+        general(["contradicted", "contradicted", "not shown"]),
+        "contradicted"
+    );
+    // Untested settings do not count.
+    assert_eq!(general(["n/a", "holds", "holds", "holds"]), "holds");
+}
+
+#[test]
+fn tests_on_runs_are_welch_t_or_exact_without_variance() {
+    use chronocooked_analysis::behaviour::aggregate::Spread;
+    use chronocooked_analysis::paper::claims::MeanTest;
+    // Welch: the FI example below (ratios 1, 0.875, 1.125, 1 against 0.25, 0.375, 0.25,
+    // 0.125): t 10.3923 on 6 df, p 4.649e-5, half-width 0.17659 (scipy).
+    let a = Spread::of([1.0, 0.875, 1.125, 1.0]);
+    let b = Spread::of([0.25, 0.375, 0.25, 0.125]);
+    let t = MeanTest::two_sample(&a, &b).unwrap();
+    assert!(
+        (t.z - 10.392305).abs() < 1e-5 && (t.df - 6.0).abs() < 1e-9,
+        "{t:?}"
+    );
+    assert!((t.p - 4.64893e-5).abs() < 1e-9, "{t:?}");
+    assert!((t.half_width() - 0.176591).abs() < 1e-5, "{t:?}");
+    // Unequal spreads: deviations 0.75, 0.625, 0.75, 0.875 against 0, 0.125, 0.125, 0:
+    // Welch df 5.4, p 6.689e-5.
+    let t = MeanTest::two_sample(
+        &Spread::of([0.75, 0.625, 0.75, 0.875]),
+        &Spread::of([0.0, 0.125, 0.125, 0.0]),
+    )
+    .unwrap();
+    assert!(
+        (t.df - 5.4).abs() < 1e-9 && (t.p - 6.68935e-5).abs() < 1e-9,
+        "{t:?}"
+    );
+    // No variance on either side: the exact randomisation test, 2 / C(8, 4) = 2/70 with
+    // four runs a side (significant), 2 / C(5, 2) = 0.2 with three against two (not).
+    let t = MeanTest::two_sample(&Spread::of([1.0; 4]), &Spread::of([0.0; 4])).unwrap();
+    assert_eq!((t.z, t.se), (f64::INFINITY, 0.0));
+    assert!((t.p - 2.0 / 70.0).abs() < 1e-12 && t.significant());
+    let t = MeanTest::two_sample(&Spread::of([1.0; 3]), &Spread::of([0.0; 2])).unwrap();
+    assert!((t.p - 0.2).abs() < 1e-12 && !t.significant());
+    // One sample without variance: the sign-flip test, 2 / 2ⁿ.
+    let t = MeanTest::one_sample(&Spread::of([1.0; 6]), 0.5).unwrap();
+    assert!((t.p - 2.0 / 64.0).abs() < 1e-12 && t.significant());
+    // The same value: no difference, p 1; below two runs: no test.
+    let t = MeanTest::two_sample(&Spread::of([0.5; 3]), &Spread::of([0.5; 3])).unwrap();
+    assert_eq!((t.d, t.z, t.p), (0.0, 0.0, 1.0));
+    assert!(MeanTest::one_sample(&Spread::of([0.5]), 0.0).is_none());
 }
 
 /// A fixed-interval run of `model` at `td` with these first oven checks (one start cell
@@ -263,10 +375,16 @@ fn fi_run(model: &str, seed: u64, td: u32, focs: &[Option<i32>]) -> CompactJob {
 
 #[test]
 fn a_fi_runs_statistics_are_its_zero_share_and_mean_foc_over_td() {
-    // FOCs 0, 0, 6 and one episode without a check: share 2/3 at 0, mean 2 → 2/6.
+    // FOCs 0, 0, 6 and one episode without a check: share 2/3 at 0, mean 2 → 2/6, each
+    // check's distance from the TD 1, 1, 0 → 2/3.
     let j = fi_run("cnn-mlp", 1, 6, &[Some(0), Some(0), Some(6), None]);
-    let (zero, ratio) = fi_run_stat(&j, 6).unwrap();
-    assert!((zero - 2.0 / 3.0).abs() < 1e-12 && (ratio - 1.0 / 3.0).abs() < 1e-12);
+    let s = fi_run_stat(&j, 6).unwrap();
+    assert!((s.zero_share - 2.0 / 3.0).abs() < 1e-12 && (s.ratio - 1.0 / 3.0).abs() < 1e-12);
+    assert!((s.deviation - 2.0 / 3.0).abs() < 1e-12, "{s:?}");
+    // Checks straddling the TD (0 and 12 at TD 6): a mean FOC at the TD, but each check a
+    // whole TD away.
+    let s = fi_run_stat(&fi_run("lstm125", 1, 6, &[Some(0), Some(12)]), 6).unwrap();
+    assert_eq!((s.ratio, s.deviation), (1.0, 1.0));
     assert_eq!(
         fi_run_stat(&fi_run("cnn-mlp", 2, 6, &[None, None]), 6),
         None
@@ -333,38 +451,66 @@ fn fixed_interval_statements_get_the_verdicts_worked_out_by_hand() {
         .summary
     );
 
-    // A CNN checking from the start on every run: z against 0.5 is +∞ → holds; a reservoir
-    // later than the LSTM contradicts "earlier".
-    let mut jobs: Vec<CompactJob> = (1..=4)
-        .map(|s| fi_run("cnn-mlp", s, 8, &[Some(0); 3]))
-        .collect();
-    for (s, f) in [(1, 8), (2, 7), (3, 9), (4, 8)] {
-        jobs.push(fi_run("lstm125", s, 8, &[Some(f); 2]));
-        jobs.push(fi_run("ctrnn-reservoir125", s, 8, &[Some(f + 8); 2]));
+    // A CNN checking from the start on every run, at three TDs: no variance, so the exact
+    // sign-flip test against 0.5 — with 4 runs p = 2/2⁴ = 0.125 (not shown at any TD), with
+    // 6 runs 2/2⁶ = 0.031 (holds at each, so over the TDs). A reservoir later than the LSTM
+    // at all three TDs contradicts "earlier".
+    let cnn_runs = |n: u64| -> Vec<CompactJob> {
+        [8, 12, 16]
+            .iter()
+            .flat_map(|&td| (1..=n).map(move |s| fi_run("cnn-mlp", s, td, &[Some(0); 3])))
+            .collect()
+    };
+    let mut jobs = cnn_runs(4);
+    for td in [8, 12, 16] {
+        for (s, f) in [(1, td), (2, td - 1), (3, td + 1), (4, td)] {
+            jobs.push(fi_run("lstm125", s, td, &[Some(f as i32); 2]));
+            jobs.push(fi_run(
+                "ctrnn-reservoir125",
+                s,
+                td,
+                &[Some(f as i32 + 8); 2],
+            ));
+        }
     }
     let rows = fi_claims(&jobs);
+    let r = find(&rows, "fi_cnn_foc_zero", "fixed interval, TD 8", "");
+    assert_eq!((r.p, r.verdict.as_str()), (0.125, "not shown"));
     assert_eq!(
         find(&rows, "fi_cnn_foc_zero", "fixed interval, every TD", "").verdict,
-        "holds"
+        "not shown"
     );
     assert_eq!(
         overall(&rows, "fi_ctrnn_earlier", "reservoir").verdict,
         "contradicted"
     );
+    let rows = fi_claims(&cnn_runs(6));
+    let r = find(&rows, "fi_cnn_foc_zero", "fixed interval, TD 12", "");
+    assert_eq!((r.p, r.verdict.as_str()), (2.0 / 64.0, "holds"));
+    assert_eq!(
+        find(&rows, "fi_cnn_foc_zero", "fixed interval, every TD", "").verdict,
+        "holds"
+    );
 }
 
-/// A bisection run of `model` on 4-8 answering `right` of its 4 short-anchor and 4
-/// long-anchor episodes correctly (the wrong ones to the other counter).
-fn bisection_run(model: &str, seed: u64, right: usize) -> CompactJob {
+/// A bisection run of `model` on the anchor pair `short`-`long` answering `right` of its 4
+/// short-anchor and 4 long-anchor episodes correctly (the wrong ones to the other counter).
+fn bisection_run(model: &str, seed: u64, (short, long): (u32, u32), right: usize) -> CompactJob {
     let mut episodes = Vec::new();
-    for (d, correct, wrong) in [(4, 1, 2), (8, 2, 1)] {
+    for (d, correct, wrong) in [(short, 1, 2), (long, 2, 1)] {
         for k in 0..4 {
             let counter = if k < right { correct } else { wrong };
             episodes.push(ep("bisection", d, (k, 0), None, counter));
         }
     }
     CompactJob {
-        job: job("Bisection-v0", model, seed, &["short=4", "long=8"], 20.0),
+        job: job(
+            "Bisection-v0",
+            model,
+            seed,
+            &[&format!("short={short}"), &format!("long={long}")],
+            20.0,
+        ),
         episodes,
         curve: vec![],
         levels: vec![],
@@ -373,17 +519,24 @@ fn bisection_run(model: &str, seed: u64, right: usize) -> CompactJob {
 
 #[test]
 fn bisection_statements_compare_anchor_accuracy_per_pair() {
-    let mut jobs = Vec::new();
-    // LSTM125 accuracy 1, 1, 0.75, 1 (4 of 4, 3 of 4 per anchor); reservoir 0.5 on every run:
-    // LSTM better (z = 0.4375 / (0.125/2) = 7). LSTM256 and the reservoir256 both 1, 1, 1, 1:
-    // d = 0 ± 0 → comparable.
-    for (s, r) in [(1, 4), (2, 4), (3, 3), (4, 4)] {
-        jobs.push(bisection_run("lstm125", s, r));
-        jobs.push(bisection_run("ctrnn-reservoir125", s, 2));
-        jobs.push(bisection_run("lstm256", s, 4));
-        jobs.push(bisection_run("ctrnn-reservoir256", s, 4));
-    }
-    let rows = bisection_claims(&jobs);
+    const PAIRS: [(u32, u32); 3] = [(4, 8), (6, 12), (6, 18)];
+    // On every pair: LSTM125 accuracy 1, 1, 0.75, 1 (4 of 4, 3 of 4 per anchor); reservoir
+    // 0.5 on every run: LSTM better (z = 0.4375 / (0.125/2) = 7 on 3 df, p 0.005986).
+    // LSTM256 1, 1, 1, 1 and the reservoir256 answering `res256` of 4 right per anchor.
+    let jobs = |res256: usize| -> Vec<CompactJob> {
+        let mut jobs = Vec::new();
+        for pair in PAIRS {
+            for (s, r) in [(1, 4), (2, 4), (3, 3), (4, 4)] {
+                jobs.push(bisection_run("lstm125", s, pair, r));
+                jobs.push(bisection_run("ctrnn-reservoir125", s, pair, 2));
+                jobs.push(bisection_run("lstm256", s, pair, 4));
+                jobs.push(bisection_run("ctrnn-reservoir256", s, pair, res256));
+            }
+        }
+        jobs
+    };
+    // Both 256s at 1 on every run: d = 0 ± 0 → comparable.
+    let rows = bisection_claims(&jobs(4));
     let r = find(
         &rows,
         "bisection_lstm_better",
@@ -391,6 +544,7 @@ fn bisection_statements_compare_anchor_accuracy_per_pair() {
         "reservoir",
     );
     assert!((r.z - 0.4375 / (0.125 / 2.0)).abs() < 1e-9, "{r:?}");
+    assert!((r.p - 0.0059863).abs() < 1e-6, "{r:?}");
     assert_eq!(r.verdict, "holds");
     assert_eq!(
         overall_pair(&rows, "bisection_lstm_better", "reservoir").verdict,
@@ -404,14 +558,16 @@ fn bisection_statements_compare_anchor_accuracy_per_pair() {
         overall_pair(&rows, "bisection_256_comparable", "256").verdict,
         "holds"
     );
-    // A reservoir256 at 0.5: not comparable → contradicted.
-    for j in jobs
-        .iter_mut()
-        .filter(|j| j.job.model == "ctrnn-reservoir256")
-    {
-        *j = bisection_run("ctrnn-reservoir256", j.job.seed, 2);
-    }
-    let rows = bisection_claims(&jobs);
+    // A reservoir256 at 0.5: d = 0.5 beyond the margin on runs without variance, exact
+    // p = 2/70 → contradicted on every pair.
+    let rows = bisection_claims(&jobs(2));
+    let r = find(
+        &rows,
+        "bisection_256_comparable",
+        "bisection, pair 6-18",
+        "",
+    );
+    assert!((r.p - 2.0 / 70.0).abs() < 1e-12, "{r:?}");
     assert_eq!(
         overall_pair(&rows, "bisection_256_comparable", "256").verdict,
         "contradicted"

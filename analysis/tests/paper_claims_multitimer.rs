@@ -46,7 +46,8 @@ fn multitimer_statements_compare_levels_and_look_for_a_run_that_does_everything(
     let mt = analyse_multitimer(&jobs);
     let rows = multitimer_claims(&mt);
     let setting = "multi-timer exact, TDs 2, 4, 6, 8, 10";
-    // LSTM 2.5 ± 0.577 vs reservoir 1 ± 0: z = 1.5 / (0.57735/2) = 5.196.
+    // LSTM 2.5 ± 0.577 vs reservoir 1 ± 0: z = 1.5 / (0.57735/2) = 5.196, Welch df 3
+    // (the reservoir has no variance), p 0.01385 (scipy).
     let r = find(
         &rows,
         "multitimer_lstm_further",
@@ -54,6 +55,7 @@ fn multitimer_statements_compare_levels_and_look_for_a_run_that_does_everything(
         "ctrnn-reservoir125",
     );
     assert!((r.z - 1.5 / (0.57735 / 2.0)).abs() < 1e-3, "{r:?}");
+    assert!((r.p - 0.0138468).abs() < 1e-6, "{r:?}");
     assert_eq!(r.verdict, "holds");
     assert_eq!(
         find(&rows, "multitimer_lstm_further", setting, "cnn-mlp").verdict,
@@ -73,6 +75,12 @@ fn multitimer_statements_compare_levels_and_look_for_a_run_that_does_everything(
     let rows = multitimer_claims(&analyse_multitimer(&jobs));
     let r = find(&rows, "multitimer_none_all", setting, "");
     assert_eq!(r.verdict, "contradicted", "{r:?}");
+    // That run kept no level policies: the row says it was judged in the training setting.
+    assert!(
+        r.lab
+            .contains("1 judged on the final policy in the training setting"),
+        "{r:?}"
+    );
     // At five timers earning 0.95 at four TDs and 0.5 at one: not every task.
     jobs.pop();
     let mut j = mt_run("ctrnn-reservoir125", 5, 5, 0.95);
@@ -206,8 +214,9 @@ fn more_shifts_is_tested_level_by_level() {
     }
     let rows = shift_claims(&analyse_multitimer(&jobs));
     let task = "multi-timer exact, TDs 2, 4, 6, 8, 10";
-    // Equal counts on every run (SD 0) and a difference: z = +∞ → holds at levels 1–3;
-    // levels 4–5 were never reached → n/a; over the levels: 3 of 3 → holds.
+    // Equal counts on every run (SD 0) and a difference: z = +∞, the exact randomisation
+    // test p = 2 / C(8, 4) = 2/70 → holds at levels 1–3; levels 4–5 were never reached →
+    // n/a; over the levels: 3 of 3 → holds.
     let r = find(
         &rows,
         "multitimer_ctrnn_more_shifts",
@@ -215,6 +224,7 @@ fn more_shifts_is_tested_level_by_level() {
         "reservoir",
     );
     assert_eq!((r.z, r.verdict.as_str()), (f64::INFINITY, "holds"));
+    assert!((r.p - 2.0 / 70.0).abs() < 1e-12, "{r:?}");
     assert!(
         r.lab.starts_with("5.00 ± 0.00 (4) vs 1.00 ± 0.00 (4)"),
         "{r:?}"

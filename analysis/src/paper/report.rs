@@ -2,7 +2,7 @@
 //! resources) with how many of the paper's numbers the lab reproduces per table, every
 //! comparison row, and the study's figures in the paper's form.
 
-use super::claims::z_text;
+use super::claims::{p_text, z_text};
 use super::collect::{CollectError, err};
 use super::compare::ComparisonRow;
 use super::study::PaperStudy;
@@ -164,12 +164,12 @@ fn claims_table(s: &PaperStudy) -> Markup {
         table.text {
             tr {
                 th { "statement" } th { "setting" } th { "test" } th { "lab" } th { "z" }
-                th { "verdict" }
+                th { "p" } th { "verdict" }
             }
             @for r in s.claims.iter().filter(|r| r.summary) {
                 tr {
                     td { (r.statement) } td { (r.setting) } td { (r.test) } td { (r.lab) }
-                    td { (z_text(r.z)) } td { (r.verdict) }
+                    td { (z_text(r.z)) } td { (p_text(r.p)) } td { (r.verdict) }
                 }
             }
         }

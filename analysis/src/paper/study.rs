@@ -269,10 +269,11 @@ fn level_ood_markdown(m: &mut String, cells: &[MtCell]) {
     }
 }
 
-/// Markdown tables of the study (what `RESULTS.md` quotes).
-pub fn tables_markdown(s: &PaperStudy) -> String {
+/// Markdown tables of the study (what `RESULTS.md` quotes), titled with the study's name
+/// (its results folder, e.g. `paper-core`).
+pub fn tables_markdown(s: &PaperStudy, study: &str) -> String {
     let mut m = String::new();
-    let _ = writeln!(m, "# paper-core: tables ({} finished jobs)\n", s.jobs);
+    let _ = writeln!(m, "# {study}: tables ({} finished jobs)\n", s.jobs);
     let _ = writeln!(
         m,
         "## Fixed interval: first oven check (paper convention)\n\nPooled over runs × start \
@@ -572,5 +573,10 @@ pub fn write_study(root: &Path, s: &PaperStudy) -> Result<(), CollectError> {
     // only with exact-timer or multi-timer runs: no stale file from an earlier analysis.
     write_if_any(&root.join("spreads.csv"), &s.spreads)?;
     write_if_any(&root.join("claims.csv"), &s.claims)?;
-    write("tables.md", tables_markdown(s).as_bytes())
+    let study = root
+        .canonicalize()
+        .ok()
+        .and_then(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
+        .unwrap_or_else(|| "study".into());
+    write("tables.md", tables_markdown(s, &study).as_bytes())
 }

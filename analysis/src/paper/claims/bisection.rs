@@ -38,7 +38,7 @@ pub fn bisection_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
             "bisection_lstm_better",
             &format!("LSTM125 performs better than {name}"),
             (task, "pair"),
-            &format!("anchor accuracy per kept run, lstm125 − {other}: z > 2"),
+            &format!("anchor accuracy per kept run, lstm125 − {other}: above 0, p < 0.05"),
             &pairs,
             |p| vec![acc(LSTM, p), acc(other, p)],
             |v| two_sample(&v[0], &v[1]),
@@ -52,18 +52,25 @@ pub fn bisection_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
     let mut verdicts = Vec::new();
     for &pair in &pairs {
         let (a, b) = (acc(lstm256, pair), acc(ctrnn256, pair));
-        let (d, se) = difference(&a, &b);
-        let verdict = equal(d, se);
+        let t = two_sample(&a, &b);
+        let verdict = equal(t, EQUIVALENCE_MARGIN);
+        let (z, p) = z_p(t);
         verdicts.push(verdict);
         rows.push(ClaimRow {
             claim: "bisection_256_comparable".into(),
             statement: statement.into(),
             setting: format!("{task}, pair {pair}"),
             test: format!(
-                "anchor accuracy per kept run, {lstm256} − {ctrnn256}: d ± 2·se within ±{EQUIVALENCE_MARGIN}"
+                "anchor accuracy per kept run, {lstm256} − {ctrnn256}: 95% interval d ± t·se within ±{EQUIVALENCE_MARGIN}"
             ),
-            lab: format!("{} vs {}", fmt_spread(&a), fmt_spread(&b)),
-            z: two_sample(&a, &b),
+            lab: format!(
+                "{} vs {}; d = {}",
+                fmt_spread(&a),
+                fmt_spread(&b),
+                interval_text(t)
+            ),
+            z,
+            p,
             verdict: verdict.into(),
             summary: false,
         });

@@ -4,14 +4,28 @@ use super::*;
 use crate::paper::collect::CompactJob;
 use crate::paper::fi::{fi_runs, run_focs};
 
-/// One FI run's statistics: share of its FOCs at 0 and its mean FOC / TD, over its
-/// episodes with a check (`None` for a run without one).
-pub fn fi_run_stat(job: &CompactJob, td: u32) -> Option<(f64, f64)> {
+/// One FI run's statistics over its episodes with an oven check.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FiRunStat {
+    /// Share of the first oven checks at 0 (checking from the oven's start).
+    pub zero_share: f64,
+    /// Mean FOC / TD.
+    pub ratio: f64,
+    /// Mean |FOC / TD − 1| over the episodes: how far each first check is from the TD (a run
+    /// whose checks straddle the TD, half at 0 and half at 2·TD, is 1 away, not 0).
+    pub deviation: f64,
+}
+
+/// One FI run's statistics ([`FiRunStat`]; `None` for a run without an oven check).
+pub fn fi_run_stat(job: &CompactJob, td: u32) -> Option<FiRunStat> {
     let f = run_focs(job, false);
     (!f.is_empty()).then(|| {
-        let n = f.len() as f64;
-        let zero = f.iter().filter(|x| **x == 0.0).count() as f64 / n;
-        (zero, f.iter().sum::<f64>() / n / f64::from(td))
+        let (n, td) = (f.len() as f64, f64::from(td));
+        FiRunStat {
+            zero_share: f.iter().filter(|x| **x == 0.0).count() as f64 / n,
+            ratio: f.iter().sum::<f64>() / n / td,
+            deviation: f.iter().map(|x| (x / td - 1.0).abs()).sum::<f64>() / n,
+        }
     })
 }
 
@@ -22,7 +36,7 @@ pub fn fi_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
         return Vec::new();
     }
     // Per-run statistic `stat` of (model, TD) across its runs.
-    let across = |m: &str, td: u32, stat: fn((f64, f64)) -> f64| {
+    let across = |m: &str, td: u32, stat: fn(FiRunStat) -> f64| {
         let js = runs.get(m).and_then(|t| t.get(&td));
         Spread::of(
             js.into_iter()
@@ -30,9 +44,9 @@ pub fn fi_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
                 .filter_map(|j| fi_run_stat(j, td).map(stat)),
         )
     };
-    let zero = |s: (f64, f64)| s.0;
-    let ratio = |s: (f64, f64)| s.1;
-    let off = |s: (f64, f64)| (s.1 - 1.0).abs();
+    let zero = |s: FiRunStat| s.zero_share;
+    let ratio = |s: FiRunStat| s.ratio;
+    let off = |s: FiRunStat| s.deviation;
     let mut tds: Vec<u32> = runs.values().flat_map(|t| t.keys().copied()).collect();
     tds.sort_unstable();
     tds.dedup();
@@ -43,7 +57,7 @@ pub fn fi_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
         "fi_cnn_foc_zero",
         "in most cases the CNN's first oven check is at 0 (checking from the start)",
         (task, "TD"),
-        "cnn-mlp share of FOCs at 0 per run, against 0.5: z > 2",
+        "cnn-mlp share of FOCs at 0 per run, against 0.5: above, p < 0.05",
         &tds,
         |td| vec![across(CNN, td, zero)],
         |v| against_value(&v[0], 0.5),
@@ -55,7 +69,7 @@ pub fn fi_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
             "fi_lstm_closer",
             &format!("LSTM125's FOCs are closer to the TD than {name}'s"),
             (task, "TD"),
-            &format!("|FOC/TD − 1| per run, {other} − lstm125: z > 2"),
+            &format!("mean |FOC/TD − 1| per run, {other} − lstm125: above 0, p < 0.05"),
             &tds,
             |td| vec![across(other, td, off), across(LSTM, td, off)],
             |v| two_sample(&v[0], &v[1]),
@@ -65,7 +79,7 @@ pub fn fi_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
             "fi_ctrnn_earlier",
             &format!("{name} checks the oven earlier than LSTM125"),
             (task, "TD"),
-            &format!("FOC/TD per run, lstm125 − {other}: z > 2"),
+            &format!("FOC/TD per run, lstm125 − {other}: above 0, p < 0.05"),
             &tds,
             |td| vec![across(LSTM, td, ratio), across(other, td, ratio)],
             |v| two_sample(&v[0], &v[1]),
@@ -77,7 +91,7 @@ pub fn fi_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
         "fi_ctrnn256_better",
         "at a higher memory size CTRNN256's FOCs improve on CTRNN125's (lab: reservoirs)",
         (task, "TD"),
-        &format!("|FOC/TD − 1| per run, {reservoir} − {big}: z > 2"),
+        &format!("mean |FOC/TD − 1| per run, {reservoir} − {big}: above 0, p < 0.05"),
         &tds,
         |td| vec![across(reservoir, td, off), across(big, td, off)],
         |v| two_sample(&v[0], &v[1]),

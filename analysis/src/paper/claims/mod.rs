@@ -2,17 +2,20 @@
 //! the multi-timer — made without a number (its exact-timer figure is empty in the source,
 //! its FI and multi-timer figures have no table) — each tested on the lab's runs.
 //!
-//! Every test is a z on means over runs, with the comparison's threshold
-//! ([`Z_AGREE`] = 2): two models, `(a − b)/√(s_a²/n_a + s_b²/n_b)`;
-//! one model against a fixed value `v`, `(a − v)/(s_a/√n_a)`. Verdicts:
+//! Every test is on means over runs ([`MeanTest`], `stats.rs`): two models, `d = a − b`
+//! with `se = √(s_a²/n_a + s_b²/n_b)`, Welch's t on Satterthwaite's degrees of freedom; one
+//! model against a fixed value `v`, `d = a − v`, `se = s_a/√n_a`, t on `n_a − 1`; where every
+//! run of a side is the same value, the exact randomisation (sign-flip) test. `z` = `d/se` is
+//! reported beside the two-sided `p`. Verdicts:
 //!
-//! * `holds` — the data show what the statement says (`z` beyond the threshold in its
-//!   direction; for "equally well" and "at the minimum", an equivalence test: the difference
-//!   ± 2 standard errors within [`EQUIVALENCE_MARGIN`]);
-//! * `contradicted` — they show the opposite (beyond the threshold the other way);
+//! * `holds` — the data show what the statement says (`p` < [`SIGNIFICANCE`] with `d` in
+//!   its direction; for "equally well" and "at the minimum", an equivalence test: the 95%
+//!   interval `d ± t·se` within [`EQUIVALENCE_MARGIN`]);
+//! * `contradicted` — they show the opposite (significant the other way; for equivalence,
+//!   the whole interval beyond the margin);
 //! * `not shown` — neither (a difference too small, or too noisy, to tell);
 //! * `n/a` — no test: a side without at least two runs. A "generally" verdict counts only
-//!   the settings with a test.
+//!   the settings with a test and needs at least [`MIN_SETTINGS`] of them.
 //!
 //! A fixed-interval run is summarised by its share of first oven checks at 0 (checking from
 //! the oven's start) and its mean FOC / TD, over its episodes with a check. An exact-timer
@@ -25,7 +28,6 @@
 //! One file per task family: `fi.rs`, `bisection.rs`, `exact.rs` (the exact timer),
 //! `multitimer.rs`; here the row, the verdict rules and the shared tests.
 
-use super::compare::{Z_AGREE, z_score};
 use super::reference::lab_model;
 use crate::behaviour::aggregate::Spread;
 use serde::{Deserialize, Serialize};
@@ -35,11 +37,13 @@ mod bisection;
 mod exact;
 mod fi;
 mod multitimer;
+mod stats;
 
 pub use bisection::bisection_claims;
 pub use exact::{exact_timer_claims, exact_timer_run_means};
 pub use fi::{fi_claims, fi_run_stat};
 pub use multitimer::{capacity_claims, multitimer_claims, shift_claims};
+pub use stats::{MeanTest, SIGNIFICANCE};
 
 /// The minimum reward of a delivered soup in the exact timer (outside the window).
 pub const REDUCED_REWARD: f64 = 0.1;
@@ -65,24 +69,26 @@ pub struct ClaimRow {
     pub test: String,
     /// The lab's numbers behind the verdict (mean ± SD over runs, runs in brackets).
     pub lab: String,
-    /// The test's z (NaN where there is none).
+    /// The test's `d/se` (NaN where there is none; ±∞ for a difference between sides whose
+    /// runs each have one value).
     pub z: f64,
+    /// The test's two-sided p (NaN where there is none).
+    pub p: f64,
     /// `holds`, `contradicted`, `not shown` or `n/a`.
     pub verdict: String,
     /// A statement's verdict (`true`) or one setting behind a "generally" verdict.
     pub summary: bool,
 }
 
-/// Verdict of a one-directional statement from its z (positive: the statement's direction).
-pub fn directional(z: f64) -> &'static str {
-    if z.is_nan() {
-        "n/a"
-    } else if z > Z_AGREE {
-        "holds"
-    } else if z < -Z_AGREE {
-        "contradicted"
-    } else {
-        "not shown"
+/// Verdict of a one-directional statement from its test (`d` > 0: the statement's
+/// direction): `holds` / `contradicted` when significant that way / the other way, `n/a`
+/// without a test.
+pub fn directional(t: Option<MeanTest>) -> &'static str {
+    match t {
+        None => "n/a",
+        Some(t) if t.significant() && t.d > 0.0 => "holds",
+        Some(t) if t.significant() && t.d < 0.0 => "contradicted",
+        Some(_) => "not shown",
     }
 }
 
@@ -90,17 +96,18 @@ pub fn directional(z: f64) -> &'static str {
 /// one reduced reward (0.1), the task's own smallest step of reward.
 pub const EQUIVALENCE_MARGIN: f64 = 0.1;
 
-/// Verdict of an "equally well" statement on the difference `d` of two means with standard
-/// error `se`: `contradicted` when `|d/se| > 2`; `holds` when the whole interval `d ± 2·se`
-/// lies within ±[`EQUIVALENCE_MARGIN`] (an equivalence test: a non-significant difference
-/// alone is not evidence of equality); else `not shown`; `n/a` without a standard error.
-pub fn equal(d: f64, se: f64) -> &'static str {
-    if d.is_nan() || se.is_nan() {
-        "n/a"
-    } else if d.abs() > Z_AGREE * se {
-        "contradicted"
-    } else if d.abs() + Z_AGREE * se <= EQUIVALENCE_MARGIN + 1e-12 {
+/// Verdict of an "equally well" statement on a difference of means (an equivalence test:
+/// a non-significant difference alone is not evidence of equality): `holds` when the whole
+/// 95% interval `d ± t·se` lies within ±`margin`; `contradicted` when the whole interval lies
+/// beyond it and the difference is significant; else `not shown`; `n/a` without a test.
+/// "At the minimum" is the same test on one model's mean minus the minimum.
+pub fn equal(t: Option<MeanTest>, margin: f64) -> &'static str {
+    let Some(t) = t else { return "n/a" };
+    let half = t.half_width();
+    if t.d.abs() + half <= margin + 1e-12 {
         "holds"
+    } else if t.d.abs() - half > margin && t.significant() {
+        "contradicted"
     } else {
         "not shown"
     }
@@ -116,19 +123,27 @@ pub fn unless_any(cases: usize, against: usize) -> &'static str {
     }
 }
 
-/// Verdict of a "generally" statement from its per-setting verdicts: `holds` when it holds
-/// in at least half the settings and is contradicted in none, `contradicted` when it is
-/// contradicted in at least half, `n/a` without a testable setting, else `not shown`.
+/// Settings (TDs, pairs, levels) a "generally" statement needs tested before it can hold or
+/// be contradicted: one or two settings are a single observation, not a generality.
+pub const MIN_SETTINGS: usize = 3;
+
+/// Verdict of a "generally" statement from its per-setting verdicts: `n/a` without a
+/// testable setting; `not shown` below [`MIN_SETTINGS`] tested; `holds` when it holds in
+/// more than half the tested settings and is contradicted in none; `contradicted` when it is
+/// contradicted in more than half; else `not shown`.
 pub fn general<'a>(verdicts: impl IntoIterator<Item = &'a str>) -> &'static str {
     let v: Vec<&str> = verdicts.into_iter().filter(|v| *v != "n/a").collect();
     if v.is_empty() {
         return "n/a";
     }
+    if v.len() < MIN_SETTINGS {
+        return "not shown";
+    }
     let holds = v.iter().filter(|v| **v == "holds").count();
     let against = v.iter().filter(|v| **v == "contradicted").count();
-    if 2 * against >= v.len() {
+    if 2 * against > v.len() {
         "contradicted"
-    } else if 2 * holds >= v.len() && against == 0 {
+    } else if 2 * holds > v.len() && against == 0 {
         "holds"
     } else {
         "not shown"
@@ -143,37 +158,24 @@ fn fmt_spread(s: &Spread) -> String {
     }
 }
 
-/// Rewards are stored as `f32`: means closer than this are the same reward (0.1 as `f32`
-/// is 1.5e-9 above 0.1, which over a zero SD would be an infinite z).
-const SAME: f64 = 1e-6;
-
-/// `(a − b, its standard error)` of two means over runs (NaN below two runs on a side).
-fn difference(a: &Spread, b: &Spread) -> (f64, f64) {
-    if a.n < 2 || b.n < 2 {
-        return (f64::NAN, f64::NAN);
-    }
-    let se = (a.sd * a.sd / a.n as f64 + b.sd * b.sd / b.n as f64).sqrt();
-    (a.mean - b.mean, se)
+fn two_sample(a: &Spread, b: &Spread) -> Option<MeanTest> {
+    MeanTest::two_sample(a, b)
 }
 
-fn two_sample(a: &Spread, b: &Spread) -> f64 {
-    if a.n < 2 || b.n < 2 {
-        return f64::NAN;
-    }
-    if (a.mean - b.mean).abs() < SAME {
-        return 0.0;
-    }
-    z_score(a.mean, a.sd, a.n, b.mean, b.sd, b.n)
+fn against_value(a: &Spread, v: f64) -> Option<MeanTest> {
+    MeanTest::one_sample(a, v)
 }
 
-fn against_value(a: &Spread, v: f64) -> f64 {
-    if a.n < 2 {
-        return f64::NAN;
-    }
-    if (a.mean - v).abs() < SAME {
-        return 0.0;
-    }
-    z_score(a.mean, a.sd, a.n, v, f64::NAN, 0)
+/// `(z, p)` of a test for a row (NaN without one).
+fn z_p(t: Option<MeanTest>) -> (f64, f64) {
+    t.map_or((f64::NAN, f64::NAN), |t| (t.z, t.p))
+}
+
+/// `d ± t·se` for a row's lab text (`–` without a test).
+fn interval_text(t: Option<MeanTest>) -> String {
+    t.map_or("–".into(), |t| {
+        format!("{:.3} ± {:.3}", t.d, t.half_width())
+    })
 }
 
 const LSTM: &str = "lstm125";
@@ -211,8 +213,9 @@ fn ctrnns() -> [(&'static str, &'static str); 2] {
 
 /// A "generally" statement over settings (TDs, levels): one row per setting `unit x` of
 /// `task` (`sides` gives the per-run statistic of
-/// each side the test names, `z_of` the statement's z from them; `n/a` where a side has no
-/// runs) and a verdict row over every setting by [`general`].
+/// each side the test names, `test_of` the statement's test from them, `d` > 0 in its
+/// direction; `n/a` where a side has no runs) and a verdict row over every setting by
+/// [`general`].
 #[allow(clippy::too_many_arguments)]
 fn per_setting_statement<T: Copy + std::fmt::Display>(
     rows: &mut Vec<ClaimRow>,
@@ -222,17 +225,18 @@ fn per_setting_statement<T: Copy + std::fmt::Display>(
     test: &str,
     tds: &[T],
     sides: impl Fn(T) -> Vec<Spread>,
-    z_of: impl Fn(&[Spread]) -> f64,
+    test_of: impl Fn(&[Spread]) -> Option<MeanTest>,
 ) {
     let mut verdicts = Vec::new();
     for &td in tds {
         let v = sides(td);
-        let z = z_of(&v);
+        let t = test_of(&v);
         let verdict = if v.iter().any(|s| s.n == 0) {
             "n/a"
         } else {
-            directional(z)
+            directional(t)
         };
+        let (z, p) = z_p(t);
         verdicts.push(verdict);
         rows.push(ClaimRow {
             claim: claim.into(),
@@ -241,6 +245,7 @@ fn per_setting_statement<T: Copy + std::fmt::Display>(
             test: test.into(),
             lab: v.iter().map(fmt_spread).collect::<Vec<_>>().join(" vs "),
             z,
+            p,
             verdict: verdict.into(),
             summary: false,
         });
@@ -261,14 +266,21 @@ fn general_row(
         claim: claim.into(),
         statement: statement.into(),
         setting: format!("{task}, every {unit}"),
-        test: format!("holds at ≥ half the {unit}s and contradicted at none"),
+        test: format!(
+            "holds at more than half the tested {unit}s (at least {MIN_SETTINGS}) and contradicted at none"
+        ),
         lab: format!(
-            "{} of {} {unit}s hold, {} contradicted",
+            "{} of {} {unit}s hold, {} contradicted{}",
             count("holds"),
             verdicts.len() - count("n/a"),
-            count("contradicted")
+            count("contradicted"),
+            match count("n/a") {
+                0 => String::new(),
+                k => format!(" ({k} untested: a side below two runs)"),
+            }
         ),
         z: f64::NAN,
+        p: f64::NAN,
         verdict: general(verdicts.iter().copied()).into(),
         summary: true,
     }
@@ -288,21 +300,33 @@ pub fn claims_markdown(m: &mut String, rows: &[ClaimRow]) {
     }
     let _ = writeln!(
         m,
-        "\n## The paper's statements in words, tested (`claims.csv`)\n\nz on means over runs, threshold 2; \"equally well\" and \"at the minimum\": the difference ± 2 SE within 0.1 (each TD or level behind a \"generally\" verdict is a row of `claims.csv`).\n"
+        "\n## The paper's statements in words, tested (`claims.csv`)\n\nMeans over runs: Welch's t (the exact randomisation test where each side's runs share one value), two-sided p < 0.05; z = d/se. \"Equally well\" and \"at the minimum\": the 95% interval of the difference within 0.1. A \"generally\" verdict needs at least 3 tested settings (each TD, pair or level behind it is a row of `claims.csv`).\n"
     );
-    let _ = writeln!(m, "| statement | setting | test | lab | z | verdict |");
-    let _ = writeln!(m, "|---|---|---|---|---:|---|");
+    let _ = writeln!(m, "| statement | setting | test | lab | z | p | verdict |");
+    let _ = writeln!(m, "|---|---|---|---|---:|---:|---|");
     for r in rows.iter().filter(|r| r.summary) {
         let _ = writeln!(
             m,
-            "| {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} |",
             r.statement,
             r.setting,
             r.test,
             r.lab,
             z_text(r.z),
+            p_text(r.p),
             r.verdict
         );
+    }
+}
+
+/// A p for tables: 3 decimals (`< 0.001` below), `–` for none.
+pub fn p_text(p: f64) -> String {
+    if p.is_nan() {
+        "–".into()
+    } else if p < 0.001 {
+        "< 0.001".into()
+    } else {
+        format!("{p:.3}")
     }
 }
 

@@ -54,7 +54,7 @@ pub fn multitimer_claims(cells: &[MtCell]) -> Vec<ClaimRow> {
                 &format!("LSTM125 generally performs better than {name}"),
                 (&task, "level"),
                 &format!(
-                    "reward of each level's policy at its trained TDs, lstm125 − {other}: z > 2"
+                    "reward of each level's policy at its trained TDs, lstm125 − {other}: above 0, p < 0.05"
                 ),
                 &levels,
                 |l| vec![reward(LSTM, l), reward(other, l)],
@@ -62,15 +62,17 @@ pub fn multitimer_claims(cells: &[MtCell]) -> Vec<ClaimRow> {
             );
             let level = |m: &str| cell(m).map_or(Spread::of([]), |c| c.level);
             let (a, b) = (level(LSTM), level(other));
-            let z = two_sample(&a, &b);
+            let t = two_sample(&a, &b);
+            let (z, p) = z_p(t);
             rows.push(ClaimRow {
                 claim: "multitimer_lstm_further".into(),
                 statement: format!("LSTM125 gets further in the curriculum than {name} (a proxy of \"performs better\")"),
                 setting: task.clone(),
-                test: format!("lstm125 − {other}, curriculum level reached: z > 2"),
+                test: format!("lstm125 − {other}, curriculum level reached: above 0, p < 0.05"),
                 lab: format!("{} vs {}", fmt_spread(&a), fmt_spread(&b)),
                 z,
-                verdict: if a.n == 0 || b.n == 0 { "n/a" } else { directional(z) }.into(),
+                p,
+                verdict: if a.n == 0 || b.n == 0 { "n/a" } else { directional(t) }.into(),
                 summary: true,
             });
         }
@@ -79,48 +81,66 @@ pub fn multitimer_claims(cells: &[MtCell]) -> Vec<ClaimRow> {
             .filter(|c| c.curriculum == curriculum && c.tds == tds)
             .collect();
         let total: usize = same.iter().map(|c| c.runs.len()).sum();
-        let at_top: Vec<(&str, f64)> = same
+        // Per run at five timers: (model, its worst reward over the five trained TDs, whether
+        // from its kept five-timer policy in the notebooks' test setting); `None` for a run
+        // not evaluated at every trained TD.
+        let at_top: Vec<(&str, Option<(f64, bool)>)> = same
             .iter()
             .flat_map(|c| {
                 c.runs.iter().filter(|r| r.level == LEVELS - 1).map(|r| {
-                    // The five-timer policy in the notebooks' test setting where the run
-                    // kept it, else the final policy in the training setting.
                     let kept: Vec<f64> = r
                         .level_curves
                         .get(LEVELS - 1)
                         .map(|v| v.iter().filter(|p| p.trained).map(|p| p.reward).collect())
                         .unwrap_or_default();
-                    let rewards = if kept.is_empty() {
-                        r.per_td.iter().map(|x| x.1).collect()
+                    let (rewards, test_setting) = if kept.is_empty() {
+                        (r.per_td.iter().map(|x| x.1).collect(), false)
                     } else {
-                        kept
+                        (kept, true)
                     };
-                    (
-                        c.model.as_str(),
-                        rewards.into_iter().fold(f64::INFINITY, f64::min),
-                    )
+                    let worst = (rewards.len() == tds.len())
+                        .then(|| rewards.into_iter().fold(f64::INFINITY, f64::min));
+                    (c.model.as_str(), worst.map(|w| (w, test_setting)))
                 })
             })
             .collect();
         let performing: Vec<&str> = at_top
             .iter()
-            .filter(|r| r.1 >= PERFORMS)
+            .filter(|r| r.1.is_some_and(|(w, _)| w >= PERFORMS))
             .map(|r| r.0)
             .collect();
+        let judged = at_top.iter().filter(|r| r.1.is_some()).count();
+        let in_training = at_top.iter().filter(|r| r.1.is_some_and(|x| !x.1)).count();
+        let mut notes = Vec::new();
+        if in_training > 0 {
+            notes.push(format!(
+                "{in_training} judged on the final policy in the training setting (no kept level policies)"
+            ));
+        }
+        if judged < at_top.len() {
+            notes.push(format!(
+                "{} not evaluated at every trained TD",
+                at_top.len() - judged
+            ));
+        }
+        if !performing.is_empty() {
+            notes.push(performing.join(", "));
+        }
         rows.push(ClaimRow {
             claim: "multitimer_none_all".into(),
             statement: "none of the models perform all the tasks successfully".into(),
             setting: task,
             test: format!(
-                "no run at five timers whose five-timer policy earns ≥ {PERFORMS} at each of the five TDs (notebooks' test setting)"
+                "no run at five timers whose five-timer policy earns ≥ {PERFORMS} at each of the five TDs (the notebooks' test setting where the run kept its level policies, else its final policy in the training setting)"
             ),
             lab: format!(
                 "{} of {total} runs reach five timers, {} of them earn ≥ {PERFORMS} at every TD{}",
                 at_top.len(),
                 performing.len(),
-                if performing.is_empty() { String::new() } else { format!(" ({})", performing.join(", ")) }
+                if notes.is_empty() { String::new() } else { format!(" ({})", notes.join("; ")) }
             ),
             z: f64::NAN,
+            p: f64::NAN,
             verdict: unless_any(total, performing.len()).into(),
             summary: true,
         });
@@ -149,7 +169,7 @@ pub fn shift_claims(cells: &[MtCell]) -> Vec<ClaimRow> {
                 "multitimer_ctrnn_more_shifts",
                 &format!("{name} generally shows more shifts (timers stored) than LSTM125"),
                 (&task, "level"),
-                &format!("timers stored per run, {ctrnn} − lstm125: z > 2"),
+                &format!("timers stored per run, {ctrnn} − lstm125: above 0, p < 0.05"),
                 &levels,
                 |l| vec![timers(ctrnn, l), timers(LSTM, l)],
                 |v| two_sample(&v[0], &v[1]),
@@ -221,6 +241,7 @@ pub fn capacity_claims(cells: &[MtCell]) -> Vec<ClaimRow> {
                     format!("{lab}; against: {}", strong.join(", "))
                 },
                 z: f64::NAN,
+                p: f64::NAN,
                 verdict: unless_any(at_top.len(), strong.len()).into(),
                 summary: true,
             }
