@@ -48,6 +48,16 @@ fn runs(model: &str, td: u32, means: [f32; 4]) -> Vec<CompactJob> {
         .collect()
 }
 
+/// The verdict row of "the CNN's timing does not generalise to longer TDs".
+fn short_only_overall(rows: &[ClaimRow]) -> &ClaimRow {
+    find(
+        rows,
+        "exact_cnn_short_only",
+        "exact timer, every TD past the shortest",
+        "",
+    )
+}
+
 /// The verdict row over every TD of the statement `claim` whose wording contains `about`.
 fn overall<'a>(rows: &'a [ClaimRow], claim: &str, about: &str) -> &'a ClaimRow {
     rows.iter()
@@ -174,12 +184,7 @@ fn exact_timer_statements_get_the_verdicts_worked_out_by_hand() {
     // interval 0 ± 0 within the margin → holds; the premise holds → holds overall.
     let r = find(&rows, "exact_cnn_short_only", "exact timer, TD 10", "");
     assert_eq!((r.z, r.p, r.verdict.as_str()), (0.0, 1.0, "holds"));
-    let r = find(
-        &rows,
-        "exact_cnn_short_only",
-        "exact timer, every TD past the shortest",
-        "",
-    );
+    let r = short_only_overall(&rows);
     assert_eq!(r.verdict, "holds", "{r:?}");
 }
 
@@ -201,12 +206,7 @@ fn a_cnn_without_the_capacity_at_the_shortest_td_has_nothing_to_generalise() {
         (r.z, r.p, r.verdict.as_str()),
         (f64::NEG_INFINITY, 0.125, "not shown")
     );
-    let r = find(
-        &rows,
-        "exact_cnn_short_only",
-        "exact timer, every TD past the shortest",
-        "",
-    );
+    let r = short_only_overall(&rows);
     assert_eq!(r.verdict, "n/a", "{r:?}");
     assert!(r.lab.starts_with("no capacity at TD 4"), "{r:?}");
 }
@@ -245,16 +245,7 @@ fn equally_well_needs_the_whole_interval_inside_the_margin() {
         find(&rows, "exact_cnn_short_only", "exact timer, TD 10", "").verdict,
         "not shown"
     );
-    assert_eq!(
-        find(
-            &rows,
-            "exact_cnn_short_only",
-            "exact timer, every TD past the shortest",
-            ""
-        )
-        .verdict,
-        "not shown"
-    );
+    assert_eq!(short_only_overall(&rows).verdict, "not shown");
 }
 
 #[test]
@@ -266,16 +257,7 @@ fn a_cnn_that_times_long_durations_contradicts_the_short_only_statement() {
         find(&rows, "exact_cnn_short_only", "exact timer, TD 15", "").verdict,
         "contradicted"
     );
-    assert_eq!(
-        find(
-            &rows,
-            "exact_cnn_short_only",
-            "exact timer, every TD past the shortest",
-            ""
-        )
-        .verdict,
-        "contradicted"
-    );
+    assert_eq!(short_only_overall(&rows).verdict, "contradicted");
     // No LSTM runs: the LSTM statements cannot be tested.
     assert!(
         rows.iter()
