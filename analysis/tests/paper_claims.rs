@@ -328,6 +328,13 @@ fn tests_on_runs_are_welch_t_or_exact_without_variance() {
     // One sample without variance: the sign-flip test, 2 / 2ⁿ.
     let t = MeanTest::one_sample(&Spread::of([1.0; 6]), 0.5).unwrap();
     assert!((t.p - 2.0 / 64.0).abs() < 1e-12 && t.significant());
+    // Runs equal up to rounding (a mean over cells can differ in the last bits: 1e-12) are
+    // still runs without variance: exact p = 2 / C(6, 3) = 0.1, not a t on an SD of 1e-12.
+    let tenth = f64::from(0.1f32);
+    let rounded = Spread::of([tenth, tenth + 1e-12, tenth - 1e-12]);
+    let t = MeanTest::two_sample(&rounded, &Spread::of([0.0; 3])).unwrap();
+    assert_eq!(t.se, 0.0, "{t:?}");
+    assert!((t.p - 0.1).abs() < 1e-12 && !t.significant(), "{t:?}");
     // The same value: no difference, p 1; below two runs: no test.
     let t = MeanTest::two_sample(&Spread::of([0.5; 3]), &Spread::of([0.5; 3])).unwrap();
     assert_eq!((t.d, t.z, t.p), (0.0, 0.0, 1.0));

@@ -24,7 +24,7 @@ pub struct MeanTest {
     /// two are the same value.
     pub d: f64,
     /// Its standard error, `√(s_a²/n_a + s_b²/n_b)` (or `s_a/√n_a`); 0 when every run of
-    /// each side has the same value.
+    /// each side has the same value (to within rounding, 1e-6).
     pub se: f64,
     /// Welch–Satterthwaite degrees of freedom (`n_a − 1` for one sample); NaN when `se` is 0.
     pub df: f64,
@@ -70,7 +70,9 @@ impl MeanTest {
 
     fn from_parts(d: f64, se: f64, df: f64, exact_p: f64) -> Self {
         let d = if d.abs() < SAME { 0.0 } else { d };
-        if se > 0.0 && se.is_finite() {
+        // An SE this small is rounding in the SD of equal values (three equal f32 rewards can
+        // give an SD of 1e-17), not a variance: the exact test decides.
+        if se >= SAME && se.is_finite() {
             let z = d / se;
             let p = StudentsT::new(0.0, 1.0, df)
                 .map_or(f64::NAN, |t| 2.0 * (1.0 - t.cdf(z.abs())))
