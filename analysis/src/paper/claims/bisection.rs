@@ -43,7 +43,7 @@ pub fn bisection_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
             &format!("anchor accuracy per kept run, lstm125 − {other}: above 0, p < 0.05"),
             &pairs,
             |p| vec![acc(LSTM, p), acc(other, p)],
-            |v| two_sample(&v[0], &v[1]),
+            |v| MeanTest::two_sample(&v[0], &v[1]),
         );
     }
     let (lstm256, ctrnn256) = (
@@ -54,7 +54,7 @@ pub fn bisection_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
     let mut verdicts = Vec::new();
     for &pair in &pairs {
         let (a, b) = (acc(lstm256, pair), acc(ctrnn256, pair));
-        let t = two_sample(&a, &b);
+        let t = MeanTest::two_sample(&a, &b);
         let verdict = equal(t, EQUIVALENCE_MARGIN);
         let (z, p) = z_p(t);
         verdicts.push(verdict);

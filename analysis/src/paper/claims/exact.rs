@@ -42,7 +42,7 @@ pub fn exact_timer_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
             &format!("lstm125 − {other}, mean reward over buffers: above 0, p < 0.05"),
             &tds,
             |td| vec![*get(LSTM, td), *get(other, td)],
-            |v| two_sample(&v[0], &v[1]),
+            |v| MeanTest::two_sample(&v[0], &v[1]),
         );
     }
 
@@ -51,7 +51,7 @@ pub fn exact_timer_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
         // At the shortest TD, LSTM125 and CTRNN125 perform equally well.
         for (other, name) in ctrnns() {
             let (a, b) = (get(LSTM, td), get(other, td));
-            let t = two_sample(a, b);
+            let t = MeanTest::two_sample(a, b);
             let (z, p) = z_p(t);
             rows.push(ClaimRow {
                 claim: "exact_shortest_equal".into(),
@@ -74,7 +74,7 @@ pub fn exact_timer_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
         }
         // At the shortest TD the CNN earns above the minimum 0.1.
         let a = get(CNN, td);
-        let t = against_value(a, REDUCED_REWARD);
+        let t = MeanTest::one_sample(a, REDUCED_REWARD);
         let (z, p) = z_p(t);
         let premise = directional(t);
         rows.push(ClaimRow {
@@ -94,17 +94,10 @@ pub fn exact_timer_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
         let mut per_td = Vec::new();
         for &long in tds.iter().filter(|t| **t > td) {
             let b = get(CNN, long);
-            let t = against_value(b, REDUCED_REWARD);
+            let t = MeanTest::one_sample(b, REDUCED_REWARD);
             // One-sided: below the minimum (a CNN that does not deliver) is not above it
             // either.
-            let verdict = match t {
-                None => "n/a",
-                Some(t) if t.d + t.half_width() <= EQUIVALENCE_MARGIN + 1e-12 => "holds",
-                Some(t) if t.d - t.half_width() > EQUIVALENCE_MARGIN && t.significant() => {
-                    "contradicted"
-                }
-                Some(_) => "not shown",
-            };
+            let verdict = at_most(t, EQUIVALENCE_MARGIN);
             let (z, p) = z_p(t);
             per_td.push(verdict);
             rows.push(ClaimRow {

@@ -60,7 +60,7 @@ pub fn fi_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
         "cnn-mlp share of FOCs at 0 per run, against 0.5: above, p < 0.05",
         &tds,
         |td| vec![across(CNN, td, zero)],
-        |v| against_value(&v[0], 0.5),
+        |v| MeanTest::one_sample(&v[0], 0.5),
     );
     let reservoir = paper_ctrnn();
     for (other, name) in ctrnns() {
@@ -72,7 +72,7 @@ pub fn fi_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
             &format!("mean |FOC/TD − 1| per run, {other} − lstm125: above 0, p < 0.05"),
             &tds,
             |td| vec![across(other, td, off), across(LSTM, td, off)],
-            |v| two_sample(&v[0], &v[1]),
+            |v| MeanTest::two_sample(&v[0], &v[1]),
         );
         per_setting_statement(
             &mut rows,
@@ -82,7 +82,7 @@ pub fn fi_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
             &format!("FOC/TD per run, lstm125 − {other}: above 0, p < 0.05"),
             &tds,
             |td| vec![across(LSTM, td, ratio), across(other, td, ratio)],
-            |v| two_sample(&v[0], &v[1]),
+            |v| MeanTest::two_sample(&v[0], &v[1]),
         );
     }
     let big = lab_model("CTRNN256").unwrap_or("ctrnn-reservoir256");
@@ -94,7 +94,7 @@ pub fn fi_claims(jobs: &[CompactJob]) -> Vec<ClaimRow> {
         &format!("mean |FOC/TD − 1| per run, {reservoir} − {big}: above 0, p < 0.05"),
         &tds,
         |td| vec![across(reservoir, td, off), across(big, td, off)],
-        |v| two_sample(&v[0], &v[1]),
+        |v| MeanTest::two_sample(&v[0], &v[1]),
     );
     rows
 }

@@ -113,6 +113,22 @@ pub fn equal(t: Option<MeanTest>, margin: f64) -> &'static str {
     }
 }
 
+/// Verdict of an "at most `margin` above" statement (one-sided equivalence, "at the
+/// minimum"): `holds` when the 95% interval's upper end `d + t·se` is at most `margin` (below
+/// it counts too); `contradicted` when its lower end is above `margin` and the difference is
+/// significant; else `not shown`; `n/a` without a test.
+pub fn at_most(t: Option<MeanTest>, margin: f64) -> &'static str {
+    let Some(t) = t else { return "n/a" };
+    let half = t.half_width();
+    if t.d + half <= margin + 1e-12 {
+        "holds"
+    } else if t.d - half > margin && t.significant() {
+        "contradicted"
+    } else {
+        "not shown"
+    }
+}
+
 /// Verdict of a statement that no case out of `cases` goes against it: `n/a` without cases,
 /// `holds` when none of them does (`against` = 0), else `contradicted`.
 pub fn unless_any(cases: usize, against: usize) -> &'static str {
@@ -156,14 +172,6 @@ fn fmt_spread(s: &Spread) -> String {
         1 => format!("{:.2} (1)", s.mean),
         n => format!("{:.2} ± {:.2} ({n})", s.mean, s.sd),
     }
-}
-
-fn two_sample(a: &Spread, b: &Spread) -> Option<MeanTest> {
-    MeanTest::two_sample(a, b)
-}
-
-fn against_value(a: &Spread, v: f64) -> Option<MeanTest> {
-    MeanTest::one_sample(a, v)
 }
 
 /// `(z, p)` of a test for a row (NaN without one).

@@ -58,11 +58,11 @@ pub fn multitimer_claims(cells: &[MtCell]) -> Vec<ClaimRow> {
                 ),
                 &levels,
                 |l| vec![reward(LSTM, l), reward(other, l)],
-                |v| two_sample(&v[0], &v[1]),
+                |v| MeanTest::two_sample(&v[0], &v[1]),
             );
             let level = |m: &str| cell(m).map_or(Spread::of([]), |c| c.level);
             let (a, b) = (level(LSTM), level(other));
-            let t = two_sample(&a, &b);
+            let t = MeanTest::two_sample(&a, &b);
             let (z, p) = z_p(t);
             rows.push(ClaimRow {
                 claim: "multitimer_lstm_further".into(),
@@ -172,7 +172,7 @@ pub fn shift_claims(cells: &[MtCell]) -> Vec<ClaimRow> {
                 &format!("timers stored per run, {ctrnn} − lstm125: above 0, p < 0.05"),
                 &levels,
                 |l| vec![timers(ctrnn, l), timers(LSTM, l)],
-                |v| two_sample(&v[0], &v[1]),
+                |v| MeanTest::two_sample(&v[0], &v[1]),
             );
         }
     }
