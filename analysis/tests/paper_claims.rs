@@ -571,3 +571,68 @@ fn overall_pair<'a>(rows: &'a [ClaimRow], claim: &str, about: &str) -> &'a Claim
         })
         .unwrap_or_else(|| panic!("no {claim} over every pair about {about}: {rows:#?}"))
 }
+
+#[test]
+fn the_lab_s_trained_ctrnn256_gets_its_own_rows_beside_the_paper_s_reservoirs() {
+    // FI at TD 8. Trained CTRNN125: mean FOC 4, 5, 4, 3 (|FOC/TD − 1| 0.5, 0.375, 0.5,
+    // 0.625 → 0.5 ± 0.1021); trained CTRNN256: 8, 7, 9, 8 (0, 0.125, 0.125, 0 → 0.0625 ±
+    // 0.0722): closer by d = 0.4375. No reservoir256 runs: the paper's row is untested.
+    let mut jobs = Vec::new();
+    for (s, (f125, f256)) in [(4, 8), (5, 7), (4, 9), (3, 8)].into_iter().enumerate() {
+        let s = s as u64 + 1;
+        jobs.push(fi_run("ctrnn125", s, 8, &[Some(f125); 4]));
+        jobs.push(fi_run("ctrnn256", s, 8, &[Some(f256); 4]));
+        jobs.push(fi_run("ctrnn-reservoir125", s, 8, &[Some(2); 4]));
+    }
+    let rows = fi_claims(&jobs);
+    let r = find(
+        &rows,
+        "fi_ctrnn256_better",
+        "fixed interval, TD 8",
+        "ctrnn125 − ctrnn256",
+    );
+    assert!(r.statement.contains("not in the paper"), "{r:?}");
+    let se = ((0.125f64.powi(2) * 2.0 / 3.0) / 4.0 + (0.125f64.powi(2) / 3.0) / 4.0).sqrt();
+    assert!((r.z - 0.4375 / se).abs() < 1e-6, "{r:?}");
+    assert_eq!(r.verdict, "holds");
+    let paper = find(
+        &rows,
+        "fi_ctrnn256_better",
+        "fixed interval, TD 8",
+        "ctrnn-reservoir125 − ctrnn-reservoir256",
+    );
+    assert_eq!(paper.verdict, "n/a");
+    // One TD tested: too few settings for "generally".
+    assert_eq!(
+        overall(&rows, "fi_ctrnn256_better", "trained CTRNN256").verdict,
+        "not shown"
+    );
+
+    // Bisection: LSTM256 right on every anchor trial, the trained CTRNN256 on half of them
+    // (no variance on either side: exact p = 2/C(8, 4) = 2/70, d = 0.5 beyond the margin) →
+    // contradicted on every pair; no reservoir256 → the paper's row is n/a.
+    let mut jobs = Vec::new();
+    for pair in [(4, 8), (6, 12), (6, 18)] {
+        for s in 1..=4 {
+            jobs.push(bisection_run("lstm256", s, pair, 4));
+            jobs.push(bisection_run("ctrnn256", s, pair, 2));
+        }
+    }
+    let rows = bisection_claims(&jobs);
+    let r = find(
+        &rows,
+        "bisection_256_comparable",
+        "bisection, pair 6-12",
+        "lstm256 − ctrnn256",
+    );
+    assert!((r.p - 2.0 / 70.0).abs() < 1e-12, "{r:?}");
+    assert_eq!(r.verdict, "contradicted");
+    assert_eq!(
+        overall_pair(&rows, "bisection_256_comparable", "trained CTRNN256").verdict,
+        "contradicted"
+    );
+    assert_eq!(
+        overall_pair(&rows, "bisection_256_comparable", "(lab: reservoir)").verdict,
+        "n/a"
+    );
+}

@@ -189,6 +189,8 @@ fn interval_text(t: Option<MeanTest>) -> String {
 const LSTM: &str = "lstm125";
 const CNN: &str = "cnn-mlp";
 const TRAINED_CTRNN: &str = "ctrnn125";
+/// The lab's trained CTRNN at the paper's larger size (the paper ran only reservoirs).
+const TRAINED_CTRNN_256: &str = "ctrnn256";
 
 fn paper_ctrnn() -> &'static str {
     lab_model("CTRNN125").unwrap_or("ctrnn-reservoir125")
