@@ -19,14 +19,42 @@ fn env_list_shows_every_task_with_defaults_and_filters_by_tag() {
         "MultiTimer-v0",
         "DualTask-v0",
         "Uncertainty-v0",
+        "MultiAnchor-v0",
+        "MultiOven-v0",
+        "Reproduction-v0",
     ] {
         assert!(text.contains(id), "{id} missing");
     }
-    let json = run_ok(&["env", "list", "--json", "--tag", "bisection"]);
+    let json = run_ok(&["env", "list", "--json", "--tag", "paper"]);
+    let ids: Vec<String> = json_lines(&json)
+        .iter()
+        .map(|l| l["id"].as_str().unwrap().to_string())
+        .collect();
+    assert!(ids.iter().any(|i| i == "Bisection-v0"));
+    assert!(
+        !ids.iter().any(|i| i == "MultiOven-v0"),
+        "the extensions are not the paper's"
+    );
+    let json = run_ok(&["env", "list", "--json", "--tag", "categorization"]);
     let lines = json_lines(&json);
     assert_eq!(lines.len(), 1);
-    assert_eq!(lines[0]["id"], "Bisection-v0");
-    assert_eq!(lines[0]["defaults"]["params"]["short"], 4);
+    assert_eq!(lines[0]["id"], "MultiAnchor-v0");
+    assert_eq!(
+        lines[0]["defaults"]["params"]["anchors"],
+        serde_json::json!([4, 8, 12])
+    );
+    // The parameter rows come from the tables: key, aliases, default, allowed values.
+    let ovens = run_ok(&["env", "list", "--json", "--tag", "concurrent"]);
+    let row = &json_lines(&ovens)[0]["params"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|p| p["key"] == "ovens")
+        .cloned()
+        .unwrap();
+    assert_eq!(row["aliases"], serde_json::json!(["n_ovens"]));
+    assert_eq!(row["default"], "2");
+    assert_eq!(row["allowed"], "integer 1..=3");
     assert!(run_err(&["env", "list", "--tag", "nope"]).contains("tags in use"));
 }
 
@@ -204,7 +232,7 @@ fn demo_runs_every_task_and_writes_gifs() {
     let summary: Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
     let rows = summary.as_array().unwrap();
-    assert_eq!(rows.len(), 6);
+    assert_eq!(rows.len(), chronocooked_env::all_tasks().len());
     for row in rows {
         assert!(
             row["oracle_mean_return"].as_f64().unwrap()

@@ -7,10 +7,14 @@
 //!   (`metrics`), headline aggregates across seeds (`aggregate`), human play (`human`);
 //! * [`neural`] — neural metrics: ramping units, time cells, sequentiality, temporal
 //!   information, scaling; elapsed-time decoders (`decode`), spectra and phase coherence
-//!   (`oscillation`), the per-model neural summary (`summary`);
+//!   (`oscillation`), the per-model neural summary (`summary`), timing by speed (`speed`:
+//!   KiNeT, Remington et al. 2018);
 //! * [`job_folder`] — the file names of a sweep job's folder (`job.json`, `run/`, `eval/`,
 //!   recorded activity and its summary);
 //! * [`records`] — evaluation records: conditions and evaluated episodes (`records.jsonl`);
+//! * [`reproduction`] — temporal reproduction (Ready-Set-Go): Bayesian observers (BLS, MAP,
+//!   ML; Jazayeri & Shadlen 2010) as simulators and as a fitting tool, and the standard
+//!   summaries (regression slope, BIAS, √VAR, RMSE, Weber fraction);
 //! * [`evaluation`] — the evaluation protocol (`protocol`: conditions per task, the runner
 //!   for any agent) and the evaluation folder it writes (`folder`);
 //! * [`report`] — the leaderboard (HTML with inline SVG, Markdown, CSV; `leaderboard`) and
@@ -33,6 +37,7 @@ pub mod neural;
 pub mod paper;
 pub mod records;
 pub mod report;
+pub mod reproduction;
 pub mod stats;
 
 pub use behaviour::foc::{

@@ -41,11 +41,17 @@ pub enum ConditionKind {
     Dual,
     /// Uncertainty task (normal or never-ready ovens).
     Uncertainty,
+    /// Multi-anchor categorization probe duration.
+    MultiAnchor,
+    /// Multi-oven bisection probe duration (every oven).
+    MultiOven,
+    /// Reproduction: one sample interval of one prior and gain.
+    Reproduction,
 }
 
 impl ConditionKind {
     /// Every kind, in the order of the NPZ export's `condition` codes.
-    pub const ALL: [ConditionKind; 7] = [
+    pub const ALL: [ConditionKind; 10] = [
         ConditionKind::Fi,
         ConditionKind::Pi,
         ConditionKind::Bisection,
@@ -53,6 +59,9 @@ impl ConditionKind {
         ConditionKind::Buffer,
         ConditionKind::Dual,
         ConditionKind::Uncertainty,
+        ConditionKind::MultiAnchor,
+        ConditionKind::MultiOven,
+        ConditionKind::Reproduction,
     ];
 
     /// The serialised name (`fi`, `multi_timer`, …).
@@ -92,8 +101,12 @@ pub struct Condition {
     pub td: u32,
     /// Uncertainty: force never-ready episodes (true) or normal ones (false).
     pub never_ready: Option<bool>,
-    /// PI: release factor; multi-timer buffers: buffer as a fraction of TD.
+    /// PI: release factor; multi-timer buffers: buffer as a fraction of TD; reproduction:
+    /// the gain `g`.
     pub factor: Option<f64>,
+    /// Reproduction: `[prior index, gain index]` of the episodes (reset options).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub context: Option<[u8; 2]>,
 }
 
 /// One evaluated episode with its condition.

@@ -141,6 +141,14 @@ fn every_task_has_reference_conditions_the_oracle_plays() {
                     _ => false,
                 },
                 "uncertainty" => c.never_ready == Some(false),
+                "multi_anchor" => config
+                    .params
+                    .active_anchors()
+                    .is_some_and(|a| a.contains(&c.td)),
+                "multi_oven" => match config.params {
+                    TaskParams::MultiOven { short, long, .. } => c.td == short || c.td == long,
+                    _ => false,
+                },
                 _ => false,
             };
             if pays {
@@ -149,8 +157,9 @@ fn every_task_has_reference_conditions_the_oracle_plays() {
             }
         }
     }
-    // FI 1, bisection 2 anchors, multi-timer ≥ 1 trained TD, uncertainty 1.
-    assert!(paying >= 5, "{paying} paying conditions checked");
+    // FI 1, bisection 2 anchors, multi-timer ≥ 1 trained TD, uncertainty 1, multi-anchor
+    // 3 anchors, multi-oven 2 anchors.
+    assert!(paying >= 10, "{paying} paying conditions checked");
 }
 
 #[test]

@@ -23,8 +23,54 @@ pub enum Counter {
     Main,
     /// Bisection short counter (code 4).
     Short,
-    /// Bisection long counter (code 8).
+    /// Bisection long counter (code 8); the multi-oven task's long counter.
     Long,
+    /// Multi-anchor: the counter of anchor `i` (1-based, as the reference's
+    /// `delivery_counter_used`).
+    Anchor(u8),
+}
+
+impl Counter {
+    /// The counter as the reference numbers it (multi-anchor: 1…4; bisection and multi-oven:
+    /// 1 short, 2 long; the single counter: 1).
+    pub fn number(self) -> u8 {
+        match self {
+            Counter::Main | Counter::Short => 1,
+            Counter::Long => 2,
+            Counter::Anchor(i) => i,
+        }
+    }
+}
+
+/// Per-oven state of a multi-oven episode (`n == 0` in every other task).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub struct OvenSet {
+    /// Number of ovens of the task (0: not a multi-oven task).
+    pub n: u8,
+    /// Each oven's duration (steps).
+    pub td: [u32; 3],
+    /// Each oven's timer (−1 off or emptied).
+    pub timer: [i32; 3],
+    /// Each oven's on-time (step at whose end it starts by itself; −1: started by the put).
+    pub on_time: [i32; 3],
+    /// Timer at which each oven's soup was taken out (−1 before).
+    pub off_time: [i32; 3],
+    /// Where each oven's soup went: 0 not delivered, 1 short counter, 2 long counter.
+    pub delivered: [u8; 3],
+    /// Bit `i` set: oven `i`'s soup went to the counter of its duration (it paid 1/n).
+    pub paid: u8,
+}
+
+impl OvenSet {
+    /// Whether this is not a multi-oven step (serialisation skips it then).
+    pub fn is_empty(&self) -> bool {
+        self.n == 0
+    }
+
+    /// Every oven's soup is delivered, each to the counter of its duration.
+    pub fn all_paid(&self) -> bool {
+        self.n > 0 && self.paid == (1u8 << self.n) - 1
+    }
 }
 
 /// Bit set of the events that happened during one step.
@@ -50,9 +96,13 @@ impl Events {
     pub const BUTTON: u16 = 1 << 7;
     /// An interact that changed nothing.
     pub const NO_EFFECT: u16 = 1 << 8;
+    /// Reproduction: the oven flashed a cue (Ready or Set) at the end of this step.
+    pub const CUE: u16 = 1 << 9;
+    /// Reproduction: the delivered soup was produced inside the reward window.
+    pub const IN_WINDOW: u16 = 1 << 10;
 
     /// Names of the flags, in bit order.
-    pub const NAMES: [(u16, &'static str); 9] = [
+    pub const NAMES: [(u16, &'static str); 11] = [
         (Self::ONION_TAKEN, "onion_taken"),
         (Self::ONION_IN, "onion_in"),
         (Self::OVEN_CHECK, "oven_check"),
@@ -62,6 +112,8 @@ impl Events {
         (Self::SINK, "sink"),
         (Self::BUTTON, "button"),
         (Self::NO_EFFECT, "no_effect"),
+        (Self::CUE, "cue"),
+        (Self::IN_WINDOW, "in_window"),
     ];
 
     /// Whether `flag` is set.
@@ -137,6 +189,9 @@ pub struct Info {
     pub sink_count: u32,
     /// Dual task: timer at the last paid sink interaction (−1 if none).
     pub last_sink_timer: i32,
+    /// Multi-oven task: every oven's state (absent from the serialised form elsewhere).
+    #[serde(default, skip_serializing_if = "OvenSet::is_empty")]
+    pub ovens: OvenSet,
 }
 
 /// Keys every serialised `info` object carries (checked by the conformance tests).

@@ -13,6 +13,13 @@
 //! | `L`  | long delivery counter (bisection) | 8 |
 //! | `K`  | reward sink (dual task) | 6 |
 //! | `B`  | manual oven-off button (uncertainty) | 8 |
+//! | `3`  | third anchor counter (multi-anchor) | 9 |
+//! | `4`  | fourth anchor counter (multi-anchor) | 10 |
+//! | `W`  | second oven (multi-oven) | 9 |
+//! | `X`  | third oven (multi-oven) | 12 |
+//!
+//! The codes are those of the single-oven tasks; the multi-anchor and multi-oven tasks
+//! write the reference's own codes for their objects (the task spec maps them).
 //!
 //! Validation enforces the reference's implicit rule that interaction is
 //! unambiguous: no free cell may touch two objects in its 4-neighbourhood.
@@ -44,10 +51,18 @@ pub enum ObjectKind {
     RewardSink,
     /// Uncertainty-task manual oven-off button (code 8).
     OvenButton,
+    /// Multi-anchor: the counter of the third anchor.
+    Counter3,
+    /// Multi-anchor: the counter of the fourth anchor.
+    Counter4,
+    /// Multi-oven: the second oven (only the environment starts it).
+    Oven2,
+    /// Multi-oven: the third oven.
+    Oven3,
 }
 
 impl ObjectKind {
-    /// All kinds, in one-hot channel order.
+    /// The kinds of the single-oven tasks, in one-hot channel order.
     pub const ALL: [ObjectKind; 7] = [
         ObjectKind::OnionDispenser,
         ObjectKind::DeliveryCounter,
@@ -58,7 +73,22 @@ impl ObjectKind {
         ObjectKind::OvenButton,
     ];
 
-    /// Reference code written in observation channel 0.
+    /// Every kind: [`ObjectKind::ALL`], then the multi-anchor counters and extra ovens.
+    pub const EVERY: [ObjectKind; 11] = [
+        ObjectKind::OnionDispenser,
+        ObjectKind::DeliveryCounter,
+        ObjectKind::Oven,
+        ObjectKind::ShortCounter,
+        ObjectKind::LongCounter,
+        ObjectKind::RewardSink,
+        ObjectKind::OvenButton,
+        ObjectKind::Counter3,
+        ObjectKind::Counter4,
+        ObjectKind::Oven2,
+        ObjectKind::Oven3,
+    ];
+
+    /// Reference code written in observation channel 0 by the single-oven tasks.
     pub fn code(self) -> u8 {
         match self {
             ObjectKind::OnionDispenser => 3,
@@ -66,6 +96,30 @@ impl ObjectKind {
             ObjectKind::Oven => 5,
             ObjectKind::RewardSink => 6,
             ObjectKind::LongCounter | ObjectKind::OvenButton => 8,
+            ObjectKind::Counter3 | ObjectKind::Oven2 => 9,
+            ObjectKind::Counter4 => 10,
+            ObjectKind::Oven3 => 12,
+        }
+    }
+
+    /// The oven index of an oven kind (0, 1, 2), `None` for other kinds.
+    pub fn oven_index(self) -> Option<usize> {
+        match self {
+            ObjectKind::Oven => Some(0),
+            ObjectKind::Oven2 => Some(1),
+            ObjectKind::Oven3 => Some(2),
+            _ => None,
+        }
+    }
+
+    /// The anchor index (0 … 3) of a multi-anchor counter kind (`S`, `L`, `3`, `4`).
+    pub fn anchor_index(self) -> Option<usize> {
+        match self {
+            ObjectKind::ShortCounter => Some(0),
+            ObjectKind::LongCounter => Some(1),
+            ObjectKind::Counter3 => Some(2),
+            ObjectKind::Counter4 => Some(3),
+            _ => None,
         }
     }
 
@@ -79,6 +133,10 @@ impl ObjectKind {
             ObjectKind::LongCounter => 'L',
             ObjectKind::RewardSink => 'K',
             ObjectKind::OvenButton => 'B',
+            ObjectKind::Counter3 => '3',
+            ObjectKind::Counter4 => '4',
+            ObjectKind::Oven2 => 'W',
+            ObjectKind::Oven3 => 'X',
         }
     }
 
@@ -93,13 +151,18 @@ impl ObjectKind {
             'L' => ObjectKind::LongCounter,
             'K' => ObjectKind::RewardSink,
             'B' => ObjectKind::OvenButton,
+            '3' => ObjectKind::Counter3,
+            '4' => ObjectKind::Counter4,
+            'W' => ObjectKind::Oven2,
+            'X' => ObjectKind::Oven3,
             other => return Err(other),
         }))
     }
 
-    /// Index of this kind's one-hot channel.
+    /// Index of this kind in [`ObjectKind::EVERY`] (for the single-oven tasks, whose
+    /// layouts hold only [`ObjectKind::ALL`], its one-hot channel).
     pub fn onehot_index(self) -> usize {
-        Self::ALL.iter().position(|&k| k == self).unwrap_or(0)
+        Self::EVERY.iter().position(|&k| k == self).unwrap_or(0)
     }
 }
 
@@ -147,7 +210,7 @@ impl Layout {
             for (c, ch) in row.chars().enumerate() {
                 let kind = ObjectKind::from_symbol(ch).map_err(|other| {
                     bad(format!(
-                        "unknown cell character `{other}` at ({r},{c}) (allowed: . O D V S L K B)"
+                        "unknown cell character `{other}` at ({r},{c}) (allowed: . O D V S L K B 3 4 W X)"
                     ))
                 })?;
                 cells.push(kind);

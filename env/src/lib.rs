@@ -28,6 +28,7 @@ pub mod obs;
 pub mod oracle;
 pub mod registry;
 pub mod render;
+pub mod settings;
 mod spec;
 pub mod task;
 pub mod trace;
@@ -36,9 +37,10 @@ pub mod vec_env;
 pub use action::{Action, parse_action_list};
 pub use env::ChronoEnv;
 pub use error::EnvError;
-pub use info::{Carry, Counter, Events, INFO_KEYS, Info};
+pub use info::{Carry, Counter, Events, INFO_KEYS, Info, OvenSet};
 pub use kitchen::{
-    CODE_CHANNELS, Kitchen, KitchenSnapshot, KitchenState, ResetOptions, Transition, derive_seed,
+    CODE_CHANNELS, Kitchen, KitchenSnapshot, KitchenState, MultiOvenState, PerOven, ResetOptions,
+    RsgState, Transition, derive_seed,
 };
 pub use layout::{Layout, ObjectKind};
 pub use obs::{BoxSpace, Discrete, OneHotEncoder};

@@ -9,6 +9,12 @@
 //!   9 carrying soup, 10 oven off, 11 oven on, 12 oven ready, then the cue channels
 //!   (multi-timer value cue: one channel holding the TD value at the oven while on;
 //!   categorical cue: one channel per trained TD), then the debug timer channel if enabled.
+//!   The multi-anchor and multi-oven tasks use one fixed set of [`EXTENDED_CHANNELS`]
+//!   channels at every curriculum level: 0–10 object kinds (see [`ObjectKind::EVERY`]),
+//!   11 agent, 12 carrying onion, 13 carrying soup, 14 oven off, 15 oven on, 16 oven ready
+//!   (at each oven's cell), 17–19 the held soup came from oven 1, 2, 3 (at the agent's
+//!   cell), then the debug timer channel if enabled. The reproduction task adds one channel
+//!   per cued context (prior × gain) after the base channels, set at the counter.
 //!
 //! Both are views of the same state; the one-hot view is computed from the codes
 //! view plus the layout, so neither can leak the hidden timer.
@@ -21,6 +27,8 @@ use serde::Serialize;
 
 /// Base one-hot channels before the cue channels.
 pub const ONEHOT_BASE_CHANNELS: usize = 13;
+/// One-hot channels of the multi-anchor and multi-oven tasks (before the debug channel).
+pub const EXTENDED_CHANNELS: usize = 20;
 
 /// A discrete space `{0, …, n−1}`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -92,6 +100,10 @@ pub(crate) fn codes_high(spec: &Spec) -> u8 {
     if spec.config.debug_timer_channel {
         return 255;
     }
+    if matches!(spec.family, TaskFamily::MultiAnchor | TaskFamily::MultiOven) {
+        // The reference's observation space for these tasks: Box(0, 20).
+        return 20;
+    }
     match spec.cue {
         Some(CueMode::Value) => 255,
         Some(CueMode::Categorical) => (spec.tds.len() as u8).max(8),
@@ -109,6 +121,11 @@ pub struct OneHotEncoder {
     cue: Option<CueMode>,
     tds: Vec<u32>,
     debug_channel: Option<usize>,
+    /// Multi-anchor / multi-oven: the oven cells and each one's channel-0 code.
+    extended: Option<Vec<(usize, u8)>>,
+    /// Reproduction: the counter cell and the number of cued contexts (one channel each,
+    /// after the base channels).
+    context: Option<(usize, usize)>,
     /// Static object channels, `[C_onehot, R, C]`.
     template: Vec<f32>,
 }
@@ -122,7 +139,28 @@ impl OneHotEncoder {
             None => 0,
         };
         let debug = spec.config.debug_timer_channel;
-        let channels = ONEHOT_BASE_CHANNELS + cue_channels + debug as usize;
+        let extended =
+            matches!(spec.family, TaskFamily::MultiAnchor | TaskFamily::MultiOven).then(|| {
+                let n = match spec.config.params {
+                    crate::task::TaskParams::MultiOven { ovens, .. } => ovens as usize,
+                    _ => 1,
+                };
+                spec.ovens[..n]
+                    .iter()
+                    .map(|&cell| (cell, spec.background[cell * CODE_CHANNELS]))
+                    .collect::<Vec<_>>()
+            });
+        let context = spec
+            .rsg
+            .as_ref()
+            .map(|r| (r.counter, r.cued_contexts()))
+            .filter(|&(_, n)| n > 0);
+        let context_channels = context.map_or(0, |(_, n)| n);
+        let channels = if extended.is_some() {
+            EXTENDED_CHANNELS + debug as usize
+        } else {
+            ONEHOT_BASE_CHANNELS + cue_channels + context_channels + debug as usize
+        };
         let plane = rows * cols;
         let mut template = vec![0.0; channels * plane];
         for cell in 0..plane {
@@ -138,8 +176,16 @@ impl OneHotEncoder {
             cue: spec.cue,
             tds: spec.tds.clone(),
             debug_channel: debug.then_some(channels - 1),
+            extended,
+            context,
             template,
         }
+    }
+
+    /// The channel that marks the agent's cell (7; 11 in the multi-anchor and multi-oven
+    /// encoding).
+    pub fn agent_channel(&self) -> usize {
+        if self.extended.is_some() { 11 } else { 7 }
     }
 
     /// Shape `[C_onehot, R, C]`.
@@ -159,7 +205,17 @@ impl OneHotEncoder {
 
     /// Encodes one codes observation (`[R, C, 6]`) into `out` (`[C_onehot, R, C]`).
     pub fn encode(&self, codes: &[u8], out: &mut [f32]) {
+        if let Some(ovens) = &self.extended {
+            return self.encode_extended(ovens, codes, out);
+        }
         out.copy_from_slice(&self.template);
+        if let Some((cell, n)) = self.context {
+            let v = codes[cell * CODE_CHANNELS + 4] as usize;
+            if (1..=n).contains(&v) {
+                let plane = self.rows * self.cols;
+                out[(ONEHOT_BASE_CHANNELS + v - 1) * plane + cell] = 1.0;
+            }
+        }
         let plane = self.rows * self.cols;
         for cell in 0..plane {
             let px = &codes[cell * CODE_CHANNELS..(cell + 1) * CODE_CHANNELS];
@@ -194,6 +250,35 @@ impl OneHotEncoder {
                 if let Some(ch) = self.debug_channel {
                     out[ch * plane + cell] = px[5] as f32;
                 }
+            }
+        }
+    }
+
+    fn encode_extended(&self, ovens: &[(usize, u8)], codes: &[u8], out: &mut [f32]) {
+        out.copy_from_slice(&self.template);
+        let plane = self.rows * self.cols;
+        for cell in 0..plane {
+            let px = &codes[cell * CODE_CHANNELS..(cell + 1) * CODE_CHANNELS];
+            if px[1] != 0 {
+                out[11 * plane + cell] = 1.0;
+                out[12 * plane + cell] = px[2] as f32;
+                if px[3] != 0 {
+                    out[13 * plane + cell] = 1.0;
+                    // Multi-oven soup carries its oven's code; multi-anchor soup is 1.
+                    let from = ovens
+                        .iter()
+                        .position(|&(_, code)| code == px[3])
+                        .unwrap_or(0);
+                    out[(17 + from) * plane + cell] = 1.0;
+                }
+            }
+        }
+        for &(cell, _) in ovens {
+            let px = &codes[cell * CODE_CHANNELS..(cell + 1) * CODE_CHANNELS];
+            let state = (px[4] as usize).min(2);
+            out[(14 + state) * plane + cell] = 1.0;
+            if let Some(ch) = self.debug_channel {
+                out[ch * plane + cell] = px[5] as f32;
             }
         }
     }

@@ -15,11 +15,20 @@
 //! * Uncertainty: wait at the oven; if it is still dark at `timer = TD`, press the
 //!   button and take the (reduced) soup. This is also optimal without hidden
 //!   information: the never-ready draw is invisible before TD.
+//! * Multi-anchor: take the soup when ready; deliver to the counter of the anchor whose
+//!   category holds TD (boundaries at the geometric means of neighbouring anchors; exact
+//!   for the anchors themselves).
+//! * Multi-oven: put the onion in the first oven, take each soup as soon as its oven is
+//!   ready (the nearest ready oven first) and deliver it to the counter of its oven's
+//!   duration (geometric-mean boundary); while nothing is ready, wait next to the oven
+//!   that will be ready first.
+//! * Reproduction: wait next to the oven (its neighbour nearest the counter) and take the
+//!   soup `round(g·ts)` steps after Set (the reward's peak; at least 1), then deliver.
 
 use crate::action::Action;
 use crate::env::ChronoEnv;
 use crate::info::Carry;
-use crate::kitchen::{Kitchen, KitchenState};
+use crate::kitchen::{Kitchen, KitchenState, MultiOvenState, RsgState};
 use crate::layout::{Layout, ObjectKind};
 use crate::task::{RewardMode, TaskParams};
 use std::collections::HashMap;
@@ -42,7 +51,7 @@ impl Oracle {
         let dist = (0..layout.n_cells())
             .map(|c| layout.distances_to(c))
             .collect();
-        let neighbours = ObjectKind::ALL
+        let neighbours = ObjectKind::EVERY
             .iter()
             .map(|&kind| {
                 layout
@@ -102,13 +111,27 @@ impl Oracle {
     }
 
     fn delivery_kind(&self, td: u32) -> ObjectKind {
-        match self.params {
-            TaskParams::Bisection { short, long } => {
-                if (td as u64) * (td as u64) < (short as u64) * (long as u64) {
+        let below_gm = |a: u32, b: u32| (td as u64) * (td as u64) < (a as u64) * (b as u64);
+        match &self.params {
+            TaskParams::Bisection { short, long } | TaskParams::MultiOven { short, long, .. } => {
+                if below_gm(*short, *long) {
                     ObjectKind::ShortCounter
                 } else {
                     ObjectKind::LongCounter
                 }
+            }
+            TaskParams::MultiAnchor { .. } => {
+                let anchors = self.params.active_anchors().unwrap_or(&[]);
+                let category = anchors
+                    .windows(2)
+                    .position(|w| below_gm(w[0], w[1]))
+                    .unwrap_or(anchors.len().saturating_sub(1));
+                [
+                    ObjectKind::ShortCounter,
+                    ObjectKind::LongCounter,
+                    ObjectKind::Counter3,
+                    ObjectKind::Counter4,
+                ][category.min(3)]
             }
             _ => ObjectKind::DeliveryCounter,
         }
@@ -120,7 +143,11 @@ impl Oracle {
         match &self.params {
             TaskParams::FixedInterval { .. } => Some(td),
             TaskParams::PeakInterval { .. } => Some(td),
-            TaskParams::Bisection { .. } | TaskParams::Uncertainty { .. } => Some(td),
+            TaskParams::Bisection { .. }
+            | TaskParams::Uncertainty { .. }
+            | TaskParams::MultiAnchor { .. }
+            | TaskParams::MultiOven { .. }
+            | TaskParams::Reproduction { .. } => Some(td),
             TaskParams::MultiTimer {
                 mode, under_buffer, ..
             } => Some(match mode {
@@ -153,6 +180,12 @@ impl Oracle {
 
     /// The oracle's action in `state`.
     pub fn act(&self, state: &KitchenState) -> Action {
+        if let Some(mo) = &state.multi_oven {
+            return self.act_multi_oven(state, mo);
+        }
+        if let Some(rsg) = &state.reproduction {
+            return self.act_reproduction(state, rsg);
+        }
         let a = self.layout.index(state.agent.0, state.agent.1);
         let oven_adj = self.adjacent_to(ObjectKind::Oven);
         let counter_adj = self.adjacent_to(self.delivery_kind(state.td));
@@ -206,7 +239,7 @@ impl Oracle {
         let t = s.timer;
         let pick = self.pickup_timer(s.td).unwrap_or(i32::MAX);
         match &self.params {
-            TaskParams::Bisection { .. } => {
+            TaskParams::Bisection { .. } | TaskParams::MultiAnchor { .. } => {
                 if s.ready && a == post {
                     Action::Interact
                 } else {
@@ -252,6 +285,86 @@ impl Oracle {
                     Action::Wait
                 } else {
                     self.step_towards(a, post)
+                }
+            }
+        }
+    }
+}
+
+impl Oracle {
+    fn act_reproduction(&self, s: &KitchenState, rsg: &RsgState) -> Action {
+        let a = self.layout.index(s.agent.0, s.agent.1);
+        let counter = self.adjacent_to(ObjectKind::DeliveryCounter);
+        if s.carry == Carry::Soup {
+            return self.go_and_interact(a, self.nearest(a, counter));
+        }
+        let gain = match &self.params {
+            TaskParams::Reproduction { gains, .. } => {
+                gains.get(rsg.gain as usize).copied().unwrap_or(1.0)
+            }
+            _ => 1.0,
+        };
+        let target = ((f64::from(gain) * f64::from(s.td)).round() as i32).max(1);
+        let post = *self
+            .adjacent_to(ObjectKind::Oven)
+            .iter()
+            .min_by_key(|&&y| counter.iter().map(|&c| self.d(y, c)).min().unwrap_or(0))
+            .expect("validated layouts have an oven");
+        if a != post {
+            return self.step_towards(a, post);
+        }
+        // The response `k` steps after Set is taken while the timer reads `k − 1`.
+        if s.timer >= 0 && s.timer + 1 >= target {
+            Action::Interact
+        } else {
+            Action::Wait
+        }
+    }
+
+    /// Multi-oven: the free cells next to oven `i`.
+    fn oven_neighbours(&self, i: usize) -> &[usize] {
+        self.adjacent_to([ObjectKind::Oven, ObjectKind::Oven2, ObjectKind::Oven3][i])
+    }
+
+    fn act_multi_oven(&self, s: &KitchenState, mo: &MultiOvenState) -> Action {
+        let a = self.layout.index(s.agent.0, s.agent.1);
+        let n = match self.params {
+            TaskParams::MultiOven { ovens, .. } => ovens as usize,
+            _ => 1,
+        };
+        match s.carry {
+            Carry::Soup => {
+                let kind = self.delivery_kind(mo.td[mo.soup_from as usize]);
+                self.go_and_interact(a, self.nearest(a, self.adjacent_to(kind)))
+            }
+            Carry::Onion => self.go_and_interact(a, self.nearest(a, self.oven_neighbours(0))),
+            Carry::Nothing => {
+                // Any ready oven: the nearest one.
+                if let Some(cell) = (0..n)
+                    .filter(|&i| mo.ready[i])
+                    .map(|i| self.nearest(a, self.oven_neighbours(i)))
+                    .min_by_key(|&c| self.d(a, c))
+                {
+                    return self.go_and_interact(a, cell);
+                }
+                if !mo.used && mo.timer[0] < 0 {
+                    let onion = self.nearest(a, self.adjacent_to(ObjectKind::OnionDispenser));
+                    return self.go_and_interact(a, onion);
+                }
+                // Wait next to the oven that will be ready first (a started oven: its
+                // remaining time; one still to start: its on-time plus its duration).
+                let remaining = |i: usize| -> Option<i64> {
+                    if mo.timer[i] >= 0 {
+                        Some(mo.td[i] as i64 - mo.timer[i] as i64)
+                    } else if mo.off_time[i] < 0 && mo.on_time[i] >= s.timestep as i32 {
+                        Some(mo.on_time[i] as i64 - s.timestep as i64 + mo.td[i] as i64)
+                    } else {
+                        None
+                    }
+                };
+                match (0..n).filter_map(|i| remaining(i).map(|r| (r, i))).min() {
+                    Some((_, i)) => self.step_towards(a, self.nearest(a, self.oven_neighbours(i))),
+                    None => Action::Wait,
                 }
             }
         }

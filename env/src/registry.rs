@@ -2,8 +2,8 @@
 
 use crate::error::EnvError;
 use crate::task::{
-    BISECTION_LAYOUT, CueMode, DUAL_LAYOUT, FI_LAYOUT, RewardMode, TaskConfig, TaskFamily,
-    TaskParams, UNCERTAINTY_LAYOUT,
+    AUTO_LAYOUT, BISECTION_LAYOUT, CueMode, DUAL_LAYOUT, FI_LAYOUT, RewardMode, TaskConfig,
+    TaskFamily, TaskParams, UNCERTAINTY_LAYOUT,
 };
 use serde::Serialize;
 
@@ -70,6 +70,34 @@ impl TaskSpec {
                     over_buffer: 0,
                     overcooked_reward: 0.5,
                     manual_reward: 0.1,
+                },
+            ),
+            TaskFamily::MultiAnchor => (
+                AUTO_LAYOUT,
+                TaskParams::MultiAnchor {
+                    anchors: vec![4, 8, 12],
+                    num_anchors: None,
+                },
+            ),
+            TaskFamily::Reproduction => (
+                AUTO_LAYOUT,
+                TaskParams::Reproduction {
+                    priors: vec!["short".into(), "long".into()],
+                    prior_cue: true,
+                    gains: vec![1.0],
+                    tolerance: 0.2,
+                    tolerance_steps: 1.0,
+                    foreperiod_min: 2,
+                    foreperiod_max: 6,
+                },
+            ),
+            TaskFamily::MultiOven => (
+                AUTO_LAYOUT,
+                TaskParams::MultiOven {
+                    short: 4,
+                    long: 12,
+                    ovens: 2,
+                    asynchronous: false,
                 },
             ),
         };
@@ -166,6 +194,69 @@ button-readied soup, overcooked_reward (0.5) for a self-readied soup taken after
 Defaults: td=9 (reference trace), over_buffer=0. Design decision: the optimal policy waits at the \
 oven until TD and, if the oven stays dark, presses the button.",
         source: "paper: Dual task and uncertainty task; reference training trace (button, rewards)",
+    },
+    TaskSpec {
+        id: "MultiAnchor-v0",
+        family: TaskFamily::MultiAnchor,
+        tags: &[
+            "reference",
+            "timing",
+            "categorization",
+            "bisection",
+            "curriculum",
+        ],
+        summary: "Multi-anchor categorization: one counter per anchor duration; deliver to the counter of the TD",
+        description: "Layout 4x3 (reference): counter 1 (0,0) code 7, onion (0,1) code 3, counter 2 (0,2) \
+code 8, counter 3 (3,0) code 9, oven (3,1) code 4, counter 4 (3,2) code 10; only the counters of the \
+active anchors are in the kitchen (2 anchors: 8 free cells, 3: 7, 4: 6). Each episode draws the TD \
+uniformly from the active anchors (reset option td sets any probe). The oven shows on (1), then ready \
+(2) at the end of the step on which timer == TD; the soup can be taken only when ready. Delivery to \
+counter i pays 1 iff TD == anchors[i], else 0; any delivery ends the episode and info.counter records \
+the counter. Defaults: anchors=4,8,12 (the reference class; its scripts train 3,10,20,25 and \
+4,12,18,25 with the curriculum 2 -> 3 -> 4 anchors at 0.98 / 0.96), max_timesteps=200.",
+        source: "reference ChronoCookedBisectionMultiAnchors (public code; not in the paper)",
+    },
+    TaskSpec {
+        id: "MultiOven-v0",
+        family: TaskFamily::MultiOven,
+        tags: &[
+            "reference",
+            "timing",
+            "bisection",
+            "concurrent",
+            "curriculum",
+        ],
+        summary: "Multi-oven bisection: 1-3 ovens, each soup to the short or the long counter",
+        description: "Layout 4x3 (reference): short counter (0,0) code 4, onion (0,1) code 3, long \
+counter (0,2) code 5, oven i at (3,i) code 6+3i. Each oven's duration is short or long with \
+probability 1/2 (reset options set a duration per oven). Only the first oven takes the onion, once; \
+synchronous mode starts every oven at the put, asynchronous mode starts the first at the put and \
+the others by themselves at on-times drawn without replacement from 0..=6+d0/2 (reset option \
+on_times sets them). An oven shows ready (2) at the end of the step on which its timer == its \
+duration; taking a ready soup empties the oven and the soup carries the oven's code (channel 3). A \
+soup delivered to the counter that matches its oven's duration pays 1/ovens; the episode ends when \
+every soup is delivered. Defaults: short=4, long=12 (the reference scripts: 4 and 8/12/18), \
+ovens=2, asynchronous=false, max_timesteps=200; curriculum 1 -> 2 -> 3 ovens at 0.95 / 0.90.",
+        source: "reference ChronoCookedBisectionMultiOven, v2 (public code; not in the paper)",
+    },
+    TaskSpec {
+        id: "Reproduction-v0",
+        family: TaskFamily::Reproduction,
+        tags: &["timing", "reproduction", "production", "ready-set-go"],
+        summary: "Temporal reproduction (Ready-Set-Go): reproduce the interval between two oven cues",
+        description: "Layout 5x3 `..D/.../V../.../...`: delivery (0,2) code 4, oven (2,0) code 5, loaded \
+(no onion). Measurement: after a foreperiod (2-6 steps) the oven flashes Ready (channel 4 = 2 for one \
+step), and ts steps later Set; ts is drawn uniformly from the episode's prior (default short 8-14 or \
+long 14-20 steps, Jazayeri & Shadlen 2010's priors scaled to steps; the counter's channel 4 shows \
+which, prior_cue=true). Production: the oven shows on (1) from Set; taking the soup out tp steps \
+after Set produces tp, and delivering it pays max(0, 1 - |tp - g*ts| / w) with w = tolerance*g*ts \
++ tolerance_steps (linear in the error inside a window that scales with the interval, as Jazayeri \
+& Shadlen 2010 rewarded; defaults 0.2 and 1 step, NeuroGym ReadySetGo's 0.2*t + c). Taking the soup \
+before Set does nothing; no response by g*ts + w ends the episode unpaid. Gains g (default 1; 1,1.5 \
+as Remington et al. 2018) are cued on the counter. Design decisions (the public code has no \
+reproduction task; the paper names it as future work): cues as oven flashes, the loaded oven, \
+reward at delivery.",
+        source: "paper Discussion (future work); Jazayeri & Shadlen 2010; Remington et al. 2018 (design decisions documented)",
     },
 ];
 

@@ -114,13 +114,15 @@ pub fn frame(layout: &Layout, family: TaskFamily, codes: &[u8]) -> Frame {
             let body = match layout.object_at(cell) {
                 Some(ObjectKind::OnionDispenser) => Some(2),
                 Some(ObjectKind::DeliveryCounter) => Some(3),
-                Some(ObjectKind::Oven) => Some(match px[4] {
-                    0 => 4,
-                    2 if !cue => 6,
-                    _ => 5,
-                }),
-                Some(ObjectKind::ShortCounter) => Some(7),
-                Some(ObjectKind::LongCounter) => Some(8),
+                Some(ObjectKind::Oven | ObjectKind::Oven2 | ObjectKind::Oven3) => {
+                    Some(match px[4] {
+                        0 => 4,
+                        2 if !cue => 6,
+                        _ => 5,
+                    })
+                }
+                Some(ObjectKind::ShortCounter | ObjectKind::Counter3) => Some(7),
+                Some(ObjectKind::LongCounter | ObjectKind::Counter4) => Some(8),
                 Some(ObjectKind::RewardSink) => Some(9),
                 Some(ObjectKind::OvenButton) => Some(10),
                 None => None,
@@ -138,7 +140,7 @@ pub fn frame(layout: &Layout, family: TaskFamily, codes: &[u8]) -> Frame {
                 f.fill_disc(cx, cy, CELL_PX / 3, 1);
                 if px[2] == 1 {
                     f.fill_disc(cx, cy, CELL_PX / 7, 2);
-                } else if px[3] == 1 {
+                } else if px[3] != 0 {
                     f.fill_disc(cx, cy, CELL_PX / 7, 11);
                 }
             }

@@ -84,6 +84,10 @@ fn every_obs_is_in_its_space_and_info_has_every_key() {
                 .map(String::as_str)
                 .collect();
             let mut documented = INFO_KEYS.to_vec();
+            if spec.family == TaskFamily::MultiOven {
+                // Every oven's state, documented as `Info::ovens`.
+                documented.push("ovens");
+            }
             keys.sort_unstable();
             documented.sort_unstable();
             assert_eq!(keys, documented, "{}", spec.id);
@@ -103,13 +107,15 @@ fn every_obs_is_in_its_space_and_info_has_every_key() {
             assert_eq!(json["agent"], serde_json::json!([cell / cols, cell % cols]));
             let carry = match (obs[cell * 6 + 2], obs[cell * 6 + 3]) {
                 (1, _) => "onion",
-                (_, 1) => "soup",
+                // Multi-oven soup shows its oven's code (6, 9, 12).
+                (_, c) if c != 0 => "soup",
                 _ => "nothing",
             };
             assert_eq!(json["carrying"], carry, "{}", spec.id);
             // The one-hot view has exactly one agent.
             let plane = env.layout().n_cells();
-            let agent: f32 = env.obs_onehot()[7 * plane..8 * plane].iter().sum();
+            let ch = env.onehot_encoder().agent_channel();
+            let agent: f32 = env.obs_onehot()[ch * plane..(ch + 1) * plane].iter().sum();
             assert_eq!(agent, 1.0);
             if t.done() {
                 env.reset(None, &ResetOptions::default()).unwrap();
@@ -127,6 +133,7 @@ fn the_observation_never_encodes_the_timer() {
         start: Some((1, 0)),
         td: None,
         never_ready: None,
+        ..ResetOptions::default()
     };
     env.reset(Some(0), &opts).unwrap();
     env.step(Action::Up).unwrap(); // to (0,0), next to the onion
@@ -269,6 +276,43 @@ fn random_config(family_index: usize, knobs: &[u32]) -> TaskConfig {
             ));
             sets.push(format!("under_buffer={}", k(6) % 5));
             sets.push(format!("over_buffer={}", k(7) % 5));
+        }
+        TaskFamily::MultiAnchor => {
+            let n = 2 + k(1) as usize % 3;
+            let mut a = 1 + k(2) % 5;
+            let anchors: Vec<String> = (0..n)
+                .map(|i| {
+                    a += 1 + k(3 + i) % 9;
+                    a.to_string()
+                })
+                .collect();
+            sets.push(format!("anchors={}", anchors.join(",")));
+            sets.push(format!("num_anchors={}", 2 + k(7) as usize % (n - 1)));
+        }
+        TaskFamily::Reproduction => {
+            let lo = 1 + k(1) % 10;
+            let prior = format!("{lo}-{}", lo + 1 + k(2) % 8);
+            let named = ["short", "intermediate", "long"][k(3) as usize % 3];
+            sets.push(format!("priors={prior},{named}"));
+            sets.push(format!("prior_cue={}", k(4) % 2 == 0));
+            sets.push(
+                if k(5) % 2 == 0 {
+                    "gains=1"
+                } else {
+                    "gains=1,1.5"
+                }
+                .into(),
+            );
+            sets.push(format!("foreperiod_max={}", 2 + k(6) % 5));
+            // Long enough for the latest paid production (validated).
+            sets.push("max_timesteps=120".into());
+        }
+        TaskFamily::MultiOven => {
+            let s = 1 + k(1) % 20;
+            sets.push(format!("short={s}"));
+            sets.push(format!("long={}", s + 1 + k(2) % 20));
+            sets.push(format!("ovens={}", 1 + k(3) % 3));
+            sets.push(format!("asynchronous={}", k(4) % 2 == 0));
         }
     }
     if spec.family == TaskFamily::Uncertainty {

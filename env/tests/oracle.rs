@@ -23,6 +23,7 @@ fn oracle_returns(
                 start: Some(start),
                 td: Some(td),
                 never_ready,
+                ..ResetOptions::default()
             };
             env.reset(Some(1), &opts).unwrap();
             let mut total = 0.0;
@@ -177,6 +178,7 @@ fn oracle_equals_the_brute_force_optimum_on_small_horizons() {
                     start: Some((r, c)),
                     td: Some(td),
                     never_ready: *never,
+                    ..ResetOptions::default()
                 };
                 env.reset(Some(1), &opts).unwrap();
                 let best = optimal_return(&env);

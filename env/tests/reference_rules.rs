@@ -11,6 +11,7 @@ fn env(id: &str, sets: &[&str], start: (usize, usize), td: u32) -> ChronoEnv {
         start: Some(start),
         td: Some(td),
         never_ready: None,
+        ..ResetOptions::default()
     };
     e.reset(Some(0), &opts).unwrap();
     e
@@ -307,6 +308,7 @@ fn uncertainty_button_readies_the_oven_at_a_reduced_reward() {
         start: Some((1, 0)),
         td: Some(5),
         never_ready: Some(never),
+        ..ResetOptions::default()
     };
     // Never-ready episode: the oven stays dark; the button at (4,1) readies it.
     let mut e = ChronoEnv::from_id("Uncertainty-v0", &["td=5"]).unwrap();
@@ -428,6 +430,7 @@ fn every_invalid_config_is_a_typed_error_naming_the_field() {
                     start,
                     td,
                     never_ready: never,
+                    ..ResetOptions::default()
                 },
             )
             .map(|_| ()),
@@ -480,6 +483,7 @@ fn reference_reset_duration_can_be_fixed_by_config_for_bisection_and_multi_timer
         start: None,
         td: Some(12),
         never_ready: None,
+        ..ResetOptions::default()
     };
     assert_eq!(e.reset(Some(1), &opts).unwrap().td, 12);
     assert!(make_config("MultiTimer-v0", &["cue=categorical", "tds=3,6", "td=4"]).is_err());

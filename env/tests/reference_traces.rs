@@ -3,7 +3,7 @@
 //! early checks, overcooked pickups, wrong counters, window edges and the
 //! second-onion deadlock. Every step must agree on obs, reward and terminated.
 
-use chronocooked_env::{Action, ChronoEnv, ResetOptions};
+use chronocooked_env::{Action, ChronoEnv, PerOven, ResetOptions};
 use serde::Deserialize;
 
 #[derive(Deserialize)]
@@ -37,6 +37,7 @@ fn replay_matches_reference_step_for_step() {
             start: Some(c.start),
             td: Some(c.td),
             never_ready: None,
+            ..ResetOptions::default()
         };
         env.reset(Some(0), &options).unwrap();
         assert_eq!(hex(env.obs_codes()), c.obs[0], "{}: reset obs", c.case);
@@ -76,5 +77,87 @@ fn replay_matches_reference_step_for_step() {
         cases += 1;
     }
     assert!(cases >= 600, "only {cases} cases");
+    assert!(steps >= 10_000, "only {steps} steps");
+}
+
+#[derive(Deserialize)]
+struct ExtensionCase {
+    case: String,
+    task: String,
+    set: Vec<String>,
+    /// Duration per oven (multi-anchor: the one oven's).
+    tds: Vec<u32>,
+    /// Asynchronous multi-oven: on-times of ovens 2…n.
+    on_times: Option<Vec<u32>>,
+    start: (usize, usize),
+    actions: Vec<i64>,
+    obs: Vec<String>,
+    reward: Vec<f32>,
+    terminated: Vec<bool>,
+}
+
+/// Golden traces of the reference's multi-anchor and multi-oven classes (593 cases:
+/// anchors 2–4 of five sets, 1–3 ovens synchronous and asynchronous with recorded on-times,
+/// wrong counters, probes, early interactions, second-onion deadlocks, TD 0, time-outs;
+/// generator and coverage in `golden/EXTENSIONS.md`). Every step must agree on obs,
+/// reward and terminated.
+#[test]
+fn extension_replay_matches_reference_step_for_step() {
+    let text = include_str!("golden/extension_traces.jsonl");
+    let (mut cases, mut steps, mut anchors, mut ovens) = (0, 0, 0, 0);
+    for line in text.lines() {
+        let c: ExtensionCase = serde_json::from_str(line).expect("valid golden line");
+        let mut env = ChronoEnv::from_id(&c.task, &c.set)
+            .unwrap_or_else(|e| panic!("{}: config rejected: {e}", c.case));
+        let multi_oven = c.task.starts_with("MultiOven");
+        let options = ResetOptions {
+            start: Some(c.start),
+            td: (!multi_oven).then(|| c.tds[0]),
+            oven_tds: multi_oven.then(|| PerOven::new("oven_tds", &c.tds).unwrap()),
+            on_times: c
+                .on_times
+                .as_ref()
+                .map(|t| PerOven::new("on_times", t).unwrap()),
+            ..ResetOptions::default()
+        };
+        env.reset(Some(0), &options)
+            .unwrap_or_else(|e| panic!("{}: reset rejected: {e}", c.case));
+        assert_eq!(hex(env.obs_codes()), c.obs[0], "{}: reset obs", c.case);
+        for (i, &a) in c.actions.iter().enumerate() {
+            let t = env.step(Action::from_code(a).unwrap()).unwrap();
+            assert_eq!(
+                hex(env.obs_codes()),
+                c.obs[i + 1],
+                "{}: obs at step {}",
+                c.case,
+                i + 1
+            );
+            assert!(
+                (t.reward - c.reward[i]).abs() < 1e-6,
+                "{}: reward at step {}: {} vs {}",
+                c.case,
+                i + 1,
+                t.reward,
+                c.reward[i]
+            );
+            assert_eq!(
+                t.terminated,
+                c.terminated[i],
+                "{}: terminated at step {}",
+                c.case,
+                i + 1
+            );
+            assert!(!t.truncated, "{}: reference mode never truncates", c.case);
+            steps += 1;
+        }
+        cases += 1;
+        if multi_oven {
+            ovens += 1;
+        } else {
+            anchors += 1;
+        }
+    }
+    assert!(anchors >= 250 && ovens >= 250, "{anchors} / {ovens} cases");
+    assert!(cases >= 500, "only {cases} cases");
     assert!(steps >= 10_000, "only {steps} steps");
 }

@@ -227,10 +227,17 @@ impl EpisodeRecord {
 
 /// Success criterion shared by training and evaluation: a delivery paying the full reward
 /// available in the episode — 1, or, when the oven never readies itself (uncertainty task),
-/// the reduced reward of a soup readied with the manual button.
+/// the reduced reward of a soup readied with the manual button; in the multi-oven task, the
+/// delivery that completes the episode with every soup at the counter of its duration; in
+/// the reproduction task, a delivery produced inside the reward window.
 pub fn is_success(info: &Info, reward: f32) -> bool {
+    if !info.ovens.is_empty() {
+        return info.events.has(Events::DELIVERY) && info.ovens.all_paid();
+    }
     info.events.has(Events::DELIVERY)
-        && (reward >= 0.999 || (info.never_ready && info.manual_stop_time >= 0 && reward > 0.0))
+        && (reward >= 0.999
+            || info.events.has(Events::IN_WINDOW)
+            || (info.never_ready && info.manual_stop_time >= 0 && reward > 0.0))
 }
 
 /// Plays one episode of `env` with `agent` from a reset with `seed` and `options`;
@@ -323,6 +330,7 @@ pub fn evaluate_agent(
                 start: Some(layout.coords(cell as usize)),
                 td: Some(td),
                 never_ready: None,
+                ..ResetOptions::default()
             };
             let s = derive_seed(seed, (k * 1000 + i) as u64);
             out.push(run_episode(

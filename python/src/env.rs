@@ -3,8 +3,8 @@
 
 use crate::errors::{env_err, value_err};
 use crate::info::info_dict;
+use chronocooked_env::ChronoEnv;
 use chronocooked_env::render::{PALETTE, ascii, frame};
-use chronocooked_env::{ChronoEnv, ResetOptions};
 use numpy::{IntoPyArray, PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -85,7 +85,10 @@ impl Env {
     }
 
     /// Starts an episode: `(obs, info)`. `seed` reseeds the env's RNG (None continues it).
-    #[pyo3(signature = (seed = None, start = None, td = None, never_ready = None))]
+    /// Multi-oven: `oven_tds` one duration per oven, `on_times` the asynchronous on-times of
+    /// the ovens after the first (steps).
+    #[pyo3(signature = (seed = None, start = None, td = None, never_ready = None, oven_tds = None, on_times = None, prior = None, gain = None))]
+    #[allow(clippy::too_many_arguments)]
     fn reset<'py>(
         &mut self,
         py: Python<'py>,
@@ -93,18 +96,20 @@ impl Env {
         start: Option<(usize, usize)>,
         td: Option<u32>,
         never_ready: Option<bool>,
+        oven_tds: Option<Vec<u32>>,
+        on_times: Option<Vec<u32>>,
+        prior: Option<u8>,
+        gain: Option<u8>,
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyDict>)> {
-        let info = self
-            .env
-            .reset(
-                seed,
-                &ResetOptions {
-                    start,
-                    td,
-                    never_ready,
-                },
-            )
-            .map_err(env_err)?;
+        let options = crate::errors::reset_options(
+            start,
+            td,
+            never_ready,
+            oven_tds,
+            on_times,
+            (prior, gain),
+        )?;
+        let info = self.env.reset(seed, &options).map_err(env_err)?;
         Ok((self.obs(py)?, info_dict(py, &info)?))
     }
 

@@ -24,3 +24,29 @@ pub fn value_err(msg: impl Into<String>) -> PyErr {
 pub fn runtime_err(msg: impl Into<String>) -> PyErr {
     PyRuntimeError::new_err(msg.into())
 }
+
+/// Reset options from the Python arguments (`context`: the reproduction task's prior and
+/// gain indices); per-oven lists of more than 3 values are a `ValueError` naming the option.
+pub fn reset_options(
+    start: Option<(usize, usize)>,
+    td: Option<u32>,
+    never_ready: Option<bool>,
+    oven_tds: Option<Vec<u32>>,
+    on_times: Option<Vec<u32>>,
+    context: (Option<u8>, Option<u8>),
+) -> Result<chronocooked_env::ResetOptions, PyErr> {
+    let per_oven = |field: &str, v: Option<Vec<u32>>| {
+        v.map(|v| chronocooked_env::PerOven::new(field, &v))
+            .transpose()
+            .map_err(env_err)
+    };
+    Ok(chronocooked_env::ResetOptions {
+        start,
+        td,
+        never_ready,
+        oven_tds: per_oven("oven_tds", oven_tds)?,
+        on_times: per_oven("on_times", on_times)?,
+        prior: context.0,
+        gain: context.1,
+    })
+}

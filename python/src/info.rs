@@ -1,7 +1,8 @@
 //! The Rust [`Info`] on the Python side: a dict of plain Python values (scalar env) or a
 //! dict of numpy arrays `[N]` (vector env).
 //!
-//! Codes used by the array form: `counter` −1 none, 0 main, 1 short, 2 long; `carrying`
+//! Codes used by the array form: `counter` −1 none, 0 main, 1 short, 2 long (multi-anchor:
+//! the counter number 1…4, named `anchor1`… in the dict form); `carrying`
 //! 0 nothing, 1 onion, 2 soup; `events` the event bit set (`EVENT_FLAGS`); `agent` `[N, 2]`
 //! (row, col).
 
@@ -10,11 +11,12 @@ use numpy::{IntoPyArray, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-fn counter_name(c: Option<Counter>) -> Option<&'static str> {
+fn counter_name(c: Option<Counter>) -> Option<String> {
     c.map(|c| match c {
-        Counter::Main => "main",
-        Counter::Short => "short",
-        Counter::Long => "long",
+        Counter::Main => "main".into(),
+        Counter::Short => "short".into(),
+        Counter::Long => "long".into(),
+        Counter::Anchor(i) => format!("anchor{i}"),
     })
 }
 
@@ -24,6 +26,7 @@ fn counter_code(c: Option<Counter>) -> i8 {
         Some(Counter::Main) => 0,
         Some(Counter::Short) => 1,
         Some(Counter::Long) => 2,
+        Some(Counter::Anchor(i)) => i as i8,
     }
 }
 
@@ -70,6 +73,16 @@ pub fn info_dict<'py>(py: Python<'py>, i: &Info) -> PyResult<Bound<'py, PyDict>>
     d.set_item("manual_stop_time", i.manual_stop_time)?;
     d.set_item("sink_count", i.sink_count)?;
     d.set_item("last_sink_timer", i.last_sink_timer)?;
+    if !i.ovens.is_empty() {
+        let n = i.ovens.n as usize;
+        let o = PyDict::new(py);
+        o.set_item("td", i.ovens.td[..n].to_vec())?;
+        o.set_item("timer", i.ovens.timer[..n].to_vec())?;
+        o.set_item("on_time", i.ovens.on_time[..n].to_vec())?;
+        o.set_item("off_time", i.ovens.off_time[..n].to_vec())?;
+        o.set_item("delivered", i.ovens.delivered[..n].to_vec())?;
+        d.set_item("ovens", o)?;
+    }
     Ok(d)
 }
 

@@ -1,23 +1,25 @@
 //! The task registry for Python: ids, documentation and parameters.
 
 use crate::errors::{env_err, value_err};
-use chronocooked_env::task::{ParamDoc, common_params};
+use chronocooked_env::task::params::{ParamRow, rows};
 use chronocooked_env::{all_tasks, make_config};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-fn param_dict<'py>(py: Python<'py>, p: &ParamDoc) -> PyResult<Bound<'py, PyDict>> {
+fn param_dict<'py>(py: Python<'py>, p: &ParamRow) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    d.set_item("key", p.key)?;
-    d.set_item("aliases", p.aliases.to_vec())?;
-    d.set_item("allowed", p.allowed)?;
-    d.set_item("doc", p.doc)?;
+    d.set_item("key", &p.key)?;
+    d.set_item("aliases", p.aliases.clone())?;
+    d.set_item("type", &p.kind)?;
+    d.set_item("default", &p.default)?;
+    d.set_item("allowed", &p.allowed)?;
+    d.set_item("doc", &p.doc)?;
     Ok(d)
 }
 
 /// Every registered task: a list of dicts with `id`, `family`, `tags`, `summary`,
-/// `description`, `source` and `params` (key, aliases, allowed values, doc; common
-/// parameters included).
+/// `description`, `source` and `params` (key, aliases, type, default, allowed values, doc;
+/// common parameters included), generated from the env crate's parameter tables.
 #[pyfunction]
 pub fn tasks(py: Python<'_>) -> PyResult<Bound<'_, PyList>> {
     let out = PyList::empty(py);
@@ -30,8 +32,8 @@ pub fn tasks(py: Python<'_>) -> PyResult<Bound<'_, PyList>> {
         d.set_item("description", t.description)?;
         d.set_item("source", t.source)?;
         let params = PyList::empty(py);
-        for p in t.family.params().iter().chain(common_params()) {
-            params.append(param_dict(py, p)?)?;
+        for p in rows(&t.default_config()) {
+            params.append(param_dict(py, &p)?)?;
         }
         d.set_item("params", params)?;
         out.append(d)?;

@@ -4,7 +4,7 @@
 use crate::env::ObsMode;
 use crate::errors::{env_err, value_err};
 use crate::info::info_arrays;
-use chronocooked_env::{Autoreset, ChronoEnv, ResetOptions, VecEnv as RustVecEnv};
+use chronocooked_env::{Autoreset, ChronoEnv, VecEnv as RustVecEnv};
 use numpy::{IntoPyArray, PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -138,7 +138,8 @@ impl VecEnv {
 
     /// Resets the envs whose `mask` entry is true (all when None): env `i` is reseeded
     /// with `seeds[i]` (None continues its RNG). Returns `(obs [N, …], info)`.
-    #[pyo3(signature = (seeds, mask = None, start = None, td = None, never_ready = None))]
+    #[pyo3(signature = (seeds, mask = None, start = None, td = None, never_ready = None, oven_tds = None, on_times = None, prior = None, gain = None))]
+    #[allow(clippy::too_many_arguments)]
     fn reset<'py>(
         &mut self,
         py: Python<'py>,
@@ -147,6 +148,10 @@ impl VecEnv {
         start: Option<(usize, usize)>,
         td: Option<u32>,
         never_ready: Option<bool>,
+        oven_tds: Option<Vec<u32>>,
+        on_times: Option<Vec<u32>>,
+        prior: Option<u8>,
+        gain: Option<u8>,
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyDict>)> {
         let n = self.envs.len();
         if seeds.len() != n {
@@ -163,11 +168,14 @@ impl VecEnv {
                 m.len()
             )));
         }
-        let options = ResetOptions {
+        let options = crate::errors::reset_options(
             start,
             td,
             never_ready,
-        };
+            oven_tds,
+            on_times,
+            (prior, gain),
+        )?;
         for (i, seed) in seeds.into_iter().enumerate() {
             if mask.as_ref().is_none_or(|m| m[i]) {
                 self.envs.reset_one(i, seed, &options).map_err(env_err)?;

@@ -36,3 +36,12 @@ def golden_cases():
 
     with open(ROOT / "env" / "tests" / "golden" / "reference_traces.jsonl") as f:
         return [json.loads(line) for line in f if line.strip()]
+
+
+@pytest.fixture(scope="session")
+def extension_cases():
+    """Golden traces of the reference's multi-anchor and multi-oven classes."""
+    import json
+
+    with open(ROOT / "env" / "tests" / "golden" / "extension_traces.jsonl") as f:
+        return [json.loads(line) for line in f if line.strip()]

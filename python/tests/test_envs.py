@@ -73,6 +73,51 @@ def test_golden_traces_of_the_original_replay_step_for_step(golden_cases):
     assert len(golden_cases) == 631 and steps > 5000
 
 
+def test_extension_golden_traces_replay_through_gymnasium_make(extension_cases):
+    """The reference's multi-anchor and multi-oven episodes, through ``gymnasium.make`` with
+    the reference's parameter names and the per-oven reset options."""
+    steps = 0
+    tasks = set()
+    for c in extension_cases:
+        params = dict(kv.split("=", 1) for kv in c["set"])
+        env = gym.make(f"chronocooked/{c['task']}", **params)
+        options = {"start": tuple(c["start"])}
+        if c["task"].startswith("MultiOven"):
+            options["oven_tds"] = c["tds"]
+            if c["on_times"] is not None:
+                options["on_times"] = c["on_times"]
+        else:
+            options["td"] = c["tds"][0]
+        obs, _ = env.reset(seed=0, options=options)
+        assert obs.tobytes().hex() == c["obs"][0], c["case"]
+        for i, a in enumerate(c["actions"]):
+            obs, r, term, trunc, _ = env.step(a)
+            assert obs.tobytes().hex() == c["obs"][i + 1], (c["case"], i)
+            assert abs(r - c["reward"][i]) < 1e-6, (c["case"], i)
+            assert term == c["terminated"][i], (c["case"], i)
+            assert not trunc, (c["case"], i)
+            steps += 1
+        tasks.add(c["task"])
+    assert tasks == {"MultiAnchor-v0", "MultiOven-v0"}
+    assert len(extension_cases) >= 500 and steps > 10000
+
+
+def test_multi_oven_reset_options_and_info():
+    env = gym.make("chronocooked/MultiOven-v0", n_ovens=3, asynchronous=True)
+    _, info = env.reset(seed=2, options={"oven_tds": [4, 12, 4], "on_times": [3, 7]})
+    assert info["ovens"]["td"] == [4, 12, 4]
+    assert info["ovens"]["on_time"] == [-1, 3, 7]
+    with pytest.raises(ValueError, match="on_times"):
+        env.reset(seed=2, options={"on_times": [3, 300]})
+    with pytest.raises(ValueError, match="oven_tds"):
+        env.reset(seed=2, options={"oven_tds": [4, 12]})
+    a = gym.make("chronocooked/MultiAnchor-v0", anchors=[3, 10, 20, 25])
+    _, info = a.reset(seed=0, options={"td": 20})
+    assert info["td"] == 20
+    with pytest.raises(ValueError, match="anchors"):
+        gym.make("chronocooked/MultiAnchor-v0", anchors=[3, 10, 20, 25, 30])
+
+
 def test_reference_aliases_and_reset_options():
     env = gym.make("chronocooked/FixedInterval-v0", oven_duration=7, max_timesteps=50,
                    reference_compat=True)

@@ -61,6 +61,7 @@ pub fn evaluate_policy(
             start: Some(start),
             td: Some(td),
             never_ready: matches!(config.params, TaskParams::Uncertainty { .. }).then_some(false),
+            ..ResetOptions::default()
         };
         envs.reset_one(i, Some(chronocooked_env::derive_seed(7, i as u64)), &opts)?;
     }

@@ -44,6 +44,7 @@ fn a_button_delivery_is_a_success_only_when_the_oven_never_readies() {
             start: Some((1, 1)),
             td: None,
             never_ready: Some(never_ready),
+            ..ResetOptions::default()
         };
         let rec = run_episode(&mut env, &mut oracle, 0, &opts, None).unwrap();
         let last = rec.infos.last().unwrap();

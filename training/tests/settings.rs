@@ -26,6 +26,11 @@ fn sample(rule: &Rule, avoid: &str) -> String {
         Rule::Text => vec!["some/run".into()],
         Rule::Optional(inner) => vec![sample(inner, avoid), "none".into()],
         Rule::List(inner) => vec![format!("{},{}", sample(inner, ""), sample(inner, ""))],
+        Rule::Mapped { inner, synonyms } => {
+            let mut v = vec![sample(inner, avoid)];
+            v.extend(synonyms.iter().map(|(s, _)| s.to_string()));
+            v
+        }
     };
     let ok: Vec<&String> = candidates
         .iter()

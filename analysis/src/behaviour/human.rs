@@ -26,6 +26,9 @@ fn condition_of(config: &TaskConfig, td: u32) -> Condition {
         TaskParams::Uncertainty { td, .. } => {
             (ConditionKind::Uncertainty, vec![format!("td={td}")], None)
         }
+        TaskParams::MultiAnchor { .. } => (ConditionKind::MultiAnchor, Vec::new(), None),
+        TaskParams::MultiOven { .. } => (ConditionKind::MultiOven, Vec::new(), None),
+        TaskParams::Reproduction { .. } => (ConditionKind::Reproduction, Vec::new(), None),
     };
     Condition {
         kind,
@@ -34,6 +37,7 @@ fn condition_of(config: &TaskConfig, td: u32) -> Condition {
         td,
         never_ready: None,
         factor,
+        context: None,
     }
 }
 

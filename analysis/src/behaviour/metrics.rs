@@ -116,6 +116,12 @@ pub struct Metrics {
     pub dual: Option<DualMetrics>,
     /// Uncertainty task.
     pub uncertainty: Option<UncertaintyMetrics>,
+    /// Multi-anchor categorization (when its conditions were played).
+    #[serde(default)]
+    pub multi_anchor: Option<crate::behaviour::categorization::MultiAnchorMetrics>,
+    /// Multi-oven bisection (when its conditions were played).
+    #[serde(default)]
+    pub multi_oven: Option<crate::behaviour::concurrent::MultiOvenMetrics>,
 }
 
 /// Multi-timer metrics.
@@ -207,6 +213,8 @@ pub fn compute_metrics(model: &str, records: &[EvalRecord], seed: u64) -> Metric
         multi_timer: multi_timer_metrics(records),
         dual: dual_metrics(records),
         uncertainty: uncertainty_metrics(records),
+        multi_anchor: crate::behaviour::categorization::multi_anchor_metrics(records, seed),
+        multi_oven: crate::behaviour::concurrent::multi_oven_metrics(records, seed),
     }
 }
 

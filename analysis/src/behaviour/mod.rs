@@ -4,11 +4,17 @@
 //! * [`psychometric`] — bisection P(long), logistic fit by binomial maximum likelihood,
 //!   BP / T25 / T75 / DL / WF with bootstrap intervals;
 //! * [`peak`] — peak-interval Gaussian(+baseline) fit and single-trial start/stop analysis;
+//! * [`categorization`] — multi-anchor choices, category error rates, one psychometric
+//!   boundary per pair of neighbouring anchors, WF constancy across boundaries;
+//! * [`concurrent`] — multi-oven per-oven curves, interference against the one-oven curve,
+//!   accuracy by onset offset, delivery order;
 //! * [`metrics`] — the metrics of one evaluation from its per-episode records;
 //! * [`aggregate`] — headline numbers, mean ± SD across seeds, episodes to adapt;
 //! * [`human`] — recorded human play (`env play`) as evaluation records.
 
 pub mod aggregate;
+pub mod categorization;
+pub mod concurrent;
 pub mod foc;
 pub mod human;
 pub mod metrics;

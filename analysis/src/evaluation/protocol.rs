@@ -30,6 +30,7 @@ fn cond(kind: ConditionKind, task: &str, env: Vec<String>, td: u32) -> Condition
         td,
         never_ready: None,
         factor: None,
+        context: None,
     }
 }
 
@@ -92,6 +93,43 @@ pub fn reference_conditions(task: &str, env: &[String]) -> Result<Vec<Condition>
             }
         }
         TaskParams::Dual { td, .. } => out.push(cond(ConditionKind::Dual, task, env.clone(), *td)),
+        // The reference's probes: every integer 1 … (largest active anchor) + 4.
+        TaskParams::MultiAnchor { .. } => {
+            let largest = config.params.active_anchors().map_or(1, |a| a[a.len() - 1]);
+            for t in 1..=largest + 4 {
+                out.push(cond(ConditionKind::MultiAnchor, task, env.clone(), t));
+            }
+        }
+        // Every sample interval of every prior, at every gain (the context set by reset
+        // options, so the cue shows as in training).
+        TaskParams::Reproduction { priors, gains, .. } => {
+            for (p, prior) in priors.iter().enumerate() {
+                let (lo, hi) = chronocooked_env::task::parse_prior(prior)?;
+                for (g, gain) in gains.iter().enumerate() {
+                    for ts in lo..=hi {
+                        let mut c = cond(ConditionKind::Reproduction, task, env.clone(), ts);
+                        c.factor = Some(f64::from(*gain));
+                        c.context = Some([p as u8, g as u8]);
+                        out.push(c);
+                    }
+                }
+            }
+        }
+        // The reference's probes: TD 1 … L + 4, the same duration for every oven; with
+        // several ovens the same probes on one oven too (the agent's own baseline for the
+        // interference between ovens).
+        TaskParams::MultiOven { long, ovens, .. } => {
+            for t in 1..=long + 4 {
+                out.push(cond(ConditionKind::MultiOven, task, env.clone(), t));
+            }
+            if *ovens > 1 {
+                let mut one = env.clone();
+                one.push("ovens=1".into());
+                for t in 1..=long + 4 {
+                    out.push(cond(ConditionKind::MultiOven, task, one.clone(), t));
+                }
+            }
+        }
         TaskParams::Uncertainty { td, .. } => {
             for nr in [false, true] {
                 let mut c = cond(ConditionKind::Uncertainty, task, env.clone(), *td);
@@ -151,6 +189,9 @@ pub fn run_protocol_recorded(
                 start: Some(start),
                 td: Some(c.td),
                 never_ready: c.never_ready,
+                prior: c.context.map(|x| x[0]),
+                gain: c.context.map(|x| x[1]),
+                ..ResetOptions::default()
             };
             let s = derive_seed(seed, (ci as u64) << 20 | k as u64);
             let episode = run_episode(&mut env, agent, s, &options, recorder.as_deref_mut())?;

@@ -299,6 +299,7 @@ pub fn export_eval(records: &[EvalRecord], dir: &Path) -> Result<Vec<PathBuf>, S
                     chronocooked_env::Counter::Main => 0,
                     chronocooked_env::Counter::Short => 1,
                     chronocooked_env::Counter::Long => 2,
+                    chronocooked_env::Counter::Anchor(i) => i64::from(i),
                 })
         })
         .collect();

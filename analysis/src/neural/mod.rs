@@ -16,6 +16,7 @@ pub mod decode;
 pub mod geometry;
 pub mod oscillation;
 pub mod shape;
+pub mod speed;
 pub mod summary;
 
 use crate::behaviour::foc::linear_fit;

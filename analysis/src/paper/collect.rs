@@ -83,7 +83,7 @@ pub struct EpisodeRow {
     pub foc: Option<i32>,
     /// First oven check counting oven checks only (the lab's earlier convention).
     pub foc_checks: Option<i32>,
-    /// Delivery counter: 0 main, 1 short, 2 long, −1 none (the paper's code).
+    /// Delivery counter: 0 main, 1 short, 2 long (multi-anchor: 1…4), −1 none (the paper's code).
     pub counter: i8,
     /// Steps from the onion put to the soup pickup (−1: never taken).
     pub oven_off_time: i32,
@@ -98,6 +98,7 @@ impl EpisodeRow {
             Some(Counter::Main) => 0,
             Some(Counter::Short) => 1,
             Some(Counter::Long) => 2,
+            Some(Counter::Anchor(i)) => i as i8,
             None => -1,
         };
         EpisodeRow {

@@ -154,6 +154,7 @@ pub fn evaluate_levels(run: &Path, out: &Path, seed: u64) -> Result<Option<usize
                     td,
                     never_ready: None,
                     factor: None,
+                    context: None,
                 })
                 .collect()
         };

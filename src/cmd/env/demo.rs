@@ -25,6 +25,20 @@ fn conditions(env: &ChronoEnv) -> Vec<(u32, Option<bool>)> {
         TaskParams::Bisection { short, long } => vec![(*short, None), (*long, None)],
         TaskParams::MultiTimer { tds, .. } => tds.iter().map(|&t| (t, None)).collect(),
         TaskParams::Uncertainty { td, .. } => vec![(*td, Some(false)), (*td, Some(true))],
+        TaskParams::MultiAnchor { .. } => env
+            .config()
+            .params
+            .active_anchors()
+            .unwrap_or(&[])
+            .iter()
+            .map(|&t| (t, None))
+            .collect(),
+        TaskParams::MultiOven { short, long, .. } => vec![(*short, None), (*long, None)],
+        TaskParams::Reproduction { priors, .. } => priors
+            .iter()
+            .filter_map(|p| chronocooked_env::task::parse_prior(p).ok())
+            .flat_map(|(lo, hi)| [(lo, None), (hi, None)])
+            .collect(),
         TaskParams::FixedInterval { td }
         | TaskParams::PeakInterval { td, .. }
         | TaskParams::Dual { td, .. } => vec![(*td, None)],
@@ -57,6 +71,7 @@ pub fn run(args: DemoArgs) -> Result<()> {
                     start: Some(start),
                     td: Some(td),
                     never_ready,
+                    ..ResetOptions::default()
                 };
                 let seed = args.seed + (i * 1000 + j) as u64;
                 for (k, policy) in [RenderPolicy::Oracle, RenderPolicy::Random]
@@ -86,6 +101,7 @@ pub fn run(args: DemoArgs) -> Result<()> {
             start: Some(starts[starts.len() - 1]),
             td: Some(td),
             never_ready,
+            ..ResetOptions::default()
         };
         let (frames, _, _) = play_episode(&mut env, args.seed, &options, RenderPolicy::Oracle)?;
         let images: Vec<_> = frames

@@ -3,7 +3,7 @@
 
 use anyhow::{Context, Result, bail};
 use chronocooked_env::{
-    Action, ChronoEnv, Oracle, ResetOptions, all_tasks, parse_action_list, render,
+    Action, ChronoEnv, Oracle, PerOven, ResetOptions, all_tasks, parse_action_list, render,
     task::common_params, trace,
 };
 use clap::{Args, Subcommand, ValueEnum};
@@ -30,9 +30,19 @@ pub struct TaskArgs {
     /// Start cell `row,col` (must be free); drawn uniformly if omitted.
     #[arg(long, value_name = "ROW,COL")]
     pub start: Option<String>,
-    /// Target duration of the episode (steps); drawn by the task if omitted.
+    /// Target duration of the episode (steps; reproduction: the sample interval ts); drawn
+    /// by the task if omitted. Multi-oven: one value for every oven, or one per oven (`6,12`).
+    #[arg(long, value_name = "STEPS[,STEPS…]")]
+    pub td: Option<String>,
+    /// Asynchronous multi-oven: the on-time of each oven after the first (steps, `3,7`).
+    #[arg(long, value_name = "STEPS[,STEPS…]")]
+    pub on_times: Option<String>,
+    /// Reproduction: the index of the episode's prior (in `priors`); drawn if omitted.
     #[arg(long)]
-    pub td: Option<u32>,
+    pub prior: Option<u8>,
+    /// Reproduction: the index of the episode's gain (in `gains`); drawn if omitted.
+    #[arg(long)]
+    pub gain: Option<u8>,
     /// Uncertainty task: force a never-ready (true) or normal (false) episode.
     #[arg(long)]
     pub never_ready: Option<bool>,
@@ -64,15 +74,46 @@ impl TaskArgs {
                 })?)
             }
         };
+        let td = self
+            .td
+            .as_deref()
+            .map(|t| steps_list("--td", t))
+            .transpose()?;
+        let on_times = self
+            .on_times
+            .as_deref()
+            .map(|t| steps_list("--on-times", t))
+            .transpose()?;
+        let (td, oven_tds) = match td {
+            Some(v) if v.len() == 1 => (Some(v[0]), None),
+            Some(v) => (None, Some(PerOven::new("oven_tds", &v)?)),
+            None => (None, None),
+        };
         Ok((
             env,
             ResetOptions {
                 start,
-                td: self.td,
+                td,
                 never_ready: self.never_ready,
+                oven_tds,
+                on_times: on_times.map(|v| PerOven::new("on_times", &v)).transpose()?,
+                prior: self.prior,
+                gain: self.gain,
             },
         ))
     }
+}
+
+/// A comma-separated list of whole steps (`6,12`).
+fn steps_list(flag: &str, text: &str) -> Result<Vec<u32>> {
+    text.split(',')
+        .map(|x| x.trim().parse::<u32>())
+        .collect::<std::result::Result<Vec<_>, _>>()
+        .ok()
+        .filter(|v| !v.is_empty())
+        .with_context(|| {
+            format!("{flag} `{text}`: expected comma-separated whole steps, e.g. 6,12")
+        })
 }
 
 /// Which policy drives a rendered episode.
@@ -95,6 +136,9 @@ pub enum EnvCommand {
         /// Print JSON instead of text.
         #[arg(long)]
         json: bool,
+        /// Print the Markdown table of every task parameter (the README's).
+        #[arg(long, conflicts_with = "json")]
+        markdown: bool,
     },
     /// Replay a comma-separated action list; prints JSON lines (reset, then one per step).
     Replay {
@@ -143,7 +187,11 @@ pub enum EnvCommand {
 /// Runs an `env` subcommand.
 pub fn run(cmd: EnvCommand) -> Result<()> {
     match cmd {
-        EnvCommand::List { tag, json } => list(tag.as_deref(), json),
+        EnvCommand::List { markdown: true, .. } => {
+            print!("{}", chronocooked_env::task::params::markdown());
+            Ok(())
+        }
+        EnvCommand::List { tag, json, .. } => list(tag.as_deref(), json),
         EnvCommand::Replay { task, actions } => {
             let (mut env, options) = task.build()?;
             let actions = parse_action_list(&actions)?;
@@ -193,13 +241,13 @@ fn list(tag: Option<&str>, json: bool) -> Result<()> {
                 "description": t.description,
                 "source": t.source,
                 "defaults": t.default_config(),
-                "params": t.family.params(),
+                "params": chronocooked_env::task::params::rows(&t.default_config()),
             });
             println!("{value}");
         }
         return Ok(());
     }
-    for t in tasks {
+    for t in &tasks {
         let cfg = t.default_config();
         println!("{}  [{}]", t.id, t.tags.join(", "));
         println!("  {}", t.summary);
@@ -209,21 +257,34 @@ fn list(tag: Option<&str>, json: bool) -> Result<()> {
             "  layout: {}  max_timesteps: {}",
             cfg.layout, cfg.max_timesteps
         );
-        for p in t.family.params() {
-            let aliases = if p.aliases.is_empty() {
-                String::new()
-            } else {
-                format!(" (alias {})", p.aliases.join(", "))
-            };
-            println!("    {}{}: {} — {}", p.key, aliases, p.allowed, p.doc);
+        let rows = chronocooked_env::task::params::rows(&cfg);
+        let common: Vec<&str> = common_params().iter().map(|p| p.key).collect();
+        for r in rows.iter().filter(|r| !common.contains(&r.key.as_str())) {
+            print_param(r);
         }
         println!();
     }
-    println!("Parameters of every task:");
-    for p in common_params() {
-        println!("    {}: {} — {}", p.key, p.allowed, p.doc);
+    println!("Parameters of every task (defaults of the first task listed):");
+    let cfg = tasks[0].default_config();
+    for r in chronocooked_env::task::params::rows(&cfg)
+        .iter()
+        .filter(|r| common_params().iter().any(|p| p.key == r.key))
+    {
+        print_param(r);
     }
     Ok(())
+}
+
+fn print_param(r: &chronocooked_env::task::params::ParamRow) {
+    let aliases = if r.aliases.is_empty() {
+        String::new()
+    } else {
+        format!(" (alias {})", r.aliases.join(", "))
+    };
+    println!(
+        "    {}{}: {} [default {}] — {}",
+        r.key, aliases, r.allowed, r.default, r.doc
+    );
 }
 
 fn all_tags() -> Vec<&'static str> {

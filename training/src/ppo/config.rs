@@ -171,6 +171,28 @@ pub enum Curriculum {
         #[serde(default)]
         warmup: bool,
     },
+    /// Multi-anchor (reference): start with the first 2 anchors and add the next anchor's
+    /// counter once the mean reward of the last `window` episodes, all finished since the
+    /// last change, reaches `thresholds[level]` (reference: 0.98, 0.96); the envs are
+    /// rebuilt and reset at a change, as the reference's `set_env`.
+    MultiAnchor {
+        /// Reward thresholds, one per level change.
+        thresholds: Vec<f32>,
+        /// Episodes averaged.
+        window: usize,
+        /// Clear Adam's moments at a change (the reference's multi-anchor scripts do).
+        clear_adam: bool,
+    },
+    /// Multi-oven (reference): start with one oven and add the next (up to the task's
+    /// `ovens`) under the same rule (reference: 0.95, 0.90; Adam kept).
+    MultiOven {
+        /// Reward thresholds, one per level change.
+        thresholds: Vec<f32>,
+        /// Episodes averaged.
+        window: usize,
+        /// Clear Adam's moments at a change (the reference's multi-oven scripts do not).
+        clear_adam: bool,
+    },
     /// Uncertainty: never-ready probability ramps linearly from `start` to `end`
     /// over the first `ramp_fraction` of the budget.
     Uncertainty {
@@ -198,9 +220,71 @@ impl Curriculum {
                 end: 0.2,
                 ramp_fraction: 0.5,
             }),
+            "multi_anchor" => Some(Curriculum::MultiAnchor {
+                thresholds: vec![0.98, 0.96],
+                window: 100,
+                clear_adam: true,
+            }),
+            "multi_oven" => Some(Curriculum::MultiOven {
+                thresholds: vec![0.95, 0.90],
+                window: 100,
+                clear_adam: false,
+            }),
             _ => None,
         }
     }
+
+    /// Curricula that grow the task (multi-anchor counters, multi-oven ovens): the task
+    /// parameter that grows, its first value, the thresholds, the window and whether a
+    /// change clears Adam.
+    pub fn growth(&self) -> Option<Growth<'_>> {
+        match self {
+            Curriculum::MultiAnchor {
+                thresholds,
+                window,
+                clear_adam,
+            } => Some(Growth {
+                key: "num_anchors",
+                first: 2,
+                thresholds,
+                window: *window,
+                clear_adam: *clear_adam,
+            }),
+            Curriculum::MultiOven {
+                thresholds,
+                window,
+                clear_adam,
+            } => Some(Growth {
+                key: "ovens",
+                first: 1,
+                thresholds,
+                window: *window,
+                clear_adam: *clear_adam,
+            }),
+            _ => None,
+        }
+    }
+
+    /// Whether the curriculum moves through levels whose policies are kept
+    /// (`run/levels/level-L.bpk`).
+    pub fn has_levels(&self) -> bool {
+        matches!(self, Curriculum::MultiTimer { .. }) || self.growth().is_some()
+    }
+}
+
+/// A curriculum that grows the task by one counter or oven per level.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Growth<'a> {
+    /// The task parameter that grows (`num_anchors`, `ovens`).
+    pub key: &'static str,
+    /// Its value at level 0.
+    pub first: usize,
+    /// Mean reward that ends each level.
+    pub thresholds: &'a [f32],
+    /// Episodes averaged.
+    pub window: usize,
+    /// Clear Adam's moments at a change.
+    pub clear_adam: bool,
 }
 
 /// How task parameters are set (named in unknown-key errors).

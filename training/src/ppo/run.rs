@@ -8,7 +8,7 @@
 
 use crate::error::TrainError;
 use crate::evaluate::{eval_tds, evaluate_policy, success_rate};
-use crate::ppo::config::{Curriculum, TrainConfig};
+use crate::ppo::config::TrainConfig;
 use crate::ppo::state::UpdateLog;
 use crate::ppo::trainer::Trainer;
 use crate::run_dir::{RunDir, RunSummary, curve_header, expected_policy, read_policy_config};
@@ -124,7 +124,7 @@ pub fn run_training(
     }
     run.write_checkpoint(trainer.state(), cfg.keep_checkpoints)?;
     run.save_model(trainer.policy(), run_folder::MODEL)?;
-    if matches!(cfg.curriculum, Curriculum::MultiTimer { .. }) {
+    if cfg.curriculum.has_levels() {
         // The last level reached keeps the final policy (the paper's newest checkpoint).
         run.save_level_model(trainer.state().curriculum_level, trainer.policy())?;
     }

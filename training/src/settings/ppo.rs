@@ -10,7 +10,7 @@ const fn multi_timer(
     doc: &'static str,
 ) -> Spec {
     Spec {
-        only_with: Some("curriculum=multi_timer"),
+        only_with: Some("curriculum=multi_timer, multi_anchor or multi_oven"),
         ..spec(key, path, rule, doc)
     }
 }
@@ -23,7 +23,13 @@ const fn uncertainty(key: &'static str, path: &'static [&'static str], doc: &'st
 }
 
 /// Names of the curricula (`curriculum=NAME` starts the named one with its defaults).
-pub const CURRICULA: &[&str] = &["none", "multi_timer", "uncertainty"];
+pub const CURRICULA: &[&str] = &[
+    "none",
+    "multi_timer",
+    "uncertainty",
+    "multi_anchor",
+    "multi_oven",
+];
 
 /// Every setting of a PPO run, in display order. Not settings: `task` and `model`
 /// (`--task`, `--model`), `preset` (`--preset`) and the task parameters, set as
@@ -230,12 +236,24 @@ pub const PPO_SETTINGS: &[Spec] = &[
         POSITIVE_COUNT,
         "episodes averaged for the thresholds",
     ),
-    multi_timer(
-        "curriculum_warmup",
-        &["curriculum", "warmup"],
-        Rule::Bool,
-        "level 0: one lower-bounded timer with reduced reward before the first TD",
-    ),
+    Spec {
+        only_with: Some("curriculum=multi_anchor or multi_oven"),
+        ..spec(
+            "curriculum_clear_adam",
+            &["curriculum", "clear_adam"],
+            Rule::Bool,
+            "clear Adam's moments when a level adds a counter or an oven",
+        )
+    },
+    Spec {
+        only_with: Some("curriculum=multi_timer"),
+        ..spec(
+            "curriculum_warmup",
+            &["curriculum", "warmup"],
+            Rule::Bool,
+            "level 0: one lower-bounded timer with reduced reward before the first TD",
+        )
+    },
     uncertainty(
         "never_ready_start",
         &["curriculum", "start"],

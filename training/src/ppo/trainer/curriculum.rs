@@ -152,3 +152,101 @@ pub(super) fn set_warmup(
     }
     Ok(())
 }
+
+/// The task of growth level `level` (multi-anchor: `2 + level` counters; multi-oven:
+/// `1 + level` ovens); `None` when the curriculum does not grow the task.
+pub(super) fn growth_task(
+    cfg: &crate::ppo::config::TrainConfig,
+    level: usize,
+) -> Result<Option<chronocooked_env::TaskConfig>, TrainError> {
+    let Some(g) = cfg.curriculum.growth() else {
+        return Ok(None);
+    };
+    let mut env = cfg.env.clone();
+    env.push(format!("{}={}", g.key, g.first + level));
+    Ok(Some(make_config(&cfg.task, &env)?))
+}
+
+/// The last level of a growing curriculum: the configured task's counters (multi-anchor)
+/// or ovens (multi-oven) less the first level's. Errors when the task does not grow that way.
+pub(super) fn growth_last_level(
+    cfg: &crate::ppo::config::TrainConfig,
+) -> Result<usize, TrainError> {
+    let Some(g) = cfg.curriculum.growth() else {
+        return Ok(0);
+    };
+    let task = make_config(&cfg.task, &cfg.env)?;
+    let last = match (&task.params, g.key) {
+        (TaskParams::MultiAnchor { .. }, "num_anchors") => {
+            task.params.active_anchors().map_or(2, <[u32]>::len)
+        }
+        (TaskParams::MultiOven { ovens, .. }, "ovens") => *ovens as usize,
+        _ => {
+            return Err(TrainError::InvalidParam {
+                field: "curriculum".into(),
+                value: g.key.into(),
+                allowed: format!(
+                    "a curriculum of the task's family (task {} has no `{}`)",
+                    cfg.task, g.key
+                ),
+            });
+        }
+    };
+    Ok(last - g.first)
+}
+
+impl Trainer {
+    /// Multi-anchor / multi-oven curricula: checked at the rollout's end, as the
+    /// reference's callback. A level is left once the mean reward of the last `window`
+    /// episodes, all finished since the last change, reaches `thresholds[level]`; then the
+    /// envs are rebuilt with one more counter or oven and reset (every episode starts
+    /// anew, recurrent states at zero), and Adam is cleared where the curriculum says so.
+    pub(super) fn advance_growth(&mut self) -> Result<(), TrainError> {
+        let Some(g) = self.cfg.curriculum.growth() else {
+            return Ok(());
+        };
+        let (window, clear_adam) = (g.window, g.clear_adam);
+        let level = self.state.curriculum_level;
+        let threshold = g
+            .thresholds
+            .get(level)
+            .or(g.thresholds.last())
+            .copied()
+            .unwrap_or(0.9);
+        if level >= growth_last_level(&self.cfg)? || self.state.since_change < window {
+            return Ok(());
+        }
+        let recent = self.state.recent.iter().rev().take(window);
+        let mean = recent.map(|e| e.ret).sum::<f32>() / window as f32;
+        if mean < threshold {
+            return Ok(());
+        }
+        self.set_growth_level(level + 1)?;
+        if clear_adam {
+            let params = self.state.adam.params;
+            self.state.adam = crate::ppo::adam::Adam::new(self.state.theta.len(), params);
+        }
+        Ok(())
+    }
+
+    /// Rebuilds the envs at growth level `level` and starts every episode anew.
+    pub(super) fn set_growth_level(&mut self, level: usize) -> Result<(), TrainError> {
+        let Some(task) = growth_task(&self.cfg, level)? else {
+            return Ok(());
+        };
+        let n = self.cfg.ppo.n_envs;
+        self.envs = VecEnv::new(&task, n, chronocooked_env::Autoreset::SameStep)?;
+        self.envs.reset(chronocooked_env::derive_seed(
+            self.cfg.seed,
+            0x5EED + level as u64,
+        ));
+        self.state.curriculum_level = level;
+        self.state.since_change = 0;
+        self.state.keep.fill(0.0);
+        self.state.ep_return.fill(0.0);
+        self.state.ep_len.fill(0);
+        self.state.core_state = None;
+        self.state.envs = self.envs.snapshot();
+        Ok(())
+    }
+}

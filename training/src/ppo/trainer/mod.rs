@@ -163,6 +163,9 @@ impl Trainer {
         {
             state.never_ready_prob = *never_ready_prob as f64;
         }
+        // Growing curricula start with the fewest counters / ovens.
+        let grows = cfg.curriculum.growth().is_some();
+        curriculum::growth_last_level(&cfg)?;
         let rollout = Rollout::new(p.n_envs, p.n_steps, encoder.len());
         let mut t = Trainer {
             scratch_obs: vec![0.0; p.n_envs * encoder.len()],
@@ -178,6 +181,9 @@ impl Trainer {
             state,
             left_level: None,
         };
+        if grows {
+            t.set_growth_level(0)?;
+        }
         t.apply_curriculum()?;
         Ok(t)
     }
@@ -206,6 +212,19 @@ impl Trainer {
                 let task = make_config(&t.cfg.task, &t.cfg.env)?;
                 set_warmup(&mut t.envs, &task, state.curriculum_level == 0)?;
             }
+        }
+        if t.cfg.curriculum.growth().is_some() {
+            let last = curriculum::growth_last_level(&t.cfg)?;
+            if state.curriculum_level > last {
+                return Err(TrainError::BadState(crate::ppo::state::StateError {
+                    field: "curriculum_level".into(),
+                    reason: format!(
+                        "{} (allowed: 0..={last}, the levels of this curriculum)",
+                        state.curriculum_level
+                    ),
+                }));
+            }
+            t.set_growth_level(state.curriculum_level)?;
         }
         t.envs
             .restore(&state.envs)
@@ -302,6 +321,7 @@ impl Trainer {
         // (the environments change now; the optimisation below does not use them).
         let level = self.state.curriculum_level;
         self.advance_multi_timer()?;
+        self.advance_growth()?;
         if self.state.curriculum_level != level {
             self.left_level = Some((level, self.state.theta.clone()));
         }

@@ -8,10 +8,11 @@
 //! Step order (reference): apply the action (move, or interact — which may pay),
 //! then if the oven is on `timer += 1`, then (tasks with a ready cue) the oven
 //! shows ready if `timer == TD`; then the time limit (`timestep > max_timesteps`).
+//! The multi-oven task has its own step in [`multi_oven`].
 
 use crate::action::Action;
 use crate::error::EnvError;
-use crate::info::{Carry, Counter, Events, Info};
+use crate::info::{Carry, Counter, Events, Info, OvenSet};
 use crate::layout::ObjectKind;
 pub use crate::spec::{CODE_CHANNELS, derive_seed};
 pub(crate) use crate::spec::{Rules, Spec};
@@ -21,15 +22,61 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 
+mod multi_oven;
+mod reproduction;
+pub use multi_oven::MultiOvenState;
+pub use reproduction::RsgState;
+
 /// Options of [`Kitchen::reset`]: fix what the task would otherwise draw at random.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct ResetOptions {
     /// Start cell `(row, col)`; must be free. Drawn uniformly when `None`.
     pub start: Option<(usize, usize)>,
-    /// Target duration (steps) of this episode. Drawn per task when `None`.
+    /// Target duration (steps) of this episode (multi-oven: of every oven). Drawn per task
+    /// when `None`.
     pub td: Option<u32>,
     /// Uncertainty task: force a never-ready (true) or normal (false) episode.
     pub never_ready: Option<bool>,
+    /// Multi-oven task: each oven's duration (steps), one per oven.
+    pub oven_tds: Option<PerOven>,
+    /// Asynchronous multi-oven task: the on-times of ovens 2…n (the step at whose end each
+    /// starts by itself), one per oven after the first.
+    pub on_times: Option<PerOven>,
+    /// Reproduction task: the index of the episode's prior (drawn when `None`).
+    pub prior: Option<u8>,
+    /// Reproduction task: the index of the episode's gain (drawn when `None`).
+    pub gain: Option<u8>,
+}
+
+/// Up to three values, one per oven (durations or on-times, in steps).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct PerOven {
+    len: u8,
+    values: [u32; 3],
+}
+
+impl PerOven {
+    /// The values of `items` (at most 3).
+    pub fn new(field: &str, items: &[u32]) -> Result<Self, EnvError> {
+        if items.len() > 3 {
+            return Err(EnvError::reset_option(
+                field,
+                format!("{items:?}"),
+                "at most 3 values (one per oven)",
+            ));
+        }
+        let mut values = [0; 3];
+        values[..items.len()].copy_from_slice(items);
+        Ok(PerOven {
+            len: items.len() as u8,
+            values,
+        })
+    }
+
+    /// The values.
+    pub fn as_slice(&self) -> &[u32] {
+        &self.values[..self.len as usize]
+    }
 }
 
 /// Result of one step (the observation is written to the caller's buffer).
@@ -89,6 +136,12 @@ pub struct KitchenSnapshot {
     pub counter: Option<Counter>,
     /// Saved `done`.
     pub done: bool,
+    /// Saved multi-oven state (absent for the other tasks).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub multi_oven: Option<MultiOvenState>,
+    /// Saved reproduction context (absent for the other tasks).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reproduction: Option<RsgState>,
 }
 
 /// State and RNG of one environment.
@@ -111,6 +164,10 @@ pub struct Kitchen {
     last_sink_timer: i32,
     counter: Option<Counter>,
     done: bool,
+    /// Every oven of a multi-oven episode (unused elsewhere).
+    mo: MultiOvenState,
+    /// The reproduction episode's context (unused elsewhere).
+    rsg: RsgState,
 }
 
 impl Kitchen {
@@ -139,6 +196,8 @@ impl Kitchen {
             last_sink_timer: -1,
             counter: None,
             done: true,
+            mo: MultiOvenState::default(),
+            rsg: RsgState::default(),
         }
     }
 
@@ -161,7 +220,15 @@ impl Kitchen {
             last_sink_timer: self.last_sink_timer,
             counter: self.counter,
             done: self.done,
+            multi_oven: self.is_multi_oven().then_some(self.mo),
+            reproduction: self.spec.rsg.is_some().then_some(self.rsg),
         }
+    }
+
+    /// Whether this kitchen runs the multi-oven task.
+    #[inline]
+    pub(crate) fn is_multi_oven(&self) -> bool {
+        matches!(self.spec.rules, Rules::MultiOven { .. })
     }
 
     /// Checks that a snapshot (read from a checkpoint) fits this kitchen's task: the agent
@@ -183,8 +250,19 @@ impl Kitchen {
                 format!("1..={max_timers}"),
             ));
         }
-        if s.td == 0 {
+        if s.td == 0 && !self.spec.config.reference_compat {
             return Err(EnvError::param("td", 0, "a positive number of steps"));
+        }
+        if self.is_multi_oven() != s.multi_oven.is_some() {
+            return Err(EnvError::param(
+                "multi_oven",
+                if s.multi_oven.is_some() {
+                    "present"
+                } else {
+                    "absent"
+                },
+                "present exactly for the multi-oven task",
+            ));
         }
         Ok(())
     }
@@ -215,6 +293,8 @@ impl Kitchen {
         self.last_sink_timer = s.last_sink_timer;
         self.counter = s.counter;
         self.done = s.done;
+        self.mo = s.multi_oven.unwrap_or_default();
+        self.rsg = s.reproduction.unwrap_or_default();
     }
 
     /// Sets how many TDs of the multi-timer list are active (curricula); other tasks: no-op.
@@ -239,8 +319,20 @@ impl Kitchen {
     }
 
     fn check_td_option(&self, td: u32) -> Result<(), EnvError> {
-        if td == 0 || td > 10_000 {
-            return Err(EnvError::reset_option("td", td, "integer 1..=10000"));
+        // Reference-compatible multi-anchor / multi-oven episodes may replay the reference's
+        // TD 0, which never becomes ready (the timer is already 1 after the put).
+        let zero_ok = self.spec.config.reference_compat
+            && matches!(
+                self.spec.rules,
+                Rules::MultiAnchor { .. } | Rules::MultiOven { .. }
+            );
+        if (td == 0 && !zero_ok) || td > 10_000 {
+            let allowed = if zero_ok {
+                "integer 0..=10000"
+            } else {
+                "integer 1..=10000 (0 only in reference-compatible multi-anchor/multi-oven replays)"
+            };
+            return Err(EnvError::reset_option("td", td, allowed));
         }
         match self.spec.cue {
             Some(CueMode::Value) if td > 255 => Err(EnvError::reset_option(
@@ -304,10 +396,18 @@ impl Kitchen {
                 "only the Uncertainty task has never-ready episodes",
             ));
         }
+        self.check_oven_options(options)?;
+        self.check_rsg_options(options)?;
         if let Some(seed) = seed {
             self.rng = Xoshiro256PlusPlus::seed_from_u64(seed);
         }
         self.reset_state(start, options.td, options.never_ready);
+        if self.is_multi_oven() {
+            self.reset_ovens(options.td, options.oven_tds, options.on_times);
+        }
+        if self.spec.rsg.is_some() {
+            self.reset_rsg(options.td, options.prior, options.gain);
+        }
         self.write_full_obs(obs);
         Ok(self.info(Events::default(), -1, false))
     }
@@ -316,6 +416,12 @@ impl Kitchen {
     #[inline]
     pub(crate) fn reset_random(&mut self, obs: &mut [u8]) -> Info {
         self.reset_state(None, None, None);
+        if self.is_multi_oven() {
+            self.reset_ovens(None, None, None);
+        }
+        if self.spec.rsg.is_some() {
+            self.reset_rsg(None, None, None);
+        }
         self.write_full_obs(obs);
         self.info(Events::default(), -1, false)
     }
@@ -337,6 +443,7 @@ impl Kitchen {
                     }
                 }
                 Rules::Window { .. } => self.spec.tds[self.rng.random_range(0..self.num_timers)],
+                Rules::MultiAnchor { k, .. } => self.spec.tds[self.rng.random_range(0..k as usize)],
                 _ => self.spec.default_td,
             },
         };
@@ -399,6 +506,14 @@ impl Kitchen {
         obs[a + 1] = 1;
         obs[a + 2] = (self.carry == Carry::Onion) as u8;
         obs[a + 3] = (self.carry == Carry::Soup) as u8;
+        if self.is_multi_oven() {
+            self.write_ovens(obs);
+            return;
+        }
+        if self.spec.rsg.is_some() {
+            self.write_rsg(obs);
+            return;
+        }
         let v = self.spec.oven * CODE_CHANNELS;
         obs[v + 4] = self.oven_code();
         if self.spec.config.debug_timer_channel {
@@ -413,7 +528,11 @@ impl Kitchen {
         match self.spec.rules {
             Rules::Fixed => t >= self.td as i64,
             Rules::Probe { factor } => factor > 0 && t >= factor as i64 * self.td as i64,
-            Rules::Bisection { .. } | Rules::Uncertainty { .. } => self.ready,
+            Rules::Bisection { .. }
+            | Rules::Uncertainty { .. }
+            | Rules::MultiAnchor { .. }
+            | Rules::MultiOven { .. } => self.ready,
+            Rules::Reproduction => self.timer >= 0,
             Rules::Window { mode, .. } => match mode {
                 RewardMode::Exact => true,
                 RewardMode::LowerBounded => t >= self.td as i64,
@@ -441,6 +560,12 @@ impl Kitchen {
                 Counter::Long if self.td == long => 1.0,
                 _ => 0.0,
             },
+            Rules::MultiAnchor { anchors, k } => match counter {
+                Counter::Anchor(i) if i >= 1 && i <= k && self.td == anchors[i as usize - 1] => 1.0,
+                _ => 0.0,
+            },
+            // Paid per oven in `multi_oven`, by the production in `reproduction`.
+            Rules::MultiOven { .. } | Rules::Reproduction => 0.0,
             Rules::Window {
                 mode,
                 under,
@@ -492,6 +617,11 @@ impl Kitchen {
                 self.carry = Carry::Onion;
                 *events |= Events::ONION_TAKEN;
             }
+            // The reference deadlocks on a second onion (it can never be put down); by
+            // default the multi-anchor task takes it back at the dispenser.
+            (ObjectKind::OnionDispenser, Carry::Onion) if self.returns_onion() => {
+                self.carry = Carry::Nothing;
+            }
             (ObjectKind::Oven, Carry::Onion) if !oven_on => {
                 self.timer = 0;
                 self.ready = false;
@@ -511,12 +641,19 @@ impl Kitchen {
                 }
             }
             (
-                ObjectKind::DeliveryCounter | ObjectKind::ShortCounter | ObjectKind::LongCounter,
+                ObjectKind::DeliveryCounter
+                | ObjectKind::ShortCounter
+                | ObjectKind::LongCounter
+                | ObjectKind::Counter3
+                | ObjectKind::Counter4,
                 Carry::Soup,
             ) => {
-                let counter = match kind {
-                    ObjectKind::ShortCounter => Counter::Short,
-                    ObjectKind::LongCounter => Counter::Long,
+                let counter = match (kind, kind.anchor_index()) {
+                    (_, Some(i)) if matches!(self.spec.rules, Rules::MultiAnchor { .. }) => {
+                        Counter::Anchor(i as u8 + 1)
+                    }
+                    (ObjectKind::ShortCounter, _) => Counter::Short,
+                    (ObjectKind::LongCounter, _) => Counter::Long,
                     _ => Counter::Main,
                 };
                 self.carry = Carry::Nothing;
@@ -553,8 +690,25 @@ impl Kitchen {
         Ok(self.step_unchecked(action, obs))
     }
 
+    /// Whether a held onion goes back at the dispenser (the multi-anchor and multi-oven
+    /// tasks outside reference-compatible mode: the fix of the reference's deadlock).
+    #[inline]
+    fn returns_onion(&self) -> bool {
+        !self.spec.config.reference_compat
+            && matches!(
+                self.spec.rules,
+                Rules::MultiAnchor { .. } | Rules::MultiOven { .. }
+            )
+    }
+
     #[inline]
     pub(crate) fn step_unchecked(&mut self, action: Action, obs: &mut [u8]) -> Transition {
+        if self.is_multi_oven() {
+            return self.step_multi_oven(action, obs);
+        }
+        if self.spec.rsg.is_some() {
+            return self.step_reproduction(action, obs);
+        }
         let old = self.agent;
         let timer_at_action = self.timer;
         let next_to_oven = matches!(
@@ -628,6 +782,11 @@ impl Kitchen {
             manual_stop_time: self.manual_stop_time,
             sink_count: self.sink_count,
             last_sink_timer: self.last_sink_timer,
+            ovens: if self.is_multi_oven() {
+                self.mo.info(self.spec.rules)
+            } else {
+                OvenSet::default()
+            },
         }
     }
 
@@ -649,6 +808,8 @@ impl Kitchen {
             timestep: self.timestep,
             oven_off_time: self.oven_off_time,
             done: self.done,
+            multi_oven: self.is_multi_oven().then_some(self.mo),
+            reproduction: self.spec.rsg.is_some().then_some(self.rsg),
         }
     }
 }
@@ -676,4 +837,8 @@ pub struct KitchenState {
     pub oven_off_time: i32,
     /// The episode has ended.
     pub done: bool,
+    /// Multi-oven task: every oven's state (`None` elsewhere).
+    pub multi_oven: Option<MultiOvenState>,
+    /// Reproduction task: the episode's prior, gain and foreperiod (`None` elsewhere).
+    pub reproduction: Option<RsgState>,
 }
