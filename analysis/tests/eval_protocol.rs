@@ -141,6 +141,7 @@ fn every_task_has_reference_conditions_the_oracle_plays() {
                     _ => false,
                 },
                 "uncertainty" => c.never_ready == Some(false),
+                "reproduction" => true,
                 "multi_anchor" => config
                     .params
                     .active_anchors()
@@ -158,8 +159,8 @@ fn every_task_has_reference_conditions_the_oracle_plays() {
         }
     }
     // FI 1, bisection 2 anchors, multi-timer ≥ 1 trained TD, uncertainty 1, multi-anchor
-    // 3 anchors, multi-oven 2 anchors.
-    assert!(paying >= 10, "{paying} paying conditions checked");
+    // 3 anchors, multi-oven 2 anchors, reproduction 2 priors × 7 intervals.
+    assert!(paying >= 24, "{paying} paying conditions checked");
 }
 
 #[test]
@@ -275,4 +276,38 @@ fn recorded_play_goes_through_the_same_metrics() {
         )
         .is_err()
     );
+}
+
+#[test]
+fn reproduction_metrics_of_the_oracle_are_veridical_with_the_gain() {
+    let env_sets = vec!["priors=short,9-17".to_string(), "gains=1,1.5".to_string()];
+    let conds = reference_conditions("Reproduction-v0", &env_sets).unwrap();
+    // 2 gains × (7 + 9) intervals of the two priors.
+    assert_eq!(conds.len(), 2 * (7 + 9));
+    let env = ChronoEnv::from_id("Reproduction-v0", &env_sets).unwrap();
+    let mut oracle = OracleAgent::new(&env);
+    let recs = run_protocol(&mut oracle, &conds, Mode::Reference, 0).unwrap();
+    let m = compute_metrics("oracle", &recs, 0);
+    let r = m.reproduction.expect("reproduction metrics");
+    assert_eq!(r.contexts.len(), 4);
+    for c in &r.contexts {
+        assert_eq!(c.failures, 0);
+        // The oracle produces round(g·ts): the ratio is 1 up to the rounding of g·ts.
+        for &(ts, ratio) in &c.ratio {
+            let want = (c.gain * f64::from(ts)).round() / (c.gain * f64::from(ts));
+            assert!((ratio - want).abs() < 1e-9, "g {} ts {ts}: {ratio}", c.gain);
+        }
+        let slope = c.slope.unwrap();
+        assert!(
+            (slope - c.gain).abs() < 0.02,
+            "slope {slope} at gain {}",
+            c.gain
+        );
+        if c.gain == 1.0 {
+            assert!(c.bias.unwrap().abs() < 1e-9 && c.sqrt_var.unwrap() < 1e-9);
+            assert!(c.observer.is_some(), "gain 1 contexts get an observer fit");
+        } else {
+            assert!(c.observer.is_none());
+        }
+    }
 }

@@ -535,3 +535,110 @@ fn a_curriculum_run_folder_keeps_every_level_and_the_last_is_the_final_policy() 
     assert!(missing.contains("level 4"), "{missing}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A multi-anchor (or multi-oven) curriculum run whose thresholds every run passes.
+fn growth_cfg(task: &str, sets: &[&str], steps: u64) -> chronocooked_training::TrainConfig {
+    let mut all: Vec<String> = vec![
+        format!("total_steps={steps}"),
+        "n_steps=250".into(),
+        "n_epochs=2".into(),
+    ];
+    all.extend(sets.iter().map(|s| s.to_string()));
+    if sets.iter().any(|s| s.starts_with("curriculum_thresholds")) {
+        all.push("curriculum_window=10".into());
+    }
+    resolve(task, "lstm8".parse().unwrap(), "reference", 5, &all).unwrap()
+}
+
+#[test]
+fn growth_curricula_add_counters_and_ovens_and_resume_at_their_level() {
+    for (task, sets, levels, clears) in [
+        (
+            "MultiAnchor-v0",
+            &[
+                "curriculum=multi_anchor",
+                "env.anchors=2,4,7,11",
+                "curriculum_thresholds=0,0",
+            ][..],
+            2usize,
+            true,
+        ),
+        (
+            "MultiOven-v0",
+            &[
+                "curriculum=multi_oven",
+                "env.ovens=3",
+                "env.short=2",
+                "env.long=5",
+                "curriculum_thresholds=0,0",
+            ][..],
+            2,
+            false,
+        ),
+    ] {
+        let cfg = growth_cfg(task, sets, 6000);
+        let mut t = Trainer::new(cfg.clone()).unwrap();
+        assert_eq!(
+            t.state().curriculum_level,
+            0,
+            "{task}: starts at the fewest"
+        );
+        let mut seen = vec![0usize];
+        let mut adam_t_at_switch = Vec::new();
+        let mut per_update = None;
+        while !t.finished() {
+            let level = t.state().curriculum_level;
+            t.update().unwrap();
+            per_update.get_or_insert(t.state().adam.t);
+            if t.state().curriculum_level != level {
+                seen.push(t.state().curriculum_level);
+                adam_t_at_switch.push(t.state().adam.t);
+                // The level's policy is kept, as the multi-timer's.
+                assert!(t.take_left_level().is_some());
+            }
+        }
+        assert_eq!(
+            seen,
+            (0..=levels).collect::<Vec<_>>(),
+            "{task}: levels in order"
+        );
+        // Cleared at the rollout's end (as the reference's callback), Adam has then taken
+        // only that update's steps; kept, it goes on counting.
+        let one = per_update.unwrap();
+        for &steps in &adam_t_at_switch {
+            assert_eq!(
+                steps == one,
+                clears,
+                "{task}: Adam t {steps} after a change"
+            );
+        }
+        // Resume from a mid-run state equals the uninterrupted run.
+        let mut a = Trainer::new(cfg.clone()).unwrap();
+        for _ in 0..10 {
+            a.update().unwrap();
+        }
+        let saved = a.state().clone();
+        assert!(
+            saved.curriculum_level >= 1,
+            "{task}: mid-run after a change"
+        );
+        let mut b = Trainer::restore(cfg.clone(), saved).unwrap();
+        while !a.finished() {
+            a.update().unwrap();
+            b.update().unwrap();
+        }
+        assert_eq!(a.state().theta, b.state().theta, "{task}: resume is exact");
+        // A state at a level this curriculum does not have is refused, naming the field.
+        let mut bad = a.state().clone();
+        bad.curriculum_level = 9;
+        let err = Trainer::restore(cfg, bad).err().unwrap().to_string();
+        assert!(err.contains("curriculum_level"), "{err}");
+    }
+}
+
+#[test]
+fn a_growth_curriculum_on_another_task_is_refused() {
+    let cfg = growth_cfg("Bisection-v0", &["curriculum=multi_oven"], 1000);
+    let err = Trainer::new(cfg).err().unwrap().to_string();
+    assert!(err.contains("curriculum") && err.contains("ovens"), "{err}");
+}

@@ -122,6 +122,9 @@ pub struct Metrics {
     /// Multi-oven bisection (when its conditions were played).
     #[serde(default)]
     pub multi_oven: Option<crate::behaviour::concurrent::MultiOvenMetrics>,
+    /// Temporal reproduction (when its conditions were played).
+    #[serde(default)]
+    pub reproduction: Option<crate::behaviour::reproduction::ReproductionMetrics>,
 }
 
 /// Multi-timer metrics.
@@ -215,6 +218,7 @@ pub fn compute_metrics(model: &str, records: &[EvalRecord], seed: u64) -> Metric
         uncertainty: uncertainty_metrics(records),
         multi_anchor: crate::behaviour::categorization::multi_anchor_metrics(records, seed),
         multi_oven: crate::behaviour::concurrent::multi_oven_metrics(records, seed),
+        reproduction: crate::behaviour::reproduction::reproduction_metrics(records),
     }
 }
 

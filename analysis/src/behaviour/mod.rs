@@ -8,6 +8,8 @@
 //!   boundary per pair of neighbouring anchors, WF constancy across boundaries;
 //! * [`concurrent`] — multi-oven per-oven curves, interference against the one-oven curve,
 //!   accuracy by onset offset, delivery order;
+//! * [`reproduction`] — temporal reproduction: tp against ts per prior and gain, the
+//!   regression slope, BIAS, √VAR, and the best Bayesian observer;
 //! * [`metrics`] — the metrics of one evaluation from its per-episode records;
 //! * [`aggregate`] — headline numbers, mean ± SD across seeds, episodes to adapt;
 //! * [`human`] — recorded human play (`env play`) as evaluation records.
@@ -20,3 +22,4 @@ pub mod human;
 pub mod metrics;
 pub mod peak;
 pub mod psychometric;
+pub mod reproduction;

@@ -32,6 +32,18 @@ pub const PRESET_FILES: &[(&str, &str)] = &[
         "Uncertainty-v0",
         include_str!("../../presets/Uncertainty-v0.toml"),
     ),
+    (
+        "MultiAnchor-v0",
+        include_str!("../../presets/MultiAnchor-v0.toml"),
+    ),
+    (
+        "MultiOven-v0",
+        include_str!("../../presets/MultiOven-v0.toml"),
+    ),
+    (
+        "Reproduction-v0",
+        include_str!("../../presets/Reproduction-v0.toml"),
+    ),
 ];
 
 /// Preset names.
