@@ -252,7 +252,8 @@ which, prior_cue=true). Production: the oven shows on (1) from Set; taking the s
 after Set produces tp, and delivering it pays max(0, 1 - |tp - g*ts| / w) with w = tolerance*g*ts \
 + tolerance_steps (linear in the error inside a window that scales with the interval, as Jazayeri \
 & Shadlen 2010 rewarded; defaults 0.2 and 1 step, NeuroGym ReadySetGo's 0.2*t + c). Taking the soup \
-before Set does nothing; no response by g*ts + w ends the episode unpaid. Gains g (default 1; 1,1.5 \
+before Set does nothing; a late soup is delivered unpaid (the episode ends at delivery or the \
+time limit). Gains g (default 1; 1,1.5 \
 as Remington et al. 2018) are cued on the counter. Design decisions (the public code has no \
 reproduction task; the paper names it as future work): cues as oven flashes, the loaded oven, \
 reward at delivery.",

@@ -98,7 +98,7 @@ fn cues_follow_the_foreperiod_and_the_reward_is_the_linear_window() {
 }
 
 #[test]
-fn a_response_before_set_does_nothing_and_a_late_one_ends_unpaid() {
+fn a_response_before_set_does_nothing_and_a_late_one_is_delivered_unpaid() {
     let mut env = ChronoEnv::from_id(
         "Reproduction-v0",
         &["priors=10-12", "foreperiod_min=2", "foreperiod_max=2"],
@@ -114,21 +114,27 @@ fn a_response_before_set_does_nothing_and_a_late_one_ends_unpaid() {
         let t = env.step(Action::Interact).unwrap();
         assert!(t.info.events.has(Events::NO_EFFECT) && !t.info.events.has(Events::PICKUP));
     }
-    // Window: 0.2·10 + 1 = 3 steps; tp ≥ 13 pays nothing, so after the step at which a
-    // response would be tp = 12 passes, the episode ends.
-    let mut steps = 5;
-    loop {
+    // Set at the end of step 12; window 0.2·10 + 1 = 3 steps, so tp = 13 pays nothing. The
+    // episode waits for the response (no production is cut off): respond on step 33, tp = 21.
+    for _ in 5..32 {
         let t = env.step(Action::Wait).unwrap();
-        steps += 1;
-        if t.done() {
-            assert!(t.terminated && t.reward == 0.0);
-            break;
-        }
-        assert!(steps < 40);
+        assert!(!t.done(), "a late production is not cut off");
     }
-    // Set at the end of step 12; the episode ends after the step at which tp would be 12
-    // (the next response, tp = 13, could not be paid).
-    assert_eq!(steps, 12 + 12);
+    let t = env.step(Action::Interact).unwrap();
+    assert_eq!(
+        t.info.oven_off_time,
+        33 - 12,
+        "tp = response step − Set step"
+    );
+    let mut reward = 0.0;
+    for a in [Action::Up, Action::Up, Action::Interact] {
+        let t = env.step(a).unwrap();
+        reward += t.reward;
+        if a == Action::Interact {
+            assert!(t.terminated && !t.info.events.has(Events::IN_WINDOW));
+        }
+    }
+    assert_eq!(reward, 0.0);
 }
 
 #[test]

@@ -14,7 +14,8 @@ pub struct EvalArgs {
     /// (`zoo:<model>/<task>`, see `zoo list`).
     #[arg(long, conflicts_with_all = ["agent", "from"])]
     pub run: Option<PathBuf>,
-    /// A reference agent instead of a run: oracle or random.
+    /// A reference agent instead of a run: oracle or random; on the reproduction task also a
+    /// Bayesian observer `bls`, `map` or `ml`, with its noise as `bls:WM,WP` (default 0.1,0.06).
     #[arg(long, conflicts_with = "from")]
     pub agent: Option<String>,
     /// Task the agent was trained on (default: the run's; FixedInterval-v0 for --agent).

@@ -4,6 +4,10 @@
 /// A rejected input to a reproduction analysis.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ReproductionError {
+    /// The task is not one an observer agent can play (it needs `Reproduction-v0`'s
+    /// parameters), or its configuration does not build.
+    #[error("an observer agent plays the reproduction task: {0}")]
+    Task(String),
     /// A value is NaN or infinite.
     #[error("{field} must be finite, got {value}")]
     NotFinite {

@@ -79,6 +79,7 @@
 //! per-record likelihood), [`fit`] (maximum-likelihood fits and model choice), [`summary`]
 //! (J&S's behavioural summaries), [`error`] (the typed errors).
 
+pub mod agent;
 pub mod error;
 pub mod fit;
 mod grid;
@@ -91,6 +92,7 @@ pub mod prior;
 pub mod simulate;
 pub mod summary;
 
+pub use agent::ObserverAgent;
 pub use error::ReproductionError;
 pub use fit::{FitReport, ObserverFit, fit_observer, fit_observers};
 pub use likelihood::log_likelihood;

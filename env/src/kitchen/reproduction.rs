@@ -9,8 +9,10 @@
 //! one; deliver it: `max(0, 1 − |tp − g·ts| / w)`, `w = tolerance·g·ts + tolerance_steps`);
 //! then the clock: the production timer counts on, the oven flashes Ready at the end of step
 //! `f` and Set at the end of step `f + ts` (channel 4 = 2 for that step), and shows on (1)
-//! from Set until the soup is taken. Once no response could be paid any more
-//! (`tp ≥ g·ts + w`) the episode ends unpaid.
+//! from Set until the soup is taken. A response outside the window is delivered unpaid (as
+//! Jazayeri & Shadlen's subjects responded late unrewarded); the episode ends at the
+//! delivery or the time limit, so no production is cut off by the task (a censored late
+//! tail would bias every fit of the productions).
 
 use super::{Kitchen, ResetOptions, Transition};
 use crate::action::Action;
@@ -178,13 +180,8 @@ impl Kitchen {
             events |= Events::CUE;
         }
         let delivered = events & Events::DELIVERY != 0;
-        let late = self.timer >= 0
-            && self.spec.rsg.as_ref().is_some_and(|rsg| {
-                let (target, w) = rsg.target(self.td, self.rsg.gain);
-                f64::from(self.timer + 1) >= target + w
-            });
         let time_up = self.timestep > self.spec.config.max_timesteps;
-        let (terminated, truncated) = if delivered || late {
+        let (terminated, truncated) = if delivered {
             (true, false)
         } else if time_up {
             if self.spec.config.reference_compat {

@@ -62,6 +62,34 @@ fn analysis(e: String) -> PipelineError {
     PipelineError::Analysis(e)
 }
 
+/// A Bayesian observer agent named `bls`, `map` or `ml`, optionally with `:WM,WP`
+/// (defaults: J&S 2010's subjects' 0.1 and 0.06); `Some(Err)` for a malformed noise part.
+fn observer_agent(
+    name: &str,
+) -> Option<Result<(chronocooked_analysis::reproduction::Observer, f64, f64), ()>> {
+    use chronocooked_analysis::reproduction::{Observer, agent};
+    let (kind, noise) = name.split_once(':').unwrap_or((name, ""));
+    let observer = match kind {
+        "bls" => Observer::Bls,
+        "map" => Observer::Map,
+        "ml" => Observer::Ml,
+        _ => return None,
+    };
+    if noise.is_empty() {
+        return Some(Ok((observer, agent::DEFAULT_WM, agent::DEFAULT_WP)));
+    }
+    let parsed: Vec<f64> = noise
+        .split(',')
+        .filter_map(|x| x.trim().parse().ok())
+        .collect();
+    Some(match parsed.as_slice() {
+        [wm, wp] if (0.01..=1.0).contains(wm) && (0.01..=1.0).contains(wp) => {
+            Ok((observer, *wm, *wp))
+        }
+        _ => Err(()),
+    })
+}
+
 /// Plays the protocol of `req` and writes its evaluation folder.
 pub fn evaluate(req: &EvalRequest) -> Result<EvalOutcome, PipelineError> {
     if req.mode == (Mode::Stochastic { episodes: 0 }) {
@@ -81,9 +109,21 @@ pub fn evaluate(req: &EvalRequest) -> Result<EvalOutcome, PipelineError> {
             Box::new(OracleAgent::new(&ChronoEnv::new(&config)?))
         }
         EvalSubject::Reference(name) if name == "random" => Box::new(RandomAgent::default()),
+        EvalSubject::Reference(name) if observer_agent(name).is_some() => {
+            let Some(Ok((observer, wm, wp))) = observer_agent(name) else {
+                return Err(PipelineError::Invalid(format!(
+                    "--agent `{name}`: expected bls|map|ml, optionally :WM,WP with Weber fractions in [0.01, 1] (e.g. bls:0.1,0.06)"
+                )));
+            };
+            let env = ChronoEnv::new(&config)?;
+            Box::new(
+                chronocooked_analysis::reproduction::ObserverAgent::new(&env, observer, wm, wp)
+                    .map_err(|e| PipelineError::Invalid(format!("--agent `{name}`: {e}")))?,
+            )
+        }
         EvalSubject::Reference(other) => {
             return Err(PipelineError::Invalid(format!(
-                "unknown --agent `{other}` (allowed: oracle, random; trained models via --run DIR)"
+                "unknown --agent `{other}` (allowed: oracle, random, bls|map|ml[:WM,WP] on the reproduction task; trained models via --run DIR)"
             )));
         }
     };
