@@ -291,13 +291,15 @@ pub fn summarise_job(dir: &Path) -> Result<Option<CompactJob>, CollectError> {
     if !eval.join(METRICS).is_file() || !eval.join(RECORDS).is_file() {
         return Ok(None);
     }
-    // A curriculum run that kept its levels' policies is evaluated once they are too.
-    let kept_levels = dir.join(job_folder::RUN).join(run_folder::LEVELS).is_dir();
-    if kept_levels && !eval.join(LEVELS_CSV).is_file() {
-        return Ok(None);
-    }
     let job = read_json(&dir.join(job_folder::JOB))?;
     let cfg = read_json(&dir.join(job_folder::RUN).join(run_folder::CONFIG))?;
+    // A multi-timer curriculum run that kept its levels' policies is evaluated once they are
+    // too (the levels stage; the multi-anchor/multi-oven curricula have none yet).
+    let kept_levels = dir.join(job_folder::RUN).join(run_folder::LEVELS).is_dir();
+    let multi_timer = cfg["curriculum"]["kind"].as_str() == Some("multi_timer");
+    if kept_levels && multi_timer && !eval.join(LEVELS_CSV).is_file() {
+        return Ok(None);
+    }
     // A timing-model run's curves.csv has its own columns (episodes, not PPO updates): its
     // compact result keeps the evaluation, metrics and neural summary, no PPO curve.
     let curve = if cfg["kind"].as_str() == Some("timing") {
