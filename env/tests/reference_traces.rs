@@ -24,6 +24,39 @@ fn hex(obs: &[u8]) -> String {
     obs.iter().map(|b| format!("{b:02x}")).collect()
 }
 
+/// Steps `env` through `actions` and checks every step's observation (`obs[i + 1]`), reward
+/// and termination against the reference's; returns the steps replayed.
+fn replay(
+    env: &mut ChronoEnv,
+    case: &str,
+    actions: &[i64],
+    obs: &[String],
+    reward: &[f32],
+    terminated: &[bool],
+) -> usize {
+    for (i, &a) in actions.iter().enumerate() {
+        let t = env.step(Action::from_code(a).unwrap()).unwrap();
+        let step = i + 1;
+        assert_eq!(
+            hex(env.obs_codes()),
+            obs[step],
+            "{case}: obs at step {step}"
+        );
+        assert!(
+            (t.reward - reward[i]).abs() < 1e-6,
+            "{case}: reward at step {step}: {} vs {}",
+            t.reward,
+            reward[i]
+        );
+        assert_eq!(
+            t.terminated, terminated[i],
+            "{case}: terminated at step {step}"
+        );
+        assert!(!t.truncated, "{case}: reference mode never truncates");
+    }
+    actions.len()
+}
+
 #[test]
 fn replay_matches_reference_step_for_step() {
     let text = include_str!("golden/reference_traces.jsonl");
@@ -42,33 +75,14 @@ fn replay_matches_reference_step_for_step() {
         env.reset(Some(0), &options).unwrap();
         assert_eq!(hex(env.obs_codes()), c.obs[0], "{}: reset obs", c.case);
         assert_eq!(c.actions.len(), c.reward.len(), "{}: fixture shape", c.case);
-        for (i, &a) in c.actions.iter().enumerate() {
-            let t = env.step(Action::from_code(a).unwrap()).unwrap();
-            assert_eq!(
-                hex(env.obs_codes()),
-                c.obs[i + 1],
-                "{}: obs at step {}",
-                c.case,
-                i + 1
-            );
-            assert!(
-                (t.reward - c.reward[i]).abs() < 1e-6,
-                "{}: reward at step {}: {} vs {}",
-                c.case,
-                i + 1,
-                t.reward,
-                c.reward[i]
-            );
-            assert_eq!(
-                t.terminated,
-                c.terminated[i],
-                "{}: terminated at step {}",
-                c.case,
-                i + 1
-            );
-            assert!(!t.truncated, "{}: reference mode never truncates", c.case);
-            steps += 1;
-        }
+        steps += replay(
+            &mut env,
+            &c.case,
+            &c.actions,
+            &c.obs,
+            &c.reward,
+            &c.terminated,
+        );
         assert!(
             env.is_done() == *c.terminated.last().unwrap_or(&false),
             "{}",
@@ -123,33 +137,14 @@ fn extension_replay_matches_reference_step_for_step() {
         env.reset(Some(0), &options)
             .unwrap_or_else(|e| panic!("{}: reset rejected: {e}", c.case));
         assert_eq!(hex(env.obs_codes()), c.obs[0], "{}: reset obs", c.case);
-        for (i, &a) in c.actions.iter().enumerate() {
-            let t = env.step(Action::from_code(a).unwrap()).unwrap();
-            assert_eq!(
-                hex(env.obs_codes()),
-                c.obs[i + 1],
-                "{}: obs at step {}",
-                c.case,
-                i + 1
-            );
-            assert!(
-                (t.reward - c.reward[i]).abs() < 1e-6,
-                "{}: reward at step {}: {} vs {}",
-                c.case,
-                i + 1,
-                t.reward,
-                c.reward[i]
-            );
-            assert_eq!(
-                t.terminated,
-                c.terminated[i],
-                "{}: terminated at step {}",
-                c.case,
-                i + 1
-            );
-            assert!(!t.truncated, "{}: reference mode never truncates", c.case);
-            steps += 1;
-        }
+        steps += replay(
+            &mut env,
+            &c.case,
+            &c.actions,
+            &c.obs,
+            &c.reward,
+            &c.terminated,
+        );
         cases += 1;
         if multi_oven {
             ovens += 1;

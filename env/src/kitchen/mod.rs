@@ -735,8 +735,30 @@ impl Kitchen {
             }
         }
         let delivered = events & Events::DELIVERY != 0;
+        self.finish_step(
+            delivered,
+            reward,
+            events,
+            (old, timer_at_action, next_to_oven),
+            obs,
+        )
+    }
+
+    /// The end of every task's step: `ended` (the task's own end: a delivery, the last soup)
+    /// or the time limit (`timestep > max_timesteps`: `terminated` in reference mode,
+    /// `truncated` otherwise), the observation update from the agent's `old` cell, and the
+    /// step's info.
+    #[inline]
+    pub(crate) fn finish_step(
+        &mut self,
+        ended: bool,
+        reward: f32,
+        events: u16,
+        (old, timer_at_action, next_to_oven): (usize, i32, bool),
+        obs: &mut [u8],
+    ) -> Transition {
         let time_up = self.timestep > self.spec.config.max_timesteps;
-        let (terminated, truncated) = if delivered {
+        let (terminated, truncated) = if ended {
             (true, false)
         } else if time_up {
             if self.spec.config.reference_compat {

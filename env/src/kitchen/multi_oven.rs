@@ -344,26 +344,8 @@ impl Kitchen {
         }
         self.sync_first_oven();
         let all_delivered = self.mo.delivered[..n].iter().all(|&d| d != 0);
-        let time_up = self.timestep > self.spec.config.max_timesteps;
-        let (terminated, truncated) = if all_delivered {
-            (true, false)
-        } else if time_up {
-            if self.spec.config.reference_compat {
-                (true, false)
-            } else {
-                (false, true)
-            }
-        } else {
-            (false, false)
-        };
-        self.done = terminated || truncated;
-        self.write_dynamic(obs, old);
-        Transition {
-            reward,
-            terminated,
-            truncated,
-            info: self.info(Events(events), timer_at_action, adjacent_oven.is_some()),
-        }
+        let context = (old, timer_at_action, adjacent_oven.is_some());
+        self.finish_step(all_delivered, reward, events, context, obs)
     }
 
     /// The multi-oven state (`None` for the other tasks).

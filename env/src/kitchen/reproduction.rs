@@ -180,25 +180,12 @@ impl Kitchen {
             events |= Events::CUE;
         }
         let delivered = events & Events::DELIVERY != 0;
-        let time_up = self.timestep > self.spec.config.max_timesteps;
-        let (terminated, truncated) = if delivered {
-            (true, false)
-        } else if time_up {
-            if self.spec.config.reference_compat {
-                (true, false)
-            } else {
-                (false, true)
-            }
-        } else {
-            (false, false)
-        };
-        self.done = terminated || truncated;
-        self.write_dynamic(obs, old);
-        Transition {
+        self.finish_step(
+            delivered,
             reward,
-            terminated,
-            truncated,
-            info: self.info(Events(events), timer_at_action, next_to_oven),
-        }
+            events,
+            (old, timer_at_action, next_to_oven),
+            obs,
+        )
     }
 }
