@@ -709,20 +709,9 @@ impl Kitchen {
         if self.spec.rsg.is_some() {
             return self.step_reproduction(action, obs);
         }
-        let old = self.agent;
-        let timer_at_action = self.timer;
-        let next_to_oven = matches!(
-            self.spec.layout.adjacent_object(old),
-            Some((ObjectKind::Oven, _))
-        );
+        let (old, timer_at_action, next_to_oven) = self.step_context();
         let mut events = 0u16;
-        self.timestep += 1;
-        let reward = if action == Action::Interact {
-            self.interact(&mut events)
-        } else {
-            self.agent = self.spec.layout.move_from(old, action);
-            0.0
-        };
+        let reward = self.act_or_move(action, &mut events, Self::interact);
         if self.timer >= 0 {
             self.timer += 1;
             if self.spec.family.shows_ready()
@@ -742,6 +731,35 @@ impl Kitchen {
             (old, timer_at_action, next_to_oven),
             obs,
         )
+    }
+
+    /// The start of a single-oven task's step (the reproduction task's too): the agent's
+    /// cell, the oven timer and whether the agent stands next to the oven when it acts.
+    #[inline]
+    pub(crate) fn step_context(&self) -> (usize, i32, bool) {
+        let next_to_oven = matches!(
+            self.spec.layout.adjacent_object(self.agent),
+            Some((ObjectKind::Oven, _))
+        );
+        (self.agent, self.timer, next_to_oven)
+    }
+
+    /// Counts the step, then applies `action`: `interact` (the task's interact rules) or a
+    /// move. Returns the action's reward.
+    #[inline]
+    pub(crate) fn act_or_move(
+        &mut self,
+        action: Action,
+        events: &mut u16,
+        interact: fn(&mut Self, &mut u16) -> f32,
+    ) -> f32 {
+        self.timestep += 1;
+        if action == Action::Interact {
+            interact(self, events)
+        } else {
+            self.agent = self.spec.layout.move_from(self.agent, action);
+            0.0
+        }
     }
 
     /// The end of every task's step: `ended` (the task's own end: a delivery, the last soup)

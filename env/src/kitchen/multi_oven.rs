@@ -319,13 +319,7 @@ impl Kitchen {
             .and_then(|(k, _)| k.oven_index());
         let timer_at_action = self.mo.timer[adjacent_oven.unwrap_or(0)];
         let mut events = 0u16;
-        self.timestep += 1;
-        let reward = if action == Action::Interact {
-            self.interact_multi_oven(&mut events)
-        } else {
-            self.agent = self.spec.layout.move_from(old, action);
-            0.0
-        };
+        let reward = self.act_or_move(action, &mut events, Self::interact_multi_oven);
         if asynchronous {
             for i in 1..n {
                 if self.mo.on_time[i] == self.timestep as i32 {

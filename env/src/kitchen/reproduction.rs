@@ -151,20 +151,9 @@ impl Kitchen {
 
     /// One step of the reproduction task.
     pub(crate) fn step_reproduction(&mut self, action: Action, obs: &mut [u8]) -> Transition {
-        let old = self.agent;
-        let timer_at_action = self.timer;
-        let next_to_oven = matches!(
-            self.spec.layout.adjacent_object(old),
-            Some((ObjectKind::Oven, _))
-        );
+        let (old, timer_at_action, next_to_oven) = self.step_context();
         let mut events = 0u16;
-        self.timestep += 1;
-        let reward = if action == Action::Interact {
-            self.interact_rsg(&mut events)
-        } else {
-            self.agent = self.spec.layout.move_from(old, action);
-            0.0
-        };
+        let reward = self.act_or_move(action, &mut events, Self::interact_rsg);
         self.ready = false;
         if self.timer >= 0 {
             self.timer += 1;
