@@ -412,7 +412,7 @@ fn standalone_ctrnn_with_zero_weights_follows_exact_euler_decay() {
 
 /// The first step (1 … `max`) after onset at which `timer` is overdue by 1.5.
 fn first_overdue_step(timer: &mut Timer, r: &mut Xoshiro256PlusPlus, max: u32) -> Option<u32> {
-    timer.onset(1, r);
+    timer.onset(1, 2, r);
     (1..=max).find(|&t| {
         timer.tick(t, r);
         timer.overdue(1.5)

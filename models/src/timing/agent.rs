@@ -47,6 +47,7 @@ use crate::agent::{Agent, Percept, PerceptParser};
 use crate::timing::judgment::{LONG, SHORT};
 use crate::timing::sarsa::{SarsaConfig, SarsaLambda};
 use crate::timing::timers::Timer;
+use chronocooked_env::TaskFamily;
 use chronocooked_env::{Action, ChronoEnv, ObjectKind};
 use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -55,8 +56,24 @@ use serde::{Deserialize, Serialize};
 /// Visible oven values told apart (larger cue values share the last level).
 pub const OVEN_LEVELS: u32 = 32;
 
-/// Judgment indicator features ("judged short", "judged long") after the temporal ones.
+/// Judgment indicator features ("judged short", "judged long") after the temporal ones;
+/// multi-anchor tasks have one per counter their family allows
+/// ([`judgment_features`]).
 pub const JUDGMENT_FEATURES: usize = 2;
+
+/// Judgment indicator features of an agent for tasks of `family`: one per category the
+/// family can ask for (multi-anchor: the most anchors a task may have, so a curriculum that
+/// adds anchors keeps the learner's size), otherwise [`JUDGMENT_FEATURES`].
+pub fn judgment_features(family: TaskFamily) -> usize {
+    match family {
+        TaskFamily::MultiAnchor => chronocooked_env::task::params::MAX_ANCHORS,
+        _ => JUDGMENT_FEATURES,
+    }
+}
+
+fn two() -> usize {
+    2
+}
 
 /// The time-out indicator ("overdue") after the judgment features.
 pub const OVERDUE_FEATURES: usize = 1;
@@ -164,7 +181,7 @@ struct EpisodeState {
     last_was_check: bool,
     prev_check_failed: bool,
     interval: Option<u32>,
-    judgment: Option<bool>,
+    judgment: Option<u8>,
     overdue: bool,
     pressed_button: bool,
     pending: Option<(u32, usize, Vec<f64>)>,
@@ -195,6 +212,13 @@ pub struct TimingAgent {
     /// The task asks for short/long judgments (it has a long counter: bisection).
     #[serde(default)]
     pub judges: bool,
+    /// Categories the task asks for (choice slots: 2 in bisection, one per anchor in
+    /// multi-anchor categorization).
+    #[serde(default = "two")]
+    pub categories: usize,
+    /// Judgment indicator features the learner sees ([`judgment_features`]).
+    #[serde(default = "two")]
+    pub judgment_features: usize,
     /// Cells from which the manual oven button is pressed (uncertainty task).
     #[serde(default)]
     pub button_cells: Vec<usize>,
@@ -234,10 +258,10 @@ impl TimingAgent {
                 })
                 .collect()
         };
+        // Counter i of a multi-anchor kitchen is slot i (short 0, long 1, then 2, 3).
         let choice_cells = next_to(&|k| match k {
-            ObjectKind::LongCounter => Some(LONG),
-            ObjectKind::ShortCounter | ObjectKind::DeliveryCounter => Some(SHORT),
-            _ => None,
+            ObjectKind::DeliveryCounter => Some(SHORT),
+            k => k.anchor_index().map(|i| i as u8),
         });
         let button_cells = next_to(&|k| (k == ObjectKind::OvenButton).then_some(0))
             .into_iter()
@@ -247,8 +271,14 @@ impl TimingAgent {
             matches!(k, ObjectKind::RewardSink | ObjectKind::OvenButton).then_some(0)
         })
         .is_empty();
-        let features = timer.n_features() + 1 + JUDGMENT_FEATURES + OVERDUE_FEATURES;
+        let judgment_features = judgment_features(env.family());
+        let features = timer.n_features() + 1 + judgment_features + OVERDUE_FEATURES;
         let judges = choice_cells.iter().any(|&(_, slot)| slot == LONG);
+        let categories = choice_cells
+            .iter()
+            .map(|&(_, slot)| usize::from(slot) + 1)
+            .max()
+            .unwrap_or(1);
         TimingAgent {
             name: name.to_string(),
             learner: SarsaLambda::new(config.sarsa.clone(), Action::COUNT, features),
@@ -257,6 +287,8 @@ impl TimingAgent {
             shows_ready: env.family().shows_ready(),
             choice_cells,
             judges,
+            categories,
+            judgment_features,
             button_cells,
             side_task,
             config,
@@ -278,6 +310,7 @@ impl TimingAgent {
         self.shows_ready = fresh.shows_ready;
         self.choice_cells = fresh.choice_cells;
         self.judges = fresh.judges;
+        self.categories = fresh.categories.min(self.judgment_features);
         self.button_cells = fresh.button_cells;
         self.side_task = fresh.side_task;
     }
@@ -299,7 +332,8 @@ impl TimingAgent {
         };
         if last.oven == 0 && p.oven != 0 && p.carry != 2 {
             self.ep.ctx = if self.shows_ready { 1 } else { p.oven };
-            self.timer.onset(self.ep.ctx, &mut self.rng);
+            self.timer
+                .onset(self.ep.ctx, self.categories, &mut self.rng);
             self.ep.running = true;
             self.ep.clock = 1;
             self.ep.started = None;
@@ -364,10 +398,11 @@ impl TimingAgent {
         }
     }
 
-    /// The interval just ended: the timing model's short/long judgment (bisection only).
+    /// The interval just ended: the timing model's category judgment (bisection and
+    /// multi-anchor categorization only).
     fn judge(&mut self) {
         if self.judges {
-            self.ep.judgment = self.timer.judge();
+            self.ep.judgment = self.timer.judge(self.categories);
         }
     }
 
@@ -436,8 +471,9 @@ impl Agent for TimingAgent {
         if (self.ep.interval.is_some() && ended_category) || overdue {
             features.iter_mut().for_each(|v| *v = 0.0);
         }
-        features.push(f64::from(self.ep.judgment == Some(false)));
-        features.push(f64::from(self.ep.judgment == Some(true)));
+        for slot in 0..self.judgment_features {
+            features.push(f64::from(self.ep.judgment == Some(slot as u8)));
+        }
         features.push(f64::from(overdue));
         features.insert(0, 1.0);
         let s = self.state_index(&p);
@@ -519,13 +555,24 @@ impl Agent for TimingAgent {
                 self.choice_cells.iter().find(|(c, _)| *c == cell),
                 self.ep.interval,
             ) {
-                // Rewarded: the chosen counter was right; not rewarded: the other one.
-                let category = if reward > 0.0 { chosen } else { LONG - chosen };
-                if let Some(judged_long) = self.ep.judgment {
-                    self.timer.judgment_feedback(judged_long, category == LONG);
+                // Rewarded: the chosen counter was right. Not rewarded: in bisection the
+                // other one; among more counters only "not this one" is known, and nothing
+                // is stored.
+                let category = if reward > 0.0 {
+                    Some(chosen)
+                } else if self.categories == 2 {
+                    Some(LONG - chosen)
+                } else {
+                    None
+                };
+                if let Some(category) = category {
+                    if let (Some(judged), true) = (self.ep.judgment, self.categories == 2) {
+                        self.timer
+                            .judgment_feedback(judged == LONG, category == LONG);
+                    }
+                    self.timer
+                        .reinforce_choice(category, t as f64, &mut self.rng);
                 }
-                self.timer
-                    .reinforce_choice(category, t as f64, &mut self.rng);
             }
         }
         if terminated {
@@ -603,7 +650,7 @@ mod tests {
             assert_eq!(agent.ep.interval, Some(1), "seed {seed}");
             assert_eq!(
                 agent.ep.judgment,
-                Some(false),
+                Some(SHORT),
                 "seed {seed}: 1 step vs 4-12"
             );
         }

@@ -28,6 +28,19 @@
 //! Probes far shorter than the short anchor are judged "short" by every rule (the
 //! comparison is with a criterion, not a similarity to each anchor), so the psychometric
 //! curves are monotone up to the judgment noise.
+//!
+//! **More than two categories** (multi-anchor categorization): the same comparison is made
+//! at every boundary between two neighbouring remembered anchors, and the judgment is the
+//! category of the interval between the boundaries passed ([`Categories`]). Each boundary
+//! is the rule's criterion for its own pair — a chain of bisections, each one the
+//! comparison above (Church & Deluty 1977 and Gibbon 1981 derive the rules for one pair; a
+//! category scale built from them is the "partition" reading of Allan 2002) — so with the
+//! default ratio rule every boundary lies at the **geometric mean of its two neighbouring
+//! anchors**, with the difference rule at their arithmetic mean. A scalar memory sample per
+//! anchor makes every boundary's spread proportional to its location: the predicted Weber
+//! fraction is the same at every boundary. The learned rule needs to be told the true
+//! category after an error; with more than two counters an unpaid choice says only "not
+//! this one", so the learned rule is for two categories only (refused with more).
 
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -89,12 +102,15 @@ impl CategoryMemory {
     /// stored ones: scalar expectancy theory's reference-memory sample, drawn anew on every
     /// trial (Gibbon, Church & Meck 1984) — the memory's share of the judgment's variance.
     pub fn sample<R: rand::Rng + ?Sized>(&self, rng: &mut R) -> Option<(f64, f64)> {
-        let draw = |slot: u8, rng: &mut R| {
-            let m = self.log_times.get(&slot).filter(|m| !m.is_empty())?;
-            Some(m[rng.random_range(0..m.len())].exp())
-        };
-        let s = draw(SHORT, rng)?;
-        Some((s, draw(LONG, rng)?))
+        let s = self.draw(SHORT, rng)?;
+        Some((s, self.draw(LONG, rng)?))
+    }
+
+    /// One remembered duration of category `slot` drawn at random from its stored ones
+    /// (`None`, drawing nothing, while it has none).
+    pub fn draw<R: rand::Rng + ?Sized>(&self, slot: u8, rng: &mut R) -> Option<f64> {
+        let m = self.log_times.get(&slot).filter(|m| !m.is_empty())?;
+        Some(m[rng.random_range(0..m.len())].exp())
     }
 }
 
@@ -210,9 +226,147 @@ pub fn ddm_ratio_rule(x_s: f64, x_l: f64, z: f64) -> bool {
     x_s > 0.0 && x_l > 0.0 && (x_s / z).ln() + (x_l / z).ln() >= 0.0
 }
 
+/// Boundaries between neighbouring remembered anchors, and the category of a duration:
+/// the rule of a k-category judgment (k ≥ 2; k = 2 is bisection).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Categories {
+    /// Choice slots of the remembered anchors, in slot order (the task's counters, whose
+    /// anchors increase).
+    pub slots: Vec<u8>,
+    /// The boundary between `slots[i]` and `slots[i + 1]` (same unit as the anchors).
+    pub boundaries: Vec<f64>,
+}
+
+impl Categories {
+    /// The categories of remembered anchors `(slot, duration)` in slot order under
+    /// `decision`; `None` with fewer than two anchors or a non-positive or non-finite one.
+    /// With two anchors the boundary is [`Decision::criterion`] (the learned criterion
+    /// included); with more, each boundary is the rule's fixed criterion for its pair.
+    pub fn new(anchors: &[(u8, f64)], decision: &Decision) -> Option<Self> {
+        if anchors.len() < 2 || anchors.iter().any(|&(_, a)| !(a.is_finite() && a > 0.0)) {
+            return None;
+        }
+        let boundaries = if anchors.len() == 2 {
+            vec![decision.criterion(anchors[0].1, anchors[1].1)]
+        } else {
+            anchors
+                .windows(2)
+                .map(|w| decision.rule.criterion(w[0].1, w[1].1))
+                .collect()
+        };
+        Some(Categories {
+            slots: anchors.iter().map(|&(slot, _)| slot).collect(),
+            boundaries,
+        })
+    }
+
+    /// The slot whose category holds duration `t`: the one after the boundaries `t`
+    /// reaches (a boundary itself belongs to the category above it, as an anchor does in
+    /// the reference's category error rate).
+    pub fn category(&self, t: f64) -> u8 {
+        self.slot_after(self.boundaries.iter().filter(|&&b| t >= b).count())
+    }
+
+    /// The slot after `passed` boundaries (the last one beyond them all).
+    pub fn slot_after(&self, passed: usize) -> u8 {
+        self.slots[passed.min(self.slots.len() - 1)]
+    }
+}
+
+/// The remembered anchors `(slot, duration)` a judgment among `k` categories uses, from
+/// `remembered(slot)` (which may draw a memory sample), in slot order:
+/// * `k ≤ 2` (bisection): slots 0 and 1, asked in order up to the first without a memory
+///   — both are needed, and nothing is asked after a gap;
+/// * `k > 2` (multi-anchor): every slot `0 … k−1` that has a memory. The judgment is made
+///   among the anchors learned so far, so a counter that has paid is used before every
+///   counter has (each is learned only when it pays: an unpaid choice among more than two
+///   counters does not say which one was right).
+pub fn remembered_slots(k: usize, mut remembered: impl FnMut(u8) -> Option<f64>) -> Vec<(u8, f64)> {
+    let mut out = Vec::new();
+    for slot in 0..k.max(2).min(usize::from(u8::MAX)) as u8 {
+        match remembered(slot) {
+            Some(a) => out.push((slot, a)),
+            None if k <= 2 => break,
+            None => {}
+        }
+    }
+    out
+}
+
+/// Whether the remembered anchors suffice for a judgment among `k` categories: both in
+/// bisection, any two with more categories.
+pub fn can_judge(k: usize, remembered: usize) -> bool {
+    remembered >= 2 && (k > 2 || remembered == k)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn k_categories_put_each_boundary_at_its_pairs_mean() {
+        // Anchors 3, 10, 20, 25: ratio boundaries at √30, √200, √500.
+        let anchors = [(0, 3.0), (1, 10.0), (2, 20.0), (3, 25.0)];
+        let c = Categories::new(&anchors, &Decision::default()).unwrap();
+        for (b, want) in c.boundaries.iter().zip([30f64, 200.0, 500.0]) {
+            assert!((b - want.sqrt()).abs() < 1e-12, "{b} vs √{want}");
+        }
+        assert_eq!(c.category(1.0), 0);
+        assert_eq!(c.category(5.4), 0); // √30 ≈ 5.48
+        assert_eq!(c.category(5.5), 1);
+        assert_eq!(
+            c.category(30f64.sqrt()),
+            1,
+            "a boundary belongs to the category above"
+        );
+        assert_eq!(c.category(14.0), 1); // √200 ≈ 14.14
+        assert_eq!(c.category(22.0), 2); // √500 ≈ 22.36
+        assert_eq!(c.category(1e9), 3);
+        // The difference rule: arithmetic means 6.5, 15, 22.5; likelihood: harmonic means.
+        let rule = |rule| Decision {
+            rule,
+            learned_log_criterion: None,
+        };
+        let c = Categories::new(&anchors, &rule(DecisionRule::Difference)).unwrap();
+        assert_eq!(c.boundaries, vec![6.5, 15.0, 22.5]);
+        let c = Categories::new(&anchors, &rule(DecisionRule::Likelihood)).unwrap();
+        assert!((c.boundaries[1] - 2.0 * 200.0 / 30.0).abs() < 1e-12);
+        // A slot not yet learned: the judgment is among the others (3 | 20 at √60).
+        let c = Categories::new(&[(0, 3.0), (2, 20.0)], &Decision::default()).unwrap();
+        assert_eq!(c.category(7.0), 0);
+        assert_eq!(c.category(8.0), 2);
+        // Two anchors: the bisection criterion (a learned one included).
+        let learned = Decision {
+            rule: DecisionRule::Learned,
+            learned_log_criterion: Some(7f64.ln()),
+        };
+        let c = Categories::new(&[(0, 4.0), (1, 16.0)], &learned).unwrap();
+        assert!((c.boundaries[0] - 7.0).abs() < 1e-12);
+        assert_eq!(c.category(6.9), 0);
+        assert_eq!(c.category(7.0), 1);
+        let d = Decision::default();
+        assert_eq!(Categories::new(&[(0, 4.0)], &d), None);
+        assert_eq!(Categories::new(&[(0, 4.0), (1, f64::NAN)], &d), None);
+        assert_eq!(Categories::new(&[(0, 4.0), (1, 0.0)], &d), None);
+    }
+
+    #[test]
+    fn bisection_needs_both_anchors_and_more_categories_any_two() {
+        let mut asked = Vec::new();
+        let known = |slot: u8| (slot != 1).then_some(f64::from(slot) + 1.0);
+        let got = remembered_slots(2, |slot| {
+            asked.push(slot);
+            known(slot)
+        });
+        assert_eq!(got, vec![(0, 1.0)]);
+        assert_eq!(asked, vec![0, 1], "nothing is asked after the gap");
+        assert!(!can_judge(2, got.len()));
+        let got = remembered_slots(4, known);
+        assert_eq!(got, vec![(0, 1.0), (2, 3.0), (3, 4.0)]);
+        assert!(can_judge(4, got.len()));
+        assert!(!can_judge(4, 1));
+        assert!(can_judge(2, 2));
+    }
 
     #[test]
     fn criterion_is_the_geometric_mean() {

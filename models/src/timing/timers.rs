@@ -9,7 +9,8 @@
 
 use crate::activity::StepRecorder;
 use crate::timing::judgment::{
-    CategoryMemory, Decision, DecisionRule, LONG, SHORT, ddm_ratio_rule,
+    Categories, CategoryMemory, Decision, DecisionRule, LONG, SHORT, can_judge, ddm_ratio_rule,
+    remembered_slots,
 };
 use crate::timing::{BeatFrequency, DriftDiffusion, FrequencyLayout, Representation, TimeCells};
 use rand::Rng;
@@ -43,9 +44,10 @@ pub struct DdmTimer {
     /// remembered drift (a reference-memory sample, Gibbon, Church & Meck 1984); 0 = exact.
     #[serde(default)]
     pub memory_noise: f64,
-    /// This trial's short- and long-anchor accumulators (empty until both drifts exist).
+    /// This trial's accumulator of each remembered anchor, with its slot, in slot order
+    /// (fewer than two: no judgment).
     #[serde(skip)]
-    choice_acc: Vec<DriftDiffusion>,
+    choice_acc: Vec<(u8, DriftDiffusion)>,
 }
 
 /// A multiplicative memory factor `exp(σ ε)`, `ε ~ N(0, 1)`; exactly 1 (no draw) at `σ` 0.
@@ -64,6 +66,36 @@ impl DdmTimer {
         let s = self.choice_drifts.get(&SHORT)?;
         let l = self.choice_drifts.get(&LONG)?;
         Some((z / s, z / l))
+    }
+
+    /// The category of the interval that just ended among `k` anchors: the boundaries its
+    /// anchor accumulators have passed. Between neighbours `i`, `i + 1` the ratio rule is
+    /// [`ddm_ratio_rule`] on their two accumulators; another rule compares their
+    /// geometric-average reading `√(x_i/A_i · x_{i+1}/A_{i+1})` with its criterion between
+    /// the remembered anchors `z/A`.
+    fn category(&self, k: usize) -> Option<u8> {
+        if !can_judge(k, self.choice_acc.len()) {
+            return None;
+        }
+        let z = self.acc.threshold;
+        let memories: Vec<(u8, f64)> = self
+            .choice_acc
+            .iter()
+            .map(|&(slot, _)| Some((slot, z / *self.choice_drifts.get(&slot)?)))
+            .collect::<Option<_>>()?;
+        let categories = Categories::new(&memories, &self.decision)?;
+        let mut passed = 0;
+        for (pair, criterion) in self.choice_acc.windows(2).zip(&categories.boundaries) {
+            let (a, b) = (&pair[0].1, &pair[1].1);
+            let reached = if self.decision.rule == DecisionRule::Ratio {
+                ddm_ratio_rule(a.x, b.x, z)
+            } else {
+                let tau = (a.x / a.drift * b.x / b.drift).sqrt();
+                a.x > 0.0 && b.x > 0.0 && tau >= *criterion
+            };
+            passed += usize::from(reached);
+        }
+        Some(categories.slot_after(passed))
     }
 }
 
@@ -109,7 +141,7 @@ pub const SBF_RESPONSE_THRESHOLD: f64 = 0.9;
 pub const SBF_CRITERION_THRESHOLD: f64 = 0.5;
 
 /// Per-trial state of an SBF timer: oscillator phases and the complex detector weights
-/// `[this trial's memory sample, bisection criterion]` (empty = nothing stored).
+/// `[this trial's memory sample, criterion 1, criterion 2, …]` (empty = nothing stored).
 #[derive(Debug, Clone, PartialEq, Default)]
 struct SbfRuntime {
     now: f64,
@@ -118,16 +150,20 @@ struct SbfRuntime {
     sin: Vec<f64>,
     rot: Vec<(f64, f64)>,
     detectors: Vec<(Vec<f64>, Vec<f64>)>,
-    readouts: [f64; 2],
+    /// Envelope of each detector (index as `detectors`).
+    readouts: Vec<f64>,
     template: Option<f64>,
-    /// Criterion time (s) of this trial, when both anchors are stored.
-    criterion: Option<f64>,
+    /// Criterion times (s) of this trial: one per boundary between neighbouring anchor
+    /// slots (empty until two slots are stored).
+    criteria: Vec<f64>,
+    /// The slots the criteria separate (one more than the criteria).
+    criterion_slots: Vec<u8>,
     /// This trial's clock-speed factor (0 before the first onset: read as 1).
     speed: f64,
-    /// The criterion detector's envelope has reached [`SBF_CRITERION_THRESHOLD`].
-    criterion_reached: bool,
-    /// … and has since peaked: the criterion time has passed.
-    criterion_passed: bool,
+    /// Per criterion: its detector's envelope has reached [`SBF_CRITERION_THRESHOLD`] …
+    criterion_reached: Vec<bool>,
+    /// … and has since peaked: that criterion time has passed.
+    criterion_passed: Vec<bool>,
 }
 
 /// Stored times kept per SBF memory.
@@ -166,19 +202,30 @@ impl SbfTimer {
             .map(|m| m[rng.random_range(0..m.len())])
     }
 
-    fn onset<R: Rng + ?Sized>(&mut self, ctx: u8, rng: &mut R) {
+    fn onset<R: Rng + ?Sized>(&mut self, ctx: u8, categories: usize, rng: &mut R) {
         let template = Self::sample(self.memories.get(&ctx), rng);
-        let criterion = if self.choice_memories.len() == 2 {
-            let short = Self::sample(self.choice_memories.get(&SHORT), rng);
-            let long = Self::sample(self.choice_memories.get(&LONG), rng);
-            short.zip(long).map(|(s, l)| self.decision.criterion(s, l))
+        // One sample of each remembered anchor (`judgment::remembered_slots`; nothing is
+        // drawn until a judgment can be made): a chain of criteria, one per boundary
+        // between neighbouring slots.
+        let known = remembered_slots(categories, |slot| {
+            let m = self.choice_memories.get(&slot).filter(|m| !m.is_empty())?;
+            Some(m.len() as f64)
+        });
+        let anchors = if can_judge(categories, known.len()) {
+            remembered_slots(categories, |slot| {
+                Self::sample(self.choice_memories.get(&slot), rng)
+            })
         } else {
-            None
+            Vec::new()
         };
-        let detectors = vec![
-            self.detector(template.as_slice()),
-            self.detector(criterion.as_slice()),
-        ];
+        let judged = Categories::new(&anchors, &self.decision);
+        let criteria = judged
+            .as_ref()
+            .map(|c| c.boundaries.clone())
+            .unwrap_or_default();
+        let mut detectors = vec![self.detector(template.as_slice())];
+        detectors.extend(criteria.iter().map(|&c| self.detector(&[c])));
+        let n = criteria.len();
         let speed = if self.clock_noise > 0.0 {
             (self.clock_noise * rng.sample::<f64, _>(StandardNormal)).exp()
         } else {
@@ -186,9 +233,13 @@ impl SbfTimer {
         };
         self.rt = SbfRuntime {
             template,
-            criterion,
+            readouts: vec![0.0; detectors.len()],
+            criteria,
+            criterion_slots: judged.map(|c| c.slots).unwrap_or_default(),
             detectors,
             speed,
+            criterion_reached: vec![false; n],
+            criterion_passed: vec![false; n],
             ..SbfRuntime::default()
         };
         let w = 2.0 * std::f64::consts::PI * self.speed() * self.seconds_per_step;
@@ -242,6 +293,7 @@ impl SbfTimer {
         rt.step = Some(t);
         let n = self.model.freqs.len().max(1) as f64;
         let two_pi_k = 2.0 * std::f64::consts::PI * speed;
+        rt.readouts.resize(rt.detectors.len().max(1), 0.0);
         for (k, (c, s)) in rt.detectors.iter().enumerate() {
             if c.is_empty() {
                 rt.readouts[k] = 0.0;
@@ -256,21 +308,22 @@ impl SbfTimer {
                 );
                 re += a;
                 im += b;
-                if k == 1 {
+                if k >= 1 {
                     let w = two_pi_k * self.model.freqs[i];
                     dre -= w * b;
                     dim += w * a;
                 }
             }
             rt.readouts[k] = (re * re + im * im).sqrt() / n;
-            if k == 1 {
+            if k >= 1 {
                 // d|z|²/dt = 2 Re(conj(z) dz/dt): the envelope is falling after its peak.
                 let falling = re * dre + im * dim <= 0.0;
-                if rt.readouts[1] >= SBF_CRITERION_THRESHOLD {
-                    rt.criterion_reached = true;
-                    rt.criterion_passed |= falling;
-                } else if rt.criterion_reached {
-                    rt.criterion_passed = true;
+                let j = k - 1;
+                if rt.readouts[k] >= SBF_CRITERION_THRESHOLD {
+                    rt.criterion_reached[j] = true;
+                    rt.criterion_passed[j] |= falling;
+                } else if rt.criterion_reached[j] {
+                    rt.criterion_passed[j] = true;
                 }
             }
         }
@@ -292,9 +345,9 @@ pub struct TimeCellTimer {
     /// expectancy theory's memory-constant variance, Gibbon 1977); 0 = exact storage.
     #[serde(default)]
     pub memory_noise: f64,
-    /// This trial's remembered anchors `(S*, L*)` (steps), sampled at onset.
+    /// This trial's remembered anchors `(slot, steps)`, sampled at onset.
     #[serde(skip)]
-    trial_anchors: Option<(f64, f64)>,
+    trial_anchors: Vec<(u8, f64)>,
 }
 
 /// Which timing model an agent uses.
@@ -356,7 +409,7 @@ impl Timer {
             anchors: CategoryMemory::default(),
             decision: Decision::default(),
             memory_noise: 0.0,
-            trial_anchors: None,
+            trial_anchors: Vec::new(),
         })
     }
 
@@ -396,9 +449,9 @@ impl Timer {
         }
     }
 
-    /// The timed event (oven on) in context `ctx`: reset to time 0 (`rng` draws the
-    /// SBF's memory sample of this trial).
-    pub fn onset<R: Rng + ?Sized>(&mut self, ctx: u8, rng: &mut R) {
+    /// The timed event (oven on) in context `ctx` of a task with `categories` choice slots
+    /// (2 in bisection): reset to time 0; `rng` draws this trial's memory samples.
+    pub fn onset<R: Rng + ?Sized>(&mut self, ctx: u8, categories: usize, rng: &mut R) {
         match self {
             Timer::Ddm(d) => {
                 d.acc.reset();
@@ -407,18 +460,18 @@ impl Timer {
                     .get(&ctx)
                     .unwrap_or(&(d.acc.threshold / d.initial_interval));
                 d.choice_acc.clear();
-                if let (Some(&a_s), Some(&a_l)) =
-                    (d.choice_drifts.get(&SHORT), d.choice_drifts.get(&LONG))
-                {
-                    for drift in [a_s, a_l] {
+                let drifts =
+                    remembered_slots(categories, |slot| d.choice_drifts.get(&slot).copied());
+                if can_judge(categories, drifts.len()) {
+                    for (slot, drift) in drifts {
                         let mut acc = d.acc.clone();
                         // This trial's sample of the anchor's drift memory.
                         acc.drift = drift * memory_sample(d.memory_noise, rng);
-                        d.choice_acc.push(acc);
+                        d.choice_acc.push((slot, acc));
                     }
                 }
             }
-            Timer::Sbf(s) => s.onset(ctx, rng),
+            Timer::Sbf(s) => s.onset(ctx, categories, rng),
             Timer::TimeCells(tc) => {
                 let noise = tc.cells.speed_noise;
                 let speed = if noise > 0.0 {
@@ -427,7 +480,7 @@ impl Timer {
                     1.0
                 };
                 tc.cells.onset_with_speed(speed);
-                tc.trial_anchors = tc.anchors.sample(rng);
+                tc.trial_anchors = remembered_slots(categories, |slot| tc.anchors.draw(slot, rng));
             }
         }
     }
@@ -437,7 +490,7 @@ impl Timer {
         match self {
             Timer::Ddm(d) => {
                 d.acc.step(1.0, rng);
-                for acc in &mut d.choice_acc {
+                for (_, acc) in &mut d.choice_acc {
                     acc.step(1.0, rng);
                 }
             }
@@ -467,7 +520,7 @@ impl Timer {
                     return true; // nothing stored yet: explore by checking
                 };
                 let fallback = s.rt.now > 2.0 * stored / s.speed() + 0.05;
-                fallback || s.rt.readouts[0] >= s.threshold
+                fallback || s.rt.readouts.first().is_some_and(|&r| r >= s.threshold)
             }
             Timer::TimeCells(_) => true,
         }
@@ -496,7 +549,7 @@ impl Timer {
                 out.push(f64::from(responding));
             }
             Timer::Sbf(s) => {
-                out.push(s.rt.readouts[0]);
+                out.push(s.rt.readouts.first().copied().unwrap_or(0.0));
                 out.push(f64::from(responding));
             }
             Timer::TimeCells(tc) => {
@@ -559,30 +612,27 @@ impl Timer {
         }
     }
 
-    /// The bisection judgment at the end of the interval: `Some(true)` "long",
-    /// `Some(false)` "short", `None` while the anchors are not both remembered (or the
+    /// The judgment at the end of the interval among `k` categories (choice slots
+    /// `0 … k−1`; bisection: `k` 2, [`SHORT`] / [`LONG`]): the slot of the category the
+    /// interval falls in, `None` while not every slot's anchor is remembered (or the
     /// representation has no time, presence).
-    pub fn judge(&self) -> Option<bool> {
+    pub fn judge(&self, k: usize) -> Option<u8> {
         match self {
-            Timer::Ddm(d) => match d.choice_acc.as_slice() {
-                [s, l] if d.decision.rule == DecisionRule::Ratio => {
-                    Some(ddm_ratio_rule(s.x, l.x, d.acc.threshold))
+            Timer::Ddm(d) => d.category(k),
+            Timer::Sbf(s) => {
+                let slots = &s.rt.criterion_slots;
+                if !can_judge(k, slots.len()) {
+                    return None;
                 }
-                [s, l] => {
-                    // Each accumulator reads elapsed time as x/A; their geometric average
-                    // against the rule's criterion between S* = z/A_S and L* = z/A_L (the
-                    // ratio rule above is the same comparison in closed form).
-                    let (anchor_s, anchor_l) = d.anchor_memories()?;
-                    let tau = (s.x / s.drift * l.x / l.drift).sqrt();
-                    let long = s.x > 0.0 && l.x > 0.0;
-                    Some(long && tau >= d.decision.criterion(anchor_s, anchor_l))
-                }
-                _ => None,
-            },
-            Timer::Sbf(s) => s.rt.criterion.map(|_| s.rt.criterion_passed),
+                let passed = s.rt.criterion_passed.iter().filter(|&&p| p).count();
+                Some(slots[passed.min(slots.len() - 1)])
+            }
             Timer::TimeCells(tc) => {
-                let (s, l) = tc.trial_anchors?;
-                Some(tc.cells.decoded_time()? >= tc.decision.criterion(s, l))
+                if !can_judge(k, tc.trial_anchors.len()) {
+                    return None;
+                }
+                let categories = Categories::new(&tc.trial_anchors, &tc.decision)?;
+                Some(categories.category(tc.cells.decoded_time()?))
             }
         }
     }
@@ -640,7 +690,10 @@ impl Timer {
                 // sine weights) match of the oscillators with this trial's remembered
                 // pattern, 0–1 — what the agent's response threshold reads. (One in-phase
                 // detector alone, Σ wᵢ cos φᵢ, would swing with the ~10 Hz carrier.)
-                rec.scalar("striatum", s.rt.readouts[0] as f32);
+                rec.scalar(
+                    "striatum",
+                    s.rt.readouts.first().copied().unwrap_or(0.0) as f32,
+                );
             }
             Timer::TimeCells(tc) => {
                 let mut units = Vec::new();

@@ -79,8 +79,35 @@ fn training_episode(
     )
 }
 
+/// The tasks a timing agent trains through on `config`, in order. Multi-anchor
+/// categorization with more than two active anchors is learned as the reference trains it
+/// (its `anchors 2 → 3 → 4` curriculum): two counters first, then one more per level. A
+/// model stores an anchor only when a counter pays (among more than two counters an unpaid
+/// choice does not say which was right), so from scratch on all counters at once it must
+/// find every counter by exploration before it can judge; measured on 3–4 anchors
+/// (6000 episodes, seeds 1–3), some runs stopped using the oven at all (success 0). Two
+/// counters first teach both anchors from every choice. Other tasks: `config` itself.
+pub fn training_levels(config: &TaskConfig) -> Result<Vec<TaskConfig>, EnvError> {
+    let k = config.params.active_anchors().map_or(0, <[u32]>::len);
+    if k <= 2 {
+        return Ok(vec![config.clone()]);
+    }
+    (2..=k)
+        .map(|n| {
+            let mut level = config.clone();
+            level.set("num_anchors", &n.to_string())?;
+            level.validate()?;
+            Ok(level)
+        })
+        .collect()
+}
+
 /// Trains `agent` on `config` for `train.episodes` episodes from `seed`; evaluates on
 /// `eval_tds` from every start cell. Calls `progress` at every curve point.
+///
+/// Tasks learned in levels ([`training_levels`]) share the episodes equally, each level
+/// with its own exploration schedule (ε from `epsilon_start` to `epsilon_end` over
+/// `anneal_fraction` of the level's episodes); evaluation always plays `config`.
 pub fn train_timing_agent(
     agent: &mut TimingAgent,
     config: &TaskConfig,
@@ -89,46 +116,67 @@ pub fn train_timing_agent(
     seed: u64,
     mut progress: impl FnMut(&TimingCurvePoint),
 ) -> Result<Vec<TimingCurvePoint>, EnvError> {
-    let mut env = ChronoEnv::new(config)?;
+    let levels = training_levels(config)?;
     let mut curve = Vec::new();
     let mut window: std::collections::VecDeque<(bool, f32)> = Default::default();
     let mut steps = 0u64;
-    let anneal = (train.episodes as f64 * train.anneal_fraction).max(1.0);
     let alpha_start = agent.learner.config.alpha;
-    for ep in 0..train.episodes {
-        let frac = (ep as f64 / anneal).min(1.0);
-        agent.set_epsilon(train.epsilon_start + (train.epsilon_end - train.epsilon_start) * frac);
-        if let Some(end) = train.alpha_end {
-            agent.learner.config.alpha = alpha_start + (end - alpha_start) * frac;
+    let mut ep = 0;
+    'levels: for (i, level) in levels.iter().enumerate() {
+        let mut env = ChronoEnv::new(level)?;
+        if levels.len() > 1 {
+            agent.transfer_to(&env);
         }
-        agent.set_training(true);
-        let rec = training_episode(&mut env, agent, seed, ep)?;
-        steps += rec.actions.len() as u64;
-        window.push_back((rec.success, rec.reward));
-        if window.len() > 100 {
-            window.pop_front();
-        }
-        let done = ep + 1;
-        let eval_now =
-            done == train.episodes || (train.eval_every > 0 && done % train.eval_every == 0);
-        if eval_now {
-            let records =
-                evaluate_agent(agent, config, eval_tds, derive_seed(seed, 1 << 40), None)?;
-            let rate = success_rate(&records);
-            let n = window.len().max(1) as f64;
-            let point = TimingCurvePoint {
-                episode: done,
-                steps,
-                train_success: window.iter().filter(|w| w.0).count() as f64 / n,
-                train_reward: window.iter().map(|w| f64::from(w.1)).sum::<f64>() / n,
-                eval_success: Some(rate),
-            };
-            progress(&point);
-            curve.push(point);
-            if train.stop_at_success.is_some_and(|s| rate >= s) {
-                break;
+        let end = train.episodes * (i + 1) / levels.len();
+        let first = ep;
+        let anneal = ((end - first) as f64 * train.anneal_fraction).max(1.0);
+        while ep < end {
+            let frac = ((ep - first) as f64 / anneal).min(1.0);
+            agent.set_epsilon(
+                train.epsilon_start + (train.epsilon_end - train.epsilon_start) * frac,
+            );
+            if let Some(end) = train.alpha_end {
+                agent.learner.config.alpha = alpha_start + (end - alpha_start) * frac;
+            }
+            agent.set_training(true);
+            let rec = training_episode(&mut env, agent, seed, ep)?;
+            ep += 1;
+            steps += rec.actions.len() as u64;
+            window.push_back((rec.success, rec.reward));
+            if window.len() > 100 {
+                window.pop_front();
+            }
+            let done = ep;
+            let eval_now =
+                done == train.episodes || (train.eval_every > 0 && done % train.eval_every == 0);
+            if eval_now {
+                if levels.len() > 1 {
+                    agent.transfer_to(&ChronoEnv::new(config)?);
+                }
+                let records =
+                    evaluate_agent(agent, config, eval_tds, derive_seed(seed, 1 << 40), None)?;
+                if levels.len() > 1 {
+                    agent.transfer_to(&env);
+                }
+                let rate = success_rate(&records);
+                let n = window.len().max(1) as f64;
+                let point = TimingCurvePoint {
+                    episode: done,
+                    steps,
+                    train_success: window.iter().filter(|w| w.0).count() as f64 / n,
+                    train_reward: window.iter().map(|w| f64::from(w.1)).sum::<f64>() / n,
+                    eval_success: Some(rate),
+                };
+                progress(&point);
+                curve.push(point);
+                if train.stop_at_success.is_some_and(|s| rate >= s) {
+                    break 'levels;
+                }
             }
         }
+    }
+    if levels.len() > 1 {
+        agent.transfer_to(&ChronoEnv::new(config)?);
     }
     agent.learner.config.alpha = alpha_start;
     agent.set_training(false);

@@ -183,6 +183,21 @@ impl TimingAgentSettings {
             agent.config.break_and_run = b;
         }
         if let Some(rule) = self.decision_rule {
+            // The learned criterion moves after errors whose true category is known; with
+            // more than two counters an unpaid choice says only "not this one"
+            // (`timing::judgment`).
+            if rule == DecisionRule::Learned && agent.categories > 2 {
+                return Err(TrainError::param(
+                    "agent.decision_rule",
+                    rule.name(),
+                    &format!(
+                        "ratio, difference or likelihood for a task with {} categories \
+                         (learned needs two: an unpaid choice among more does not say which \
+                         category was right)",
+                        agent.categories
+                    ),
+                ));
+            }
             agent.timer.decision_mut().rule = rule;
         }
         match (self.timer, &mut agent.timer) {
