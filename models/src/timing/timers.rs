@@ -126,7 +126,7 @@ pub struct SbfTimer {
     #[serde(default)]
     pub clock_noise: f64,
     #[serde(skip)]
-    rt: SbfRuntime,
+    rt: Box<SbfRuntime>,
 }
 
 /// Envelope (0–1) from which the SBF agent responds: the coincidence detector's match to
@@ -231,7 +231,7 @@ impl SbfTimer {
         } else {
             1.0
         };
-        self.rt = SbfRuntime {
+        *self.rt = SbfRuntime {
             template,
             readouts: vec![0.0; detectors.len()],
             criteria,
@@ -398,7 +398,7 @@ impl Timer {
             stop: None,
             decision: Decision::default(),
             clock_noise: 0.0,
-            rt: SbfRuntime::default(),
+            rt: Box::default(),
         })
     }
 
@@ -444,7 +444,7 @@ impl Timer {
                 d.acc.reset();
                 d.choice_acc.clear();
             }
-            Timer::Sbf(s) => s.rt = SbfRuntime::default(),
+            Timer::Sbf(s) => *s.rt = SbfRuntime::default(),
             Timer::TimeCells(tc) => tc.cells.clear(),
         }
     }

@@ -292,7 +292,7 @@ pub const TIMING_SETTINGS: &[Spec] = &[
             lo: 1,
             hi: MAX_EPISODES as u64,
         },
-        "training episodes (6,000; 40,000 on Uncertainty-v0)",
+        "training episodes (6,000; 40,000 on Uncertainty-v0; per level on a multi-anchor task of more than two anchors, trained 2, 3, … counters as the reference does)",
     ),
     spec(
         "epsilon_start",
@@ -401,7 +401,7 @@ pub const TIMING_SETTINGS: &[Spec] = &[
         "decision_rule",
         &["agent", "decision_rule"],
         Rule::Choice(&["ratio", "difference", "likelihood", "learned"]),
-        "bisection criterion between the remembered anchors (geometric, arithmetic, harmonic mean, or learned from feedback)",
+        "criterion between two remembered anchors (geometric, arithmetic, harmonic mean, or learned from feedback; multi-anchor: one per neighbouring pair, learned needs two counters)",
     ),
     timer(
         "noise",
