@@ -36,10 +36,14 @@ fn check_learner(agent: &TimingAgent, fresh: &TimingAgent) -> Result<(), String>
     if !l.q_init.is_finite() {
         return Err("field `learner.q_init`: not a finite number".into());
     }
-    // State index (cell, carry, oven level) × action: a bound on every weight block's key.
-    let max_key = (agent.parser.cells as u64)
-        .saturating_mul(3 * u64::from(chronocooked_models::timing::agent::OVEN_LEVELS))
-        .saturating_mul(l.actions as u64);
+    if agent.oven_cells != fresh.oven_cells {
+        return Err(format!(
+            "field `oven_cells`: {:?} (allowed: {:?}, the task's ovens)",
+            agent.oven_cells, fresh.oven_cells
+        ));
+    }
+    // State index × action: a bound on every weight block's key.
+    let max_key = u64::from(agent.state_count()).saturating_mul(l.actions as u64);
     for (key, w) in &l.weights {
         if w.len() != l.features {
             return Err(format!(

@@ -42,11 +42,26 @@
 //!   model the interval's category (the chosen counter if rewarded, the other if not),
 //!   which trains its anchor memories.
 
+//!
+//! **Several ovens** (multi-oven bisection): one clock per oven. Each oven's interval is
+//! timed by its own copy of the timing model, started when that oven is seen to turn on and
+//! judged short or long against the model's one shared memory of the two anchors when it
+//! shows ready — drift-diffusion an accumulator per oven, SBF a detector set per oven on the
+//! same oscillator bank (each oven's onset resets its phase reference: the bank is read
+//! relative to a remembered onset per oven), time cells a trace per oven. Independent
+//! clocks predict no interference: each oven's Weber fraction and bisection point equal the
+//! one-oven task's, whatever the number of ovens and their onset offsets (Meck & Church
+//! 1984's simultaneous temporal processing). The soup carried shows its oven's code, so the
+//! TD learner sees the judgment of the oven the soup came from; every delivery feeds back
+//! that oven's category to the shared memory (unpaid: the other counter). The ovens show
+//! ready, so no clock gates checks there.
+
 use crate::activity::StepRecorder;
 use crate::agent::{Agent, Percept, PerceptParser};
 use crate::timing::judgment::{LONG, SHORT};
 use crate::timing::sarsa::{SarsaConfig, SarsaLambda};
 use crate::timing::timers::Timer;
+use chronocooked_env::CODE_CHANNELS;
 use chronocooked_env::TaskFamily;
 use chronocooked_env::{Action, ChronoEnv, ObjectKind};
 use rand::SeedableRng;
@@ -170,8 +185,29 @@ impl Default for TimingAgentConfig {
     }
 }
 
+/// One oven's clock in a multi-oven episode: a copy of the agent's timer started at the
+/// oven's onset.
+#[derive(Debug, Clone, Default)]
+struct OvenClock {
+    timer: Option<Timer>,
+    running: bool,
+    clock: u32,
+    interval: Option<u32>,
+    judgment: Option<u8>,
+}
+
+/// What the codes observation shows of a multi-oven kitchen: each oven's value (0 off,
+/// 1 on, 2 ready) and the oven the carried soup came from.
+#[derive(Debug, Clone, Default, PartialEq)]
+struct OvenView {
+    values: Vec<u8>,
+    soup_from: Option<usize>,
+}
+
 #[derive(Debug, Clone, Default)]
 struct EpisodeState {
+    clocks: Vec<OvenClock>,
+    view: OvenView,
     last: Option<Percept>,
     running: bool,
     clock: u32,
@@ -219,6 +255,10 @@ pub struct TimingAgent {
     /// Judgment indicator features the learner sees ([`judgment_features`]).
     #[serde(default = "two")]
     pub judgment_features: usize,
+    /// Multi-oven task: the cell of each oven, in oven order (one clock each); empty in
+    /// one-oven tasks.
+    #[serde(default)]
+    pub oven_cells: Vec<usize>,
     /// Cells from which the manual oven button is pressed (uncertainty task).
     #[serde(default)]
     pub button_cells: Vec<usize>,
@@ -279,6 +319,14 @@ impl TimingAgent {
             .map(|&(_, slot)| usize::from(slot) + 1)
             .max()
             .unwrap_or(1);
+        let oven_cells = if env.family() == TaskFamily::MultiOven {
+            [ObjectKind::Oven, ObjectKind::Oven2, ObjectKind::Oven3]
+                .iter()
+                .filter_map(|&k| layout.cells_of(k).first().copied())
+                .collect()
+        } else {
+            Vec::new()
+        };
         TimingAgent {
             name: name.to_string(),
             learner: SarsaLambda::new(config.sarsa.clone(), Action::COUNT, features),
@@ -289,6 +337,7 @@ impl TimingAgent {
             judges,
             categories,
             judgment_features,
+            oven_cells,
             button_cells,
             side_task,
             config,
@@ -311,6 +360,7 @@ impl TimingAgent {
         self.choice_cells = fresh.choice_cells;
         self.judges = fresh.judges;
         self.categories = fresh.categories.min(self.judgment_features);
+        self.oven_cells = fresh.oven_cells;
         self.button_cells = fresh.button_cells;
         self.side_task = fresh.side_task;
     }
@@ -406,6 +456,172 @@ impl TimingAgent {
         }
     }
 
+    /// Number of discrete states of the TD learner (its weight blocks are keyed by
+    /// `state × actions + action`): cell × carry × visible oven level, or in the
+    /// multi-oven task cell × (empty, onion, soup of oven 1–3) × each of three ovens off /
+    /// on / ready.
+    pub fn state_count(&self) -> u32 {
+        let cells = u32::try_from(self.parser.cells).unwrap_or(u32::MAX);
+        let per_cell = if self.multi_oven() {
+            5 * 27
+        } else {
+            3 * OVEN_LEVELS
+        };
+        cells.saturating_mul(per_cell)
+    }
+
+    /// Whether the agent times several ovens (one clock each).
+    fn multi_oven(&self) -> bool {
+        !self.oven_cells.is_empty()
+    }
+
+    /// Each oven's visible value and the carried soup's oven (its code on the soup channel
+    /// equals that oven's code on the object channel).
+    fn view_ovens(&self, obs: &[u8], p: &Percept) -> OvenView {
+        let at = |cell: usize, channel: usize| obs[cell * CODE_CHANNELS + channel];
+        let soup = at(p.cell, 3);
+        OvenView {
+            values: self.oven_cells.iter().map(|&c| at(c, 4)).collect(),
+            soup_from: (p.carry == 2)
+                .then(|| self.oven_cells.iter().position(|&c| at(c, 0) == soup))
+                .flatten(),
+        }
+    }
+
+    /// Multi-oven state: cell × (empty, onion, soup of oven 1, 2, 3) × each of three ovens
+    /// off / on / ready.
+    fn multi_state_index(&self, p: &Percept, v: &OvenView) -> u32 {
+        let carry = match (p.carry, v.soup_from) {
+            (2, Some(i)) => 2 + i as u32,
+            (c, _) => u32::from(c.min(1)),
+        };
+        // Always three ovens (absent ones read off), so a state means the same with 1, 2
+        // or 3 ovens: what the curriculum's first levels teach carries over, and the
+        // protocol's one-oven probes of a 3-oven agent land on states it knows.
+        let ovens = (0..3).fold(0u32, |acc, i| {
+            acc * 3 + u32::from(v.values.get(i).copied().unwrap_or(0).min(2))
+        });
+        (p.cell as u32 * 5 + carry) * 27 + ovens
+    }
+
+    /// Runs each oven's clock from what is visible: a clock starts (a copy of the agent's
+    /// timer, at its onset) when its oven is seen to turn on, ticks while it cooks, and at
+    /// the ready cue ends, judges the interval, and (training) learns the cue's time by the
+    /// model's own rule into the shared timer.
+    fn update_oven_clocks(&mut self, view: &OvenView) {
+        let n = self.oven_cells.len();
+        self.ep.clocks.resize_with(n, OvenClock::default);
+        let last = std::mem::replace(&mut self.ep.view, view.clone());
+        for i in 0..n {
+            let (was, now) = (last.values.get(i).copied().unwrap_or(0), view.values[i]);
+            let c = &mut self.ep.clocks[i];
+            if was == 0 && now != 0 && !c.running && c.interval.is_none() {
+                let mut timer = self.timer.clone();
+                timer.clear();
+                timer.onset(1, self.categories, &mut self.rng);
+                timer.tick(1, &mut self.rng);
+                *c = OvenClock {
+                    timer: Some(timer),
+                    running: true,
+                    clock: 1,
+                    interval: None,
+                    judgment: None,
+                };
+            } else if c.running && now == 1 {
+                c.clock += 1;
+                if let Some(t) = c.timer.as_mut() {
+                    t.tick(c.clock, &mut self.rng);
+                }
+                continue;
+            } else if !(c.running && now != 1) {
+                continue;
+            }
+            if now == 2 {
+                c.running = false;
+                c.interval = Some(c.clock);
+                let Some(t) = c.timer.as_mut() else { continue };
+                c.judgment = t.judge(self.categories);
+                if self.training {
+                    t.reinforce(1, f64::from(c.clock), true, &mut self.rng);
+                    self.timer.adopt_context_memory(t, 1);
+                }
+            } else if now == 0 {
+                c.running = false;
+            }
+        }
+    }
+
+    /// One decision in the multi-oven task: the TD learner over (cell, carry with the soup's
+    /// oven, every oven's state) × (bias, the judgment of the carried soup's oven). The
+    /// ovens show ready, so the clocks serve the judgments only (temporal features off, no
+    /// gate).
+    fn act_multi_oven(&mut self, obs: &[u8]) -> Action {
+        let p = self.parser.parse(obs);
+        let view = self.view_ovens(obs, &p);
+        self.update_oven_clocks(&view);
+        let judgment = view.soup_from.and_then(|i| self.ep.clocks.get(i)?.judgment);
+        let mut features = std::mem::take(&mut self.phi);
+        features.clear();
+        features.push(1.0);
+        features.resize(1 + self.timer.n_features(), 0.0);
+        for slot in 0..self.judgment_features {
+            features.push(f64::from(judgment == Some(slot as u8)));
+        }
+        features.push(0.0);
+        let s = self.multi_state_index(&p, &view);
+        let mut q = std::mem::take(&mut self.q);
+        self.learner.q_all(s, &features, &mut q);
+        let allowed: Vec<usize> = (0..Action::COUNT).collect();
+        let eps = if self.training {
+            self.config.epsilon
+        } else {
+            0.0
+        };
+        let a = self.learner.choose(&q, &allowed, eps, &mut self.rng);
+        self.learn(Some(q[a]));
+        self.ep.value = q[a];
+        if self.training {
+            self.learner.visit(s, a, &features);
+        }
+        self.ep.pending = Some((s, a, features.clone()));
+        self.ep.last = Some(p);
+        self.phi = features;
+        self.q = q;
+        Action::ALL[a]
+    }
+
+    /// Multi-oven feedback: the soup the agent carried left its hands at a counter — that
+    /// oven's interval was short (short counter paid, or long counter unpaid) or long; the
+    /// shared memory stores it as that oven's clock measured it.
+    fn oven_delivery_feedback(&mut self, reward: f32, next_obs: &[u8]) {
+        let (Some(p), Some(i)) = (self.ep.last, self.ep.view.soup_from) else {
+            return;
+        };
+        if !self.training || self.parser.parse(next_obs).carry == 2 {
+            return;
+        }
+        let Some(&(_, chosen)) = self.choice_cells.iter().find(|(c, _)| *c == p.cell) else {
+            return;
+        };
+        let Some(clock) = self.ep.clocks.get(i) else {
+            return;
+        };
+        let (Some(trial), Some(interval)) = (clock.timer.as_ref(), clock.interval) else {
+            return;
+        };
+        let category = if reward > 0.0 { chosen } else { LONG - chosen };
+        if let Some(judged) = clock.judgment {
+            self.timer
+                .judgment_feedback(judged == LONG, category == LONG);
+        }
+        self.timer.reinforce_choice_measured_by(
+            trial,
+            category,
+            f64::from(interval),
+            &mut self.rng,
+        );
+    }
+
     fn learn(&mut self, next_q: Option<f64>) {
         if let Some((s, a, phi)) = self.ep.pending.take() {
             let q_old = self.learner.q(s, a, &phi);
@@ -450,6 +666,9 @@ impl Agent for TimingAgent {
     }
 
     fn act(&mut self, obs: &[u8]) -> Action {
+        if self.multi_oven() {
+            return self.act_multi_oven(obs);
+        }
         let p = self.parser.parse(obs);
         self.update_clock(&p);
         self.ep.responding = self.ep.running
@@ -549,7 +768,9 @@ impl Agent for TimingAgent {
             } else {
                 0.0
             };
-        if terminated && self.judges && self.training {
+        if self.multi_oven() {
+            self.oven_delivery_feedback(reward, next_obs);
+        } else if terminated && self.judges && self.training {
             let cell = self.ep.last.map_or(usize::MAX, |p| p.cell);
             if let (Some(&(_, chosen)), Some(t)) = (
                 self.choice_cells.iter().find(|(c, _)| *c == cell),
@@ -584,7 +805,26 @@ impl Agent for TimingAgent {
     }
 
     fn record(&self, rec: &mut StepRecorder) {
-        self.timer.record(rec);
+        if self.multi_oven() {
+            // One population per oven: oven 1 under the plain names, the others suffixed
+            // (`_oven2`, `_oven3`); an oven not yet on shows the idle timer.
+            for i in 0..self.oven_cells.len() {
+                let timer = self
+                    .ep
+                    .clocks
+                    .get(i)
+                    .and_then(|c| c.timer.as_ref())
+                    .unwrap_or(&self.timer);
+                let suffix = if i == 0 {
+                    String::new()
+                } else {
+                    format!("_oven{}", i + 1)
+                };
+                timer.record_as(rec, &suffix);
+            }
+        } else {
+            self.timer.record(rec);
+        }
         rec.scalar("value", self.ep.value as f32);
         rec.scalar("rpe", self.ep.rpe as f32);
     }

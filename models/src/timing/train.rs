@@ -3,7 +3,7 @@
 
 use crate::agent::{Agent, evaluate_agent, run_episode, success_rate};
 use crate::timing::agent::TimingAgent;
-use chronocooked_env::{ChronoEnv, EnvError, ResetOptions, TaskConfig, derive_seed};
+use chronocooked_env::{ChronoEnv, EnvError, ResetOptions, TaskConfig, TaskParams, derive_seed};
 use serde::{Deserialize, Serialize};
 
 /// Settings of a timing-agent training run.
@@ -79,23 +79,38 @@ fn training_episode(
     )
 }
 
-/// The tasks a timing agent trains through on `config`, in order. Multi-anchor
-/// categorization with more than two active anchors is learned as the reference trains it
-/// (its `anchors 2 → 3 → 4` curriculum): two counters first, then one more per level. A
-/// model stores an anchor only when a counter pays (among more than two counters an unpaid
-/// choice does not say which was right), so from scratch on all counters at once it must
-/// find every counter by exploration before it can judge; measured on 3–4 anchors
-/// (6000 episodes, seeds 1–3), some runs stopped using the oven at all (success 0). Two
-/// counters first teach both anchors from every choice. Other tasks: `config` itself.
+/// The tasks a timing agent trains through on `config`, in order: the reference's
+/// curricula, as it trains its agents.
+///
+/// * Multi-anchor categorization with more than two active anchors: 2, 3, … counters. A
+///   model stores an anchor only when its counter pays (among more than two counters an
+///   unpaid choice does not say which was right), so from scratch on all counters at once
+///   it must find every counter by exploration before it can judge; measured on 3–4
+///   anchors (6000 episodes, seeds 1–3), some runs stopped using the oven at all (success
+///   0). Two counters first teach both anchors from every choice.
+/// * Multi-oven bisection with more than one oven: 1, 2, … ovens. From scratch on 3
+///   synchronous ovens drift-diffusion (seed 1) sent every soup of the first oven to the
+///   short counter, a local optimum of the TD learner (the long counter is the longer
+///   walk from that oven), while its clocks judged the other ovens right.
+///
+/// Other tasks: `config` itself.
 pub fn training_levels(config: &TaskConfig) -> Result<Vec<TaskConfig>, EnvError> {
-    let k = config.params.active_anchors().map_or(0, <[u32]>::len);
-    if k <= 2 {
+    let (key, first, last) = match &config.params {
+        TaskParams::MultiAnchor { .. } => (
+            "num_anchors",
+            2,
+            config.params.active_anchors().map_or(0, <[u32]>::len),
+        ),
+        TaskParams::MultiOven { ovens, .. } => ("ovens", 1, *ovens as usize),
+        _ => return Ok(vec![config.clone()]),
+    };
+    if last <= first {
         return Ok(vec![config.clone()]);
     }
-    (2..=k)
+    (first..=last)
         .map(|n| {
             let mut level = config.clone();
-            level.set("num_anchors", &n.to_string())?;
+            level.set(key, &n.to_string())?;
             level.validate()?;
             Ok(level)
         })
@@ -208,4 +223,42 @@ pub fn adaptation_episodes(
     }
     agent.set_training(false);
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use chronocooked_env::make_config;
+
+    fn config(task: &str, sets: &[&str]) -> TaskConfig {
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        make_config(task, &sets).unwrap()
+    }
+
+    #[test]
+    fn the_curricula_grow_counters_and_ovens_one_at_a_time() {
+        let levels = training_levels(&config("MultiAnchor-v0", &["anchors=3,7,12,20"])).unwrap();
+        let active: Vec<Vec<u32>> = levels
+            .iter()
+            .map(|c| c.params.active_anchors().unwrap().to_vec())
+            .collect();
+        assert_eq!(active, vec![vec![3, 7], vec![3, 7, 12], vec![3, 7, 12, 20]]);
+        let levels = training_levels(&config("MultiOven-v0", &["ovens=3"])).unwrap();
+        let ovens: Vec<u32> = levels
+            .iter()
+            .map(|c| match c.params {
+                TaskParams::MultiOven { ovens, .. } => ovens,
+                _ => unreachable!(),
+            })
+            .collect();
+        assert_eq!(ovens, vec![1, 2, 3]);
+        for (task, sets) in [
+            ("MultiAnchor-v0", &["anchors=4,9"][..]),
+            ("MultiOven-v0", &["ovens=1"][..]),
+            ("Bisection-v0", &[][..]),
+        ] {
+            let c = config(task, sets);
+            assert_eq!(training_levels(&c).unwrap(), vec![c.clone()], "{task}");
+        }
+    }
 }

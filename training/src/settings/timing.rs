@@ -292,7 +292,7 @@ pub const TIMING_SETTINGS: &[Spec] = &[
             lo: 1,
             hi: MAX_EPISODES as u64,
         },
-        "training episodes (6,000; 40,000 on Uncertainty-v0; per level on a multi-anchor task of more than two anchors, trained 2, 3, … counters as the reference does)",
+        "training episodes (6,000; 40,000 on Uncertainty-v0; per level where the reference trains a curriculum: multi-anchor 2, 3, … counters, multi-oven 1, 2, … ovens)",
     ),
     spec(
         "epsilon_start",
