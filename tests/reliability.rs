@@ -645,3 +645,53 @@ fn copy_tree(src: &Path, dst: &Path) {
         }
     }
 }
+
+#[test]
+fn counts_beyond_what_the_lab_can_run_are_refused_before_any_work() {
+    // Issue #47 item 1: each bound named with its flag or key and the allowed range; nothing
+    // runs (each of these used to run for hours or abort allocating gigabytes).
+    let dir = temp_dir("bounds");
+    let out = dir.join("never");
+    let cases: [(&[&str], &str); 5] = [
+        (
+            &[
+                "train",
+                "--model",
+                "cnn-mlp",
+                "--task",
+                "FixedInterval-v0",
+                "--set",
+                "total_steps=2000000001",
+                "--out",
+                s(&out),
+            ],
+            "total_steps",
+        ),
+        (
+            &["record", "--run", s(&out), "--repeats", "101"],
+            "--repeats",
+        ),
+        (
+            &["eval", "--run", s(&out), "--stochastic", "10001"],
+            "--stochastic",
+        ),
+        (
+            &["mechanisms", s(&out), "--resamples", "100001"],
+            "--resamples",
+        ),
+        (
+            &["adapt", "--run", s(&out), "--episodes", "10000001"],
+            "--episodes",
+        ),
+    ];
+    for (args, key) in cases {
+        let err = run_err(args);
+        assert!(err.contains(key), "{args:?}: {err}");
+        assert!(
+            err.contains("1..=") || err.contains("allowed"),
+            "{args:?}: no allowed range in {err}"
+        );
+    }
+    assert!(!out.exists(), "a refused command wrote {}", out.display());
+    let _ = std::fs::remove_dir_all(&dir);
+}

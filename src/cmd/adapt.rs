@@ -21,9 +21,11 @@ pub struct AdaptArgs {
     /// `never_ready_prob` when it was trained on the task to adapt to, else its `td`).
     #[arg(long = "env", value_name = "KEY=VALUE")]
     pub env: Vec<String>,
-    /// Episodes played by a timing agent.
-    #[arg(long, default_value_t = adapt::DEFAULT_EPISODES)]
-    pub episodes: usize,
+    /// Episodes played by a timing agent (1–10,000,000, the bound of timing-model training
+    /// episodes: each episode's outcome is kept).
+    #[arg(long, default_value_t = adapt::DEFAULT_EPISODES as u64,
+          value_parser = clap::value_parser!(u64).range(1..=10_000_000))]
+    pub episodes: u64,
     /// Env steps of PPO fine-tuning.
     #[arg(long, default_value_t = adapt::DEFAULT_STEPS)]
     pub steps: u64,
@@ -50,7 +52,7 @@ pub fn run(args: AdaptArgs) -> Result<()> {
     let config = AdaptConfig {
         task: args.task.clone(),
         env: args.env.clone(),
-        episodes: args.episodes,
+        episodes: args.episodes as usize,
         steps: args.steps,
         window: args.window,
         threshold: args.threshold,

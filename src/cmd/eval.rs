@@ -25,9 +25,10 @@ pub struct EvalArgs {
     #[arg(long = "env", value_name = "KEY=VALUE")]
     pub env: Vec<String>,
     /// Stochastic protocol: N episodes per condition (sampled actions) instead of greedy
-    /// episodes from every start cell.
-    #[arg(long)]
-    pub stochastic: Option<usize>,
+    /// episodes from every start cell (1–10,000: the paper's protocol plays 100; every
+    /// episode's steps are kept in memory for the metrics).
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=10_000))]
+    pub stochastic: Option<u64>,
     /// Seed of the evaluation (its noise draws and stochastic start cells). Default: the
     /// run's training seed, so replicate runs are evaluated with independent draws and a
     /// rerun gives the same result; 0 for `--agent` and `--human`.
@@ -91,7 +92,9 @@ pub fn run(args: EvalArgs) -> Result<()> {
             task: args.task.clone(),
             env: args.env.clone(),
             mode: match args.stochastic {
-                Some(n) => Mode::Stochastic { episodes: n },
+                Some(n) => Mode::Stochastic {
+                    episodes: n as usize,
+                },
                 None => Mode::Reference,
             },
             seed,

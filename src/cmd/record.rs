@@ -36,8 +36,10 @@ pub struct RecordArgs {
     /// probe trials of different TDs apart: record one run per TD instead.
     #[arg(long, value_delimiter = ',')]
     pub tds: Vec<u32>,
-    /// Repetitions of the every-start-cell protocol (different seeds for the model's noise).
-    #[arg(long, default_value_t = 1)]
+    /// Repetitions of the every-start-cell protocol (different seeds for the model's noise),
+    /// 1–100: a repeat of an SBF agent (1,000 oscillators) holds ≈ 2.5 MB of activity per TD
+    /// in memory; 100 repeats (≈ 1,000 trials per TD) are well beyond what the summaries need.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..=100))]
     pub repeats: u64,
     /// Seed of the recording.
     #[arg(long, default_value_t = 0)]

@@ -201,6 +201,9 @@ struct OvenClock {
 #[derive(Debug, Clone, Default, PartialEq)]
 struct OvenView {
     values: Vec<u8>,
+    /// Whether each oven is in the kitchen (its cell shows an object): a probe in a
+    /// kitchen with fewer ovens than the agent trained with leaves the others' cells free.
+    present: Vec<bool>,
     soup_from: Option<usize>,
 }
 
@@ -459,11 +462,11 @@ impl TimingAgent {
     /// Number of discrete states of the TD learner (its weight blocks are keyed by
     /// `state × actions + action`): cell × carry × visible oven level, or in the
     /// multi-oven task cell × (empty, onion, soup of oven 1–3) × each of three ovens off /
-    /// on / ready.
+    /// on / ready / absent.
     pub fn state_count(&self) -> u32 {
         let cells = u32::try_from(self.parser.cells).unwrap_or(u32::MAX);
         let per_cell = if self.multi_oven() {
-            5 * 27
+            5 * 64
         } else {
             3 * OVEN_LEVELS
         };
@@ -482,6 +485,7 @@ impl TimingAgent {
         let soup = at(p.cell, 3);
         OvenView {
             values: self.oven_cells.iter().map(|&c| at(c, 4)).collect(),
+            present: self.oven_cells.iter().map(|&c| at(c, 0) != 0).collect(),
             soup_from: (p.carry == 2)
                 .then(|| self.oven_cells.iter().position(|&c| at(c, 0) == soup))
                 .flatten(),
@@ -489,19 +493,26 @@ impl TimingAgent {
     }
 
     /// Multi-oven state: cell × (empty, onion, soup of oven 1, 2, 3) × each of three ovens
-    /// off / on / ready.
+    /// off / on / ready / absent.
     fn multi_state_index(&self, p: &Percept, v: &OvenView) -> u32 {
         let carry = match (p.carry, v.soup_from) {
             (2, Some(i)) => 2 + i as u32,
             (c, _) => u32::from(c.min(1)),
         };
-        // Always three ovens (absent ones read off), so a state means the same with 1, 2
-        // or 3 ovens: what the curriculum's first levels teach carries over, and the
-        // protocol's one-oven probes of a 3-oven agent land on states it knows.
+        // Always three ovens, an absent one as a fourth value, so a state means the same
+        // with 1, 2 or 3 ovens: what the curriculum's first levels teach carries over, and
+        // the protocol's one-oven probes of a 3-oven agent land on the one-oven states it
+        // learned. (Read as "off", an absent oven made a one-oven soup look like the last
+        // of three, worth a third: measured, the 3-oven synchronous agents then bumped into
+        // walls on every one-oven probe, interact and a bump tied at 0.24.)
         let ovens = (0..3).fold(0u32, |acc, i| {
-            acc * 3 + u32::from(v.values.get(i).copied().unwrap_or(0).min(2))
+            let value = match (v.present.get(i), v.values.get(i)) {
+                (Some(true), Some(&o)) => u32::from(o.min(2)),
+                _ => 3,
+            };
+            acc * 4 + value
         });
-        (p.cell as u32 * 5 + carry) * 27 + ovens
+        (p.cell as u32 * 5 + carry) * 64 + ovens
     }
 
     /// Runs each oven's clock from what is visible: a clock starts (a copy of the agent's

@@ -3,6 +3,12 @@
 
 use super::{COUNT, NON_NEGATIVE, POSITIVE, POSITIVE_COUNT, Rule, Spec, UNIT, spec};
 
+/// Largest PPO budget (env steps): about 1,000 × the reference protocol's largest (1.76M,
+/// the multi-anchor and multi-oven curricula) — days on the lab's CPUs, so a larger value is
+/// a typo or a corrupted file, not a plan (a run folder's `total_steps = i64::MAX` trained on
+/// without end before this bound).
+pub const MAX_TOTAL_STEPS: u64 = 2_000_000_000;
+
 const fn multi_timer(
     key: &'static str,
     path: &'static [&'static str],
@@ -46,8 +52,11 @@ pub const PPO_SETTINGS: &[Spec] = &[
         ..spec(
             "total_steps",
             &["total_steps"],
-            POSITIVE_COUNT,
-            "env-step budget (all envs together)",
+            Rule::Int {
+                lo: 1,
+                hi: MAX_TOTAL_STEPS,
+            },
+            "env-step budget (all envs together; at most 2e9, about 1,000 x the reference's largest budget of 1.76M)",
         )
     },
     spec(
