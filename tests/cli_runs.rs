@@ -249,7 +249,7 @@ fn eval_writes_records_and_metrics_that_recompute_identically() {
         (vec!["eval"], "say what to evaluate"),
         (
             vec!["eval", "--agent", "random", "--stochastic", "0"],
-            "positive",
+            "1..=10000",
         ),
         (vec!["eval", "--from", "/nonexistent"], "not an eval folder"),
     ] {
