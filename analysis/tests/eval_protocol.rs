@@ -107,9 +107,21 @@ fn every_task_has_reference_conditions_the_oracle_plays() {
         assert!(!conds.is_empty(), "{}", spec.id);
         let env = ChronoEnv::from_id(spec.id, &[] as &[&str]).unwrap();
         let mut oracle = OracleAgent::new(&env);
-        let recs = run_protocol(&mut oracle, &conds, Mode::Reference, 0).unwrap();
+        let mut recs = run_protocol(&mut oracle, &conds, Mode::Reference, 0).unwrap();
         // Reference protocol: one greedy episode per free start cell per condition, in
-        // condition order and row-major start order, each played at its condition's TD.
+        // condition order and row-major start order, each played at its condition's TD —
+        // except reproduction, which plays each context's sample intervals in a random
+        // order (Jazayeri & Shadlen 2010): there the same episodes, mixed.
+        if spec.id == "Reproduction-v0" {
+            let played: Vec<u32> = recs.iter().map(|r| r.condition.td).collect();
+            assert!(
+                played.windows(2).any(|w| w[0] > w[1]),
+                "sample intervals mixed"
+            );
+            let index =
+                |c: &chronocooked_analysis::Condition| conds.iter().position(|x| x == c).unwrap();
+            recs.sort_by_key(|r| (index(&r.condition), r.episode.start));
+        }
         let mut k = 0;
         for c in &conds {
             let cenv = ChronoEnv::from_id(&c.task, &c.env).unwrap();

@@ -104,6 +104,7 @@ fn no_overrides(model: &str) -> TimingAgentSettings {
         Err(_) => TimingAgentSettings::none(TimerSettings::Ddm {
             noise: None,
             memory_noise: None,
+            reproduction_rate: None,
         }),
     }
 }
@@ -117,6 +118,20 @@ pub use crate::settings::timing::MAX_EPISODES;
 /// reach 100% on every seed, 20,000 gave microstimuli 1 seed of 4).
 pub const UNCERTAINTY_EPISODES: usize = 40_000;
 
+/// Default training episodes on the reproduction task: the time cells learn the production
+/// as a value over (measurement at Set × time since Set) for every context, so they need
+/// more episodes than one fixed interval (measured on the default task, seeds 1 and 3:
+/// 6,000 episodes at a constant step size left microstimulus, Laplace and CSC agents at
+/// 2–81% success, unstable from one evaluation to the next; 20,000 with the step size
+/// annealed to [`REPRODUCTION_ALPHA_END`] gave 64–85% on all six runs).
+pub const REPRODUCTION_EPISODES: usize = 20_000;
+
+/// Final SARSA(λ) step size on the reproduction task (annealed from the agent's own `α`,
+/// [`TimingTrainConfig::alpha_end`]): a tenth of Ludvig et al.'s 0.05. A constant step size
+/// left the values tracking the last few hundred episodes, and the greedy production
+/// collapsed between evaluations (success 0.6 → 0 → 0.6 on one run).
+pub const REPRODUCTION_ALPHA_END: f64 = 0.005;
+
 impl TimingRunConfig {
     /// Defaults for `model` on `task`.
     pub fn new(task: &str, model: &str, seed: u64) -> Self {
@@ -124,6 +139,10 @@ impl TimingRunConfig {
         let family = make_config(task, &[] as &[&str]).map(|c| c.family());
         if family == Ok(TaskFamily::Uncertainty) {
             train.episodes = UNCERTAINTY_EPISODES;
+        }
+        if family == Ok(TaskFamily::Reproduction) {
+            train.episodes = REPRODUCTION_EPISODES;
+            train.alpha_end = Some(REPRODUCTION_ALPHA_END);
         }
         TimingRunConfig {
             kind: "timing".into(),

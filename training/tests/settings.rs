@@ -292,7 +292,8 @@ fn timing_settings_are_typed_per_family_and_old_run_folders_still_load() {
         ddm.agent.timer,
         TimerSettings::Ddm {
             noise: Some(n),
-            memory_noise: None
+            memory_noise: None,
+            reproduction_rate: None,
         } if n == 0.06
     ));
     let agent = ddm.build_agent().unwrap();

@@ -44,10 +44,26 @@ pub struct DdmTimer {
     /// remembered drift (a reference-memory sample, Gibbon, Church & Meck 1984); 0 = exact.
     #[serde(default)]
     pub memory_noise: f64,
+    /// Drift learning rate at Set in the reproduction task (Ready-Set-Go): the drift of
+    /// the context learns the measured interval with [`DriftDiffusion::learn`] at this rate
+    /// and the production runs on it. 1 = Simen et al. (2011)'s one-shot duration learning
+    /// (the trial's own measurement); below 1 the drift averages the context's past
+    /// measurements (memory averaging, a regression to the mean of the prior).
+    #[serde(default = "one_shot")]
+    pub reproduction_rate: f64,
     /// This trial's accumulator of each remembered anchor, with its slot, in slot order
     /// (fewer than two: no judgment).
     #[serde(skip)]
     choice_acc: Vec<(u8, DriftDiffusion)>,
+}
+
+fn one_shot() -> f64 {
+    1.0
+}
+
+/// A trial's clock-speed factor `exp(σ ε)`, `ε ~ N(0, 1)`; exactly 1 (no draw) at `σ` 0.
+fn speed_sample<R: Rng + ?Sized>(sigma: f64, rng: &mut R) -> f64 {
+    memory_sample(sigma, rng)
 }
 
 /// A multiplicative memory factor `exp(σ ε)`, `ε ~ N(0, 1)`; exactly 1 (no draw) at `σ` 0.
@@ -226,11 +242,7 @@ impl SbfTimer {
         let mut detectors = vec![self.detector(template.as_slice())];
         detectors.extend(criteria.iter().map(|&c| self.detector(&[c])));
         let n = criteria.len();
-        let speed = if self.clock_noise > 0.0 {
-            (self.clock_noise * rng.sample::<f64, _>(StandardNormal)).exp()
-        } else {
-            1.0
-        };
+        let speed = speed_sample(self.clock_noise, rng);
         *self.rt = SbfRuntime {
             template,
             readouts: vec![0.0; detectors.len()],
@@ -240,6 +252,22 @@ impl SbfTimer {
             speed,
             criterion_reached: vec![false; n],
             criterion_passed: vec![false; n],
+            ..SbfRuntime::default()
+        };
+        let w = 2.0 * std::f64::consts::PI * self.speed() * self.seconds_per_step;
+        self.rt.rot = self.model.freqs.iter().map(|f| (w * f).sin_cos()).collect();
+    }
+
+    /// Starts the oscillators at phase 0 with clock-speed factor `speed` and one detector of
+    /// the stored time `template` (s; `None`: nothing to match): the reproduction task's
+    /// Ready (no template) and Set (the pattern stored at Set).
+    fn start_clock(&mut self, template: Option<f64>, speed: f64) {
+        let detectors = vec![self.detector(template.as_slice())];
+        *self.rt = SbfRuntime {
+            template,
+            readouts: vec![0.0; detectors.len()],
+            detectors,
+            speed,
             ..SbfRuntime::default()
         };
         let w = 2.0 * std::f64::consts::PI * self.speed() * self.seconds_per_step;
@@ -375,6 +403,7 @@ impl Timer {
             choice_drifts: BTreeMap::new(),
             decision: Decision::default(),
             memory_noise: 0.0,
+            reproduction_rate: one_shot(),
             choice_acc: Vec::new(),
         })
     }
@@ -481,6 +510,70 @@ impl Timer {
                 };
                 tc.cells.onset_with_speed(speed);
                 tc.trial_anchors = remembered_slots(categories, |slot| tc.anchors.draw(slot, rng));
+            }
+        }
+    }
+
+    /// Ready in the reproduction task (Ready-Set-Go) of context `ctx`: the measurement
+    /// epoch starts at time 0. Drift-diffusion ramps on the context's remembered drift,
+    /// SBF's oscillators start in phase with this trial's speed factor, the time cells
+    /// start with theirs.
+    pub fn begin_measurement<R: Rng + ?Sized>(&mut self, ctx: u8, rng: &mut R) {
+        match self {
+            Timer::Ddm(d) => {
+                d.acc.reset();
+                d.acc.drift = *d
+                    .drifts
+                    .get(&ctx)
+                    .unwrap_or(&(d.acc.threshold / d.initial_interval));
+                d.choice_acc.clear();
+            }
+            Timer::Sbf(s) => {
+                let speed = speed_sample(s.clock_noise, rng);
+                s.start_clock(None, speed);
+            }
+            Timer::TimeCells(tc) => {
+                let speed = speed_sample(tc.cells.speed_noise, rng);
+                tc.cells.onset_with_speed(speed);
+                tc.trial_anchors.clear();
+            }
+        }
+    }
+
+    /// Set in the reproduction task: the measurement epoch of context `ctx` ended after
+    /// `ts` steps and the production of `gain × ts` starts at time 0, each model with its
+    /// own machinery:
+    /// * drift-diffusion learns the drift of the context from the accumulator at Set
+    ///   ([`DriftDiffusion::learn`] at [`DdmTimer::reproduction_rate`]: `A ← A z/x(ts)` one
+    ///   shot) and ramps again from 0 on that drift divided by the gain;
+    /// * SBF stores the oscillators' pattern at Set (the interval as this trial's clock
+    ///   measured it, with memory noise) as the detector's weights, and restarts the
+    ///   oscillators in phase with a new speed factor divided by the gain: the coincidence
+    ///   detector fires when the pattern recurs;
+    /// * time cells start again with a new speed factor; what the agent learned by TD
+    ///   reads the production from the population and its snapshot at Set (the gain is a
+    ///   context the learner sees).
+    ///
+    /// Measurement and production draw their clock noise independently (the observer
+    /// model's `wm` and `wp`, Jazayeri & Shadlen 2010).
+    pub fn begin_production<R: Rng + ?Sized>(&mut self, ctx: u8, ts: f64, gain: f64, rng: &mut R) {
+        let gain = if gain > 0.0 { gain } else { 1.0 };
+        match self {
+            Timer::Ddm(d) => {
+                d.acc.learn(d.acc.x, d.reproduction_rate);
+                d.drifts.insert(ctx, d.acc.drift);
+                let drift = d.acc.drift / gain;
+                d.acc.reset();
+                d.acc.drift = drift;
+            }
+            Timer::Sbf(s) => {
+                let stored = s.model.stored_time(s.subjective(ts), rng);
+                let speed = speed_sample(s.clock_noise, rng) / gain;
+                s.start_clock(Some(stored), speed);
+            }
+            Timer::TimeCells(tc) => {
+                let speed = speed_sample(tc.cells.speed_noise, rng);
+                tc.cells.onset_with_speed(speed);
             }
         }
     }

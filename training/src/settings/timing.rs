@@ -68,6 +68,9 @@ pub enum TimerSettings {
         /// SD of the log of a per-trial factor on each remembered anchor drift.
         #[serde(default)]
         memory_noise: Option<f64>,
+        /// Drift learning rate at Set in the reproduction task (1 = one-shot).
+        #[serde(default)]
+        reproduction_rate: Option<f64>,
     },
     /// Striatal beat-frequency timer.
     Sbf {
@@ -96,6 +99,7 @@ impl TimerSettings {
             Timer::Ddm(_) => TimerSettings::Ddm {
                 noise: None,
                 memory_noise: None,
+                reproduction_rate: None,
             },
             Timer::Sbf(_) => TimerSettings::Sbf {
                 memory_noise: None,
@@ -134,6 +138,7 @@ impl TimingAgentSettings {
             Timer::Ddm(d) => TimerSettings::Ddm {
                 noise: Some(d.acc.noise),
                 memory_noise: Some(d.memory_noise),
+                reproduction_rate: Some(d.reproduction_rate),
             },
             Timer::Sbf(s) => TimerSettings::Sbf {
                 memory_noise: Some(s.model.memory_noise),
@@ -205,11 +210,13 @@ impl TimingAgentSettings {
                 TimerSettings::Ddm {
                     noise,
                     memory_noise,
+                    reproduction_rate,
                 },
                 Timer::Ddm(d),
             ) => {
                 put(&mut d.acc.noise, noise);
                 put(&mut d.memory_noise, memory_noise);
+                put(&mut d.reproduction_rate, reproduction_rate);
             }
             (
                 TimerSettings::Sbf {
@@ -292,7 +299,7 @@ pub const TIMING_SETTINGS: &[Spec] = &[
             lo: 1,
             hi: MAX_EPISODES as u64,
         },
-        "training episodes (6,000; 40,000 on Uncertainty-v0; per level where the reference trains a curriculum: multi-anchor 2, 3, … counters, multi-oven 1, 2, … ovens)",
+        "training episodes (6,000; 40,000 on Uncertainty-v0; 20,000 on Reproduction-v0; per level where the reference trains a curriculum: multi-anchor 2, 3, … counters, multi-oven 1, 2, … ovens)",
     ),
     spec(
         "epsilon_start",
@@ -334,7 +341,7 @@ pub const TIMING_SETTINGS: &[Spec] = &[
         "alpha_end",
         &["train", "alpha_end"],
         Rule::Optional(&STEP_SIZE),
-        "final SARSA(lambda) learning rate, annealed from alpha like epsilon (none = constant alpha)",
+        "final SARSA(lambda) learning rate, annealed from alpha like epsilon (none = constant alpha; 0.005 on Reproduction-v0)",
     ),
     spec("gamma", &["agent", "gamma"], UNIT, "discount per step"),
     spec(
@@ -415,6 +422,15 @@ pub const TIMING_SETTINGS: &[Spec] = &[
         "ddm, sbf, timecells-*",
         "SD (log) of a per-trial factor on each remembered duration (sbf: CV kappa of the stored duration)",
     ),
+    Spec {
+        only_with: Some("ddm"),
+        ..spec(
+            "reproduction_rate",
+            &["agent", "timer", "reproduction_rate"],
+            STEP_SIZE,
+            "reproduction: drift learning rate at Set (1 = Simen et al. 2011's one-shot rule; below 1 the drift averages the context's past measurements)",
+        )
+    },
     timer(
         "clock_noise",
         &["agent", "timer", "clock_noise"],

@@ -1,0 +1,52 @@
+//! The reproduction protocol plays each context's sample intervals in random order
+//! (Jazayeri & Shadlen 2010), so a model with a memory from trial to trial shows the
+//! regression it predicts. Known answer: drift-diffusion without noise and with a drift
+//! learning rate `α` at Set keeps the running average `A_n = (1 − α) A_{n−1} + α z/ts_n`, so
+//! its production `z/A_n` mixes the trial's interval with the earlier ones — the slope of the
+//! mean `tp` on `ts` is about `α` when the trials mix, and 1 when one `ts` follows another
+//! (the memory settles on it). With `α` 0.5 the slope must be below 0.75.
+
+use chronocooked_analysis::{Mode, compute_metrics, reference_conditions, run_protocol};
+use chronocooked_env::{ChronoEnv, make_config};
+use chronocooked_models::agent::Agent;
+use chronocooked_models::timing::timers::Timer;
+use chronocooked_models::timing::train::{TimingTrainConfig, train_timing_agent};
+use chronocooked_models::timing::zoo::make_timing_agent;
+
+#[test]
+fn interleaved_sample_intervals_reveal_a_memory_averaging_clocks_regression() {
+    let sets = vec!["priors=9-15".to_string()];
+    let config = make_config("Reproduction-v0", &sets).unwrap();
+    let env = ChronoEnv::new(&config).unwrap();
+    let mut agent = make_timing_agent("ddm", &env, 5).unwrap();
+    let alpha = 0.5;
+    if let Timer::Ddm(d) = &mut agent.timer {
+        d.acc.noise = 0.0;
+        d.memory_noise = 0.0;
+        d.reproduction_rate = alpha;
+    }
+    let train = TimingTrainConfig {
+        eval_every: 0,
+        ..Default::default()
+    };
+    train_timing_agent(&mut agent, &config, &train, &[], 5, |_| {}).unwrap();
+    agent.set_training(false);
+    let conds = reference_conditions("Reproduction-v0", &sets).unwrap();
+    let recs = run_protocol(&mut agent, &conds, Mode::Reference, 9).unwrap();
+    // The order mixes the intervals: not one run per ts.
+    let played: Vec<u32> = recs.iter().map(|r| r.condition.td).collect();
+    let runs = 1 + played.windows(2).filter(|w| w[0] != w[1]).count();
+    assert!(
+        runs > played.len() / 2,
+        "{runs} runs of {} trials",
+        played.len()
+    );
+    let m = compute_metrics("ddm", &recs, 0).reproduction.unwrap();
+    let c = &m.contexts[0];
+    assert_eq!(c.failures, 0);
+    let slope = c.slope.unwrap();
+    assert!(
+        slope > 0.25 && slope < 0.75,
+        "slope {slope:.3} (about {alpha} expected)"
+    );
+}

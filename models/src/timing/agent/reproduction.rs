@@ -1,0 +1,205 @@
+//! The timing agents on the reproduction task (Ready-Set-Go, `Reproduction-v0`).
+//!
+//! The oven flashes twice (Ready, Set: the value 2 for one step each) `ts` steps apart and
+//! then shows "on" until the soup is taken; the production `tp` is the number of steps from
+//! the Set step to the pickup. What the agent sees and does:
+//! * **Ready** (the first flash): the timing model starts its measurement
+//!   ([`Timer::begin_measurement`]) in the context the counter cues (prior and gain);
+//! * **Set** (the next flash, `ts` observations later): the measurement ends and the model
+//!   starts its production of `g · ts` with its own machinery
+//!   ([`Timer::begin_production`]): drift-diffusion adapts its drift to the accumulator at
+//!   Set (Simen et al. 2011), SBF stores the oscillator pattern at Set, the time cells
+//!   start again and the TD learner reads the production from the running population and
+//!   its snapshot at Set;
+//! * the production clock reads 1 at the Set observation and `c` at the observation whose
+//!   interact produces `tp = c`, so a model that responds when its clock reaches its
+//!   measured interval reproduces `ts`.
+//!
+//! The gate and the TD learner are the fixed-interval agent's: drift-diffusion and SBF may
+//! take the soup once they respond (the accumulator at threshold, the detector matching the
+//! stored pattern); the time cells' TD learner decides from conjunctive features `m ⊗ p(t)`
+//! — the population at Set (`m`, the measurement) times the running one (`p`), mixed
+//! selectivity for "this much time has passed since Set, having measured that much" — as
+//! one linear readout cannot compare two population vectors. The counter's cue enters the
+//! learner's discrete state, so each context (prior, gain) has its own values.
+//!
+//! Where a regression to the mean of the prior can come from, per model: drift-diffusion
+//! only from memory averaging (`reproduction_rate` below 1 keeps part of the context's past
+//! drifts); SBF from nothing (the trial's own pattern is matched); the time cells from
+//! what TD learns: the values of responding at `t` after a measurement `m` average the
+//! rewards over every `ts` that produced similar `m` (a learned prior, with the
+//! population's blur and the clock noise as the likelihood).
+
+use super::TimingAgent;
+use crate::agent::Percept;
+use crate::timing::timers::Timer;
+use chronocooked_env::{CODE_CHANNELS, ChronoEnv, ObjectKind, TaskFamily, TaskParams};
+use serde::{Deserialize, Serialize};
+
+/// What a timing agent knows of a reproduction task: where the context cue is shown and
+/// the gain each cue value asks for.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ReproductionCues {
+    /// Cell whose channel 4 shows the context cue (the delivery counter).
+    pub cue_cell: usize,
+    /// The task's gains `g` (`tp = g · ts`), in the task's order.
+    pub gains: Vec<f64>,
+}
+
+impl ReproductionCues {
+    /// The cues of `env`'s task, or `None` for another family.
+    pub fn of(env: &ChronoEnv) -> Option<Self> {
+        if env.family() != TaskFamily::Reproduction {
+            return None;
+        }
+        let gains = match &env.config().params {
+            TaskParams::Reproduction { gains, .. } => {
+                gains.iter().map(|&g| decimal(f64::from(g))).collect()
+            }
+            _ => vec![1.0],
+        };
+        let cue_cell = env
+            .layout()
+            .cells_of(ObjectKind::DeliveryCounter)
+            .first()
+            .copied()
+            .unwrap_or(0);
+        Some(ReproductionCues { cue_cell, gains })
+    }
+
+    /// The gain asked for by cue value `cue` (`1 + prior · gains + gain`; 0 = no cue: the
+    /// only gain).
+    pub fn gain(&self, cue: u8) -> f64 {
+        if cue == 0 || self.gains.is_empty() {
+            return self.gains.first().copied().unwrap_or(1.0);
+        }
+        self.gains[(usize::from(cue) - 1) % self.gains.len()]
+    }
+}
+
+/// An `f32` setting as the decimal it was written as (1.5f32 is exact; 1.1f32 is not).
+fn decimal(v: f64) -> f64 {
+    (v * 1e6).round() / 1e6
+}
+
+/// The epochs of a reproduction episode as the agent sees them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(super) enum Epoch {
+    /// Before Ready.
+    #[default]
+    Waiting,
+    /// Between Ready and Set.
+    Measuring,
+    /// From Set to the pickup.
+    Producing,
+    /// The soup is out.
+    Done,
+}
+
+impl TimingAgent {
+    /// Whether the agent plays the reproduction task.
+    pub(super) fn reproduces(&self) -> bool {
+        self.reproduction.is_some()
+    }
+
+    /// Temporal features the learner sees for `timer` in the reproduction task: the time
+    /// cells' conjunctive code `m ⊗ p` (`N²`), the other models' own features.
+    pub(super) fn reproduction_features(timer: &Timer) -> usize {
+        match timer {
+            Timer::TimeCells(tc) => tc.cells.repr.size().pow(2),
+            t => t.n_features(),
+        }
+    }
+
+    /// The discrete state's oven level in the reproduction task: the oven's value (0 off,
+    /// 1 on, 2 flash) and the context cue, `oven + 3 · cue`.
+    pub(super) fn reproduction_oven_level(&self, p: &Percept) -> u8 {
+        p.oven.min(2).saturating_add(self.ep.cue.saturating_mul(3))
+    }
+
+    /// Runs the epochs from what is visible: Ready starts the measurement, Set ends it and
+    /// starts the production, the pickup ends the trial.
+    pub(super) fn update_reproduction_clock(&mut self, p: &Percept, obs: &[u8]) {
+        let Some(cues) = &self.reproduction else {
+            return;
+        };
+        self.ep.cue = obs[cues.cue_cell * CODE_CHANNELS + 4];
+        let gain = cues.gain(self.ep.cue);
+        let Some(last) = self.ep.last else {
+            return;
+        };
+        match self.ep.epoch {
+            Epoch::Waiting if p.oven == 2 => {
+                self.ep.ctx = self.ep.cue;
+                self.timer.begin_measurement(self.ep.ctx, &mut self.rng);
+                self.ep.epoch = Epoch::Measuring;
+                self.ep.clock = 0;
+            }
+            Epoch::Measuring => {
+                self.ep.clock += 1;
+                self.timer.tick(self.ep.clock, &mut self.rng);
+                if p.oven != 0 {
+                    // Set (a flash, or the oven already on): the measured interval is
+                    // `clock` steps.
+                    let ts = f64::from(self.ep.clock);
+                    let mut m = std::mem::take(&mut self.ep.measurement);
+                    self.timer.features_into(false, &mut m);
+                    self.ep.measurement = m;
+                    self.timer
+                        .begin_production(self.ep.ctx, ts, gain, &mut self.rng);
+                    self.ep.epoch = Epoch::Producing;
+                    self.ep.running = true;
+                    self.ep.clock = 1;
+                    self.ep.started = None;
+                    self.ep.interval = None;
+                    self.timer.tick(1, &mut self.rng);
+                }
+            }
+            Epoch::Producing => {
+                if p.carry == 2 && last.carry != 2 {
+                    self.ep.running = false;
+                    self.ep.interval = Some(self.ep.clock);
+                    self.ep.epoch = Epoch::Done;
+                    return;
+                }
+                self.ep.prev_check_failed = self.ep.last_was_check;
+                self.ep.clock += 1;
+                self.timer.tick(self.ep.clock, &mut self.rng);
+            }
+            _ => {}
+        }
+    }
+
+    /// Replaces the model's temporal features by what the learner reads in the
+    /// reproduction task: during the production, the time cells' `m ⊗ p(t)` (the other
+    /// models' features as they are); before Set and after the pickup nothing (zeros).
+    pub(super) fn reproduction_features_into(&self, features: &mut Vec<f64>, p: &Percept) {
+        // The time cells' conjunctive code is read where the production is decided: next
+        // to the oven, empty-handed. Elsewhere the learner sees the discrete state alone,
+        // so the way to the oven is learned once for every (measurement, time) pair
+        // instead of once per pair (measured: with the code everywhere, agents that
+        // reached the oven after Set wandered in the production epoch, 2–40% success).
+        let at_oven = p.carry == 0 && self.parser.next_to_oven(p.cell);
+        let producing = self.ep.epoch == Epoch::Producing
+            && (at_oven || !matches!(self.timer, Timer::TimeCells(_)));
+        if let Timer::TimeCells(_) = self.timer {
+            let p = std::mem::take(features);
+            let m = &self.ep.measurement;
+            features.reserve(m.len() * p.len());
+            for &mi in m {
+                for &pj in &p {
+                    features.push(if producing { mi * pj } else { 0.0 });
+                }
+            }
+            let n = p.len() * p.len();
+            features.resize(n, 0.0);
+        } else if !producing {
+            features.iter_mut().for_each(|v| *v = 0.0);
+        }
+    }
+
+    /// Whether the agent is timing (measuring or producing): it waits at the oven then.
+    pub(super) fn reproduction_timing(&self) -> bool {
+        matches!(self.ep.epoch, Epoch::Measuring | Epoch::Producing)
+    }
+}
