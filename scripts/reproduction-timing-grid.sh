@@ -33,7 +33,7 @@ fmt = lambda v: "na" if v is None else f"{v:.2f}"
 out = []
 for c in m["reproduction"]["contexts"]:
     r = [x[1] for x in c["ratio"]]
-    o = c["observer"]
+    o = c.get("observer") or {"best": "na", "wm": None, "wp": None}  # fitted at gain 1 only
     rng = f"{min(r):.2f}-{max(r):.2f}" if r else "na"
     out.append(f"prior{c['prior']} g{c['gain']:g} slope {fmt(c['slope'])} bias {fmt(c['bias'])}"
                f" sqrtvar {fmt(c['sqrt_var'])} wf {fmt(c['weber'])} ratio {rng}"

@@ -50,3 +50,27 @@ fn interleaved_sample_intervals_reveal_a_memory_averaging_clocks_regression() {
         "slope {slope:.3} (about {alpha} expected)"
     );
 }
+
+#[test]
+fn a_gain_contexts_bias_is_measured_against_its_target() {
+    // The oracle takes the soup at the target g·ts rounded to a whole step: its BIAS
+    // against the target is under half a step, and its slope per step of ts is g. (Against
+    // ts itself a veridical gain of 1.5 reads as a BIAS of half the prior's mean.)
+    use chronocooked_models::agent::OracleAgent;
+    let sets = vec!["gains=1,1.5".to_string(), "priors=10-16".to_string()];
+    let env = ChronoEnv::from_id("Reproduction-v0", &sets).unwrap();
+    let mut oracle = OracleAgent::new(&env);
+    let conds = reference_conditions("Reproduction-v0", &sets).unwrap();
+    let recs = run_protocol(&mut oracle, &conds, Mode::Reference, 4).unwrap();
+    let m = compute_metrics("oracle", &recs, 0).reproduction.unwrap();
+    assert_eq!(m.contexts.len(), 2);
+    for c in &m.contexts {
+        let (bias, slope) = (c.bias.unwrap(), c.slope.unwrap());
+        assert!(bias < 0.5, "gain {}: BIAS {bias:.3}", c.gain);
+        assert!(
+            (slope - c.gain).abs() < 0.1,
+            "gain {}: slope {slope:.3}",
+            c.gain
+        );
+    }
+}

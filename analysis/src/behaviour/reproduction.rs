@@ -42,11 +42,11 @@ pub struct ContextSummary {
     pub ratio: Vec<(u32, f64)>,
     /// OLS slope of tp on ts (< g: regression to the mean).
     pub slope: Option<f64>,
-    /// BIAS (steps).
+    /// BIAS (steps) against the target `g·ts` (at gain 1, Jazayeri & Shadlen's against `ts`).
     pub bias: Option<f64>,
     /// √VAR (steps).
     pub sqrt_var: Option<f64>,
-    /// RMSE (steps).
+    /// RMSE (steps) against the target `g·ts`.
     pub rmse: Option<f64>,
     /// Mean over ts of SD/mean of tp.
     pub weber: Option<f64>,
@@ -126,7 +126,18 @@ fn context_summary(prior: u8, recs: &[&EvalRecord]) -> ContextSummary {
             })
         })
         .collect();
-    let summary = summarize(&points).ok();
+    // Summarised against the target `g·ts`, so BIAS and RMSE measure the error of the
+    // production the context asks for (against `ts` a perfect gain of 1.5 would read as a
+    // BIAS of half the prior's mean); the slope is reported per step of `ts` (`g` when
+    // veridical).
+    let targets: Vec<Record> = points
+        .iter()
+        .map(|r| Record {
+            ts: gain * r.ts,
+            tp: r.tp,
+        })
+        .collect();
+    let summary = summarize(&targets).ok();
     let observer = ((gain - 1.0).abs() < 1e-9)
         .then(|| observer_choice(recs, &points))
         .flatten();
@@ -137,7 +148,7 @@ fn context_summary(prior: u8, recs: &[&EvalRecord]) -> ContextSummary {
         failures,
         by_ts: stats,
         ratio,
-        slope: summary.as_ref().map(|s| s.slope),
+        slope: summary.as_ref().map(|s| s.slope * gain),
         bias: summary.as_ref().map(|s| s.bias),
         sqrt_var: summary.as_ref().map(|s| s.sqrt_var()),
         rmse: summary.as_ref().map(|s| s.rmse),
