@@ -76,6 +76,17 @@ fn memory_sample<R: Rng + ?Sized>(sigma: f64, rng: &mut R) -> f64 {
 }
 
 impl DdmTimer {
+    /// The accumulator at time 0 on the drift remembered for context `ctx` (the initial
+    /// drift `z / initial_interval` before any), with no anchor accumulators.
+    fn start_in_context(&mut self, ctx: u8) {
+        self.acc.reset();
+        self.acc.drift = *self
+            .drifts
+            .get(&ctx)
+            .unwrap_or(&(self.acc.threshold / self.initial_interval));
+        self.choice_acc.clear();
+    }
+
     /// The remembered anchors `(S*, L*) = (z/A_S, z/A_L)` (steps) from the learned drifts.
     fn anchor_memories(&self) -> Option<(f64, f64)> {
         let z = self.acc.threshold;
@@ -483,12 +494,7 @@ impl Timer {
     pub fn onset<R: Rng + ?Sized>(&mut self, ctx: u8, categories: usize, rng: &mut R) {
         match self {
             Timer::Ddm(d) => {
-                d.acc.reset();
-                d.acc.drift = *d
-                    .drifts
-                    .get(&ctx)
-                    .unwrap_or(&(d.acc.threshold / d.initial_interval));
-                d.choice_acc.clear();
+                d.start_in_context(ctx);
                 let drifts =
                     remembered_slots(categories, |slot| d.choice_drifts.get(&slot).copied());
                 if can_judge(categories, drifts.len()) {
@@ -502,12 +508,7 @@ impl Timer {
             }
             Timer::Sbf(s) => s.onset(ctx, categories, rng),
             Timer::TimeCells(tc) => {
-                let noise = tc.cells.speed_noise;
-                let speed = if noise > 0.0 {
-                    (noise * rng.sample::<f64, _>(StandardNormal)).exp()
-                } else {
-                    1.0
-                };
+                let speed = speed_sample(tc.cells.speed_noise, rng);
                 tc.cells.onset_with_speed(speed);
                 tc.trial_anchors = remembered_slots(categories, |slot| tc.anchors.draw(slot, rng));
             }
@@ -521,12 +522,7 @@ impl Timer {
     pub fn begin_measurement<R: Rng + ?Sized>(&mut self, ctx: u8, rng: &mut R) {
         match self {
             Timer::Ddm(d) => {
-                d.acc.reset();
-                d.acc.drift = *d
-                    .drifts
-                    .get(&ctx)
-                    .unwrap_or(&(d.acc.threshold / d.initial_interval));
-                d.choice_acc.clear();
+                d.start_in_context(ctx);
             }
             Timer::Sbf(s) => {
                 let speed = speed_sample(s.clock_noise, rng);

@@ -112,7 +112,8 @@ impl TimingAgent {
     }
 
     /// The discrete state's oven level in the reproduction task: the oven's value (0 off,
-    /// 1 on, 2 flash) and the context cue, `oven + 3 · cue`.
+    /// 1 on, 2 flash) and the context cue, `oven + 3 · cue` (at most 3 priors × 2 gains = 6
+    /// cues: ≤ 20, below [`super::OVEN_LEVELS`]).
     pub(super) fn reproduction_oven_level(&self, p: &Percept) -> u8 {
         p.oven.min(2).saturating_add(self.ep.cue.saturating_mul(3))
     }
