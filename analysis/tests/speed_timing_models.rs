@@ -25,22 +25,10 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 fn noise_free_timer(model: &str) -> Timer {
     let config = make_config("Reproduction-v0", &[] as &[&str]).unwrap();
     let env = ChronoEnv::new(&config).unwrap();
-    let mut timer = make_timing_agent(model, &env, 11).unwrap().timer;
-    match &mut timer {
-        Timer::Ddm(d) => {
-            d.acc.noise = 0.0;
-            d.memory_noise = 0.0;
-        }
-        Timer::Sbf(s) => {
-            s.model.memory_noise = 0.0;
-            s.clock_noise = 0.0;
-        }
-        Timer::TimeCells(tc) => {
-            tc.cells.speed_noise = 0.0;
-            tc.memory_noise = 0.0;
-        }
-    }
-    timer
+    make_timing_agent(model, &env, 11)
+        .unwrap()
+        .timer
+        .noise_free()
 }
 
 /// The model's population state: drift-diffusion's accumulator, SBF's oscillators, the

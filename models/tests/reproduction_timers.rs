@@ -39,33 +39,19 @@ fn produce(timer: &mut Timer, ts: u32, gain: f64, rng: &mut Xoshiro256PlusPlus) 
     None
 }
 
+fn timer_of_noise_free(model: &str) -> Timer {
+    timer_of(model).noise_free()
+}
+
 fn timer_of(model: &str) -> Timer {
     let config = make_config("Reproduction-v0", &[] as &[&str]).unwrap();
     let env = ChronoEnv::new(&config).unwrap();
     make_timing_agent(model, &env, 7).unwrap().timer
 }
 
-fn noise_free(mut timer: Timer) -> Timer {
-    match &mut timer {
-        Timer::Ddm(d) => {
-            d.acc.noise = 0.0;
-            d.memory_noise = 0.0;
-        }
-        Timer::Sbf(s) => {
-            s.model.memory_noise = 0.0;
-            s.clock_noise = 0.0;
-        }
-        Timer::TimeCells(tc) => {
-            tc.cells.speed_noise = 0.0;
-            tc.memory_noise = 0.0;
-        }
-    }
-    timer
-}
-
 #[test]
 fn noise_free_drift_diffusion_reproduces_every_interval_and_its_gain() {
-    let mut timer = noise_free(timer_of("ddm"));
+    let mut timer = timer_of_noise_free("ddm");
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
     for gain in [1.0, 1.5, 0.7] {
         for ts in 3..=37u32 {
@@ -83,7 +69,7 @@ fn noise_free_drift_diffusion_reproduces_every_interval_and_its_gain() {
 
 #[test]
 fn drift_diffusion_with_a_learning_rate_below_one_averages_its_past_measurements() {
-    let mut timer = noise_free(timer_of("ddm"));
+    let mut timer = timer_of_noise_free("ddm");
     let alpha = 0.4;
     let (z, a0) = match &mut timer {
         Timer::Ddm(d) => {
@@ -139,7 +125,7 @@ fn noisy_one_shot_drift_diffusion_is_unbiased_and_does_not_regress_to_the_mean()
 
 #[test]
 fn noise_free_sbf_matches_the_pattern_stored_at_set() {
-    let mut timer = noise_free(timer_of("sbf"));
+    let mut timer = timer_of_noise_free("sbf");
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(4);
     for gain in [1.0, 1.5] {
         for ts in 4..=30u32 {

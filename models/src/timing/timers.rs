@@ -472,6 +472,27 @@ impl Timer {
         }
     }
 
+    /// The same timer with every noise source off ([`Self::is_noisy`] false): diffusion and
+    /// memory noise (drift-diffusion), memory and clock noise (SBF), clock-speed and
+    /// memory noise (time cells) — the setting of the mechanisms' exact known answers.
+    pub fn noise_free(mut self) -> Self {
+        match &mut self {
+            Timer::Ddm(d) => {
+                d.acc.noise = 0.0;
+                d.memory_noise = 0.0;
+            }
+            Timer::Sbf(s) => {
+                s.model.memory_noise = 0.0;
+                s.clock_noise = 0.0;
+            }
+            Timer::TimeCells(tc) => {
+                tc.cells.speed_noise = 0.0;
+                tc.memory_noise = 0.0;
+            }
+        }
+        self
+    }
+
     /// Whether the model gates oven checks natively.
     pub fn has_gate(&self) -> bool {
         !matches!(self, Timer::TimeCells(_))
