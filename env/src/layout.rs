@@ -405,6 +405,11 @@ impl Layout {
         (cell / self.cols, cell % self.cols)
     }
 
+    /// The free cells as `(row, col)`, in row-major order (start cells of a protocol).
+    pub fn free_coords(&self) -> Vec<(usize, usize)> {
+        self.free.iter().map(|&c| self.coords(c as usize)).collect()
+    }
+
     /// Cells holding `kind`.
     pub fn cells_of(&self, kind: ObjectKind) -> Vec<usize> {
         (0..self.cells.len())

@@ -8,11 +8,7 @@ use chronocooked_env::{
 };
 
 fn starts(env: &ChronoEnv) -> Vec<(usize, usize)> {
-    env.layout()
-        .free_cells()
-        .iter()
-        .map(|&c| env.layout().coords(c as usize))
-        .collect()
+    env.layout().free_coords()
 }
 
 fn run_oracle(env: &mut ChronoEnv, options: &ResetOptions) -> f64 {

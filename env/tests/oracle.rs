@@ -9,12 +9,7 @@ fn oracle_returns(
     td: u32,
     never_ready: Option<bool>,
 ) -> Vec<(usize, usize, f64)> {
-    let starts: Vec<_> = env
-        .layout()
-        .free_cells()
-        .iter()
-        .map(|&c| env.layout().coords(c as usize))
-        .collect();
+    let starts: Vec<_> = env.layout().free_coords();
     let oracle = Oracle::new(env);
     starts
         .into_iter()

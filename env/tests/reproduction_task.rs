@@ -145,12 +145,7 @@ fn the_oracle_takes_the_best_reward_for_every_interval_prior_gain_and_start() {
     )
     .unwrap();
     let oracle = Oracle::new(&env);
-    let starts: Vec<(usize, usize)> = env
-        .layout()
-        .free_cells()
-        .iter()
-        .map(|&c| env.layout().coords(c as usize))
-        .collect();
+    let starts: Vec<(usize, usize)> = env.layout().free_coords();
     let priors = [(8u32, 14u32), (11, 17), (14, 20)];
     for (p, &(lo, hi)) in priors.iter().enumerate() {
         for (g, gain) in [1.0f64, 1.5].iter().enumerate() {

@@ -28,12 +28,7 @@ fn each_soup_goes_to_the_counter_of_its_own_ovens_duration() {
             train_timing_agent(&mut agent, &config, &train, &[5, 11], seed, |_| {}).unwrap();
             agent.set_training(false);
             let mut env = ChronoEnv::new(&config).unwrap();
-            let starts: Vec<(usize, usize)> = env
-                .layout()
-                .free_cells()
-                .iter()
-                .map(|&c| env.layout().coords(c as usize))
-                .collect();
+            let starts: Vec<(usize, usize)> = env.layout().free_coords();
             let (mut right, mut total) = (0usize, 0usize);
             for (k, &start) in starts.iter().enumerate() {
                 for (j, tds) in [[5, 11], [11, 5], [5, 5], [11, 11]].iter().enumerate() {

@@ -192,11 +192,7 @@ impl Env {
     /// Free cells `(row, col)` (the possible start cells), row-major.
     fn free_cells(&self) -> Vec<(usize, usize)> {
         let layout = self.env.layout();
-        layout
-            .free_cells()
-            .iter()
-            .map(|&c| layout.coords(c as usize))
-            .collect()
+        layout.free_coords()
     }
 
     /// Whether the episode has ended.

@@ -59,11 +59,7 @@ pub fn evaluate_policy(
 ) -> Result<Vec<EvalEpisode>, EnvError> {
     let free: Vec<(usize, usize)> = {
         let env = chronocooked_env::ChronoEnv::new(config)?;
-        env.layout()
-            .free_cells()
-            .iter()
-            .map(|&c| env.layout().coords(c as usize))
-            .collect()
+        env.layout().free_coords()
     };
     let conds: Vec<((usize, usize), u32)> = tds
         .iter()

@@ -32,12 +32,7 @@ fn productions(model: &str, seed: u64) -> Productions {
     train_timing_agent(&mut agent, &config, &cfg.train, &[], seed, |_| {}).unwrap();
     agent.set_training(false);
     let mut env = ChronoEnv::new(&config).unwrap();
-    let starts: Vec<(usize, usize)> = env
-        .layout()
-        .free_cells()
-        .iter()
-        .map(|&c| env.layout().coords(c as usize))
-        .collect();
+    let starts: Vec<(usize, usize)> = env.layout().free_coords();
     let mut ratios = Vec::new();
     for ts in 9..=15u32 {
         let (mut sum, mut produced, mut total) = (0.0, 0usize, 0usize);

@@ -204,13 +204,8 @@ pub fn run_protocol_recorded(
     for (ci, c) in conditions.iter().enumerate() {
         let config: TaskConfig = make_config(&c.task, &c.env)?;
         let env = ChronoEnv::new(&config)?;
-        let layout = env.layout().clone();
+        let cells = env.layout().free_coords();
         envs.push(env);
-        let cells: Vec<(usize, usize)> = layout
-            .free_cells()
-            .iter()
-            .map(|&x| layout.coords(x as usize))
-            .collect();
         let starts: Vec<(usize, usize)> = match mode {
             // Agents with internal noise: each start cell `noise_draws` times, own seeds.
             Mode::Reference => (0..agent.noise_draws().max(1))

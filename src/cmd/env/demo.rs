@@ -57,12 +57,7 @@ pub fn run(args: DemoArgs) -> Result<()> {
     let mut fi_ascii = String::new();
     for spec in all_tasks() {
         let mut env = ChronoEnv::new(&spec.default_config())?;
-        let starts: Vec<(usize, usize)> = env
-            .layout()
-            .free_cells()
-            .iter()
-            .map(|&c| env.layout().coords(c as usize))
-            .collect();
+        let starts: Vec<(usize, usize)> = env.layout().free_coords();
         let mut stats = [(0.0f64, 0u64), (0.0f64, 0u64)];
         let mut episodes = 0u64;
         for (i, &(td, never_ready)) in conditions(&env).iter().enumerate() {
