@@ -177,23 +177,22 @@ impl TimingAgent {
     pub(super) fn reproduction_features_into(&self, features: &mut Vec<f64>, p: &Percept) {
         // The time cells' conjunctive code is read where the production is decided: next
         // to the oven, empty-handed. Elsewhere the learner sees the discrete state alone,
-        // so the way to the oven is learned once for every (measurement, time) pair
-        // instead of once per pair (measured: with the code everywhere, agents that
-        // reached the oven after Set wandered in the production epoch, 2–40% success).
+        // so the way to the oven is learned once, not once per (measurement, time) pair
+        // (measured: with the code everywhere, agents that reached the oven after Set
+        // wandered in the production epoch, 2–40% success).
         let at_oven = p.carry == 0 && self.parser.next_to_oven(p.cell);
         let producing = self.ep.epoch == Epoch::Producing
             && (at_oven || !matches!(self.timer, Timer::TimeCells(_)));
         if let Timer::TimeCells(_) = self.timer {
-            let p = std::mem::take(features);
-            let m = &self.ep.measurement;
-            features.reserve(m.len() * p.len());
-            for &mi in m {
-                for &pj in &p {
-                    features.push(if producing { mi * pj } else { 0.0 });
+            let running = std::mem::take(features);
+            let n = running.len();
+            if producing && self.ep.measurement.len() == n {
+                for &mi in &self.ep.measurement {
+                    features.extend(running.iter().map(|&pj| mi * pj));
                 }
+            } else {
+                features.resize(n * n, 0.0);
             }
-            let n = p.len() * p.len();
-            features.resize(n, 0.0);
         } else if !producing {
             features.iter_mut().for_each(|v| *v = 0.0);
         }
