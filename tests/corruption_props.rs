@@ -262,7 +262,8 @@ fn copy_dir(src: &Path, dst: &Path, with_ckpt: bool) {
 }
 
 fn case_dir(name: &str) -> PathBuf {
-    std::env::temp_dir().join(format!("chronocooked-prop-{name}-{}", std::process::id()))
+    std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("chronocooked-prop-{name}-{}", std::process::id()))
 }
 
 /// Writes the corrupted `bytes` over `file`; `rerecord` also rewrites its SHA-256 record.

@@ -121,7 +121,8 @@ fn time_cells_are_found_and_decoders_recover_time() {
 #[test]
 fn heat_map_and_chart_figures_are_written_and_non_empty() {
     use chronocooked_analysis::report::figures::{Chart, Series, write_chart, write_heatmap};
-    let dir = std::env::temp_dir().join(format!("cc-figs-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("cc-figs-{}", std::process::id()));
     let c = cube(1, 12, 12, |_, t, i| if t == i { 1.0 } else { 0.0 });
     let files = write_heatmap(&dir.join("seq"), "sequence", &c.average(), 12).unwrap();
     let chart = Chart {

@@ -279,7 +279,8 @@ fn study_figures_and_comparison_come_out_of_constructed_jobs() {
         ranges: vec![],
         comparison,
     };
-    let dir = std::env::temp_dir().join(format!("cc-paper-fig-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("cc-paper-fig-{}", std::process::id()));
     let files = write_figures(&dir, &study).unwrap();
     let names: Vec<String> = files
         .iter()
@@ -436,7 +437,8 @@ fn multitimer_analysis_reads_levels_rewards_and_oven_off_times() {
         )),
         "{md}"
     );
-    let dir = std::env::temp_dir().join(format!("cc-paper-mt-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("cc-paper-mt-{}", std::process::id()));
     let files = write_figures(&dir.join("figures"), &study).unwrap();
     assert!(files.iter().any(|p| p.ends_with("multitimer.svg")));
     let svg = std::fs::read_to_string(dir.join("figures/multitimer.svg")).unwrap();

@@ -246,13 +246,13 @@ mod tests {
         ] {
             assert!(!is_temp_name(keep), "{keep}");
         }
-        let dir = std::env::temp_dir().join(format!("cc-temps-{}", std::process::id()));
+        let guard = tempfile::tempdir().unwrap();
+        let dir = guard.path();
         std::fs::create_dir_all(dir.join("eval")).unwrap();
         std::fs::write(dir.join("eval/.tmp-XYZ123"), b"half").unwrap();
         std::fs::write(dir.join("eval/metrics.json"), b"{}").unwrap();
-        remove_stale_temps(&dir);
+        remove_stale_temps(dir);
         assert!(!dir.join("eval/.tmp-XYZ123").exists());
         assert!(dir.join("eval/metrics.json").exists());
-        let _ = std::fs::remove_dir_all(&dir);
     }
 }

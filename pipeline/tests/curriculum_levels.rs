@@ -9,7 +9,8 @@ use std::collections::BTreeMap;
 
 #[test]
 fn every_kept_level_is_evaluated_on_its_own_tds_then_the_untrained_ones_from_every_start_cell() {
-    let dir = std::env::temp_dir().join(format!("cc-levels-eval-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("cc-levels-eval-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let cfg = resolve(
         "MultiTimer-v0",

@@ -20,7 +20,8 @@ use std::path::PathBuf;
 const TDS: [u32; 2] = [6, 12];
 
 fn temp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("cc-signature-{}-{name}", std::process::id()));
+    let d = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("cc-signature-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
     d
 }

@@ -20,7 +20,8 @@ const MODELS: [&str; 5] = [
 ];
 
 fn temp_dir(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("cc-timing-{}-{name}", std::process::id()));
+    let d = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("cc-timing-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
     d
 }

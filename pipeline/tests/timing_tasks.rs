@@ -7,7 +7,8 @@ use chronocooked_training::timing_run::load_agent;
 use chronocooked_training::{TimingRunConfig, run_timing_training};
 
 fn temp_dir(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("cc-timing-tasks-{}-{name}", std::process::id()));
+    let d = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("cc-timing-tasks-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
     d
 }

@@ -11,8 +11,8 @@ use chronocooked_training::ppo::params::flat_params;
 use chronocooked_training::{TimingRunConfig, Trainer, load_policy, resolve, run_training};
 
 fn temp_dir(name: &str) -> std::path::PathBuf {
-    let dir =
-        std::env::temp_dir().join(format!("chronocooked-adapt-{name}-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("chronocooked-adapt-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir

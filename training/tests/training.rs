@@ -297,7 +297,8 @@ fn tiny_cfg(model: &str, steps: u64, seed: u64) -> chronocooked_training::TrainC
 
 #[test]
 fn same_seed_gives_identical_learning_curves_and_resume_is_exact() {
-    let dir = std::env::temp_dir().join(format!("cc-train-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("cc-train-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     for model in ["lstm8", "cnn-mlp"] {
         let strip = |t: &Trainer| -> Vec<String> {
@@ -389,7 +390,8 @@ fn same_seed_gives_identical_learning_curves_and_resume_is_exact() {
 /// and 50k (LSTM125) env steps on the development machine; the budgets leave room.
 #[test]
 fn cnn_mlp_and_lstm_learn_fixed_interval_td4() {
-    let dir = std::env::temp_dir().join(format!("cc-learn-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("cc-learn-{}", std::process::id()));
     for (model, steps, every) in [
         ("cnn-mlp", 60_000u64, 5_000u64),
         ("lstm125", 150_000, 10_000),
@@ -517,7 +519,8 @@ fn a_curriculum_level_keeps_the_policy_whose_rollout_passed_it() {
 
 #[test]
 fn a_curriculum_run_folder_keeps_every_level_and_the_last_is_the_final_policy() {
-    let dir = std::env::temp_dir().join(format!("cc-levels-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("cc-levels-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     run_training(Some(curriculum_cfg(10000)), &dir, "test", &mut Silent).unwrap();
     let run = chronocooked_training::RunDir::open(&dir).unwrap();

@@ -204,35 +204,28 @@ pub fn locate_default_baselines() -> Result<PathBuf, BaselineError> {
 mod tests {
     use super::*;
 
-    fn tmp(name: &str) -> PathBuf {
-        let d = std::env::temp_dir().join(format!("cc-baselines-{name}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&d);
-        d
-    }
-
     #[test]
     fn missing_or_empty_results_are_named() {
-        let d = tmp("empty");
-        std::fs::create_dir_all(&d).unwrap();
-        let e = read_jobs(&d).unwrap_err().to_string();
+        let guard = tempfile::tempdir().unwrap();
+        let d = guard.path();
+        let e = read_jobs(d).unwrap_err().to_string();
         assert!(e.contains("no `jobs/` folder"), "{e}");
         std::fs::create_dir_all(d.join("jobs")).unwrap();
-        let e = read_jobs(&d).unwrap_err().to_string();
+        let e = read_jobs(d).unwrap_err().to_string();
         assert!(e.contains("no job folder"), "{e}");
-        let _ = std::fs::remove_dir_all(&d);
     }
 
     #[test]
     fn a_malformed_job_file_is_an_error_naming_it() {
-        let d = tmp("bad");
+        let guard = tempfile::tempdir().unwrap();
+        let d = guard.path();
         let job = d.join("jobs/FixedInterval-v0/x~env.td-12/seed1");
         std::fs::create_dir_all(&job).unwrap();
         std::fs::write(job.join("job.json"), "{\"id\": 3}").unwrap();
-        let e = read_jobs(&d).unwrap_err().to_string();
+        let e = read_jobs(d).unwrap_err().to_string();
         assert!(
             e.contains("job.json") && e.contains("not a compact job summary"),
             "{e}"
         );
-        let _ = std::fs::remove_dir_all(&d);
     }
 }

@@ -81,8 +81,8 @@ mod tests {
 
     #[test]
     fn a_figure_is_embedded_in_its_smaller_form() {
-        let dir = std::env::temp_dir().join(format!("cc-figure-markup-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let guard = tempfile::tempdir().unwrap();
+        let dir = guard.path();
         let big_svg = format!("<svg>{}</svg>", "<rect/>".repeat(2000));
         // A heat map: large SVG, small PNG → the PNG as data, the caption escaped.
         std::fs::write(dir.join("heat.svg"), &big_svg).unwrap();
@@ -115,7 +115,6 @@ mod tests {
                 .into_string()
                 .contains("<svg>")
         );
-        let _ = std::fs::remove_dir_all(&dir);
     }
 
     #[test]

@@ -106,8 +106,8 @@ fn oscillator(u: usize, tau: f64, _td: f64) -> f64 {
 
 #[test]
 fn cards_show_the_stretching_sequence_and_the_fixed_clock_for_what_they_are() {
-    let root = std::env::temp_dir().join(format!("cc-mech-card-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&root);
+    let guard = tempfile::tempdir().unwrap();
+    let root = guard.path().to_path_buf();
     let seq = row(
         &root,
         "seq",
@@ -177,15 +177,14 @@ fn cards_show_the_stretching_sequence_and_the_fixed_clock_for_what_they_are() {
         md.contains("| seq | cells |") && md.contains("| osc | cells |"),
         "{md}"
     );
-    let _ = std::fs::remove_dir_all(&root);
 }
 
 #[test]
 fn a_report_without_recordings_has_no_section() {
-    let root = std::env::temp_dir().join(format!("cc-mech-none-{}", std::process::id()));
+    let guard = tempfile::tempdir().unwrap();
+    let root = guard.path().join("report");
     let r = row(&root, "none", Vec::new());
     let (html, md) = mechanisms_section(&[r], &root).unwrap();
     assert_eq!((html.into_string(), md), (String::new(), String::new()));
     assert!(!root.join("mechanisms").exists());
-    let _ = std::fs::remove_dir_all(&root);
 }
