@@ -163,9 +163,11 @@ fn a_tiling_sequence_is_made_of_time_fields_with_high_sequentiality() {
     let s = summary(&ds, "sequence");
     assert_eq!(s.units, SEQUENCE);
     let c = counts(&s);
-    // Units 0, 1 and 38, 39 peak at (or one step from) an edge and do not fall by half on
-    // that side: inside the window they are monotone (ramps), never time fields.
-    assert!(c.time_field >= SEQUENCE - 4, "{c:?}");
+    // Units 0 and 39 peak at an edge, and unit 38 falls by only 1 − e^(−1/2) = 39% of its
+    // range after its peak (less than half): inside the window they are monotone (ramps),
+    // never time fields. Unit 1 rises by that 39% before its peak — more than the quarter a
+    // field cut by the event must show (`MIN_FIELD_RISE`) — so it is a field.
+    assert!(c.time_field >= SEQUENCE - 3, "{c:?}");
     assert_eq!(c.oscillating, 0, "{c:?}");
     assert_eq!(c.untuned, 0, "{c:?}");
     let f = s.categories.as_ref().unwrap().fractions.unwrap();
@@ -177,8 +179,12 @@ fn a_tiling_sequence_is_made_of_time_fields_with_high_sequentiality() {
         .unwrap();
     for u in tests.iter().filter(|u| u.category == Category::TimeField) {
         assert_eq!(u.peak_time, u.unit, "{u:?}");
-        // σ = 1 step: full width at half maximum 2·√(2 ln 2) ≈ 2.35 steps.
-        assert!((u.peak_width - 2.35).abs() < 0.6, "{u:?}");
+        // σ = 1 step: full width at half maximum 2·√(2 ln 2) ≈ 2.35 steps (undefined for
+        // a field whose rise the event cuts before it reaches half height: unit 1).
+        assert!(
+            (u.peak_width - 2.35).abs() < 0.6 || (u.unit == 1 && u.peak_width.is_nan()),
+            "{u:?}"
+        );
     }
     // Noiseless Gaussian bumps (σ = 1 step) give PE = 1 and TS ≈ 0.63, so SqI ≈ 0.79.
     assert!(s.sequentiality.unwrap() > 0.55, "{s:?}");

@@ -273,10 +273,11 @@ fn fields(p: &Probe, population: &str, td: u32) -> (Vec<(f64, f64)>, f64, usize)
     (f, frac, tests.len())
 }
 
-/// No unit of a time-cell population oscillates: each is a time field or, when its field
-/// lies at or beyond an edge of the window, a ramp — or, for a field that peaks in the
-/// window's first two samples (its rise is one sample; with a noisy clock the trial average
-/// blurs it), neither shape alone: mixed.
+/// No unit of a time-cell population oscillates: each is a time field; or, when its field
+/// peaks after the window, a field beyond it (`beyond_window`, seen on the steps recorded
+/// after it) or a ramp (the fall lies beyond the recorded steps); or, at the window's start,
+/// a ramp — or, for a field that peaks in the window's first two samples (its rise is one
+/// sample; with a noisy clock the trial average blurs it), neither shape alone: mixed.
 fn assert_fields_or_edge_ramps(p: &Probe, td: u32) {
     let (_, tests) = p.classify("time_cells", td);
     for u in &tests {
@@ -285,7 +286,10 @@ fn assert_fields_or_edge_ramps(p: &Probe, td: u32) {
             early_edge
                 || matches!(
                     u.category,
-                    Category::TimeField | Category::Ramp | Category::Untuned
+                    Category::TimeField
+                        | Category::Ramp
+                        | Category::Untuned
+                        | Category::BeyondWindow
                 ),
             "{} TD {td}: {u:?}",
             p.label
@@ -380,9 +384,26 @@ fn microstimuli_peak_where_their_closed_form_says() {
                 // Microstimulus i = index + 1 peaks at τ_i = ln(y*)/ln d steps.
                 let (tau, _) = microstimulus_peak(c.varying[u.unit] + 1, count, sigma, decay);
                 let peak = u.peak_time as f64 + WINDOW_ORIGIN;
-                if tau > w + 2.0 || tau < 1.0 {
-                    // Its peak lies outside the window: monotone inside it.
+                if tau < 1.0 {
+                    // Its peak lies before the window: monotone inside it.
                     assert_eq!(u.category, Category::Ramp, "{} τ {tau}: {u:?}", p.label);
+                } else if tau > w + 2.0 {
+                    // After the window: a field beyond it, peaking where the closed form
+                    // says, or — its fall beyond the recorded steps — a ramp.
+                    match u.late_peak {
+                        Some(late) => {
+                            let late = late as f64 + WINDOW_ORIGIN;
+                            assert!(
+                                u.category == Category::BeyondWindow
+                                    && (late - tau).abs() <= (0.2 * tau).max(1.5),
+                                "{} τ {tau}: {u:?}",
+                                p.label
+                            );
+                        }
+                        None => {
+                            assert_eq!(u.category, Category::Ramp, "{} τ {tau}: {u:?}", p.label)
+                        }
+                    }
                 } else if (3.0..=w - 3.0).contains(&tau) {
                     assert!(
                         (peak - tau).abs() <= (0.2 * tau).max(1.5),

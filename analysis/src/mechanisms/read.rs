@@ -82,9 +82,9 @@ fn job_features(
             for (k, key) in ["ramp", "time_field", "oscillating"].iter().enumerate() {
                 counts[k] += c[*key].as_f64().unwrap_or(0.0);
             }
-            units += ["ramp", "time_field", "oscillating", "mixed", "untuned"]
+            units += crate::neural::categories::CATEGORIES
                 .iter()
-                .map(|k| c[*k].as_f64().unwrap_or(0.0))
+                .map(|k| c[k.name()].as_f64().unwrap_or(0.0))
                 .sum::<f64>();
             if let (Some(err), Some(td)) = (num(&p["decode_ridge"]), num(&p["td"])) {
                 decode.push(err / td);

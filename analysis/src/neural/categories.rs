@@ -1,7 +1,8 @@
 //! Mutually exclusive unit categories — `ramp`, `time_field`, `oscillating`, `mixed`,
-//! `untuned` — on a window of `W` steps after an event (`[trials, W, units]`, usually
-//! `W = 2 × TD` on peak-interval probe trials), each decided by a test with a stated
-//! false-positive rate.
+//! `untuned`, `beyond_window` — on a window of `W` steps after an event (`[trials, W,
+//! units]`, usually `W = 2 × TD` on peak-interval probe trials; the rhythm and
+//! beyond-window tests also read the steps recorded after it), each decided by a test with
+//! a stated false-positive rate.
 //!
 //! 1. **Tuned** (time-locked to the event): the variance over time of the unit's trial
 //!    average, `S = Σ_t (m(t) − m̄)²`, against `surrogates` per-trial circular time shifts
@@ -11,30 +12,48 @@
 //!    the null (activity not locked to the event) this is a permutation test: its
 //!    false-positive rate is `alpha` (5%; measured on white and AR(1) noise in
 //!    `analysis/tests/neural_categories.rs`).
-//! 2. Shape tests on the trial average of a tuned unit:
-//!    * **ramp**: its best monotone (isotonic) fit explains ≥ `monotone_r2` (90%) of the
-//!      variance — rising or falling through the window, extreme at an edge;
+//! 2. Shape tests on the trial average of a tuned unit, each scored as the fraction of the
+//!    average's *explainable* variance its fit explains — the sampling noise of a trial
+//!    average of few trials discounted ([`crate::neural::shape::AverageNoise`]), so that a
+//!    delay-line unit whose average is a jagged histogram of a dozen trials' spikes is
+//!    judged by its shape, not by the number of trials:
+//!    * **ramp**: its best monotone (isotonic) fit explains ≥ `monotone_r2` (90%) —
+//!      rising or falling through the window, extreme at an edge;
 //!    * **time field**: its best unimodal (rise-then-fall) fit explains ≥ `unimodal_r2`
 //!      (90%), the maximum is interior (not the first or last step) and the activity falls
 //!      by at least half its range on both sides of the maximum. A ramp's maximum is at an
 //!      edge, so a unit cannot pass both tests with the same maximum; one that passes both
 //!      (possible only with noise) is `mixed`;
-//!    * **oscillating**: a rhythm in the single trials, by three conditions: (a) the
-//!      trial-averaged single-trial periodogram's largest bin with at least `min_cycles`
-//!      (2) cycles in the window is significantly above a red-noise (AR(1)) null fitted to
-//!      the same trials (the bin's power over the null's is `χ²₂ₖ/2K`-distributed for K
-//!      trials; Bonferroni over the tested bins, level `alpha` — the test of Torrence &
-//!      Compo 1998; a circular shift keeps every trial's spectrum, so it cannot serve
-//!      here); (b) that bin is a spectral peak (above the bin just below it: the spectra of
-//!      ramps and bumps fall from the lowest frequencies on); (c) the mean single-trial
-//!      autocorrelation repeats itself within half the window — a trough ≤ −0.25, then a
-//!      peak ≥ 0.25 ([`crate::neural::oscillation::acf_repeats`]), which a single bump,
-//!      however narrow, never shows. Single trials rather than the trial average, so a
-//!      rhythm whose phase drifts from trial to trial (clock noise) after starting locked
-//!      to the event still counts;
-//! 3. Category: not tuned → `untuned`; exactly one shape → that shape; two or more shapes,
-//!    or tuned with none of them (time-locked but complex: e.g. a transient with less than
-//!    two cycles, a rise-fall-rise) → `mixed`.
+//!    * **oscillating** — tested on every unit, tuned or not: a rhythm in the single
+//!      trials, *induced* as well as evoked (a rhythm whose phase drifts from trial to trial
+//!      with clock noise flattens the trial average and fails the tuning test, but
+//!      oscillates on every trial). On `max(W, rhythm_window)` steps (32: enough cycles at
+//!      TD 4, whose 8-step window holds one), by three conditions: (a) the trial-averaged
+//!      single-trial periodogram's largest bin with at least `min_cycles` (2) cycles in the
+//!      stretch is significantly above a red-noise (AR(1)) null fitted to the same trials
+//!      (the bin's power over the null's is `χ²₂ₖ/2K`-distributed for K trials; Bonferroni
+//!      over the tested bins, level `alpha` — the test of Torrence & Compo 1998; a circular
+//!      shift keeps every trial's spectrum, so it cannot serve here); (b) that bin is a
+//!      spectral peak (above the bin just below it: the spectra of ramps and bumps fall
+//!      from the lowest frequencies on); (c) the mean single-trial autocorrelation repeats
+//!      itself within half the stretch — a trough ≤ −0.25, then a peak ≥ 0.25
+//!      ([`crate::neural::oscillation::acf_repeats`]), which a single bump, however narrow,
+//!      never shows;
+//!    * **beyond the window**: a tuned unit that is neither a time field nor oscillating,
+//!      whose trial average over the window and one more window after it passes the
+//!      time-field test with its maximum at or after the window's last step — a field that
+//!      peaks after the window (a delay line's late units). Counted in a category of its
+//!      own, `beyond_window`, rather than as a ramp or as mixed; without recorded steps
+//!      after the window the test cannot see it and such a unit stays a ramp or mixed.
+//! 3. Category, in this order: oscillating → `oscillating` (the trial average of a rhythm
+//!    reset by the event is a damped copy of it — a bump, then a decaying or rising edge —
+//!    which the shape tests cannot tell from a shape of its own, so the rhythm decides);
+//!    beyond the window → `beyond_window`; neither tuned nor oscillating → `untuned`; a
+//!    ramp → `ramp`; a time field → `time_field` (a noisy average can fit both within its
+//!    noise: then the field only if its fall or rise is real,
+//!    [`crate::neural::shape::unimodal_gain_p`] ≤ `alpha`); tuned with none of them
+//!    (time-locked but complex: e.g. a transient with less than two cycles, a
+//!    rise-fall-rise) → `mixed`.
 //!
 //! Undefined tests are reported as errors, never as "false": fewer than `min_trials`
 //! trials (a circular shift of one trial leaves its average's variance unchanged) or a
@@ -44,7 +63,9 @@
 //! (`spectral_p` NaN) and the summaries count those units (`rhythm_undefined`).
 
 use crate::neural::oscillation::{acf_repeats, autocorrelation};
-use crate::neural::shape::{monotone_r2, periodogram, spectral_peak, unimodal_r2};
+use crate::neural::shape::{
+    AverageNoise, monotone_r2_noisy, periodogram, spectral_peak, unimodal_gain_p, unimodal_r2_noisy,
+};
 use crate::neural::{Cube, argmax};
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -64,21 +85,28 @@ pub enum Category {
     Oscillating,
     /// Time-locked, with two or more of the shapes or none of them.
     Mixed,
-    /// Not time-locked to the event (surrogate test not significant).
+    /// Neither time-locked to the event (surrogate test not significant) nor rhythmic on
+    /// single trials.
     Untuned,
+    /// A time field whose peak lies at or after the window's last step: rising inside the
+    /// window, peaking and falling by half its range on the steps recorded after it (a
+    /// delay line's late units).
+    BeyondWindow,
 }
 
 /// Every category, in report order.
-pub const CATEGORIES: [Category; 5] = [
+pub const CATEGORIES: [Category; 6] = [
     Category::Ramp,
     Category::TimeField,
     Category::Oscillating,
     Category::Mixed,
     Category::Untuned,
+    Category::BeyondWindow,
 ];
 
 impl Category {
-    /// The JSON / column name (`ramp`, `time_field`, `oscillating`, `mixed`, `untuned`).
+    /// The JSON / column name (`ramp`, `time_field`, `oscillating`, `mixed`, `untuned`,
+    /// `beyond_window`).
     pub fn name(self) -> &'static str {
         self.into()
     }
@@ -101,6 +129,14 @@ pub struct CategoryConfig {
     pub min_trials: usize,
     /// Shortest window (steps) for the tests, default 8.
     pub min_window: usize,
+    /// Shortest stretch (steps after the event) the rhythm test runs on where the trials
+    /// are recorded that long, default 32: a 2 × TD window at TD 4 (8 steps) holds at most
+    /// one cycle of a rhythm with an 8-step period, and the test needs `min_cycles` (2) in
+    /// its lowest bin plus the bin below it to tell a peak; 32 steps hold 4 cycles of an
+    /// 8-step period (5 Hz at the SBF clock's 40 steps/s) and resolve frequencies to 1/32
+    /// cycle/step. Longer windows are used whole.
+    #[serde(default = "default_rhythm_window")]
+    pub rhythm_window: usize,
     /// Seed of the surrogates.
     pub seed: u64,
 }
@@ -115,9 +151,14 @@ impl Default for CategoryConfig {
             min_cycles: 2.0,
             min_trials: 4,
             min_window: 8,
+            rhythm_window: default_rhythm_window(),
             seed: 0,
         }
     }
+}
+
+fn default_rhythm_window() -> usize {
+    32
 }
 
 /// Why the categories could not be decided.
@@ -148,14 +189,16 @@ pub struct UnitTests {
     pub unit: usize,
     /// Surrogate p of the trial average's variance over time (tuning).
     pub tuning_p: f64,
-    /// Variance explained by the best monotone fit.
+    /// Explainable variance of the trial average explained by the best monotone fit (its
+    /// sampling noise discounted: [`crate::neural::shape::AverageNoise`]).
     pub monotone_r2: f64,
-    /// Variance explained by the best unimodal fit.
+    /// Explainable variance explained by the best unimodal fit.
     pub unimodal_r2: f64,
     /// Step of the trial average's maximum (steps after the event).
     pub peak_time: usize,
     /// Width (steps) of the peak at half its height above the window's minimum (NaN when
-    /// it does not fall to half on both sides).
+    /// it does not fall to half on both sides); for a time field whose fall lies after the
+    /// window, measured on the steps recorded after it.
     pub peak_width: f64,
     /// Frequency of the largest bin with ≥ `min_cycles` cycles of the trial-averaged
     /// single-trial periodogram (cycles per step).
@@ -167,12 +210,17 @@ pub struct UnitTests {
     /// Whether that bin is a spectral peak (above the bin just below it) and the mean
     /// single-trial autocorrelation repeats itself.
     pub narrowband: bool,
-    /// Passed the ramp test.
+    /// A ramp (after the category rules of the module docs).
     pub ramp: bool,
-    /// Passed the time-field test.
+    /// A time field inside the window (after the category rules).
     pub time_field: bool,
-    /// Passed the oscillation test.
+    /// Passed the rhythm test.
     pub oscillating: bool,
+    /// Step of the maximum of the trial average over the window and the steps recorded
+    /// after it (up to one more window), when that maximum lies at or after the window's
+    /// last step and the unit falls by half its range after it: a field beyond the window.
+    #[serde(default)]
+    pub late_peak: Option<usize>,
     /// The category.
     pub category: Category,
 }
@@ -209,6 +257,30 @@ fn rotated_average(trials: &[Vec<f64>], shifts: &[usize], len: usize) -> Vec<f64
 /// The finite prefix of a trial average (steps every analysed trial may lack at the end).
 fn finite_prefix(m: &[f64]) -> Vec<f64> {
     m.iter().copied().take_while(|v| v.is_finite()).collect()
+}
+
+/// Dispersion over trials of the single-trial activity centroids `c_k = Σ_t t·a_k(t) /
+/// Σ_t a_k(t)`, `a_k` the trial (rotated by `shifts`, its first `len` steps) less its own
+/// minimum; trials without variation are left out. `None` below two such trials.
+fn centroid_dispersion(trials: &[Vec<f64>], shifts: &[usize], len: usize) -> Option<f64> {
+    let centroids: Vec<f64> = trials
+        .iter()
+        .zip(shifts)
+        .filter_map(|(x, &s)| {
+            let l = x.len();
+            let r: Vec<f64> = (0..l.min(len)).map(|t| x[(t + s) % l]).collect();
+            let lo = r.iter().copied().fold(f64::INFINITY, f64::min);
+            let w: f64 = r.iter().map(|v| v - lo).sum();
+            (w > 0.0).then(|| {
+                r.iter()
+                    .enumerate()
+                    .map(|(t, v)| t as f64 * (v - lo))
+                    .sum::<f64>()
+                    / w
+            })
+        })
+        .collect();
+    (centroids.len() >= 2).then(|| variance_stat(&centroids) / centroids.len() as f64)
 }
 
 fn variance_stat(m: &[f64]) -> f64 {
@@ -297,29 +369,158 @@ fn rhythm(trials: &[Vec<f64>], m: usize, bin0: usize) -> (usize, f64, bool) {
     (peak, (tail * tested).min(1.0), narrowband)
 }
 
-/// Classifies every unit of `cube` (`[trials, W, units]`, NaN after a trial's end).
-pub fn classify_units(cube: &Cube, cfg: &CategoryConfig) -> Result<Vec<UnitTests>, CategoryError> {
-    if cube.time < cfg.min_window {
+/// Sampling noise of the trial average of `trials` over its first `len` steps: at each
+/// step with two or more trials, their unbiased variance over their count.
+fn average_noise(trials: &[Vec<f64>], len: usize) -> AverageNoise {
+    let mut sum_sq = 0.0;
+    for t in 0..len {
+        let at: Vec<f64> = trials.iter().filter_map(|x| x.get(t).copied()).collect();
+        let k = at.len();
+        if k >= 2 {
+            let mean = at.iter().sum::<f64>() / k as f64;
+            let var = at.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (k - 1) as f64;
+            sum_sq += var / k as f64;
+        }
+    }
+    AverageNoise { sum_sq }
+}
+
+/// The beyond-window test reads up to this many windows after the event (where recorded).
+pub const EXTENDED_WINDOWS: usize = 4;
+
+/// The beyond-window test bins the recorded stretch into `window / BINS_PER_WINDOW`-step
+/// bins (at least 1 step: none below a 16-step window).
+pub const BINS_PER_WINDOW: usize = 8;
+
+/// Surrogate p of a unit's time-locking to the event on the first `len` steps of `trials`:
+/// two statistics against the same `surrogates` per-trial circular shifts, Bonferroni
+/// combined (`p = min(1, 2·min(p_S, p_D))`): the variance over time of the trial average,
+/// `S` (dense activity: ramps, fields, evoked rhythms), and the dispersion over trials of
+/// the single-trial activity centroids, `D` (sparse activity: a delay-line unit fires once
+/// per trial, so shifting its trials hardly changes `S` while it scatters the centroids).
+fn locking_p(
+    trials: &[Vec<f64>],
+    len: usize,
+    surrogates: usize,
+    rng: &mut Xoshiro256PlusPlus,
+) -> f64 {
+    let zero = vec![0; trials.len()];
+    let average = |shifts: &[usize]| -> Vec<f64> {
+        rotated_average(trials, shifts, len)
+            .into_iter()
+            .map(|v| if v.is_finite() { v } else { 0.0 })
+            .collect()
+    };
+    let s = variance_stat(&average(&zero));
+    if s <= 0.0 {
+        return 1.0;
+    }
+    let dispersion = centroid_dispersion(trials, &zero, len);
+    let (mut above, mut tighter) = (0usize, 0usize);
+    let mut shifts = vec![0usize; trials.len()];
+    for _ in 0..surrogates {
+        for (sh, x) in shifts.iter_mut().zip(trials) {
+            *sh = rng.random_range(0..x.len());
+        }
+        if variance_stat(&average(&shifts)) >= s {
+            above += 1;
+        }
+        match (dispersion, centroid_dispersion(trials, &shifts, len)) {
+            (Some(d), Some(ds)) if ds <= d => tighter += 1,
+            (None, _) => tighter += 1,
+            _ => {}
+        }
+    }
+    let p_of = |count: usize| (count + 1) as f64 / (surrogates + 1) as f64;
+    (2.0 * p_of(above).min(p_of(tighter))).min(1.0)
+}
+
+/// Trial average over the steps that at least `min_k` trials reach (stops at the first
+/// step fewer reach; at most `len` steps).
+fn covered_average(trials: &[Vec<f64>], len: usize, min_k: usize) -> Vec<f64> {
+    (0..len)
+        .map_while(|t| {
+            let at: Vec<f64> = trials.iter().filter_map(|x| x.get(t).copied()).collect();
+            (at.len() >= min_k).then(|| at.iter().sum::<f64>() / at.len() as f64)
+        })
+        .collect()
+}
+
+/// The time-field shape test on a trial average `m` with sampling noise `noise`: the
+/// unimodal fit explains ≥ `min_r2` of its explainable variance, the maximum is interior,
+/// the average falls by half its range after it and rises by [`MIN_FIELD_RISE`] of its
+/// range before it. Returns the maximum's step when it passes.
+fn field_peak(m: &[f64], noise: AverageNoise, min_r2: f64) -> Option<usize> {
+    let len = m.len();
+    // `NaN` (nothing to explain beyond the noise) fails the test.
+    let r2 = unimodal_r2_noisy(m, noise);
+    if len < 3 || r2.is_nan() || r2 < min_r2 {
+        return None;
+    }
+    let peak = argmax(m);
+    let (lo, hi) = crate::neural::finite_range(m.iter().copied());
+    let drop = |side: &[f64], share: f64| {
+        side.iter().copied().fold(f64::INFINITY, f64::min) <= hi - share * (hi - lo)
+    };
+    (peak > 0 && peak + 1 < len && drop(&m[..peak], MIN_FIELD_RISE) && drop(&m[peak + 1..], 0.5))
+        .then_some(peak)
+}
+
+/// Share of its range a time field must rise by before its maximum: a quarter, where it must
+/// fall by half after it. The window starts at the event, so a field that peaks in its
+/// first steps shows only the end of its rise (microstimuli peaking 2 steps after the
+/// event rise by about half); a decaying unit with a bump of noise at its start rises by
+/// a few percent.
+pub const MIN_FIELD_RISE: f64 = 0.25;
+
+/// Centre of a field (`m` passed the time-field test): the centroid of its activity above
+/// the window's minimum over the steps at or above half its range. Unlike the maximum, it
+/// does not jump across a jagged plateau (a wide field averaged over a dozen trials).
+fn field_centre(m: &[f64]) -> f64 {
+    let (lo, hi) = crate::neural::finite_range(m.iter().copied());
+    let half = lo + 0.5 * (hi - lo);
+    let (mut w, mut wt) = (0.0, 0.0);
+    for (t, &v) in m.iter().enumerate().filter(|(_, v)| **v >= half) {
+        w += v - lo;
+        wt += t as f64 * (v - lo);
+    }
+    if w > 0.0 { wt / w } else { argmax(m) as f64 }
+}
+
+/// Classifies every unit of `cube` (`[trials, T, units]`, NaN after a trial's end) on a
+/// window of its first `window` steps (`window ≤ T`). The tuning and shape tests use the
+/// window; the rhythm test uses up to `max(window, cfg.rhythm_window)` steps and the
+/// beyond-window test up to `2 × window`, where the cube has them.
+pub fn classify_units(
+    cube: &Cube,
+    window: usize,
+    cfg: &CategoryConfig,
+) -> Result<Vec<UnitTests>, CategoryError> {
+    let window = window.min(cube.time);
+    if window < cfg.min_window {
         return Err(CategoryError::WindowTooShort {
-            window: cube.time,
+            window,
             min: cfg.min_window,
         });
     }
+    let min_k = cfg.min_trials.max(2);
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(cfg.seed);
     let mut out = Vec::with_capacity(cube.units);
     for i in 0..cube.units {
-        let trials: Vec<Vec<f64>> = unit_trials(cube, i)
+        let recorded: Vec<Vec<f64>> = unit_trials(cube, i)
             .into_iter()
             .filter(|x| !x.is_empty())
             .collect();
-        if trials.len() < cfg.min_trials.max(2) {
+        if recorded.len() < min_k {
             return Err(CategoryError::TooFewTrials {
-                trials: trials.len(),
-                min: cfg.min_trials.max(2),
+                trials: recorded.len(),
+                min: min_k,
             });
         }
+        let cut = |x: &Vec<f64>, n: usize| x[..x.len().min(n)].to_vec();
+        let trials: Vec<Vec<f64>> = recorded.iter().map(|x| cut(x, window)).collect();
         let zero = vec![0; trials.len()];
-        let m = finite_prefix(&rotated_average(&trials, &zero, cube.time));
+        let m = finite_prefix(&rotated_average(&trials, &zero, window));
         if m.len() < cfg.min_window {
             return Err(CategoryError::WindowTooShort {
                 window: m.len(),
@@ -328,29 +529,19 @@ pub fn classify_units(cube: &Cube, cfg: &CategoryConfig) -> Result<Vec<UnitTests
         }
         let len = m.len();
         let s = variance_stat(&m);
-        let mut above = 0usize;
-        let mut shifts = vec![0usize; trials.len()];
-        for _ in 0..cfg.surrogates {
-            for (sh, x) in shifts.iter_mut().zip(&trials) {
-                *sh = rng.random_range(0..x.len());
-            }
-            let ms: Vec<f64> = rotated_average(&trials, &shifts, len)
-                .into_iter()
-                .map(|v| if v.is_finite() { v } else { 0.0 })
-                .collect();
-            if variance_stat(&ms) >= s {
-                above += 1;
-            }
-        }
-        // The rhythm test on the longest stretch `shortest` that at least `min_trials`
-        // trials cover (those trials, truncated to it); undefined below `min_window`.
-        let mut lens: Vec<usize> = trials.iter().map(Vec::len).collect();
+        let tuning_p = locking_p(&trials, len, cfg.surrogates, &mut rng);
+        // The rhythm test on single trials (induced as well as evoked: no time-locking
+        // needed), on the longest stretch up to max(window, rhythm_window) steps that at
+        // least `min_trials` trials cover (those trials, truncated to it); undefined below
+        // `min_window`.
+        let rhythm_len = window.max(cfg.rhythm_window);
+        let mut lens: Vec<usize> = recorded.iter().map(|x| x.len().min(rhythm_len)).collect();
         lens.sort_unstable_by(|a, b| b.cmp(a));
-        let shortest = lens[cfg.min_trials.max(2).min(lens.len()) - 1];
-        let long: Vec<Vec<f64>> = trials
+        let shortest = lens[min_k.min(lens.len()) - 1];
+        let long: Vec<Vec<f64>> = recorded
             .iter()
             .filter(|x| x.len() >= shortest)
-            .cloned()
+            .map(|x| cut(x, shortest))
             .collect();
         let bin0 = min_bin(shortest, cfg.min_cycles);
         let (k_peak, spectral_p, narrowband) = if shortest >= cfg.min_window {
@@ -358,25 +549,80 @@ pub fn classify_units(cube: &Cube, cfg: &CategoryConfig) -> Result<Vec<UnitTests
         } else {
             (0, f64::NAN, false)
         };
-        let tuning_p = (above + 1) as f64 / (cfg.surrogates + 1) as f64;
         let tuned = tuning_p <= cfg.alpha && s > 0.0;
-        let (mono, _) = monotone_r2(&m);
-        let uni = unimodal_r2(&m);
+        let noise = average_noise(&trials, len);
+        let (mono, _) = monotone_r2_noisy(&m, noise);
+        let uni = unimodal_r2_noisy(&m, noise);
         let peak = argmax(&m);
-        let (lo, hi) = crate::neural::finite_range(m.iter().copied());
-        let falls = |side: &[f64]| {
-            side.iter().copied().fold(f64::INFINITY, f64::min) <= hi - 0.5 * (hi - lo)
-        };
-        let ramp = tuned && mono >= cfg.monotone_r2;
-        let time_field = tuned
-            && uni >= cfg.unimodal_r2
-            && peak > 0
-            && peak + 1 < len
-            && falls(&m[..peak])
-            && falls(&m[peak + 1..]);
-        let oscillating = tuned && k_peak >= bin0 && spectral_p <= cfg.alpha && narrowband;
+        let mut ramp = tuned && mono >= cfg.monotone_r2;
+        let mut time_field = tuned && field_peak(&m, noise, cfg.unimodal_r2).is_some();
+        if ramp && time_field {
+            // Both fit within the noise: the field only if its fall (or rise) is real.
+            let field = unimodal_gain_p(&m, noise) <= cfg.alpha;
+            (ramp, time_field) = (!field, field);
+        }
+        let oscillating = k_peak >= bin0 && spectral_p <= cfg.alpha && narrowband;
+        // Where steps after the window are recorded, the same field test on the window
+        // and up to `EXTENDED_WINDOWS` − 1 more windows, in bins of `window / 8` steps,
+        // sees the fall after a late peak, and where the peak of a sparse unit lies: a
+        // unit that fires once per trial after the window leaves a few early spikes in it,
+        // which can pass for a field inside, and a dozen trials' spikes spread over a wide
+        // late field average to noise step by step, but not bin by bin. A field found
+        // there decides: its peak bin centred inside the window makes a time field, at or
+        // after the window's end a field beyond it.
+        let mut late_peak = None;
+        let mut width = half_width(&m, peak);
+        if !oscillating {
+            let ext_raw = covered_average(&recorded, EXTENDED_WINDOWS * window, min_k);
+            let ext_len = ext_raw.len();
+            if ext_len > len {
+                let b = (window / BINS_PER_WINDOW).max(1);
+                let binned: Vec<Vec<f64>> = recorded
+                    .iter()
+                    .map(|x| {
+                        x[..x.len().min(ext_len)]
+                            .chunks_exact(b)
+                            .map(|c| c.iter().sum::<f64>() / b as f64)
+                            .collect()
+                    })
+                    .collect();
+                let bins = ext_len / b;
+                let ext = covered_average(&binned, bins, min_k);
+                let ext_noise = average_noise(&binned, ext.len());
+                // A unit not locked within the window (a late field's few early spikes)
+                // must be locked on the longer stretch.
+                let locked =
+                    tuned || locking_p(&binned, ext.len(), cfg.surrogates, &mut rng) <= cfg.alpha;
+                if field_peak(&ext, ext_noise, cfg.unimodal_r2).is_some()
+                    && locked
+                    && unimodal_gain_p(&ext, ext_noise) <= cfg.alpha
+                {
+                    ramp = false;
+                    // The field's centre in steps after the event (a bin's centre is
+                    // `b·bin + (b − 1)/2`).
+                    let centre = b as f64 * field_centre(&ext) + (b as f64 - 1.0) / 2.0;
+                    if centre + 1.0 >= window as f64 {
+                        (late_peak, time_field) = (Some(centre.round() as usize), false);
+                    } else {
+                        time_field = true;
+                        // Its fall may lie after the window: the width on the longer stretch.
+                        if width.is_nan() {
+                            width = half_width(&ext_raw, argmax(&ext_raw));
+                        }
+                    }
+                }
+            }
+        }
+        // A rhythm on single trials decides: the trial average of a rhythm reset by the
+        // event is a damped copy of it (its first cycle a bump, then a decaying or rising
+        // edge as phases drift apart), which the shape tests cannot tell from a ramp or a
+        // field of its own.
+        if oscillating {
+            (ramp, time_field) = (false, false);
+        }
         let shapes = [ramp, time_field, oscillating];
-        let category = match (tuned, shapes.iter().filter(|&&b| b).count()) {
+        let category = match (tuned || oscillating, shapes.iter().filter(|&&b| b).count()) {
+            _ if late_peak.is_some() => Category::BeyondWindow,
             (false, _) => Category::Untuned,
             (true, 1) if ramp => Category::Ramp,
             (true, 1) if time_field => Category::TimeField,
@@ -389,7 +635,7 @@ pub fn classify_units(cube: &Cube, cfg: &CategoryConfig) -> Result<Vec<UnitTests
             monotone_r2: mono,
             unimodal_r2: uni,
             peak_time: peak,
-            peak_width: half_width(&m, peak),
+            peak_width: width,
             spectral_peak: if shortest > 0 {
                 k_peak as f64 / shortest as f64
             } else {
@@ -400,6 +646,7 @@ pub fn classify_units(cube: &Cube, cfg: &CategoryConfig) -> Result<Vec<UnitTests
             ramp,
             time_field,
             oscillating,
+            late_peak,
             category,
         });
     }
@@ -438,6 +685,9 @@ pub struct PerCategory<T> {
     pub mixed: T,
     /// Untuned units.
     pub untuned: T,
+    /// Fields beyond the window (absent from files written before the category existed).
+    #[serde(default)]
+    pub beyond_window: T,
 }
 
 impl<T: Copy> PerCategory<T> {
@@ -449,6 +699,7 @@ impl<T: Copy> PerCategory<T> {
             oscillating: f(Category::Oscillating),
             mixed: f(Category::Mixed),
             untuned: f(Category::Untuned),
+            beyond_window: f(Category::BeyondWindow),
         }
     }
 
@@ -460,6 +711,7 @@ impl<T: Copy> PerCategory<T> {
             Category::Oscillating => self.oscillating,
             Category::Mixed => self.mixed,
             Category::Untuned => self.untuned,
+            Category::BeyondWindow => self.beyond_window,
         }
     }
 
@@ -471,6 +723,7 @@ impl<T: Copy> PerCategory<T> {
             Category::Oscillating => &mut self.oscillating,
             Category::Mixed => &mut self.mixed,
             Category::Untuned => &mut self.untuned,
+            Category::BeyondWindow => &mut self.beyond_window,
         }
     }
 }

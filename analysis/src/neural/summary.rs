@@ -18,8 +18,8 @@
 //!   every TD.
 
 use crate::neural::categories::{
-    CATEGORIES, CategoryConfig, CategoryCounts, CategoryError, PerCategory, UnitTests,
-    classify_units, wilson_interval,
+    CATEGORIES, CategoryConfig, CategoryCounts, CategoryError, EXTENDED_WINDOWS, PerCategory,
+    UnitTests, classify_units, wilson_interval,
 };
 use crate::neural::decode::{Decoder, decode_time};
 use crate::neural::{Cube, scaling_factor_from, sequentiality_index};
@@ -258,28 +258,31 @@ pub fn classify_td(
             .cloned()
             .collect(),
     };
-    let (aligned, used) = sub.aligned(Marker::OvenOn, window - 1);
+    // The category tests also read the steps after the window: the rhythm test up to
+    // `rhythm_window`, the beyond-window test up to `EXTENDED_WINDOWS` windows.
+    let span = (EXTENDED_WINDOWS * window).max(opts.categories.rhythm_window);
+    let (aligned, used) = sub.aligned(Marker::OvenOn, span - 1);
     if used.is_empty() {
         return Err(SummaryError::NoOvenOn);
     }
-    let full = Cube::from_f32(&aligned, used.len(), window, n);
+    let full = Cube::from_f32(&aligned, used.len(), span, n);
     let size = cols.len();
-    let pick = |units: &[usize]| {
-        let mut data = Vec::with_capacity(full.trials * window * units.len());
+    let pick = |units: &[usize], time: usize| {
+        let mut data = Vec::with_capacity(full.trials * time * units.len());
         for k in 0..full.trials {
-            for t in 0..window {
+            for t in 0..time {
                 data.extend(units.iter().map(|&j| full.at(k, t, cols.start + j)));
             }
         }
         Cube {
             trials: full.trials,
-            time: window,
+            time,
             units: units.len(),
             data,
         }
     };
     let all: Vec<usize> = (0..size).collect();
-    let average_all = pick(&all).average();
+    let average_all = pick(&all, window).average();
     let varying: Vec<usize> = all
         .into_iter()
         .filter(|&j| {
@@ -291,10 +294,10 @@ pub fn classify_td(
             hi - lo > 1e-9
         })
         .collect();
-    let cube = pick(&varying);
+    let cube = pick(&varying, window);
     let mut cfg = opts.categories.clone();
     cfg.seed = cfg.seed.wrapping_add(u64::from(td));
-    let tests = classify_units(&cube, &cfg);
+    let tests = classify_units(&pick(&varying, span), window, &cfg);
     Ok(TdClassification {
         td,
         window,
