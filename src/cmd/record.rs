@@ -49,8 +49,8 @@ pub struct RecordArgs {
     pub out: PathBuf,
     /// Also write the neural summary of every population to `<out>.summary.json`: per TD a
     /// window of 2 x TD steps after oven-on with the units' categories (ramp, time_field,
-    /// oscillating, mixed, untuned: counts, Wilson 95% intervals, fractions from 10 units),
-    /// trajectory speed, sequentiality and decoding error; with two or more TDs the median
+    /// oscillating, mixed, untuned, beyond_window: counts, Wilson 95% intervals, fractions
+    /// from 10 units), trajectory speed, sequentiality and decoding error; with two or more TDs the median
     /// per-unit scaling factor and speed ratio between the shortest and the longest.
     #[arg(long)]
     pub summary: bool,

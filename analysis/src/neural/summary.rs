@@ -82,6 +82,20 @@ pub struct CategorySummary {
     /// Units whose rhythm test was undefined (too few trials covering the window's first
     /// `min_window` steps): they could not be counted as oscillating.
     pub rhythm_undefined: usize,
+    /// Version of the category rules that made these counts: 2 = induced rhythms on a
+    /// 32-step minimum stretch, noise-corrected shape fits, centroid locking and the
+    /// `beyond_window` category ([`CATEGORY_RULES`]); files without the field were made
+    /// by version 1 (time-locked rhythms on the 2 × TD window, plain R²) and are not
+    /// comparable count for count.
+    #[serde(default = "first_rules")]
+    pub rules: u32,
+}
+
+/// The version of the category rules this build applies (see [`CategorySummary::rules`]).
+pub const CATEGORY_RULES: u32 = 2;
+
+fn first_rules() -> u32 {
+    1
 }
 
 impl CategorySummary {
@@ -95,6 +109,7 @@ impl CategorySummary {
             fractions: (n >= MIN_UNITS_FOR_FRACTIONS)
                 .then(|| PerCategory::from_fn(|c| counts.get(c) as f64 / n as f64)),
             rhythm_undefined: units.iter().filter(|u| u.spectral_p.is_nan()).count(),
+            rules: CATEGORY_RULES,
         }
     }
 }
