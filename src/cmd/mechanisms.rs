@@ -56,5 +56,38 @@ pub fn run(args: MechanismsArgs) -> Result<()> {
             .collect::<Vec<_>>()
             .join(", ")
     );
+    let id = &w.identification;
+    let mut mechs: Vec<&str> = id.held_out.iter().map(|h| h.mechanism.as_str()).collect();
+    mechs.dedup();
+    let held: Vec<String> = mechs
+        .iter()
+        .map(|m| {
+            let n = id.held_out.iter().filter(|h| h.mechanism == *m).count();
+            let range = id
+                .self_range(m)
+                .map_or(String::new(), |(lo, hi)| format!(", self {lo:.2}–{hi:.2}"));
+            format!("{m} {}/{n}{range}", id.count(m, m))
+        })
+        .collect();
+    println!(
+        "identification, leave one seed out (held-out seeds named as their own mechanism): {}",
+        held.join("; ")
+    );
+    for a in &id.agents {
+        let range = id
+            .self_range(&a.nearest)
+            .map_or(String::new(), |(lo, hi)| format!("{lo:.2}–{hi:.2}"));
+        println!(
+            "{}: {} (nearest {}, distance {:.2}; its seeds lie {range} from it)",
+            a.agent,
+            if a.identified {
+                "identified"
+            } else {
+                "not identified"
+            },
+            a.nearest,
+            a.distance
+        );
+    }
     Ok(())
 }

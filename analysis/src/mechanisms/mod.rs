@@ -30,9 +30,11 @@
 //! nearest mechanism is bootstrapped over seeds (seeds of every model resampled with
 //! replacement): the fraction of resamples in which each mechanism is the nearest.
 
+mod identify;
 mod read;
 mod tables;
 
+pub use identify::{AgentVerdict, HeldOut, Identification, identify};
 pub use read::{JobFiles, assemble, scaling_index_of_summary, signatures};
 pub use tables::{Written, fingerprint_figure, write_tables};
 

@@ -15,6 +15,8 @@ pub struct Written {
     pub signatures: usize,
     /// Agents compared.
     pub agents: usize,
+    /// The leave-one-seed-out identification (also in `mechanisms.md`).
+    pub identification: super::Identification,
 }
 
 fn fmt(x: f64, digits: usize) -> String {
@@ -117,6 +119,8 @@ pub fn write_tables(
         let nearest = crate::mechanisms::nearest_label(&mine);
         md.push_str(&format!("| {a} | {} | {nearest} |\n", cells.join(" | ")));
     }
+    let identification = super::identify(&sigs);
+    md.push_str(&identification_markdown(&identification));
     let mut files = vec![
         write("signatures.csv", &csv)?,
         write("mechanisms.csv", &mcsv)?,
@@ -127,7 +131,71 @@ pub fn write_tables(
         files,
         signatures: sigs.len(),
         agents: agents.len(),
+        identification,
     })
+}
+
+/// The leave-one-seed-out identification as Markdown: the confusion matrix, each
+/// mechanism's self-distance range, and each agent's verdict on that scale.
+pub fn identification_markdown(id: &super::Identification) -> String {
+    let mut md = String::from(
+        "\n## Identification (leave one seed out)\n\nEach mechanism seed held out in turn, the \
+         fingerprints rebuilt from the other mechanism signatures (features standardised by \
+         their SD over those), the held-out seed named by its nearest fingerprint. Rows: true \
+         mechanism; columns: named as. Self-distance: the held-out seeds' distances to their \
+         own fingerprint (min–max); nearest other: their smallest distance to another.\n\n",
+    );
+    md.push_str(&format!(
+        "| mechanism | {} | correct | self-distance | nearest other |\n|---|{}---|---|---|\n",
+        MECHANISMS.join(" | "),
+        "---|".repeat(MECHANISMS.len())
+    ));
+    for m in MECHANISMS {
+        let mine: Vec<&super::HeldOut> = id.held_out.iter().filter(|h| h.mechanism == m).collect();
+        if mine.is_empty() {
+            continue;
+        }
+        let cells: Vec<String> = MECHANISMS
+            .iter()
+            .map(|n| id.count(m, n).to_string())
+            .collect();
+        let range = id.self_range(m).map_or("–".into(), |(lo, hi)| {
+            format!("{}–{}", fmt(lo, 2), fmt(hi, 2))
+        });
+        let other = mine
+            .iter()
+            .map(|h| h.other_distance)
+            .fold(f64::INFINITY, f64::min);
+        md.push_str(&format!(
+            "| {m} | {} | {}/{} | {range} | {} |\n",
+            cells.join(" | "),
+            id.count(m, m),
+            mine.len(),
+            fmt(other, 2)
+        ));
+    }
+    md.push_str(
+        "\nAgents on the same scale (fingerprints and SDs from every mechanism signature): \
+         identified only when the distance to the nearest mechanism lies within that \
+         mechanism's self-distance range.\n\n| agent | nearest | distance | its self-distance | verdict |\n|---|---|---|---|---|\n",
+    );
+    for a in &id.agents {
+        let range = id.self_range(&a.nearest).map_or("–".into(), |(lo, hi)| {
+            format!("{}–{}", fmt(lo, 2), fmt(hi, 2))
+        });
+        md.push_str(&format!(
+            "| {} | {} | {} | {range} | {} |\n",
+            a.agent,
+            a.nearest,
+            fmt(a.distance, 2),
+            if a.identified {
+                "identified"
+            } else {
+                "not identified"
+            }
+        ));
+    }
+    md
 }
 
 /// The fingerprints as parallel coordinates: per model (seed mean) a line over the

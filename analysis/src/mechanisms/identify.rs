@@ -1,0 +1,251 @@
+//! Does the fingerprint recognise a mechanism it has not seen? Leave one seed out: each
+//! mechanism's signature of one training seed is held out, the fingerprints are rebuilt
+//! from every other mechanism signature (seed means; each feature standardised by its SD
+//! over those signatures), and the held-out signature is named by its nearest fingerprint.
+//!
+//! * The **confusion matrix** counts, per true mechanism, the mechanisms its held-out seeds
+//!   were named as.
+//! * The **self-distance range** of a mechanism is the range of its held-out seeds'
+//!   distances to its own (rebuilt) fingerprint: how far an unseen seed of that mechanism
+//!   lies from it. It is the scale of "near".
+//! * An **agent** is *identified* with its nearest mechanism only when its distance (on the
+//!   same scale: fingerprints and SDs from all mechanism signatures) lies within that
+//!   mechanism's self-distance range (at most its largest held-out distance); otherwise it
+//!   is "not identified", however near it is relative to the other mechanisms.
+
+use super::{MECHANISMS, Signature, distance, feature_sds, mean_features};
+use std::collections::BTreeMap;
+
+/// One held-out signature of a mechanism and what it was named.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct HeldOut {
+    /// The mechanism it belongs to.
+    pub mechanism: String,
+    /// Its training seed.
+    pub seed: u64,
+    /// The mechanism whose fingerprint is nearest (`None`: no distance defined).
+    pub named: Option<String>,
+    /// Distance to its own mechanism's fingerprint (standardised RMS).
+    pub self_distance: f64,
+    /// Distance to the nearest other mechanism's fingerprint.
+    pub other_distance: f64,
+}
+
+/// An agent against the mechanisms' self-distance ranges.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct AgentVerdict {
+    /// The agent.
+    pub agent: String,
+    /// Its nearest mechanism.
+    pub nearest: String,
+    /// Its distance to that mechanism's fingerprint (same scale as the self-distances).
+    pub distance: f64,
+    /// Whether it lies within that mechanism's self-distance range.
+    pub identified: bool,
+}
+
+/// Leave-one-seed-out identification of every mechanism, and the agents' verdicts.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Identification {
+    /// Every held-out mechanism signature, in mechanism then seed order.
+    pub held_out: Vec<HeldOut>,
+    /// Agents (models not among the mechanisms), in name order.
+    pub agents: Vec<AgentVerdict>,
+}
+
+impl Identification {
+    /// Held-out seeds of `truth` named as `named`.
+    pub fn count(&self, truth: &str, named: &str) -> usize {
+        self.held_out
+            .iter()
+            .filter(|h| h.mechanism == truth && h.named.as_deref() == Some(named))
+            .count()
+    }
+
+    /// Share of `mechanism`'s held-out seeds named as itself (NaN without seeds).
+    pub fn accuracy(&self, mechanism: &str) -> f64 {
+        let n = self
+            .held_out
+            .iter()
+            .filter(|h| h.mechanism == mechanism)
+            .count();
+        self.count(mechanism, mechanism) as f64 / n as f64
+    }
+
+    /// `(min, max)` of `mechanism`'s held-out distances to its own fingerprint.
+    pub fn self_range(&self, mechanism: &str) -> Option<(f64, f64)> {
+        let d: Vec<f64> = self
+            .held_out
+            .iter()
+            .filter(|h| h.mechanism == mechanism && h.self_distance.is_finite())
+            .map(|h| h.self_distance)
+            .collect();
+        (!d.is_empty()).then(|| {
+            (
+                d.iter().copied().fold(f64::INFINITY, f64::min),
+                d.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            )
+        })
+    }
+}
+
+/// Fingerprints (seed means) of the mechanisms among `sigs`.
+fn fingerprints<'a>(sigs: &[&'a Signature]) -> BTreeMap<&'a str, BTreeMap<&'static str, f64>> {
+    let mut by_model: BTreeMap<&str, Vec<&Signature>> = BTreeMap::new();
+    for s in sigs {
+        by_model.entry(s.model.as_str()).or_default().push(s);
+    }
+    by_model
+        .into_iter()
+        .map(|(m, v)| (m, mean_features(&v)))
+        .collect()
+}
+
+/// The nearest fingerprint to `x` and its distance, and the distance to `own` (NaN when
+/// absent) and to the nearest fingerprint other than `own`.
+fn nearest(
+    x: &BTreeMap<&'static str, f64>,
+    prints: &BTreeMap<&str, BTreeMap<&'static str, f64>>,
+    sds: &BTreeMap<&'static str, f64>,
+    own: &str,
+) -> (Option<(String, f64)>, f64, f64) {
+    let d: Vec<(&str, f64)> = prints
+        .iter()
+        .map(|(m, p)| (*m, distance(x, p, sds)))
+        .filter(|(_, d)| d.is_finite())
+        .collect();
+    let best = d
+        .iter()
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(m, v)| (m.to_string(), *v));
+    let own_d = d.iter().find(|(m, _)| *m == own).map_or(f64::NAN, |x| x.1);
+    let other = d
+        .iter()
+        .filter(|(m, _)| *m != own)
+        .map(|x| x.1)
+        .fold(f64::INFINITY, f64::min);
+    (best, own_d, other)
+}
+
+/// Leave-one-seed-out identification of the [`MECHANISMS`] among `sigs` and the verdict on
+/// every other model (see the module docs).
+pub fn identify(sigs: &[Signature]) -> Identification {
+    let mechs: Vec<&Signature> = sigs
+        .iter()
+        .filter(|s| MECHANISMS.contains(&s.model.as_str()))
+        .collect();
+    let mut held_out = Vec::new();
+    for (i, h) in mechs.iter().enumerate() {
+        let rest: Vec<&Signature> = mechs
+            .iter()
+            .enumerate()
+            .filter(|(j, _)| *j != i)
+            .map(|(_, s)| *s)
+            .collect();
+        // A mechanism with no other seed has no fingerprint to be named by.
+        if !rest.iter().any(|s| s.model == h.model) {
+            continue;
+        }
+        let owned: Vec<Signature> = rest.iter().map(|s| (*s).clone()).collect();
+        let sds = feature_sds(&owned);
+        let x = mean_features(&[*h]);
+        let (best, own, other) = nearest(&x, &fingerprints(&rest), &sds, &h.model);
+        held_out.push(HeldOut {
+            mechanism: h.model.clone(),
+            seed: h.seed,
+            named: best.map(|b| b.0),
+            self_distance: own,
+            other_distance: other,
+        });
+    }
+    held_out.sort_by(|a, b| {
+        let pos = |m: &str| MECHANISMS.iter().position(|x| *x == m);
+        pos(&a.mechanism)
+            .cmp(&pos(&b.mechanism))
+            .then(a.seed.cmp(&b.seed))
+    });
+    let mut id = Identification {
+        held_out,
+        agents: Vec::new(),
+    };
+    let owned: Vec<Signature> = mechs.iter().map(|s| (*s).clone()).collect();
+    let sds = feature_sds(&owned);
+    let prints = fingerprints(&mechs);
+    let mut agents: BTreeMap<&str, Vec<&Signature>> = BTreeMap::new();
+    for s in sigs
+        .iter()
+        .filter(|s| !MECHANISMS.contains(&s.model.as_str()))
+    {
+        agents.entry(s.model.as_str()).or_default().push(s);
+    }
+    for (a, seeds) in agents {
+        let (best, _, _) = nearest(&mean_features(&seeds), &prints, &sds, "");
+        if let Some((m, d)) = best {
+            let identified = id.self_range(&m).is_some_and(|(_, hi)| d <= hi);
+            id.agents.push(AgentVerdict {
+                agent: a.to_string(),
+                nearest: m,
+                distance: d,
+                identified,
+            });
+        }
+    }
+    id
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sig(model: &str, seed: u64, f: &[(&str, f64)]) -> Signature {
+        Signature {
+            model: model.into(),
+            seed,
+            features: f.iter().map(|(k, v)| (k.to_string(), *v)).collect(),
+        }
+    }
+
+    /// Two mechanisms 10 seed-SDs apart in two features, 4 seeds each: every held-out seed
+    /// is named as itself, its self-distance is below its distance to the other; an agent
+    /// among the first mechanism's seeds is identified, one halfway between is not.
+    #[test]
+    fn held_out_seeds_are_named_as_their_mechanism_and_a_halfway_agent_is_not_identified() {
+        let mut s = Vec::new();
+        let jitter = [-0.015, -0.005, 0.005, 0.015];
+        for (k, e) in jitter.iter().enumerate() {
+            s.push(sig(
+                "ddm",
+                k as u64,
+                &[("wf", 0.1 + e), ("foc_cv", 0.2 - e)],
+            ));
+            s.push(sig(
+                "sbf",
+                k as u64,
+                &[("wf", 0.3 + e), ("foc_cv", 0.4 + e)],
+            ));
+            s.push(sig(
+                "like-ddm",
+                k as u64,
+                &[("wf", 0.1 - e), ("foc_cv", 0.2 + e)],
+            ));
+            s.push(sig(
+                "halfway",
+                k as u64,
+                &[("wf", 0.2 + e), ("foc_cv", 0.3 - e)],
+            ));
+        }
+        let id = identify(&s);
+        assert_eq!(id.held_out.len(), 8);
+        assert_eq!((id.accuracy("ddm"), id.accuracy("sbf")), (1.0, 1.0));
+        assert_eq!(id.count("ddm", "sbf"), 0);
+        for h in &id.held_out {
+            assert!(h.self_distance < h.other_distance, "{h:?}");
+        }
+        let (lo, hi) = id.self_range("ddm").unwrap();
+        assert!(lo <= hi && hi.is_finite());
+        let verdict = |a: &str| id.agents.iter().find(|v| v.agent == a).unwrap().clone();
+        assert_eq!(verdict("like-ddm").nearest, "ddm");
+        assert!(verdict("like-ddm").identified, "{:?}", verdict("like-ddm"));
+        assert!(!verdict("halfway").identified, "{:?}", verdict("halfway"));
+    }
+}
