@@ -198,50 +198,38 @@ pub fn identification_markdown(id: &super::Identification) -> String {
     md
 }
 
-/// The fingerprints as parallel coordinates: per model (seed mean) a line over the
-/// features (x: the feature's index in [`FEATURES`], y: its value in SDs from the mean over
-/// all signatures); SVG and PNG at `stem`.
+/// The fingerprints as a heat map: one row per model (seed mean), one column per named
+/// feature, each cell the feature's value in SDs from its mean over all signatures
+/// (diverging colours, full at ±2 SD, the value printed); SVG and PNG at `stem`.
 pub fn fingerprint_figure(sigs: &[Signature], stem: &Path) -> Result<Vec<PathBuf>, MechanismError> {
-    use crate::report::figures::{Chart, Series, write_chart};
+    use crate::report::figures::{LabelledMatrix, write_matrix};
     let sds = feature_sds(sigs);
     let all: Vec<&Signature> = sigs.iter().collect();
     let centre = mean_features(&all);
     let mut models: Vec<&str> = sigs.iter().map(|s| s.model.as_str()).collect();
     models.dedup();
-    let series = models
+    let values = models
         .iter()
-        .enumerate()
-        .map(|(k, m)| {
+        .map(|m| {
             let mine: Vec<&Signature> = sigs.iter().filter(|s| s.model == *m).collect();
             let mean = mean_features(&mine);
-            let points = FEATURES
+            FEATURES
                 .iter()
-                .enumerate()
-                .filter_map(|(i, f)| {
-                    Some((i as f64, (mean.get(f)? - centre.get(f)?) / sds.get(f)?))
+                .map(|f| {
+                    let z = (|| Some((mean.get(f)? - centre.get(f)?) / sds.get(f)?))();
+                    z.unwrap_or(f64::NAN)
                 })
-                .collect();
-            Series {
-                label: m.to_string(),
-                points,
-                line: true,
-                color: k,
-            }
+                .collect()
         })
         .collect();
-    let chart = Chart {
-        title: "Mechanism fingerprints (seed means)".into(),
-        x_label: format!(
-            "feature (0 {} … {} {}, in the order of mechanisms.md)",
-            FEATURES[0],
-            FEATURES.len() - 1,
-            FEATURES[FEATURES.len() - 1]
-        ),
-        y_label: "SDs from the mean of all signatures".into(),
-        series,
-        ..Chart::default()
+    let matrix = LabelledMatrix {
+        title: "Mechanism fingerprints: seed means in SDs from the mean of all signatures".into(),
+        rows: models.iter().map(|m| m.to_string()).collect(),
+        columns: FEATURES.iter().map(|f| f.to_string()).collect(),
+        values,
+        scale: 2.0,
     };
-    write_chart(stem, &chart).map_err(|e| MechanismError::File {
+    write_matrix(stem, &matrix, (1300, 620)).map_err(|e| MechanismError::File {
         path: stem.to_path_buf(),
         message: e.to_string(),
     })

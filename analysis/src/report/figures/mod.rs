@@ -5,6 +5,7 @@
 
 mod draw;
 pub mod grid;
+mod matrix;
 
 use crate::records::ConditionKind;
 use chronocooked_models::run_folder;
@@ -13,6 +14,7 @@ pub use draw::{
     Chart, FigureError, Series, write_chart, write_chart_sized, write_heatmap, write_heatmap_sized,
 };
 pub use grid::{psychometric_grid, write_panels};
+pub use matrix::{LabelledMatrix, write_matrix};
 use std::path::{Path, PathBuf};
 
 /// The standard figures of one evaluation into `dir` (SVG + PNG each): psychometric curve
