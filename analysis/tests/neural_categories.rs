@@ -2,6 +2,8 @@
 //! exclusivity on clean shapes, and degenerate inputs: constant units, too few trials, too
 //! short windows, small populations (counts and Wilson intervals, no fractions).
 
+mod synthetic;
+
 use chronocooked_analysis::neural::Cube;
 use chronocooked_analysis::neural::categories::{
     Category, CategoryConfig, CategoryError, classify_units, wilson_interval,
@@ -9,36 +11,9 @@ use chronocooked_analysis::neural::categories::{
 use chronocooked_analysis::neural::summary::{SummaryOptions, neural_summary};
 use chronocooked_models::activity::{Event, Population, Trial};
 use chronocooked_models::{ActivityDataset, ActivityMeta, Marker};
-use rand::{Rng, SeedableRng};
+use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
-
-fn gauss(rng: &mut Xoshiro256PlusPlus) -> f64 {
-    (0..12).map(|_| rng.random::<f64>()).sum::<f64>() - 6.0
-}
-
-/// `[trials, time, units]` from `f(trial, t, unit)`.
-fn cube(
-    trials: usize,
-    time: usize,
-    units: usize,
-    mut f: impl FnMut(usize, usize, usize) -> f64,
-) -> Cube {
-    let mut data = vec![0.0; trials * time * units];
-    // Unit-major generation, so each unit's trials are an independent series.
-    for i in 0..units {
-        for k in 0..trials {
-            for t in 0..time {
-                data[(k * time + t) * units + i] = f(k, t, i);
-            }
-        }
-    }
-    Cube {
-        trials,
-        time,
-        units,
-        data,
-    }
-}
+use synthetic::{cube, gauss};
 
 /// Fraction of `units` in each category, then the fraction that is tuned, then the
 /// fraction whose spectral test alone (ungated by tuning) is significant.

@@ -7,38 +7,13 @@
 //!   window are counted as `beyond_window`;
 //! * noise recorded beyond the window does not make fields beyond it.
 
-use chronocooked_analysis::neural::Cube;
+mod synthetic;
+
 use chronocooked_analysis::neural::categories::{Category, CategoryConfig, classify_units};
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use std::f64::consts::PI;
-
-fn gauss(rng: &mut Xoshiro256PlusPlus) -> f64 {
-    (0..12).map(|_| rng.random::<f64>()).sum::<f64>() - 6.0
-}
-
-/// `[trials, time, units]` from `f(trial, t, unit)`, generated unit by unit.
-fn cube(
-    trials: usize,
-    time: usize,
-    units: usize,
-    mut f: impl FnMut(usize, usize, usize) -> f64,
-) -> Cube {
-    let mut data = vec![0.0; trials * time * units];
-    for i in 0..units {
-        for k in 0..trials {
-            for t in 0..time {
-                data[(k * time + t) * units + i] = f(k, t, i);
-            }
-        }
-    }
-    Cube {
-        trials,
-        time,
-        units,
-        data,
-    }
-}
+use synthetic::{cube, gauss};
 
 fn count(tests: &[chronocooked_analysis::neural::categories::UnitTests], c: Category) -> usize {
     tests.iter().filter(|u| u.category == c).count()

@@ -196,14 +196,7 @@ pub fn identify(sigs: &[Signature]) -> Identification {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn sig(model: &str, seed: u64, f: &[(&str, f64)]) -> Signature {
-        Signature {
-            model: model.into(),
-            seed,
-            features: f.iter().map(|(k, v)| (k.to_string(), *v)).collect(),
-        }
-    }
+    use crate::mechanisms::tests::sig;
 
     /// Two mechanisms 10 seed-SDs apart in two features, 4 seeds each: every held-out seed
     /// is named as itself, its self-distance is below its distance to the other; an agent

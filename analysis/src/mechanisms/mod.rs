@@ -241,7 +241,8 @@ pub const MECHANISMS: [&str; 5] = [
 mod tests {
     use super::*;
 
-    fn sig(model: &str, seed: u64, f: &[(&str, f64)]) -> Signature {
+    /// A signature of `model`'s seed `seed` with features `f` (shared with `identify`'s tests).
+    pub(super) fn sig(model: &str, seed: u64, f: &[(&str, f64)]) -> Signature {
         Signature {
             model: model.into(),
             seed,

@@ -266,6 +266,16 @@ where
     Ok(())
 }
 
+/// Readies a figure's files: the font registered, `stem`'s folder created; returns
+/// `(<stem>.svg, <stem>.png)`.
+pub(super) fn figure_paths(stem: &Path) -> Result<(PathBuf, PathBuf), FigureError> {
+    ensure_font();
+    if let Some(dir) = stem.parent() {
+        std::fs::create_dir_all(dir).map_err(err(stem))?;
+    }
+    Ok((stem.with_extension("svg"), stem.with_extension("png")))
+}
+
 /// Writes `chart` to `<stem>.svg` and `<stem>.png` (800×520); returns both paths.
 pub fn write_chart(stem: &Path, chart: &Chart) -> Result<Vec<PathBuf>, FigureError> {
     write_chart_sized(stem, chart, (800, 520))
@@ -277,12 +287,7 @@ pub fn write_chart_sized(
     chart: &Chart,
     size: (u32, u32),
 ) -> Result<Vec<PathBuf>, FigureError> {
-    ensure_font();
-    if let Some(dir) = stem.parent() {
-        std::fs::create_dir_all(dir).map_err(err(stem))?;
-    }
-    let svg = stem.with_extension("svg");
-    let png = stem.with_extension("png");
+    let (svg, png) = figure_paths(stem)?;
     atomic(&svg, |tmp| {
         let root = SVGBackend::new(tmp, size).into_drawing_area();
         draw_chart(root.clone(), chart, &svg)?;

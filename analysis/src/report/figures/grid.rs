@@ -3,7 +3,7 @@
 //! fitted to the pooled counts, the anchors' arithmetic and geometric means and the
 //! bisection point.
 
-use super::draw::{Chart, FigureError, Series, atomic, draw_chart, ensure_font, err};
+use super::draw::{Chart, FigureError, Series, atomic, draw_chart, err, figure_paths};
 use crate::behaviour::metrics::BisectionMetrics;
 use crate::behaviour::psychometric::{ProbeCounts, check_transition, fit_logistic};
 use plotters::prelude::*;
@@ -165,13 +165,8 @@ pub fn write_panels(
     grid: (usize, usize),
     charts: &[Option<Chart>],
 ) -> Result<Vec<PathBuf>, FigureError> {
-    ensure_font();
-    if let Some(dir) = stem.parent() {
-        std::fs::create_dir_all(dir).map_err(err(stem))?;
-    }
+    let (svg, png) = figure_paths(stem)?;
     let size = (PANEL.0 * grid.1 as u32, PANEL.1 * grid.0 as u32);
-    let svg = stem.with_extension("svg");
-    let png = stem.with_extension("png");
     atomic(&svg, |tmp| {
         let root = SVGBackend::new(tmp, size).into_drawing_area();
         draw_grid(&root, grid, charts, &svg)?;

@@ -4,7 +4,7 @@
 //! fingerprints (models × features), readable at 1366 px without looking numbers up.
 
 use super::FigureError;
-use super::draw::{atomic, ensure_font, err};
+use super::draw::{atomic, err, figure_paths};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -120,12 +120,7 @@ pub fn write_matrix(
     m: &LabelledMatrix,
     size: (u32, u32),
 ) -> Result<Vec<PathBuf>, FigureError> {
-    ensure_font();
-    if let Some(dir) = stem.parent() {
-        std::fs::create_dir_all(dir).map_err(err(stem))?;
-    }
-    let svg = stem.with_extension("svg");
-    let png = stem.with_extension("png");
+    let (svg, png) = figure_paths(stem)?;
     atomic(&svg, |tmp| {
         draw(SVGBackend::new(tmp, size).into_drawing_area(), m, &svg)
     })?;

@@ -94,13 +94,14 @@ pub(super) fn varying_average(c: &TdClassification) -> Vec<f64> {
 }
 
 /// Up to three example units: one per category in the order time field, ramp,
-/// oscillating, mixed, untuned, then the next units of those categories.
+/// oscillating, mixed, beyond the window, untuned, then the next units of those categories.
 pub(super) fn examples(tests: &[UnitTests]) -> Vec<&UnitTests> {
     let order = [
         Category::TimeField,
         Category::Ramp,
         Category::Oscillating,
         Category::Mixed,
+        Category::BeyondWindow,
         Category::Untuned,
     ];
     let mut picked: Vec<&UnitTests> = order

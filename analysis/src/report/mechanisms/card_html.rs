@@ -12,8 +12,11 @@ use std::path::Path;
 /// Pixel size of a card's panels (four to a row at 1366 px).
 const PANEL: (u32, u32) = (380, 280);
 
-/// Colour of each category in the bar (ramp, time field, oscillating, mixed, untuned).
-const CATEGORY_COLOURS: [&str; 5] = ["#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#bbbbbb"];
+/// Colour of each category in the bar, in [`CATEGORIES`] order (ramp, time field,
+/// oscillating, mixed, untuned, beyond the window: a paler time-field blue).
+const CATEGORY_COLOURS: [&str; CATEGORIES.len()] = [
+    "#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#bbbbbb", "#aec7e8",
+];
 
 fn panel(stem: &Path, chart: &Chart, caption: &str) -> Result<Markup, String> {
     let files = write_chart_sized(stem, chart, PANEL).map_err(|e| e.to_string())?;
