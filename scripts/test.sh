@@ -20,6 +20,9 @@ rm -rf target/wheel && .venv/bin/python -m pip wheel --quiet --no-deps ./python 
 wheel=$(ls target/wheel/chronocooked-*.whl)
 .venv/bin/python -m pip install --quiet --no-deps --force-reinstall "$wheel"
 .venv/bin/python -m pip install --quiet "$wheel"
-# pytest's tmp_path folders live under target/, not in the system temp dir.
+# pytest's tmp_path folders: outside the repository (some tests check that the package
+# works there), in one temporary folder removed when the script exits.
+pytest_tmp=$(mktemp -d)
+trap 'rm -rf "$pytest_tmp"' EXIT
 CHRONOCOOKED_BIN="$PWD/target/release/chronocooked" CHRONOCOOKED_WHEEL="$PWD/$wheel" \
-    .venv/bin/python -m pytest -q -p no:cacheprovider --basetemp="$PWD/target/pytest-tmp" python/tests
+    .venv/bin/python -m pytest -q -p no:cacheprovider --basetemp="$pytest_tmp/pytest" python/tests

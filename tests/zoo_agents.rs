@@ -240,7 +240,10 @@ fn corrupt_edited_or_unexpected_zoo_files_are_refused_naming_them() {
 
 #[test]
 fn the_compiled_in_zoo_serves_agents_outside_the_repository_and_is_checked_there_too() {
-    let dir = temp_dir("zoo-embedded");
+    // A folder outside the repository (the target dir is inside it): the system temp dir,
+    // removed with its guard.
+    let guard = tempfile::tempdir().unwrap();
+    let dir = guard.path().to_path_buf();
     let cache = dir.join("cache");
     let run = |args: &[&str]| {
         bin()
