@@ -394,10 +394,15 @@ fn neural_summaries_tell_ramps_sequences_and_oscillations_apart() {
     let (ddm, c) = summarise("ddm", "accumulator");
     assert_eq!((c.counts.ramp, c.counts.time_field), (1, 0), "{ddm:?}");
     let (tc, c) = summarise("timecells-laplace", "time_cells");
-    // Cells whose field does not fall back by half inside the 16 steps are monotone there
-    // (ramps); none oscillates.
+    // Cells whose field does not fall back by half inside the 16 steps are fields beyond
+    // the window where the trial shows their fall, ramps where it does not; none
+    // oscillates.
     assert!(c.counts.time_field * 3 >= tc.units, "{tc:?}");
-    assert_eq!(c.counts.time_field + c.counts.ramp, tc.units, "{tc:?}");
+    assert_eq!(
+        c.counts.time_field + c.counts.ramp + c.counts.beyond_window,
+        tc.units,
+        "{tc:?}"
+    );
     // Cells with τ* beyond the 16-step window peak at its end, so the sequence only
     // partly tiles it.
     assert!(tc.sequentiality.unwrap() > 0.3, "{tc:?}");
