@@ -62,12 +62,13 @@
 //! `min_window` (trials that end early, off probe trials) it is undefined for the unit
 //! (`spectral_p` NaN) and the summaries count those units (`rhythm_undefined`).
 
+use crate::neural::locking::{locking_p, rotated_average, variance_stat};
 use crate::neural::oscillation::{acf_repeats, autocorrelation};
 use crate::neural::shape::{
     AverageNoise, monotone_r2_noisy, periodogram, spectral_peak, unimodal_gain_p, unimodal_r2_noisy,
 };
 use crate::neural::{Cube, argmax};
-use rand::{Rng, SeedableRng};
+use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 use serde::{Deserialize, Serialize};
 use statrs::distribution::{ChiSquared, ContinuousCDF};
@@ -237,55 +238,9 @@ fn unit_trials(cube: &Cube, i: usize) -> Vec<Vec<f64>> {
         .collect()
 }
 
-/// Trial average of `trials` rotated by `shifts` (NaN-aware; NaN where no trial reaches).
-fn rotated_average(trials: &[Vec<f64>], shifts: &[usize], len: usize) -> Vec<f64> {
-    let mut sum = vec![0.0; len];
-    let mut n = vec![0usize; len];
-    for (x, &s) in trials.iter().zip(shifts) {
-        let l = x.len();
-        for t in 0..l.min(len) {
-            sum[t] += x[(t + s) % l];
-            n[t] += 1;
-        }
-    }
-    sum.iter()
-        .zip(&n)
-        .map(|(s, &c)| if c > 0 { s / c as f64 } else { f64::NAN })
-        .collect()
-}
-
 /// The finite prefix of a trial average (steps every analysed trial may lack at the end).
 fn finite_prefix(m: &[f64]) -> Vec<f64> {
     m.iter().copied().take_while(|v| v.is_finite()).collect()
-}
-
-/// Dispersion over trials of the single-trial activity centroids `c_k = Σ_t t·a_k(t) /
-/// Σ_t a_k(t)`, `a_k` the trial (rotated by `shifts`, its first `len` steps) less its own
-/// minimum; trials without variation are left out. `None` below two such trials.
-fn centroid_dispersion(trials: &[Vec<f64>], shifts: &[usize], len: usize) -> Option<f64> {
-    let centroids: Vec<f64> = trials
-        .iter()
-        .zip(shifts)
-        .filter_map(|(x, &s)| {
-            let l = x.len();
-            let r: Vec<f64> = (0..l.min(len)).map(|t| x[(t + s) % l]).collect();
-            let lo = r.iter().copied().fold(f64::INFINITY, f64::min);
-            let w: f64 = r.iter().map(|v| v - lo).sum();
-            (w > 0.0).then(|| {
-                r.iter()
-                    .enumerate()
-                    .map(|(t, v)| t as f64 * (v - lo))
-                    .sum::<f64>()
-                    / w
-            })
-        })
-        .collect();
-    (centroids.len() >= 2).then(|| variance_stat(&centroids) / centroids.len() as f64)
-}
-
-fn variance_stat(m: &[f64]) -> f64 {
-    let mean = m.iter().sum::<f64>() / m.len().max(1) as f64;
-    m.iter().map(|v| (v - mean).powi(2)).sum()
 }
 
 /// Lowest periodogram bin with at least `cycles` cycles in `len` steps.
@@ -392,49 +347,6 @@ pub const EXTENDED_WINDOWS: usize = 4;
 /// bins (at least 1 step: none below a 16-step window).
 pub const BINS_PER_WINDOW: usize = 8;
 
-/// Surrogate p of a unit's time-locking to the event on the first `len` steps of `trials`:
-/// two statistics against the same `surrogates` per-trial circular shifts, Bonferroni
-/// combined (`p = min(1, 2·min(p_S, p_D))`): the variance over time of the trial average,
-/// `S` (dense activity: ramps, fields, evoked rhythms), and the dispersion over trials of
-/// the single-trial activity centroids, `D` (sparse activity: a delay-line unit fires once
-/// per trial, so shifting its trials hardly changes `S` while it scatters the centroids).
-fn locking_p(
-    trials: &[Vec<f64>],
-    len: usize,
-    surrogates: usize,
-    rng: &mut Xoshiro256PlusPlus,
-) -> f64 {
-    let zero = vec![0; trials.len()];
-    let average = |shifts: &[usize]| -> Vec<f64> {
-        rotated_average(trials, shifts, len)
-            .into_iter()
-            .map(|v| if v.is_finite() { v } else { 0.0 })
-            .collect()
-    };
-    let s = variance_stat(&average(&zero));
-    if s <= 0.0 {
-        return 1.0;
-    }
-    let dispersion = centroid_dispersion(trials, &zero, len);
-    let (mut above, mut tighter) = (0usize, 0usize);
-    let mut shifts = vec![0usize; trials.len()];
-    for _ in 0..surrogates {
-        for (sh, x) in shifts.iter_mut().zip(trials) {
-            *sh = rng.random_range(0..x.len());
-        }
-        if variance_stat(&average(&shifts)) >= s {
-            above += 1;
-        }
-        match (dispersion, centroid_dispersion(trials, &shifts, len)) {
-            (Some(d), Some(ds)) if ds <= d => tighter += 1,
-            (None, _) => tighter += 1,
-            _ => {}
-        }
-    }
-    let p_of = |count: usize| (count + 1) as f64 / (surrogates + 1) as f64;
-    (2.0 * p_of(above).min(p_of(tighter))).min(1.0)
-}
-
 /// Trial average over the steps that at least `min_k` trials reach (stops at the first
 /// step fewer reach; at most `len` steps).
 fn covered_average(trials: &[Vec<f64>], len: usize, min_k: usize) -> Vec<f64> {
@@ -490,7 +402,7 @@ fn field_centre(m: &[f64]) -> f64 {
 /// Classifies every unit of `cube` (`[trials, T, units]`, NaN after a trial's end) on a
 /// window of its first `window` steps (`window ≤ T`). The tuning and shape tests use the
 /// window; the rhythm test uses up to `max(window, cfg.rhythm_window)` steps and the
-/// beyond-window test up to `2 × window`, where the cube has them.
+/// beyond-window test up to `EXTENDED_WINDOWS × window`, where the cube has them.
 pub fn classify_units(
     cube: &Cube,
     window: usize,

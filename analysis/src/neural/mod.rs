@@ -14,6 +14,7 @@
 pub mod categories;
 pub mod decode;
 pub mod geometry;
+mod locking;
 pub mod oscillation;
 pub mod shape;
 pub mod speed;
