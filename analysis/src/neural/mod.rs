@@ -8,7 +8,7 @@
 //! Submodules: [`decode`] — the decoders of elapsed time; [`oscillation`] — Welch spectra,
 //! autocorrelation, phase coherence and the oscillation test; [`shape`] — monotone and
 //! unimodal fits, periodograms; [`categories`] — the mutually exclusive unit categories
-//! (ramp, time field, oscillating, mixed, untuned) with surrogate tests; [`summary`] — the
+//! (ramp, time field, oscillating, mixed, untuned, beyond the window) with surrogate tests; [`summary`] — the
 //! per-population neural summary (`record --summary`, the leaderboard's neural columns).
 
 pub mod categories;

@@ -7,7 +7,7 @@
 //!
 //! * a heat map at the longest recorded TD, units min–max normalised and sorted by peak;
 //! * three example units, one per category where it has them (time field, ramp,
-//!   oscillating, mixed, untuned), as trial averages;
+//!   oscillating, mixed, beyond the window, untuned), as trial averages;
 //! * the population's power spectrum (each unit's single-trial periodogram normalised to
 //!   unit power without the mean, then averaged);
 //! * the temporal scaling between the shortest and the longest TD: the fit of the
@@ -144,7 +144,8 @@ fn nearest_tables(sigs: &[Signature]) -> Option<(Markup, String)> {
 const MECHANISMS_INTRO: &str = "How each model keeps time, on peak-interval probe trials \
      (soup withheld, windows of 2 × TD steps after oven-on): its timing population's \
      unit categories (bar: counts of the exclusive categories ramp, time field, \
-     oscillating, mixed, untuned), heat map, example units, power spectrum and temporal \
+     oscillating, mixed, untuned and beyond the window: a field that peaks after it), \
+     heat map, example units, power spectrum and temporal \
      scaling between its shortest and longest TD (a peak at s = 1: a clock at a fixed \
      speed; at the TD ratio: activity that stretches with the interval). Below the \
      cards: each model's fingerprint and each agent's distance to every timing \
