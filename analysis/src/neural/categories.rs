@@ -495,8 +495,10 @@ pub fn classify_units(
                         x[..x.len().min(ext_len)]
                             .chunks_exact(b)
                             .map(|c| c.iter().sum::<f64>() / b as f64)
-                            .collect()
+                            .collect::<Vec<f64>>()
                     })
+                    // A trial shorter than one bin has none (nothing to shift).
+                    .filter(|x| !x.is_empty())
                     .collect();
                 let bins = ext_len / b;
                 let ext = covered_average(&binned, bins, min_k);
