@@ -146,8 +146,7 @@ pub fn identify(sigs: &[Signature]) -> Identification {
         if !rest.iter().any(|s| s.model == h.model) {
             continue;
         }
-        let owned: Vec<Signature> = rest.iter().map(|s| (*s).clone()).collect();
-        let sds = feature_sds(&owned);
+        let sds = feature_sds(rest.iter().copied());
         let x = mean_features(&[*h]);
         let (best, own, other) = nearest(&x, &fingerprints(&rest), &sds, &h.model);
         held_out.push(HeldOut {
@@ -168,8 +167,7 @@ pub fn identify(sigs: &[Signature]) -> Identification {
         held_out,
         agents: Vec::new(),
     };
-    let owned: Vec<Signature> = mechs.iter().map(|s| (*s).clone()).collect();
-    let sds = feature_sds(&owned);
+    let sds = feature_sds(mechs.iter().copied());
     let prints = fingerprints(&mechs);
     let mut agents: BTreeMap<&str, Vec<&Signature>> = BTreeMap::new();
     for s in sigs

@@ -107,10 +107,10 @@ fn per_feature<'a>(
 }
 
 /// SD of each feature over `sigs` (features with fewer than 2 values or no spread left out).
-fn feature_sds(sigs: &[Signature]) -> BTreeMap<&'static str, f64> {
-    per_feature(sigs.iter(), |s| {
-        (s.sd.is_finite() && s.sd > 0.0).then_some(s.sd)
-    })
+fn feature_sds<'a>(
+    sigs: impl Iterator<Item = &'a Signature> + Clone,
+) -> BTreeMap<&'static str, f64> {
+    per_feature(sigs, |s| (s.sd.is_finite() && s.sd > 0.0).then_some(s.sd))
 }
 
 /// Mean of each feature over `sigs` (features no signature has are absent).
@@ -160,7 +160,7 @@ pub fn compare(
     resamples: usize,
     seed: u64,
 ) -> Vec<Comparison> {
-    let sds = feature_sds(sigs);
+    let sds = feature_sds(sigs.iter());
     let mut by_model: BTreeMap<&str, Vec<&Signature>> = BTreeMap::new();
     for s in sigs {
         by_model.entry(s.model.as_str()).or_default().push(s);

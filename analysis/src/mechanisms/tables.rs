@@ -203,7 +203,7 @@ pub fn identification_markdown(id: &super::Identification) -> String {
 /// (diverging colours, full at ±2 SD, the value printed); SVG and PNG at `stem`.
 pub fn fingerprint_figure(sigs: &[Signature], stem: &Path) -> Result<Vec<PathBuf>, MechanismError> {
     use crate::report::figures::{LabelledMatrix, write_matrix};
-    let sds = feature_sds(sigs);
+    let sds = feature_sds(sigs.iter());
     let all: Vec<&Signature> = sigs.iter().collect();
     let centre = mean_features(&all);
     let mut models: Vec<&str> = sigs.iter().map(|s| s.model.as_str()).collect();
