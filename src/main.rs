@@ -80,8 +80,38 @@ fn restore_default_sigpipe() {
     }
 }
 
+/// SIGINT / SIGTERM: recorded for a loop that can stop cleanly (training saves a checkpoint,
+/// a sweep stops its workers), the default action (the process ends) otherwise, and on a
+/// second signal (see `chronocooked_env::interrupt`).
+#[cfg(unix)]
+extern "C" fn on_stop_signal(signal: libc::c_int) {
+    if !chronocooked_env::interrupt::deliver(signal) {
+        // SAFETY: `signal` and `raise` are async-signal-safe; the default action ends us.
+        unsafe {
+            libc::signal(signal, libc::SIG_DFL);
+            libc::raise(signal);
+        }
+    }
+}
+
+fn install_stop_handlers() {
+    #[cfg(unix)]
+    // SAFETY: called once at start-up, before any thread is spawned; the handler only
+    // touches atomics and async-signal-safe calls.
+    unsafe {
+        let handler = on_stop_signal as extern "C" fn(libc::c_int) as libc::sighandler_t;
+        for signal in [libc::SIGINT, libc::SIGTERM] {
+            // A signal the parent ignores (`nohup`, a background job's SIGINT) stays ignored.
+            if libc::signal(signal, handler) == libc::SIG_IGN {
+                libc::signal(signal, libc::SIG_IGN);
+            }
+        }
+    }
+}
+
 fn main() -> ExitCode {
     restore_default_sigpipe();
+    install_stop_handlers();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Env { command } => env::run(command),
@@ -103,7 +133,11 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e:#}");
-            ExitCode::from(2)
+            // A clean stop on a signal exits with the signal's conventional status.
+            match chronocooked_env::interrupt::requested() {
+                Some(signal) => ExitCode::from(chronocooked_env::interrupt::exit_status(signal)),
+                None => ExitCode::from(2),
+            }
         }
     }
 }

@@ -4,6 +4,7 @@
 //!
 //! ```text
 //! JOB_DIR/job.json                what the job is (id, model, task, seed, settings)
+//! JOB_DIR/progress.json           its finished stages, and whether all are (`done`)
 //! JOB_DIR/run/                    the run folder (names: chronocooked_models::run_folder)
 //! JOB_DIR/eval/                   the eval folder (names: crate::records)
 //! JOB_DIR/activity.json           recorded activity (plus its .npz arrays)
@@ -13,6 +14,8 @@
 //! A study's scaling folders (`<results>/scaling/<row>/seed<N>/`) hold [`SCALING`] and
 //! [`ACTIVITY_SUMMARY`].
 
+/// Which stages of the job finished, and whether all did (JSON, written by the pipeline).
+pub const PROGRESS: &str = "progress.json";
 /// What the job is (JSON).
 pub const JOB: &str = "job.json";
 /// The job's run folder.

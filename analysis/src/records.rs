@@ -178,6 +178,10 @@ pub struct EvalInfo {
     pub mode: Mode,
     /// Seed of the evaluation.
     pub seed: u64,
+    /// Set when the evaluated run had not finished training (`eval --unfinished`): the env
+    /// step (PPO) of the checkpoint that was evaluated, 0 when it had none to name.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub unfinished_at_step: Option<u64>,
 }
 
 /// Reads `eval.json` of an evaluation folder; errors name the file.

@@ -22,6 +22,7 @@ pub mod error;
 pub mod fs;
 pub mod info;
 pub mod integrity;
+pub mod interrupt;
 pub mod kitchen;
 pub mod layout;
 pub mod obs;

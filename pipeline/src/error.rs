@@ -17,6 +17,9 @@ pub enum PipelineError {
     /// Task ids and task settings.
     #[error(transparent)]
     Env(#[from] chronocooked_env::EnvError),
+    /// Another process is writing the folder, or it cannot be written.
+    #[error(transparent)]
+    Lock(#[from] chronocooked_env::fs::LockError),
     /// Analysis outputs (evaluation folders, metrics, figures, exports).
     #[error("{0}")]
     Analysis(String),

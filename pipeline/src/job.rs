@@ -157,6 +157,7 @@ fn run_stage(
                 seed: job.seed,
                 out: dir.join(job_folder::EVAL),
                 activity: false,
+                unfinished: false,
             };
             let outcome = stages::evaluate(&req)?;
             let m = outcome.metrics;

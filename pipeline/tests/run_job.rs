@@ -112,6 +112,7 @@ fn the_eval_stage_equals_a_rerun_of_itself_and_checks_its_request() {
         seed: 0,
         out: tmp.path().join(out),
         activity: false,
+        unfinished: false,
     };
     let a = stages::evaluate(&req("a")).unwrap();
     let b = stages::evaluate(&req("b")).unwrap();

@@ -254,6 +254,7 @@ pub fn evaluate<'py>(
         env: overrides,
         mode,
         seed,
+        unfinished_at_step: None,
     };
     let (metrics, figures) = write_eval_folder(&out, &info, &records).map_err(runtime_err)?;
     let summary = PyDict::new(py);

@@ -48,6 +48,11 @@ pub struct EvalArgs {
     /// `export --format nwb` pairs with the episodes).
     #[arg(long)]
     pub activity: bool,
+    /// Evaluate a run whose training did not finish (stopped, killed, out of disk) from its
+    /// newest checkpoint; `eval.json` records the step (`unfinished_at_step`). Without it,
+    /// such a run is refused.
+    #[arg(long, requires = "run")]
+    pub unfinished: bool,
 }
 
 fn report(out: &Path, outcome: &EvalOutcome) {
@@ -100,6 +105,7 @@ pub fn run(args: EvalArgs) -> Result<()> {
             seed,
             out: args.out.clone(),
             activity: args.activity,
+            unfinished: args.unfinished,
         })?
     };
     report(&args.out, &outcome);

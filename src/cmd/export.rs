@@ -110,6 +110,7 @@ pub fn run(mut args: ExportArgs) -> Result<()> {
             seed: 0,
             out: out.clone(),
             activity: true,
+            unfinished: false,
         })?;
         args.activity = outcome.activity.map(|a| a.2);
         args.eval = Some(out);

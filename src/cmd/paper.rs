@@ -77,6 +77,8 @@ pub fn run(cmd: PaperCommand) -> Result<()> {
             Ok(())
         }
         PaperCommand::Analyse(a) => {
+            // It writes into the results folder: one writer at a time.
+            let _lock = chronocooked_env::fs::FolderLock::acquire(&a.results)?;
             let s = study::analyse(&a.results)
                 .with_context(|| format!("analysing {}", a.results.display()))?;
             study::write_study(&a.results, &s)?;

@@ -170,7 +170,11 @@ pub fn run_sweep(
     report: bool,
 ) -> Result<()> {
     let workers = workers.max(1);
-    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    // One sweep per output folder: a second one is refused naming this one.
+    let _lock = chronocooked_env::fs::FolderLock::acquire_shared_folder(out)?;
+    // SIGINT / SIGTERM: stop starting jobs, stop the workers (a training worker saves a
+    // checkpoint first), wait for them, then end with the signal's exit status.
+    let _listening = chronocooked_env::interrupt::listen();
     let jobs = sweep.jobs()?;
     let pending: Vec<&Job> = jobs
         .iter()
@@ -198,8 +202,20 @@ pub fn run_sweep(
     let mut queue = pending.into_iter();
     let mut running: Vec<(&Job, Child, ProgressBar)> = Vec::new();
     let mut failed: Vec<String> = Vec::new();
+    let mut stopping = false;
     loop {
-        while running.len() < workers {
+        if !stopping && let Some(signal) = chronocooked_env::interrupt::requested() {
+            stopping = true;
+            total.println(format!(
+                "{}: stopping {} running jobs (rerun the sweep to continue them)",
+                chronocooked_env::interrupt::signal_name(signal),
+                running.len()
+            ));
+            for (_, child, _) in &running {
+                stop_worker(child);
+            }
+        }
+        while !stopping && running.len() < workers {
             let Some(job) = queue.next() else { break };
             let dir = job_dir(out, &job.id);
             std::fs::create_dir_all(&dir)?;
@@ -207,7 +223,9 @@ pub fn run_sweep(
                 .create(true)
                 .append(true)
                 .open(dir.join("log.txt"))?;
-            let child = Command::new(&exe)
+            let mut command = Command::new(&exe);
+            stop_with_parent(&mut command);
+            let child = command
                 .arg("sweep-job")
                 .arg(file)
                 .arg("--out")
@@ -255,6 +273,13 @@ pub fn run_sweep(
         }
     }
     total.finish();
+    if let Some(signal) = chronocooked_env::interrupt::requested() {
+        bail!(
+            "sweep stopped by {} ({} jobs did not finish; training jobs saved a checkpoint); rerun the same command to continue",
+            chronocooked_env::interrupt::signal_name(signal),
+            failed.len() + queue.len()
+        );
+    }
     if report {
         let report_dir = out.join("report");
         let rows = chronocooked_analysis::report::load_rows_from_runs(&[out.to_path_buf()])
@@ -280,10 +305,50 @@ pub fn run_sweep(
     Ok(())
 }
 
+/// Sends SIGTERM to a worker: a training worker saves a checkpoint and ends; any other
+/// stage ends at once (its outputs are atomic and its stage is not marked finished).
+fn stop_worker(child: &Child) {
+    #[cfg(unix)]
+    if let Ok(pid) = libc::pid_t::try_from(child.id()) {
+        // SAFETY: `kill` only sends a signal to our own child process.
+        unsafe {
+            libc::kill(pid, libc::SIGTERM);
+        }
+    }
+    #[cfg(not(unix))]
+    let _ = child;
+}
+
+/// A worker gets SIGTERM when the sweep process dies, even by `kill -9` (Linux), so no
+/// worker keeps writing beside a rerun of the sweep.
+fn stop_with_parent(command: &mut Command) {
+    #[cfg(target_os = "linux")]
+    {
+        use std::os::unix::process::CommandExt;
+        // SAFETY: runs in the child between fork and exec; `prctl` is async-signal-safe.
+        unsafe {
+            command.pre_exec(|| {
+                libc::prctl(libc::PR_SET_PDEATHSIG, libc::SIGTERM);
+                Ok(())
+            });
+        }
+    }
+    #[cfg(not(target_os = "linux"))]
+    let _ = command;
+}
+
+/// How long a job waits for a worker of an earlier run of the sweep (killed with its
+/// sweep, saving its checkpoint) to leave the job's folder (seconds).
+const JOB_LOCK_WAIT_S: u64 = 120;
+
 /// Runs `sweep-job`: one job's unfinished stages, in this process, logged to stderr.
 pub fn run_job_cmd(args: SweepJobArgs) -> Result<()> {
     let sweep = SweepFile::load(&args.file)?;
     let job = chronocooked_pipeline::find_job(&sweep, &args.file, &args.id)?;
+    let _lock = chronocooked_env::fs::FolderLock::acquire_waiting(
+        &job_dir(&args.out, &job.id),
+        Duration::from_secs(JOB_LOCK_WAIT_S),
+    )?;
     chronocooked_pipeline::run_job(&sweep, &job, &args.out, &mut LogObserver)?;
     Ok(())
 }

@@ -126,9 +126,13 @@ pub fn run(args: TrainArgs) -> Result<()> {
     if let Some(b) = bars.bar {
         b.finish();
     }
-    if let Some(e) = figure_error {
-        eprintln!("warning: learning-curve figure not written: {e}");
-    }
     println!("{}", serde_json::to_string_pretty(&outcome)?);
+    if let Some(e) = figure_error {
+        anyhow::bail!(
+            "the run is trained and saved, but its learning-curve figure was not written: {e}; \
+             draw it with `chronocooked train --resume {}`",
+            outcome.dir().display()
+        );
+    }
     Ok(())
 }

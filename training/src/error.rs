@@ -129,6 +129,23 @@ pub enum TrainError {
         /// Every checkpoint tried, with why it was refused.
         skipped: String,
     },
+    /// Another process is writing the run folder (or it cannot be written at all).
+    #[error(transparent)]
+    Lock(#[from] chronocooked_env::fs::LockError),
+    /// Training stopped on SIGINT / SIGTERM after saving a checkpoint.
+    #[error(
+        "{dir}: training stopped by {signal_name} at env step {steps} after saving a checkpoint; continue it with `chronocooked train --resume {dir}`"
+    )]
+    Interrupted {
+        /// The run folder.
+        dir: String,
+        /// The signal's number (2 = SIGINT, 15 = SIGTERM).
+        signal: i32,
+        /// Its name.
+        signal_name: String,
+        /// Env steps trained (those of the checkpoint).
+        steps: u64,
+    },
     /// A run folder or checkpoint is incomplete or does not match.
     #[error("cannot resume from {path}: {reason}")]
     Resume {

@@ -27,7 +27,6 @@ use chronocooked_models::run_folder;
 use chronocooked_models::{ActorCritic, PolicyConfig};
 use serde::{Deserialize, Serialize};
 use std::fs;
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// Column names of `curves.csv`.
@@ -217,6 +216,57 @@ impl RunDir {
         Ok(())
     }
 
+    /// Checkpoints newer than every checkpoint on disk that `checkpoints/SHA256SUMS` records
+    /// but that are missing — learned state that was lost or deleted, which a resume must
+    /// not paper over by starting from an earlier point. Not counted: the record a killed
+    /// checkpoint write leaves (the newest record, beyond the last learning-curve row: a
+    /// checkpoint is recorded just before it is renamed into place, and its update's curve
+    /// row is appended only after that), and older missing ones (a killed pruning), which do
+    /// not change where a resume starts.
+    pub fn lost_checkpoints(&self) -> Result<Vec<String>, TrainError> {
+        let dir = self.path.join(run_folder::CHECKPOINTS);
+        let records = integrity::read_manifest(&dir)?;
+        let step_of = |name: &str| -> Option<u64> {
+            name.strip_prefix("step-")?
+                .strip_suffix(".json")?
+                .parse()
+                .ok()
+        };
+        let mut missing: Vec<(u64, String)> = records
+            .keys()
+            .filter_map(|n| step_of(n).map(|s| (s, n.clone())))
+            .filter(|(_, n)| std::fs::symlink_metadata(dir.join(n)).is_err())
+            .collect();
+        missing.sort();
+        let newest_present = self
+            .checkpoints()
+            .iter()
+            .filter_map(|p| step_of(p.file_name()?.to_str()?))
+            .max();
+        missing.retain(|(step, _)| newest_present.is_none_or(|p| *step > p));
+        let newest_recorded = records.keys().filter_map(|n| step_of(n)).max();
+        let last_curve_step = self.last_curve_step();
+        if let Some((step, _)) = missing.last()
+            && Some(*step) == newest_recorded
+            && last_curve_step.is_none_or(|c| c < *step)
+        {
+            missing.pop();
+        }
+        Ok(missing.into_iter().map(|(_, n)| n).collect())
+    }
+
+    /// The env step of the last complete row of `curves.csv` (`None` without rows).
+    fn last_curve_step(&self) -> Option<u64> {
+        let text = fs::read_to_string(self.path.join(run_folder::CURVES)).ok()?;
+        let mut lines = text.lines();
+        let col = lines.next()?.split(',').position(|h| h == "env_steps")?;
+        // A row cut by a kill has fewer fields (or none to parse) and is skipped.
+        lines
+            .filter(|l| l.split(',').count() == CURVE_COLUMNS.len())
+            .filter_map(|l| l.split(',').nth(col)?.parse().ok())
+            .next_back()
+    }
+
     /// Removes what a killed writer left in the run folder, `checkpoints/` and `figures/`
     /// (temporary files of atomic writes); returns them.
     pub fn remove_stale_temps(&self) -> Vec<PathBuf> {
@@ -302,13 +352,7 @@ impl RunDir {
 
 /// Appends `line` to `path` (created with the process umask if missing).
 pub(crate) fn append_line(path: &Path, line: &str) -> Result<(), TrainError> {
-    let mut f = fs::OpenOptions::new()
-        .append(true)
-        .create(true)
-        .open(path)
-        .map_err(|e| TrainError::io(path, e))?;
-    f.write_all(line.as_bytes())
-        .map_err(|e| TrainError::io(path, e))
+    chronocooked_env::fs::append(path, line).map_err(|e| TrainError::io(path, e))
 }
 
 /// The policy description a run of `cfg` trains (what its `policy.json` must hold).

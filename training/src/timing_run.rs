@@ -255,6 +255,7 @@ pub fn run_timing_training(
     progress: impl FnMut(&TimingCurvePoint),
 ) -> Result<TimingRunSummary, TrainError> {
     cfg.validate()?;
+    let _lock = chronocooked_env::fs::FolderLock::acquire(dir)?;
     if dir.join(run_folder::SUMMARY).is_file() {
         return Err(TrainError::Resume {
             path: dir.display().to_string(),

@@ -38,6 +38,7 @@ pub fn write_eval_folder(
     records: &[EvalRecord],
 ) -> Result<(Metrics, Vec<PathBuf>), String> {
     check_out(out)?;
+    start_writing(out)?;
     let mut lines = String::new();
     for r in records {
         lines += &serde_json::to_string(r).map_err(|e| e.to_string())?;
@@ -49,19 +50,33 @@ pub fn write_eval_folder(
     write_metrics(out, info, records)
 }
 
-/// Writes `metrics.json` and the figures of `records` into `out` (the records and
-/// `eval.json` are left as they are).
+/// Marks the evaluation folder `out` unfinished before anything in it is rewritten, by
+/// removing its `metrics.json`: the metrics are written last, so a folder with metrics is
+/// a complete one, and a writer stopped half-way (killed, out of disk) leaves a folder
+/// that no reader takes for a finished evaluation, never new records beside old metrics.
+pub fn start_writing(out: &Path) -> Result<(), String> {
+    let metrics = out.join(METRICS);
+    match std::fs::remove_file(&metrics) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(e) => Err(format!("{}: {e}", metrics.display())),
+    }
+}
+
+/// Writes the figures of `records` and then `metrics.json` into `out` (the records and
+/// `eval.json` are left as they are); the metrics come last (see [`start_writing`]).
 pub fn write_metrics(
     out: &Path,
     info: &EvalInfo,
     records: &[EvalRecord],
 ) -> Result<(Metrics, Vec<PathBuf>), String> {
+    start_writing(out)?;
     let metrics = compute_metrics(&info.model, records, info.seed);
     let mut json = serde_json::to_string_pretty(&metrics).map_err(|e| e.to_string())?;
     json.push('\n');
-    write_atomic(&out.join(METRICS), json.as_bytes()).map_err(|e| e.to_string())?;
     let figures = crate::report::figures::eval_figures(&out.join("figures"), &metrics, records)
         .map_err(|e| e.to_string())?;
+    write_atomic(&out.join(METRICS), json.as_bytes()).map_err(|e| e.to_string())?;
     Ok((metrics, figures))
 }
 

@@ -184,6 +184,12 @@ fn job_dirs(results: &Path) -> Vec<PathBuf> {
 
 /// The signature of every (model, seed) with a finished job under `results`.
 pub fn signatures(results: &Path) -> Result<Vec<Signature>, MechanismError> {
+    // A folder that `paper collect` is writing, or left unfinished, is never read: its
+    // signatures would be of some jobs only.
+    crate::paper::collect::check_complete(results).map_err(|e| MechanismError::File {
+        path: results.to_path_buf(),
+        message: e.to_string(),
+    })?;
     let dirs = job_dirs(results);
     if dirs.is_empty() {
         return Err(MechanismError::Empty(results.to_path_buf()));

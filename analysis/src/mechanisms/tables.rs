@@ -38,6 +38,11 @@ pub fn write_tables(
     resamples: usize,
     seed: u64,
 ) -> Result<Written, MechanismError> {
+    let _lock =
+        chronocooked_env::fs::FolderLock::acquire(out).map_err(|e| MechanismError::File {
+            path: out.to_path_buf(),
+            message: e.to_string(),
+        })?;
     let sigs = signatures(results)?;
     let comparisons = compare(&sigs, &MECHANISMS, resamples, seed);
     let write = |name: &str, text: &str| {

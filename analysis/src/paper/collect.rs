@@ -292,7 +292,14 @@ pub fn summarise_job(dir: &Path) -> Result<Option<CompactJob>, CollectError> {
         return Ok(None);
     }
     let job = read_json(&dir.join(job_folder::JOB))?;
-    let cfg = read_json(&dir.join(job_folder::RUN).join(run_folder::CONFIG))?;
+    // A reference agent's job (oracle, random) trains nothing: no run folder, no curve.
+    let run_config = dir.join(job_folder::RUN).join(run_folder::CONFIG);
+    let trained = dir.join(job_folder::RUN).is_dir();
+    let cfg = if trained {
+        read_json(&run_config)?
+    } else {
+        serde_json::Value::Null
+    };
     // A multi-timer curriculum run that kept its levels' policies is evaluated once they are
     // too (the levels stage; the multi-anchor/multi-oven curricula have none yet).
     let kept_levels = dir.join(job_folder::RUN).join(run_folder::LEVELS).is_dir();
@@ -302,7 +309,7 @@ pub fn summarise_job(dir: &Path) -> Result<Option<CompactJob>, CollectError> {
     }
     // A timing-model run's curves.csv has its own columns (episodes, not PPO updates): its
     // compact result keeps the evaluation, metrics and neural summary, no PPO curve.
-    let curve = if cfg["kind"].as_str() == Some("timing") {
+    let curve = if !trained || cfg["kind"].as_str() == Some("timing") {
         Vec::new()
     } else {
         read_curve(&dir.join(job_folder::RUN).join(run_folder::CURVES))?
@@ -372,11 +379,64 @@ pub(crate) fn write_csv<T: Serialize>(path: &Path, rows: &[T]) -> Result<(), Col
     chronocooked_env::fs::write_atomic(path, &bytes).map_err(|e| err(path, e.error))
 }
 
-/// Writes the compact results of every finished job under `sweep_out` into
-/// `to/jobs/<job id>/`; returns `(written, unfinished)` job counts.
+/// The marker of a results folder that `paper collect` is writing or that a collect left
+/// unfinished (killed, out of disk): written before the first job, removed after the last.
+/// Every reader of compact results refuses a folder that holds it ([`check_complete`]).
+pub const UNFINISHED_MARKER: &str = "collect-unfinished.json";
+
+/// Refuses a results folder that a `paper collect` is still writing or left unfinished
+/// (error naming the marker and the command that completes it).
+pub fn check_complete(root: &Path) -> Result<(), CollectError> {
+    chronocooked_env::fs::ensure_not_being_written(root).map_err(|e| err(root, e))?;
+    let marker = root.join(UNFINISHED_MARKER);
+    if marker.exists() {
+        let from = read_json(&marker)
+            .ok()
+            .and_then(|v| v["sweep_out"].as_str().map(String::from))
+            .unwrap_or_else(|| "its sweep output".into());
+        return Err(err(
+            &marker,
+            format!(
+                "this results folder is incomplete: a `paper collect` into it did not finish \
+                 (killed, or stopped by an error); complete it with `chronocooked paper collect \
+                 {from} --out {}`",
+                root.display()
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Whether the sweep job in `dir` finished every stage it needs (its `progress.json` says
+/// `done`) and no process is writing it now. A job whose record or export stage failed is
+/// not finished, and neither is one a sweep worker is still running.
+pub fn job_finished(dir: &Path) -> bool {
+    let done =
+        read_json(&dir.join(job_folder::PROGRESS)).is_ok_and(|p| p["done"].as_bool() == Some(true));
+    done && chronocooked_env::fs::ensure_not_being_written(dir).is_ok()
+}
+
+/// Writes the compact results of every finished job under `sweep_out` ([`job_finished`];
+/// safe while the sweep still runs) into `to/jobs/<job id>/`; returns `(written,
+/// unfinished)` job counts. Holds `to`'s lock while it writes and marks the folder
+/// unfinished ([`UNFINISHED_MARKER`]) until the last job is written, so a collect that is
+/// killed or runs out of disk leaves a folder every reader refuses, and its rerun completes
+/// it.
 pub fn collect(sweep_out: &Path, to: &Path) -> Result<(usize, usize), CollectError> {
+    if !sweep_out.is_dir() {
+        return Err(err(sweep_out, "no such sweep output folder"));
+    }
+    let _lock = chronocooked_env::fs::FolderLock::acquire(to).map_err(|e| err(to, e))?;
+    let marker = to.join(UNFINISHED_MARKER);
+    let note = serde_json::json!({ "sweep_out": sweep_out.display().to_string() });
+    chronocooked_env::fs::write_atomic(&marker, note.to_string().as_bytes())
+        .map_err(|e| err(&marker, e.error))?;
     let (mut written, mut pending) = (0, 0);
     for dir in job_folders(sweep_out) {
+        if !job_finished(&dir) {
+            pending += 1;
+            continue;
+        }
         let Some(CompactJob {
             job: summary,
             episodes,
@@ -389,6 +449,7 @@ pub fn collect(sweep_out: &Path, to: &Path) -> Result<(usize, usize), CollectErr
         };
         let out = to.join("jobs").join(&summary.id);
         std::fs::create_dir_all(&out).map_err(|e| err(&out, e))?;
+        chronocooked_env::fs::remove_temp_files(&out);
         let json = serde_json::to_string_pretty(&summary).map_err(|e| err(&out, e))?;
         let job_path = out.join(job_folder::JOB);
         chronocooked_env::fs::write_atomic(&job_path, json.as_bytes())
@@ -430,6 +491,7 @@ pub fn collect(sweep_out: &Path, to: &Path) -> Result<(usize, usize), CollectErr
         }
         written += 1;
     }
+    std::fs::remove_file(&marker).map_err(|e| err(&marker, e))?;
     Ok((written, pending))
 }
 
@@ -461,6 +523,7 @@ impl CompactJob {
 
 /// Reads every job of a compact results folder (`to/jobs/...`).
 pub fn read_compact(root: &Path) -> Result<Vec<CompactJob>, CollectError> {
+    check_complete(root)?;
     let mut out = Vec::new();
     for dir in job_folders(&root.join("jobs")) {
         let job: JobSummary = {

@@ -224,6 +224,8 @@ pub fn wf_constancy(bisection: &[BisectionMetrics]) -> Option<f64> {
 pub fn load_rows(folders: &[PathBuf]) -> Result<Vec<Row>, String> {
     let mut results = Vec::with_capacity(folders.len());
     for f in folders {
+        // An evaluation another process is still writing is never read half-written.
+        chronocooked_env::fs::ensure_not_being_written(f).map_err(|e| e.to_string())?;
         let metrics = load_metrics(f)?;
         results.push(RunResult {
             label: row_label(f, &metrics.model),

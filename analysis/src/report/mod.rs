@@ -376,7 +376,9 @@ fn fi_by_td_markdown(rows: &[Row]) -> String {
 
 /// Writes `report.html`, `report.md` and `report.csv` into `out`.
 pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
-    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    // One writer per report folder; a killed writer's temporary files are removed.
+    let _lock = chronocooked_env::fs::FolderLock::acquire(out).map_err(|e| e.to_string())?;
+    chronocooked_env::fs::remove_temp_files(&out.join("figures"));
     let cols = used_columns(rows);
     // CSV: mean and SD columns.
     let mut header = vec!["model".to_string(), "baseline".into(), "runs".to_string()];

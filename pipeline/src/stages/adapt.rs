@@ -36,6 +36,8 @@ pub fn adapt_env(run: &Path, task: &str) -> Result<Vec<String>, PipelineError> {
 
 /// Runs the adaptation protocol of `req` and writes its folder.
 pub fn adapt(req: &AdaptRequest) -> Result<AdaptResult, PipelineError> {
+    chronocooked_env::fs::ensure_not_being_written(&req.run)?;
+    let _lock = chronocooked_env::fs::FolderLock::acquire(&req.out)?;
     let mut config = req.config.clone();
     if config.env.is_empty() {
         config.env = adapt_env(&req.run, &config.task)?;

@@ -42,6 +42,53 @@ pub struct EvalRequest {
     pub out: PathBuf,
     /// Also record the model's activity, one trial per evaluated episode.
     pub activity: bool,
+    /// Evaluate a run whose training did not finish (no `summary.json`: stopped, killed or
+    /// out of disk) from its newest checkpoint; `eval.json` then says so. Without it such a
+    /// run is refused.
+    pub unfinished: bool,
+}
+
+/// The env step of the newest checkpoint of `run` (0 when it has none to name).
+fn newest_checkpoint_step(run: &Path) -> u64 {
+    std::fs::read_dir(run.join(chronocooked_models::run_folder::CHECKPOINTS))
+        .map(|rd| {
+            rd.flatten()
+                .filter_map(|e| {
+                    let name = e.file_name().into_string().ok()?;
+                    name.strip_prefix("step-")?
+                        .strip_suffix(".json")?
+                        .parse()
+                        .ok()
+                })
+                .max()
+                .unwrap_or(0)
+        })
+        .unwrap_or(0)
+}
+
+/// Whether the run in `run` finished training; an unfinished one is refused unless
+/// `unfinished` is set, and then named by its newest checkpoint's step.
+fn check_finished(run: &Path, unfinished: bool) -> Result<Option<u64>, PipelineError> {
+    chronocooked_env::fs::ensure_not_being_written(run)?;
+    if run.join(chronocooked_models::run_folder::SUMMARY).is_file() {
+        return Ok(None);
+    }
+    let step = newest_checkpoint_step(run);
+    if unfinished {
+        eprintln!(
+            "warning: {} did not finish training; evaluating its newest checkpoint (env step {step})",
+            run.display()
+        );
+        return Ok(Some(step));
+    }
+    Err(PipelineError::Invalid(format!(
+        "{}: training did not finish (no {}; newest checkpoint at env step {step}): it was \
+         stopped, killed or ran out of disk. Continue it with `chronocooked train --resume {}`, \
+         or evaluate that checkpoint anyway with `eval --unfinished`",
+        run.display(),
+        chronocooked_models::run_folder::SUMMARY,
+        run.display()
+    )))
 }
 
 /// What an evaluation wrote.
@@ -102,6 +149,10 @@ pub fn evaluate(req: &EvalRequest) -> Result<EvalOutcome, PipelineError> {
         (None, EvalSubject::Run(run)) => run_task(run)?,
         (None, EvalSubject::Reference(_)) => ("FixedInterval-v0".to_string(), req.env.clone()),
     };
+    let unfinished_at_step = match &req.subject {
+        EvalSubject::Run(run) => check_finished(run, req.unfinished)?,
+        EvalSubject::Reference(_) => None,
+    };
     let config = chronocooked_env::make_config(&task, &env)?;
     let mut agent: Box<dyn Agent> = match &req.subject {
         EvalSubject::Run(run) => load_agent(run, Some(&config))?,
@@ -128,6 +179,9 @@ pub fn evaluate(req: &EvalRequest) -> Result<EvalOutcome, PipelineError> {
         }
     };
     let conditions = reference_conditions(&task, &env)?;
+    // One writer per evaluation folder, taken before the protocol is played.
+    let _lock = chronocooked_env::fs::FolderLock::acquire(&req.out)?;
+    eval_folder::start_writing(&req.out).map_err(analysis)?;
     let meta = ActivityMeta::new(&agent.name(), &task, &env, req.seed);
     let mut recorder = TrialRecorder::new(meta);
     let records = run_protocol_recorded(
@@ -143,6 +197,7 @@ pub fn evaluate(req: &EvalRequest) -> Result<EvalOutcome, PipelineError> {
         env,
         mode: req.mode,
         seed: req.seed,
+        unfinished_at_step,
     };
     // A multi-timer run's per-level policies, each in its level's test setting — before
     // `metrics.json`, so that an evaluation folder with metrics is a finished one.
@@ -152,8 +207,8 @@ pub fn evaluate(req: &EvalRequest) -> Result<EvalOutcome, PipelineError> {
         }
         _ => None,
     };
-    let (metrics, figures) =
-        eval_folder::write_eval_folder(&req.out, &info, &records).map_err(analysis)?;
+    // The activity before the records and metrics: `metrics.json`, written last, marks a
+    // complete folder.
     let activity = if req.activity {
         let dataset = recorder.finish();
         if dataset.meta.n_units() == 0 {
@@ -171,6 +226,8 @@ pub fn evaluate(req: &EvalRequest) -> Result<EvalOutcome, PipelineError> {
     } else {
         None
     };
+    let (metrics, figures) =
+        eval_folder::write_eval_folder(&req.out, &info, &records).map_err(analysis)?;
     Ok(EvalOutcome {
         metrics,
         figures,
@@ -205,7 +262,9 @@ pub fn evaluate_human(file: &Path, seed: u64, out: &Path) -> Result<EvalOutcome,
             episodes: records.len(),
         },
         seed,
+        unfinished_at_step: None,
     };
+    let _lock = chronocooked_env::fs::FolderLock::acquire(out)?;
     let (metrics, figures) =
         eval_folder::write_eval_folder(out, &info, &records).map_err(analysis)?;
     Ok(EvalOutcome {
@@ -219,6 +278,8 @@ pub fn evaluate_human(file: &Path, seed: u64, out: &Path) -> Result<EvalOutcome,
 /// Recomputes `metrics.json` and the figures into `out` from the records of the earlier
 /// evaluation folder `from`.
 pub fn rescore_eval_folder(from: &Path, out: &Path) -> Result<EvalOutcome, PipelineError> {
+    chronocooked_env::fs::ensure_not_being_written(from)?;
+    let _lock = chronocooked_env::fs::FolderLock::acquire(out)?;
     let info = eval_folder::read_eval_info(from).map_err(analysis)?;
     let records: Vec<EvalRecord> = chronocooked_analysis::evaluation::protocol::read_records(from)
         .map_err(|e| PipelineError::Analysis(format!("{e} (not an eval folder)")))?;

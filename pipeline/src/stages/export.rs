@@ -19,6 +19,14 @@ pub fn export(
                 .into(),
         ));
     }
+    for input in activity.iter().chain(eval.iter()) {
+        if input.is_dir() {
+            chronocooked_env::fs::ensure_not_being_written(input)?;
+        } else if let Some(parent) = input.parent().filter(|p| !p.as_os_str().is_empty()) {
+            chronocooked_env::fs::ensure_not_being_written(parent)?;
+        }
+    }
+    let _lock = chronocooked_env::fs::FolderLock::acquire(out)?;
     let mut files = Vec::new();
     if let Some(path) = activity {
         let text = std::fs::read(path).map_err(|e| PipelineError::read(path, e))?;

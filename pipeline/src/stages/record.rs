@@ -169,6 +169,15 @@ fn units_correspond(runs: &[&PathBuf]) -> bool {
 /// Records the activity of `req` and writes the dataset (and summary, figures).
 pub fn record(req: &RecordRequest) -> Result<RecordOutcome, PipelineError> {
     let runs: Vec<&PathBuf> = std::iter::once(&req.run).chain(&req.more_runs).collect();
+    for run in &runs {
+        chronocooked_env::fs::ensure_not_being_written(run)?;
+    }
+    // One writer per output folder (the dataset's folder; a sweep job already holds it).
+    let folder = match req.out.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let _lock = chronocooked_env::fs::FolderLock::acquire_shared_folder(&folder)?;
     let (task, _, mut dataset) = record_run(req, &req.run)?;
     for run in &req.more_runs {
         let (_, _, more) = record_run(req, run)?;
@@ -189,6 +198,18 @@ pub fn record(req: &RecordRequest) -> Result<RecordOutcome, PipelineError> {
     let write = |path: &std::path::Path, bytes: &[u8]| {
         chronocooked_env::fs::write_atomic(path, bytes).map_err(PipelineError::from)
     };
+    // The summary of an older dataset never stays beside a new one: removed first, written
+    // after the dataset.
+    let summary_path = req.out.with_extension("summary.json");
+    for p in [&req.out, &summary_path] {
+        chronocooked_env::fs::remove_temp_files_of(p);
+    }
+    match std::fs::remove_file(&summary_path) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+            return Err(PipelineError::write(&summary_path, e));
+        }
+        _ => {}
+    }
     write(&req.out, &json_bytes(&dataset, false)?)?;
     if let Some(dir) = &req.figures {
         chronocooked_analysis::report::figures::neural_figures(&dataset, dir)
@@ -206,10 +227,7 @@ pub fn record(req: &RecordRequest) -> Result<RecordOutcome, PipelineError> {
             .iter()
             .filter_map(|p| neural_summary(&dataset, Some(&p.name), &opts).ok())
             .collect();
-        write(
-            &req.out.with_extension("summary.json"),
-            &json_bytes(&summaries, true)?,
-        )?;
+        write(&summary_path, &json_bytes(&summaries, true)?)?;
     }
     Ok(RecordOutcome {
         model: dataset.meta.model.clone(),

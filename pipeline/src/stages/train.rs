@@ -1,6 +1,7 @@
 //! The train stage: a PPO agent or a timing model into a run folder, new or resumed.
 
 use crate::PipelineError;
+use chronocooked_env::fs::FolderLock;
 use chronocooked_models::{Architecture, TimingCurvePoint};
 use chronocooked_training::{
     Progress, RunSummary, TimingRunConfig, TimingRunSummary, UpdateLog, is_timing_run_config,
@@ -81,17 +82,28 @@ pub fn train(
     observer: &mut dyn TrainObserver,
 ) -> Result<(TrainOutcome, Option<String>), PipelineError> {
     let timing_resume = req.resume.as_deref().is_some_and(is_timing_run_config);
-    let outcome = if timing_resume || chronocooked_models::timing::zoo::is_timing_model(&req.model)
-    {
-        TrainOutcome::Timing(train_timing(req, observer)?)
+    let timing = timing_resume || chronocooked_models::timing::zoo::is_timing_model(&req.model);
+    // The run folder's lock is held over training and the figure (training takes it again:
+    // a no-op inside this process); taken once the folder is known.
+    let lock_dir = |dir: &std::path::Path| chronocooked_env::fs::FolderLock::acquire(dir);
+    let (outcome, _lock) = if timing {
+        let (o, l) = train_timing(req, observer, lock_dir)?;
+        (TrainOutcome::Timing(o), l)
     } else {
-        TrainOutcome::Ppo(train_ppo(req, observer)?)
+        let (o, l) = train_ppo(req, observer, lock_dir)?;
+        (TrainOutcome::Ppo(o), l)
     };
+    chronocooked_env::fs::remove_temp_files(
+        &outcome.dir().join(chronocooked_models::run_folder::FIGURES),
+    );
     let figure_error = chronocooked_analysis::report::figures::learning_curve(outcome.dir())
         .err()
         .map(|e| e.to_string());
     Ok((outcome, figure_error))
 }
+
+/// Takes the lock of a run folder.
+type LockDir = fn(&std::path::Path) -> Result<FolderLock, chronocooked_env::fs::LockError>;
 
 fn default_dir(task: &str, model: &str, seed: u64) -> PathBuf {
     PathBuf::from(format!("runs/{task}/{model}/seed{seed}"))
@@ -100,7 +112,8 @@ fn default_dir(task: &str, model: &str, seed: u64) -> PathBuf {
 fn train_ppo(
     req: &TrainRequest,
     observer: &mut dyn TrainObserver,
-) -> Result<RunSummary, PipelineError> {
+    lock_dir: LockDir,
+) -> Result<(RunSummary, FolderLock), PipelineError> {
     let mut progress = PpoBridge(observer);
     if let Some(dir) = &req.resume {
         if req.steps.is_some() || !req.sets.is_empty() {
@@ -109,7 +122,10 @@ fn train_ppo(
                     .into(),
             ));
         }
-        return Ok(run_training(None, dir, &req.command, &mut progress)?);
+        // Not a run folder: said before any lock file is made there.
+        chronocooked_training::RunDir::open(dir)?;
+        let lock = lock_dir(dir)?;
+        return Ok((run_training(None, dir, &req.command, &mut progress)?, lock));
     }
     let model: Architecture = req.model.parse().map_err(PipelineError::Invalid)?;
     let mut sets = req.sets.clone();
@@ -121,19 +137,37 @@ fn train_ppo(
         .out
         .clone()
         .unwrap_or_else(|| default_dir(&cfg.task, &model.name(), req.seed));
-    Ok(run_training(Some(cfg), &dir, &req.command, &mut progress)?)
+    let lock = lock_dir(&dir)?;
+    Ok((
+        run_training(Some(cfg), &dir, &req.command, &mut progress)?,
+        lock,
+    ))
 }
 
 fn train_timing(
     req: &TrainRequest,
     observer: &mut dyn TrainObserver,
-) -> Result<TimingRunSummary, PipelineError> {
+    lock_dir: LockDir,
+) -> Result<(TimingRunSummary, FolderLock), PipelineError> {
     if req.steps.is_some() {
         return Err(PipelineError::Invalid(
             "timing models train by episodes: use --set episodes=N instead of --steps".into(),
         ));
     }
     let (cfg, dir) = match &req.resume {
+        Some(dir) if dir.join(chronocooked_models::run_folder::SUMMARY).is_file() => {
+            // A finished run: nothing to train; its learning-curve figure is drawn again (a
+            // run whose figure write failed gets it here).
+            let lock = lock_dir(dir)?;
+            let path = dir.join(chronocooked_models::run_folder::SUMMARY);
+            let text = std::fs::read(&path).map_err(|e| PipelineError::read(&path, e))?;
+            let summary = serde_json::from_slice(&text).map_err(|e| PipelineError::NotA {
+                path,
+                what: "a timing run's summary",
+                message: e.to_string(),
+            })?;
+            return Ok((summary, lock));
+        }
         Some(dir) => (load_timing_config(dir)?, dir.clone()),
         None => {
             let mut cfg = TimingRunConfig::new(&req.task, &req.model, req.seed);
@@ -148,7 +182,10 @@ fn train_timing(
         }
     };
     let total = cfg.train.episodes;
-    Ok(run_timing_training(&cfg, &dir, &req.command, |p| {
+    cfg.validate()?;
+    let lock = lock_dir(&dir)?;
+    let summary = run_timing_training(&cfg, &dir, &req.command, |p| {
         observer.timing_point(p, total)
-    })?)
+    })?;
+    Ok((summary, lock))
 }

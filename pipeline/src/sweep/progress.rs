@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 /// Stages a job folder has finished (from its `progress.json`; empty when absent or
 /// unreadable, so a damaged file only causes work to be redone).
 pub fn finished_stages(job_dir: &Path) -> Vec<Stage> {
-    std::fs::read_to_string(job_dir.join("progress.json"))
+    std::fs::read_to_string(job_dir.join(chronocooked_analysis::job_folder::PROGRESS))
         .ok()
         .and_then(|t| serde_json::from_str::<JobProgress>(&t).ok())
         .map(|p| p.finished)
@@ -37,10 +37,11 @@ pub fn mark_stage(
     seconds: f64,
     done: bool,
 ) -> Result<(), TrainError> {
-    let mut p: JobProgress = std::fs::read_to_string(job_dir.join("progress.json"))
-        .ok()
-        .and_then(|t| serde_json::from_str(&t).ok())
-        .unwrap_or_default();
+    let mut p: JobProgress =
+        std::fs::read_to_string(job_dir.join(chronocooked_analysis::job_folder::PROGRESS))
+            .ok()
+            .and_then(|t| serde_json::from_str(&t).ok())
+            .unwrap_or_default();
     p.id = id.into();
     if !p.finished.contains(&stage) {
         p.finished.push(stage);
@@ -48,13 +49,16 @@ pub fn mark_stage(
     }
     p.done = done;
     let json = serde_json::to_string_pretty(&p).unwrap_or_default();
-    chronocooked_env::fs::write_atomic(&job_dir.join("progress.json"), json.as_bytes())?;
+    chronocooked_env::fs::write_atomic(
+        &job_dir.join(chronocooked_analysis::job_folder::PROGRESS),
+        json.as_bytes(),
+    )?;
     Ok(())
 }
 
 /// Whether the job in `job_dir` is completely finished.
 pub fn job_done(job_dir: &Path) -> bool {
-    std::fs::read_to_string(job_dir.join("progress.json"))
+    std::fs::read_to_string(job_dir.join(chronocooked_analysis::job_folder::PROGRESS))
         .ok()
         .and_then(|t| serde_json::from_str::<JobProgress>(&t).ok())
         .is_some_and(|p| p.done)

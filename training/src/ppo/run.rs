@@ -34,6 +34,14 @@ pub fn run_training(
     command: &str,
     progress: &mut dyn Progress,
 ) -> Result<RunSummary, TrainError> {
+    if cfg.is_none() {
+        // A resume needs a run folder: said before any lock file is made there.
+        RunDir::open(dir)?;
+    }
+    // One writer per run folder; taken before anything is read or written.
+    let _lock = chronocooked_env::fs::FolderLock::acquire(dir)?;
+    // SIGINT / SIGTERM stop the loop at the next update with a checkpoint.
+    let _listening = chronocooked_env::interrupt::listen();
     let (run, mut trainer) = match cfg {
         Some(cfg) => {
             let run = RunDir::create(dir)?;
@@ -63,6 +71,21 @@ pub fn run_training(
                     "note: removed {} (left by an interrupted write)",
                     p.display()
                 );
+            }
+            let lost = run.lost_checkpoints()?;
+            if !lost.is_empty() {
+                return Err(TrainError::Resume {
+                    path: dir.display().to_string(),
+                    reason: format!(
+                        "{}/{} records {} that {} missing: learned state was deleted or lost, \
+                         and resuming would silently start from an earlier point. Restore the \
+                         file, or start over on purpose: remove the run folder and train again",
+                        run_folder::CHECKPOINTS,
+                        integrity::MANIFEST,
+                        lost.join(", "),
+                        if lost.len() == 1 { "is" } else { "are" }
+                    ),
+                });
             }
             if run.checkpoints().is_empty() {
                 // Nothing learned yet (killed before the first checkpoint, perhaps while the
@@ -113,16 +136,32 @@ pub fn run_training(
             }
         }
         let row = trainer.state().curve.last().cloned().unwrap_or(row);
+        let stop = chronocooked_env::interrupt::requested();
+        let last = trainer.finished() || solved_at.is_some() || stop.is_some();
+        // A checkpoint is written before its update's curve row is appended, so a record of
+        // a missing checkpoint beyond the curve's last row can only be a killed checkpoint
+        // write (`RunDir::lost_checkpoints`).
+        if every(cfg.checkpoint_every, steps) || last {
+            run.write_checkpoint(trainer.state(), cfg.keep_checkpoints)?;
+        }
         run.append_curve(&row)?;
         progress.update(&row, cfg.total_steps);
-        if every(cfg.checkpoint_every, steps) {
-            run.write_checkpoint(trainer.state(), cfg.keep_checkpoints)?;
+        if let Some(signal) = stop {
+            return Err(TrainError::Interrupted {
+                dir: dir.display().to_string(),
+                signal,
+                signal_name: chronocooked_env::interrupt::signal_name(signal),
+                steps,
+            });
         }
         if solved_at.is_some() {
             break;
         }
     }
-    run.write_checkpoint(trainer.state(), cfg.keep_checkpoints)?;
+    if run.checkpoints().is_empty() {
+        // A run resumed after its last update has its final checkpoint already.
+        run.write_checkpoint(trainer.state(), cfg.keep_checkpoints)?;
+    }
     run.save_model(trainer.policy(), run_folder::MODEL)?;
     if cfg.curriculum.has_levels() {
         // The last level reached keeps the final policy (the paper's newest checkpoint).

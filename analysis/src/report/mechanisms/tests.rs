@@ -75,6 +75,7 @@ fn row(root: &Path, model: &str, sets: Vec<ActivityDataset>) -> Row {
             env: Vec::new(),
             mode: crate::records::Mode::Reference,
             seed: 0,
+            unfinished_at_step: None,
         };
         std::fs::write(
             job.join("eval/eval.json"),

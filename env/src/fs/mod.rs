@@ -2,7 +2,14 @@
 //! checkpoints, evaluation records, exports, reports, figures) goes through [`write_atomic`]
 //! or [`write_atomic_with`], so an interrupted write never leaves a truncated file behind,
 //! and every output is created with the process umask. Also the symlink-free folder walk
-//! ([`real_subdirs`]) and the removal of a killed writer's temporary files.
+//! ([`real_subdirs`]) and the removal of a killed writer's temporary files. [`lock`] keeps
+//! one writer per output folder; [`fault`] injects a full disk or a sudden death at a chosen
+//! write for the fault-tolerance tests.
+
+pub mod fault;
+pub mod lock;
+
+pub use lock::{FolderLock, LockError, ensure_not_being_written};
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -20,6 +27,40 @@ pub fn is_temp_name(name: &str) -> bool {
             .is_some_and(|(_, ext)| ext.contains("tmp"))
 }
 
+/// The name prefix of the temporary files of writes to `path`: [`TEMP_PREFIX`], the file's
+/// name (its first 100 characters) and a dot, so the leftovers of one output can be told
+/// from other files ([`remove_temp_files_of`]).
+fn temp_prefix_of(path: &Path) -> String {
+    let name: String = path
+        .file_name()
+        .map(|n| n.to_string_lossy().chars().take(100).collect())
+        .unwrap_or_default();
+    format!("{TEMP_PREFIX}{name}.")
+}
+
+/// Removes the temporary files that interrupted writes of `path` left beside it (and only
+/// those: for outputs in a folder that holds other files, such as `record --out FILE`).
+pub fn remove_temp_files_of(path: &Path) {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let prefix = temp_prefix_of(path);
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let is_file = e.file_type().is_ok_and(|t| t.is_file());
+        if is_file
+            && e.file_name()
+                .to_str()
+                .is_some_and(|n| n.starts_with(&prefix))
+        {
+            let _ = std::fs::remove_file(e.path());
+        }
+    }
+}
+
 /// A temporary file beside `path` (its folder created if missing), created like any other
 /// output: mode 0666 minus the process umask (0644 under umask 022), not `tempfile`'s 0600.
 fn temp_beside(path: &Path, suffix: &str) -> std::io::Result<tempfile::NamedTempFile> {
@@ -29,7 +70,8 @@ fn temp_beside(path: &Path, suffix: &str) -> std::io::Result<tempfile::NamedTemp
     };
     std::fs::create_dir_all(dir)?;
     let mut builder = tempfile::Builder::new();
-    builder.prefix(TEMP_PREFIX).suffix(suffix);
+    let prefix = temp_prefix_of(path);
+    builder.prefix(&prefix).suffix(suffix);
     #[cfg(unix)]
     {
         use std::os::unix::fs::PermissionsExt;
@@ -60,6 +102,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), WriteError> {
         let mut tmp = temp_beside(path, "")?;
         tmp.write_all(bytes)?;
         tmp.as_file().sync_all()?;
+        fault::before_commit(path)?;
         tmp.persist(path).map_err(|e| e.error)?;
         Ok(())
     };
@@ -84,8 +127,20 @@ pub fn write_atomic_with(
     let tmp = temp_beside(path, &ext)?.into_temp_path();
     write(&tmp).map_err(std::io::Error::other)?;
     std::fs::File::open(&tmp)?.sync_all()?;
+    fault::before_commit(path)?;
     tmp.persist(path).map_err(|e| e.error)?;
     Ok(())
+}
+
+/// Appends `text` to `path` (created if missing): the one append of the lab (learning
+/// curves, command histories), which a resume cuts back to its checkpoint.
+pub fn append(path: &Path, text: &str) -> std::io::Result<()> {
+    fault::before_commit(path)?;
+    std::fs::OpenOptions::new()
+        .append(true)
+        .create(true)
+        .open(path)?
+        .write_all(text.as_bytes())
 }
 
 /// Removes the temporary files of interrupted atomic writes ([`is_temp_name`]) directly in
