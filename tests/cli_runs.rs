@@ -409,13 +409,30 @@ fn a_folder_that_is_not_a_run_and_a_file_that_is_not_a_sweep_say_so() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// Rewrites `run/config.json` through `edit` (a hand edit of a run's settings).
+/// Rewrites `run/config.json` through `edit` (a hand edit of a run's settings) and
+/// records the new content in the folder's `SHA256SUMS`, as a user who means the edit does
+/// (`sha256sum`): the settings' own checks must still refuse a bad value. Without the new
+/// record, the edit itself is refused.
 fn edit_run_config(run: &std::path::Path, edit: impl FnOnce(&mut serde_json::Value)) {
     let path = run.join("config.json");
     let mut cfg: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
     edit(&mut cfg);
-    std::fs::write(&path, serde_json::to_string(&cfg).unwrap()).unwrap();
+    let text = serde_json::to_string(&cfg).unwrap();
+    std::fs::write(&path, &text).unwrap();
+    let dir = run.display().to_string();
+    let err = run_err(&[
+        "eval",
+        "--run",
+        &dir,
+        "--out",
+        &format!("{dir}-unrecorded-eval"),
+    ]);
+    assert!(
+        err.contains("config.json") && err.contains("does not match its SHA-256 record"),
+        "an unrecorded edit was not refused: {err}"
+    );
+    chronocooked_env::integrity::write_recorded(&path, text.as_bytes()).unwrap();
 }
 
 /// The error of `eval --run RUN` (output into `dir/e`).

@@ -402,7 +402,22 @@ fn bad_records_and_eval_folders_are_named() {
     r["episode"]["actions"] = serde_json::json!([]);
     r["episode"]["infos"] = serde_json::json!([]);
     lines[0] = r.to_string();
-    std::fs::write(&path, lines.join("\n") + "\n").unwrap();
+    let edited = lines.join("\n") + "\n";
+    std::fs::write(&path, &edited).unwrap();
+    // The folder keeps SHA-256 records: the edit itself is refused, naming the file.
+    let err = run_err(&[
+        "report",
+        "--eval",
+        s(&empty_actions),
+        "--out",
+        s(&root.join("r0")),
+    ]);
+    assert!(
+        err.contains("records.jsonl") && err.contains("does not match its SHA-256 record"),
+        "{err}"
+    );
+    // Recorded as meant (as a hand-made folder would be): the record's meaning is checked.
+    chronocooked_env::integrity::write_recorded(&path, edited.as_bytes()).unwrap();
     for args in [
         vec![
             "report",
@@ -428,7 +443,7 @@ fn bad_records_and_eval_folders_are_named() {
     // An empty records.jsonl: "no episodes", not a row of NaN.
     let empty = root.join("empty");
     copy_tree(&good, &empty);
-    std::fs::write(empty.join("records.jsonl"), b"").unwrap();
+    chronocooked_env::integrity::write_recorded(&empty.join("records.jsonl"), b"").unwrap();
     let err = run_err(&["report", "--eval", s(&empty), "--out", s(&root.join("r2"))]);
     assert!(
         err.contains("no episodes") && err.contains("records.jsonl"),
@@ -437,7 +452,7 @@ fn bad_records_and_eval_folders_are_named() {
     // One bad eval.json among several: named.
     let bad = root.join("bad-info");
     copy_tree(&good, &bad);
-    std::fs::write(bad.join("eval.json"), b"{").unwrap();
+    chronocooked_env::integrity::write_recorded(&bad.join("eval.json"), b"{").unwrap();
     let err = run_err(&[
         "report",
         "--eval",
@@ -693,5 +708,26 @@ fn counts_beyond_what_the_lab_can_run_are_refused_before_any_work() {
         );
     }
     assert!(!out.exists(), "a refused command wrote {}", out.display());
+    // The same bounds in a sweep file, and a bound on the jobs one sweep expands to.
+    let seeds: Vec<String> = (0..100_001).map(|i| i.to_string()).collect();
+    let sweeps = [
+        ("stochastic = 10001", "stochastic", "1..=10000"),
+        ("steps = 2000000001", "steps", "1..=2000000000"),
+        ("episodes = 10000001", "episodes", "1..=10000000"),
+        ("adapt_episodes = 10000001", "adapt_episodes", "1..=10000000"),
+        ("adapt_steps = 2000000001", "adapt_steps", "1..=2000000000"),
+        (&*format!("seeds = [{}]", seeds.join(",")), "jobs", "100000"),
+    ];
+    for (k, (line, key, allowed)) in sweeps.iter().enumerate() {
+        let file = dir.join(format!("s{k}.toml"));
+        std::fs::write(
+            &file,
+            format!("name = \"b\"\ntasks = [\"FixedInterval-v0\"]\nmodels = [\"ddm\"]\n{line}\n"),
+        )
+        .unwrap();
+        let err = run_err(&["sweep", s(&file), "--out", s(&out), "--dry-run"]);
+        assert!(err.contains(key) && err.contains(allowed), "{key}: {err}");
+    }
+    assert!(!out.exists(), "a refused sweep wrote {}", out.display());
     let _ = std::fs::remove_dir_all(&dir);
 }

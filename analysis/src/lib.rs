@@ -11,6 +11,8 @@
 //!   KiNeT, Remington et al. 2018);
 //! * [`job_folder`] — the file names of a sweep job's folder (`job.json`, `run/`, `eval/`,
 //!   recorded activity and its summary);
+//! * [`results_folder`] — whether a study's compact results folder is complete (the marker of
+//!   an unfinished `paper collect`);
 //! * [`records`] — evaluation records: conditions and evaluated episodes (`records.jsonl`);
 //! * [`reproduction`] — temporal reproduction (Ready-Set-Go): Bayesian observers (BLS, MAP,
 //!   ML; Jazayeri & Shadlen 2010) as simulators and as a fitting tool, and the standard
@@ -38,6 +40,7 @@ pub mod paper;
 pub mod records;
 pub mod report;
 pub mod reproduction;
+pub mod results_folder;
 pub mod stats;
 
 pub use behaviour::foc::{

@@ -128,7 +128,13 @@ pub const RECORDS: &str = "records.jsonl";
 /// error ("no episodes"), never an empty evaluation.
 pub fn read_records(folder: &std::path::Path) -> Result<Vec<EvalRecord>, String> {
     let path = folder.join(RECORDS);
-    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    // Checked against the folder's SHA-256 record when it has one: an edited record is
+    // refused, never scored.
+    let text = chronocooked_env::integrity::read_checked(&path)
+        .map_err(|e| e.to_string())
+        .and_then(|b| {
+            String::from_utf8(b).map_err(|_| format!("{}: not UTF-8 text", path.display()))
+        })?;
     let records: Vec<EvalRecord> = text
         .lines()
         .enumerate()
@@ -187,12 +193,17 @@ pub struct EvalInfo {
 /// Reads `eval.json` of an evaluation folder; errors name the file.
 pub fn read_eval_info(dir: &Path) -> Result<EvalInfo, String> {
     let path = dir.join(EVAL_INFO);
-    let text = std::fs::read_to_string(&path).map_err(|e| {
-        format!(
-            "{}: {e} ({} is not an eval folder)",
+    if !path.is_file() {
+        return Err(format!(
+            "{}: no such file ({} is not an eval folder)",
             path.display(),
             dir.display()
-        )
-    })?;
+        ));
+    }
+    let text = chronocooked_env::integrity::read_checked(&path)
+        .map_err(|e| e.to_string())
+        .and_then(|b| {
+            String::from_utf8(b).map_err(|_| format!("{}: not UTF-8 text", path.display()))
+        })?;
     serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
 }

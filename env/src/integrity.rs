@@ -233,6 +233,20 @@ pub fn read_verified(path: &Path) -> Result<Vec<u8>, IntegrityError> {
     Ok(bytes)
 }
 
+/// Reads the file `path` that the lab records but that older versions wrote without a
+/// record (a run's `config.json`, an evaluation's records and metrics): checked like
+/// [`read_verified`] when its folder's manifest records it, read as it is otherwise. An
+/// edited file of a recorded folder is refused naming it; a file that was never recorded is
+/// taken for what it says (its reader checks its meaning).
+pub fn read_checked(path: &Path) -> Result<Vec<u8>, IntegrityError> {
+    let bytes = std::fs::read(path).map_err(|e| IntegrityError::io(path, e))?;
+    let (dir, name) = split(path);
+    if read_manifest(&dir)?.contains_key(&name) {
+        verify(path, &bytes)?;
+    }
+    Ok(bytes)
+}
+
 /// Checks `bytes` (the content of `path`) against the record of `path`.
 pub fn verify(path: &Path, bytes: &[u8]) -> Result<(), IntegrityError> {
     let (dir, name) = split(path);

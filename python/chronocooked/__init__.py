@@ -14,7 +14,7 @@
 """
 
 from . import _core
-from ._core import EVENT_FLAGS, __version__, reference_conditions
+from ._core import EVENT_FLAGS, PolicyError, __version__, reference_conditions
 from .envs import ChronoEnv, ChronoVectorEnv, overrides, register_envs, task_ids
 from . import zoo
 from .evaluation import evaluate, load_activity, load_eval
@@ -40,6 +40,7 @@ __all__ = [
     "ChronoEnv",
     "ChronoVectorEnv",
     "EVENT_FLAGS",
+    "PolicyError",
     "__version__",
     "evaluate",
     "load_activity",

@@ -4,6 +4,17 @@ use chronocooked_env::EnvError;
 use pyo3::PyErr;
 use pyo3::exceptions::{PyOSError, PyRuntimeError, PyValueError};
 
+pyo3::create_exception!(
+    chronocooked,
+    PolicyError,
+    PyRuntimeError,
+    "A Python policy failed during `evaluate`: it raised (the original exception is the \
+     `__cause__`), or returned an action outside 0..=5, a non-integer action, or activity that \
+     changed length or held NaN/inf. The message and the attributes `episode` (1-based, in \
+     protocol order), `step` (1-based within the episode), `task` and `td` say where. Nothing \
+     is written to the output folder."
+);
+
 /// A Rust env error as a Python exception: bad parameters, actions and options become
 /// `ValueError` (the message names the field and the allowed values); stepping a finished
 /// episode `RuntimeError`; output errors `OSError`.

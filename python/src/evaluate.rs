@@ -35,7 +35,11 @@ struct PyAgent<'py> {
     episode_start: bool,
     activity: Option<Vec<f32>>,
     units: Option<usize>,
-    error: Option<PyErr>,
+    /// Episodes begun (1-based index of the current one) and steps of the current one.
+    episode: usize,
+    step: usize,
+    /// The first failure: (episode, step, error).
+    error: Option<(usize, usize, PyErr)>,
 }
 
 impl<'py> PyAgent<'py> {
@@ -77,6 +81,12 @@ impl<'py> PyAgent<'py> {
                 .as_slice()?
                 .to_vec()
         };
+        if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+            return Err(value_err(format!(
+                "policy activity holds {} at unit {i} (allowed: finite numbers)",
+                v[i]
+            )));
+        }
         match self.units {
             Some(n) if n != v.len() => {
                 return Err(value_err(format!(
@@ -109,14 +119,15 @@ impl<'py> PyAgent<'py> {
             )));
         }
         let action = tuple.get_item(0)?;
-        let code: i64 = match action.extract::<i64>() {
-            Ok(c) => c,
-            Err(_) => action.call_method0("item")?.extract::<i64>().map_err(|_| {
-                value_err(
-                    "the policy's action must be an integer in 0..=5 (or a one-element array)",
-                )
-            })?,
-        };
+        let code: i64 = action
+            .extract::<i64>()
+            .or_else(|_| action.call_method0("item")?.extract::<i64>())
+            .map_err(|_| {
+                value_err(format!(
+                    "the policy's action must be an integer in 0..=5 (or a one-element integer array), got {}",
+                    action.repr().map_or_else(|_| "?".into(), |r| r.to_string())
+                ))
+            })?;
         self.state = tuple.get_item(1)?;
         if tuple.len() == 3 {
             self.read_activity(&tuple.get_item(2)?)?;
@@ -135,6 +146,8 @@ impl Agent for PyAgent<'_> {
     }
 
     fn begin_episode(&mut self, _obs: &[u8], _seed: u64) {
+        self.episode += 1;
+        self.step = 0;
         self.episode_start = true;
         self.state = self.py.None().into_bound(self.py);
     }
@@ -143,10 +156,11 @@ impl Agent for PyAgent<'_> {
         if self.error.is_some() {
             return Action::Wait;
         }
+        self.step += 1;
         match self.call(obs) {
             Ok(a) => a,
             Err(e) => {
-                self.error = Some(e);
+                self.error = Some((self.episode, self.step, e));
                 Action::Wait
             }
         }
@@ -191,6 +205,12 @@ pub fn evaluate<'py>(
             return Err(value_err(
                 "invalid value for `stochastic`: 0 (allowed: None for the reference protocol, or episodes per condition >= 1)",
             ));
+        }
+        Some(n) if n > chronocooked_analysis::evaluation::protocol::MAX_STOCHASTIC_EPISODES => {
+            return Err(value_err(format!(
+                "invalid value for `stochastic`: {n} (allowed: None for the reference protocol, or 1..={} episodes per condition)",
+                chronocooked_analysis::evaluation::protocol::MAX_STOCHASTIC_EPISODES
+            )));
         }
         Some(n) => Mode::Stochastic { episodes: n },
         None => Mode::Reference,
@@ -239,14 +259,16 @@ pub fn evaluate<'py>(
         episode_start: true,
         activity: None,
         units: None,
+        episode: 0,
+        step: 0,
         error: None,
     };
     let meta = ActivityMeta::new(name, task, &overrides, seed);
     let mut recorder = TrialRecorder::new(meta);
     let records = run_protocol_recorded(&mut agent, &conditions, mode, seed, Some(&mut recorder))
         .map_err(env_err)?;
-    if let Some(e) = agent.error.take() {
-        return Err(e);
+    if let Some((episode, step, cause)) = agent.error.take() {
+        return Err(policy_error(py, &records, episode, step, cause));
     }
     let info = EvalInfo {
         model: name.to_string(),
@@ -256,12 +278,12 @@ pub fn evaluate<'py>(
         seed,
         unfinished_at_step: None,
     };
-    let (metrics, figures) = write_eval_folder(&out, &info, &records).map_err(runtime_err)?;
+    // One writer per folder; the activity first and `metrics.json` last, so a folder with
+    // metrics is a complete one.
+    let _lock = chronocooked_env::fs::FolderLock::acquire(&out)
+        .map_err(|e| pyo3::exceptions::PyOSError::new_err(e.to_string()))?;
+    chronocooked_analysis::evaluation::folder::start_writing(&out).map_err(runtime_err)?;
     let summary = PyDict::new(py);
-    summary.set_item("out", out.clone())?;
-    summary.set_item("episodes", metrics.episodes)?;
-    summary.set_item("success_rate", metrics.success_rate)?;
-    summary.set_item("figures", figures)?;
     let dataset = recorder.finish();
     if dataset.meta.n_units() > 0 {
         let files = chronocooked_analysis::evaluation::folder::write_activity(&out, &dataset)
@@ -270,7 +292,40 @@ pub fn evaluate<'py>(
         summary.set_item("activity_export", &files[1..])?;
         summary.set_item("units", dataset.meta.n_units())?;
     }
+    let (metrics, figures) = write_eval_folder(&out, &info, &records).map_err(runtime_err)?;
+    summary.set_item("out", out.clone())?;
+    summary.set_item("episodes", metrics.episodes)?;
+    summary.set_item("success_rate", metrics.success_rate)?;
+    summary.set_item("figures", figures)?;
     Ok(summary)
+}
+
+/// A [`PolicyError`](crate::errors::PolicyError) saying where the policy failed (episode
+/// and step, and the episode's task and TD from the protocol's records), with the
+/// original error as its `__cause__`.
+fn policy_error(
+    py: Python<'_>,
+    records: &[chronocooked_analysis::EvalRecord],
+    episode: usize,
+    step: usize,
+    cause: PyErr,
+) -> PyErr {
+    let condition = episode
+        .checked_sub(1)
+        .and_then(|i| records.get(i))
+        .map(|r| &r.condition);
+    let (task, td) = condition.map_or((String::new(), 0), |c| (c.task.clone(), c.td));
+    let err = crate::errors::PolicyError::new_err(format!(
+        "the policy failed at episode {episode} ({task}, TD {td}), step {step}: {}",
+        cause.value(py)
+    ));
+    let value = err.value(py);
+    for (k, v) in [("episode", episode), ("step", step), ("td", td as usize)] {
+        let _ = value.setattr(k, v);
+    }
+    let _ = value.setattr("task", task);
+    err.set_cause(py, Some(cause));
+    err
 }
 
 /// The conditions of the reference protocol for `task` with `overrides` (list of dicts:

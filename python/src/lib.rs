@@ -38,6 +38,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(registry::tasks, m)?)?;
     m.add_function(wrap_pyfunction!(registry::resolve, m)?)?;
     m.add_function(wrap_pyfunction!(evaluate::evaluate, m)?)?;
+    m.add("PolicyError", m.py().get_type::<errors::PolicyError>())?;
     m.add_function(wrap_pyfunction!(evaluate::reference_conditions, m)?)?;
     m.add_class::<zoo::ZooPolicy>()?;
     m.add_function(wrap_pyfunction!(zoo::zoo_agents, m)?)?;

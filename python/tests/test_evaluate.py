@@ -158,15 +158,40 @@ def test_policy_errors_surface_as_python_exceptions(tmp_path):
     def boom(obs, state, start):
         raise KeyError("my bug")
 
-    with pytest.raises(KeyError, match="my bug"):
+    with pytest.raises(chronocooked.PolicyError, match="my bug") as e:
         chronocooked.evaluate(boom, "FixedInterval-v0", tmp_path / "a")
-    with pytest.raises(ValueError, match=r"invalid action 9 \(allowed"):
-        chronocooked.evaluate(lambda o, s, e: (9, s), "FixedInterval-v0", tmp_path / "b")
-    with pytest.raises(ValueError, match="returned 1 values"):
-        chronocooked.evaluate(lambda o, s, e: (1,), "FixedInterval-v0", tmp_path / "c")
-    with pytest.raises(ValueError, match="changed size"):
-        chronocooked.evaluate(lambda o, s, e: (0, (s or 0) + 1, np.zeros((s or 0) + 1)),
-                              "FixedInterval-v0", tmp_path / "d")
+    assert isinstance(e.value.__cause__, KeyError)
+    assert (e.value.episode, e.value.step) == (1, 1)
+    assert e.value.task == "FixedInterval-v0" and e.value.td > 0
+
+    def late(obs, state, start):
+        # Fails at the third step of the second episode.
+        n = 0 if start else state
+        episodes = getattr(late, "episodes", 0) + (1 if start else 0)
+        late.episodes = episodes
+        if episodes == 2 and n == 2:
+            raise RuntimeError("late bug")
+        return 0, n + 1
+
+    with pytest.raises(chronocooked.PolicyError, match=r"episode 2 .*step 3: late bug") as e:
+        chronocooked.evaluate(late, "FixedInterval-v0", tmp_path / "late")
+    assert (e.value.episode, e.value.step) == (2, 3)
+    bad_outputs = [
+        (lambda o, s, e: (9, s), r"invalid action 9 \(allowed"),
+        (lambda o, s, e: (1.5, s), "must be an integer"),
+        (lambda o, s, e: ("left", s), "must be an integer"),
+        (lambda o, s, e: (1,), "returned 1 values"),
+        (lambda o, s, e: (0, (s or 0) + 1, np.zeros((s or 0) + 1)), "changed size"),
+        (lambda o, s, e: (0, s, np.array([0.0, np.nan])), "NaN at unit 1"),
+        (lambda o, s, e: (0, s, np.array([np.inf])), "inf at unit 0"),
+    ]
+    for k, (policy, message) in enumerate(bad_outputs):
+        out = tmp_path / f"bad{k}"
+        with pytest.raises(chronocooked.PolicyError, match=message) as e:
+            chronocooked.evaluate(policy, "FixedInterval-v0", out)
+        assert e.value.episode >= 1 and e.value.step >= 1
+        # Nothing is written: no half-written evaluation folder.
+        assert not out.exists()
     with pytest.raises(ValueError, match="callable"):
         chronocooked.evaluate(3, "FixedInterval-v0", tmp_path / "e")
     with pytest.raises(ValueError, match=r"`td`.*allowed"):
@@ -174,7 +199,7 @@ def test_policy_errors_surface_as_python_exceptions(tmp_path):
     with pytest.raises(ValueError, match="stochastic"):
         chronocooked.evaluate(lambda o, s, e: (0, s), "FixedInterval-v0", tmp_path / "g",
                               stochastic=0)
-    assert not (tmp_path / "a" / "metrics.json").exists()
+    assert not (tmp_path / "a").exists()
 
 
 def test_numpy_actions_and_states_pass_through(tmp_path):

@@ -27,7 +27,7 @@ pub struct EvalArgs {
     /// Stochastic protocol: N episodes per condition (sampled actions) instead of greedy
     /// episodes from every start cell (1–10,000: the paper's protocol plays 100; every
     /// episode's steps are kept in memory for the metrics).
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=10_000))]
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=chronocooked_analysis::evaluation::protocol::MAX_STOCHASTIC_EPISODES as u64))]
     pub stochastic: Option<u64>,
     /// Seed of the evaluation (its noise draws and stochastic start cells). Default: the
     /// run's training seed, so replicate runs are evaluated with independent draws and a

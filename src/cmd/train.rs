@@ -24,7 +24,8 @@ pub struct TrainArgs {
     /// Seed of everything random in the run.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
-    /// Env-step budget (overrides the preset's).
+    /// Env-step budget (overrides the preset's); with --resume, raises the run's budget to N
+    /// (the way to train a run on: `config.json` is rewritten with its SHA-256 record).
     #[arg(long)]
     pub steps: Option<u64>,
     /// Override a setting: `--set key=value` (repeatable; `env.<param>=v` for task parameters).

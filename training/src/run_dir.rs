@@ -115,6 +115,30 @@ pub struct RunSummary {
     pub train_success: f64,
 }
 
+/// The text of the run folder `dir`'s `config.json` (PPO or timing model), checked against
+/// its SHA-256 record when the folder has one (runs written since records were kept): a
+/// hand-edited config is refused naming the file. A folder without the file is "not a run
+/// folder".
+pub fn read_config_text(dir: &Path) -> Result<String, TrainError> {
+    let p = dir.join(run_folder::CONFIG);
+    if !p.is_file() {
+        return Err(TrainError::NotARun {
+            path: dir.display().to_string(),
+        });
+    }
+    let bytes = integrity::read_checked(&p)?;
+    String::from_utf8(bytes).map_err(|_| TrainError::ConfigFile {
+        file: p.display().to_string(),
+        message: "not UTF-8 text".into(),
+    })
+}
+
+/// Writes a run's `config.json` with its SHA-256 record (so later edits are seen).
+pub fn write_config(dir: &Path, json: &[u8]) -> Result<(), TrainError> {
+    integrity::write_recorded(&dir.join(run_folder::CONFIG), json)?;
+    Ok(())
+}
+
 /// A run folder on disk.
 #[derive(Debug, Clone)]
 pub struct RunDir {
@@ -148,7 +172,7 @@ impl RunDir {
     /// a hand-edited `config.json` gets the same range checks as `--set`).
     pub fn config(&self) -> Result<TrainConfig, TrainError> {
         let p = self.path.join(run_folder::CONFIG);
-        let text = fs::read_to_string(&p).map_err(|e| TrainError::io(&p, e))?;
+        let text = read_config_text(&self.path)?;
         let bad = |message: String| TrainError::ConfigFile {
             file: p.display().to_string(),
             message,
@@ -214,6 +238,28 @@ impl RunDir {
             integrity::remove_recorded(old)?;
         }
         Ok(())
+    }
+
+    /// Raises the run's env-step budget to `total_steps` (what `train --resume DIR --steps N`
+    /// does before continuing): `config.json` is rewritten with its new SHA-256 record, so a
+    /// budget is changed this way, never by a hand edit (which a resume refuses).
+    pub fn extend_budget(&self, total_steps: u64) -> Result<TrainConfig, TrainError> {
+        let mut cfg = self.config()?;
+        if total_steps < cfg.total_steps {
+            return Err(TrainError::param(
+                "steps",
+                total_steps,
+                &format!(
+                    "at least the run's budget ({} env steps): --steps with --resume extends a run",
+                    cfg.total_steps
+                ),
+            ));
+        }
+        cfg.total_steps = total_steps;
+        cfg.validate()?;
+        let json = serde_json::to_string_pretty(&cfg).unwrap_or_default();
+        write_config(&self.path, json.as_bytes())?;
+        Ok(cfg)
     }
 
     /// Checkpoints newer than every checkpoint on disk that `checkpoints/SHA256SUMS` records

@@ -264,7 +264,7 @@ pub fn run_timing_training(
     }
     let start = std::time::Instant::now();
     std::fs::create_dir_all(dir).map_err(|e| TrainError::io(dir, e))?;
-    write_atomic(&dir.join(run_folder::CONFIG), &json(cfg))?;
+    crate::run_dir::write_config(dir, &json(cfg))?;
     // Every session of the folder is kept (`--resume` reruns an unfinished run).
     crate::run_dir::append_line(&dir.join(run_folder::COMMAND), &format!("{command}\n"))?;
     let _ = chronocooked_env::fs::remove_temp_files(dir);
@@ -305,9 +305,7 @@ pub fn run_timing_training(
 /// `config.json`.
 pub fn run_task(dir: &Path) -> Result<(String, Vec<String>), TrainError> {
     let p = dir.join(run_folder::CONFIG);
-    let text = std::fs::read_to_string(&p).map_err(|_| TrainError::NotARun {
-        path: dir.display().to_string(),
-    })?;
+    let text = crate::run_dir::read_config_text(dir)?;
     let v: serde_json::Value = serde_json::from_str(&text).map_err(|e| TrainError::Resume {
         path: p.display().to_string(),
         reason: e.to_string(),
@@ -328,7 +326,7 @@ pub fn run_task(dir: &Path) -> Result<(String, Vec<String>), TrainError> {
 /// of `config.json`); `None` when the file or the field is missing or unreadable (loading
 /// the run then reports the problem).
 pub fn run_seed(dir: &Path) -> Option<u64> {
-    let text = std::fs::read_to_string(dir.join(run_folder::CONFIG)).ok()?;
+    let text = crate::run_dir::read_config_text(dir).ok()?;
     serde_json::from_str::<serde_json::Value>(&text)
         .ok()?
         .get("seed")?
@@ -362,9 +360,7 @@ fn bad_file(dir: &Path, name: &str, e: serde_json::Error) -> TrainError {
 /// `--set`, and errors name the file and the field.
 pub fn load_timing_config(dir: &Path) -> Result<TimingRunConfig, TrainError> {
     let p = dir.join(run_folder::CONFIG);
-    let text = std::fs::read_to_string(&p).map_err(|_| TrainError::NotARun {
-        path: dir.display().to_string(),
-    })?;
+    let text = crate::run_dir::read_config_text(dir)?;
     let cfg: TimingRunConfig =
         serde_json::from_str(&text).map_err(|e| bad_file(dir, run_folder::CONFIG, e))?;
     cfg.validate().map_err(|e| TrainError::ConfigFile {

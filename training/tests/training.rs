@@ -331,16 +331,10 @@ fn same_seed_gives_identical_learning_curves_and_resume_is_exact() {
         run_training(Some(tiny_cfg(model, 1000, 4)), &full, "test", &mut Silent).unwrap();
         let cut = dir.join(format!("{model}-cut"));
         run_training(Some(tiny_cfg(model, 400, 4)), &cut, "test", &mut Silent).unwrap();
-        // Extend the budget as a user would after an interruption: same config, resumed.
-        let mut cfg: chronocooked_training::TrainConfig =
-            serde_json::from_str(&std::fs::read_to_string(cut.join("config.json")).unwrap())
-                .unwrap();
-        cfg.total_steps = 1000;
-        std::fs::write(
-            cut.join("config.json"),
-            serde_json::to_string(&cfg).unwrap(),
-        )
-        .unwrap();
+        // Extend the budget as a user would after an interruption (`train --resume --steps`).
+        let open = chronocooked_training::RunDir::open(&cut).unwrap();
+        assert!(open.extend_budget(300).is_err(), "a budget cannot shrink");
+        assert_eq!(open.extend_budget(1000).unwrap().total_steps, 1000);
         std::fs::remove_file(cut.join("model.bpk")).unwrap();
         run_training(None, &cut, "test --resume", &mut Silent).unwrap();
         let last = |d: &std::path::Path| {

@@ -8,13 +8,16 @@
 //! * [`METRICS`] `metrics.json` — [`Metrics`] computed from the records;
 //! * `figures/` — the evaluation figures (SVG + PNG).
 //!
-//! Every file is written atomically. Every crate names these files through the constants
-//! here and reads `eval.json` through [`read_eval_info`].
+//! Every file is written atomically, the records, `eval.json`, `metrics.json` and the
+//! activity with their SHA-256 records in the folder's `SHA256SUMS` (an edited record is
+//! refused when read back), and `metrics.json` last ([`start_writing`]): a folder with
+//! metrics is a complete one. Every crate names these files through the constants here and
+//! reads `eval.json` through [`read_eval_info`].
 
 use crate::behaviour::metrics::{Metrics, compute_metrics};
 use crate::evaluation::protocol::EvalRecord;
 use crate::job_folder;
-use chronocooked_env::fs::write_atomic;
+use chronocooked_env::integrity::write_recorded;
 use std::path::{Path, PathBuf};
 
 pub use crate::records::{EVAL_INFO, EvalInfo, METRICS, RECORDS, read_eval_info};
@@ -44,9 +47,9 @@ pub fn write_eval_folder(
         lines += &serde_json::to_string(r).map_err(|e| e.to_string())?;
         lines.push('\n');
     }
-    write_atomic(&out.join(RECORDS), lines.as_bytes()).map_err(|e| e.to_string())?;
+    write_recorded(&out.join(RECORDS), lines.as_bytes()).map_err(|e| e.to_string())?;
     let json = serde_json::to_string_pretty(info).map_err(|e| e.to_string())?;
-    write_atomic(&out.join(EVAL_INFO), json.as_bytes()).map_err(|e| e.to_string())?;
+    write_recorded(&out.join(EVAL_INFO), json.as_bytes()).map_err(|e| e.to_string())?;
     write_metrics(out, info, records)
 }
 
@@ -55,12 +58,7 @@ pub fn write_eval_folder(
 /// a complete one, and a writer stopped half-way (killed, out of disk) leaves a folder
 /// that no reader takes for a finished evaluation, never new records beside old metrics.
 pub fn start_writing(out: &Path) -> Result<(), String> {
-    let metrics = out.join(METRICS);
-    match std::fs::remove_file(&metrics) {
-        Ok(()) => Ok(()),
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
-        Err(e) => Err(format!("{}: {e}", metrics.display())),
-    }
+    chronocooked_env::integrity::remove_recorded(&out.join(METRICS)).map_err(|e| e.to_string())
 }
 
 /// Writes the figures of `records` and then `metrics.json` into `out` (the records and
@@ -76,7 +74,7 @@ pub fn write_metrics(
     json.push('\n');
     let figures = crate::report::figures::eval_figures(&out.join("figures"), &metrics, records)
         .map_err(|e| e.to_string())?;
-    write_atomic(&out.join(METRICS), json.as_bytes()).map_err(|e| e.to_string())?;
+    write_recorded(&out.join(METRICS), json.as_bytes()).map_err(|e| e.to_string())?;
     Ok((metrics, figures))
 }
 
@@ -89,7 +87,7 @@ pub fn write_activity(
 ) -> Result<Vec<PathBuf>, String> {
     let path = out.join(job_folder::ACTIVITY);
     let json = serde_json::to_vec(dataset).map_err(|e| e.to_string())?;
-    write_atomic(&path, &json).map_err(|e| e.to_string())?;
+    write_recorded(&path, &json).map_err(|e| e.to_string())?;
     let mut files = vec![path];
     files.extend(crate::export::export_activity(
         dataset,

@@ -187,14 +187,36 @@ fn interleave_sample_intervals(
     }
 }
 
+/// Most episodes per condition of the stochastic protocol (the paper's plays 100).
+pub const MAX_STOCHASTIC_EPISODES: usize = 10_000;
+
+/// Most steps an evaluation keeps in memory (all its episodes together; a step's record is
+/// ≈ 100 bytes, so ≈ 2 GB): the reference protocol keeps thousands, 10,000 stochastic
+/// episodes per condition (`--stochastic`'s maximum) of a solved task a few million; only
+/// agents that never end their episodes under a large `max_timesteps` reach it.
+pub const MAX_PROTOCOL_STEPS: usize = 20_000_000;
+
 /// [`run_protocol`] that also records the agent's activity (one trial per episode, in
-/// record order) into `recorder` when given.
+/// record order) into `recorder` when given. Fails (`InvalidParam`) once its episodes keep
+/// more than [`MAX_PROTOCOL_STEPS`] steps.
 pub fn run_protocol_recorded(
     agent: &mut dyn Agent,
     conditions: &[Condition],
     mode: Mode,
     seed: u64,
+    recorder: Option<&mut TrialRecorder>,
+) -> Result<Vec<EvalRecord>, EnvError> {
+    run_protocol_within(agent, conditions, mode, seed, recorder, MAX_PROTOCOL_STEPS)
+}
+
+/// [`run_protocol_recorded`] with a step budget of `max_steps` (tests use a small one).
+fn run_protocol_within(
+    agent: &mut dyn Agent,
+    conditions: &[Condition],
+    mode: Mode,
+    seed: u64,
     mut recorder: Option<&mut TrialRecorder>,
+    max_steps: usize,
 ) -> Result<Vec<EvalRecord>, EnvError> {
     agent.set_training(false);
     agent.set_sampling(matches!(mode, Mode::Stochastic { .. }));
@@ -221,7 +243,9 @@ pub fn run_protocol_recorded(
         jobs.extend(starts.into_iter().enumerate().map(|(k, st)| (ci, k, st)));
     }
     interleave_sample_intervals(&mut jobs, conditions, seed);
-    let mut out = Vec::with_capacity(jobs.len());
+    let episodes = jobs.len();
+    let mut out = Vec::with_capacity(episodes);
+    let mut kept_steps = 0usize;
     for (ci, k, start) in jobs {
         let c = &conditions[ci];
         let options = ResetOptions {
@@ -234,6 +258,23 @@ pub fn run_protocol_recorded(
         };
         let s = derive_seed(seed, (ci as u64) << 20 | k as u64);
         let episode = run_episode(&mut envs[ci], agent, s, &options, recorder.as_deref_mut())?;
+        kept_steps += episode.infos.len();
+        if kept_steps > max_steps {
+            return Err(EnvError::InvalidParam {
+                field: "evaluation size (episodes × steps per episode)".into(),
+                value: format!(
+                    "more than {max_steps} steps kept after {} of {episodes} episodes \
+                     (episodes of {} last up to max_timesteps = {})",
+                    out.len() + 1,
+                    c.task,
+                    envs[ci].config().max_timesteps
+                ),
+                allowed: format!(
+                    "at most {max_steps} steps in all (every step is kept in memory \
+                     for the metrics): fewer episodes (--stochastic) or a smaller max_timesteps"
+                ),
+            });
+        }
         out.push(EvalRecord {
             condition: c.clone(),
             episode,
@@ -241,4 +282,45 @@ pub fn run_protocol_recorded(
     }
     agent.set_sampling(false);
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use chronocooked_env::Action;
+
+    /// Never ends an episode: waits at every step.
+    struct Waiter;
+    impl Agent for Waiter {
+        fn name(&self) -> String {
+            "waiter".into()
+        }
+        fn begin_episode(&mut self, _obs: &[u8], _seed: u64) {}
+        fn act(&mut self, _obs: &[u8]) -> Action {
+            Action::Wait
+        }
+    }
+
+    #[test]
+    fn an_evaluation_past_its_step_budget_stops_with_an_error_naming_the_settings() {
+        let env = vec!["max_timesteps=50".to_string()];
+        let conditions = reference_conditions("FixedInterval-v0", &env).unwrap();
+        let mode = Mode::Stochastic { episodes: 10 };
+        // A waiting agent's episodes last until each task's time limit (the protocol's
+        // peak-interval probes keep their own).
+        let all = run_protocol_within(&mut Waiter, &conditions, mode, 1, None, usize::MAX).unwrap();
+        let total: usize = all.iter().map(|r| r.episode.infos.len()).sum();
+        let budget = total - 1;
+        let err = run_protocol_within(&mut Waiter, &conditions, mode, 1, None, budget)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains(&format!("more than {budget} steps"))
+                && err.contains("max_timesteps = ")
+                && err.contains("--stochastic"),
+            "{err}"
+        );
+        // At the budget exactly, the protocol runs.
+        run_protocol_within(&mut Waiter, &conditions, mode, 1, None, total).unwrap();
+    }
 }

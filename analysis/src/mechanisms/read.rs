@@ -186,9 +186,9 @@ fn job_dirs(results: &Path) -> Vec<PathBuf> {
 pub fn signatures(results: &Path) -> Result<Vec<Signature>, MechanismError> {
     // A folder that `paper collect` is writing, or left unfinished, is never read: its
     // signatures would be of some jobs only.
-    crate::paper::collect::check_complete(results).map_err(|e| MechanismError::File {
+    crate::results_folder::check_complete(results).map_err(|message| MechanismError::File {
         path: results.to_path_buf(),
-        message: e.to_string(),
+        message,
     })?;
     let dirs = job_dirs(results);
     if dirs.is_empty() {

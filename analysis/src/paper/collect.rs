@@ -379,32 +379,12 @@ pub(crate) fn write_csv<T: Serialize>(path: &Path, rows: &[T]) -> Result<(), Col
     chronocooked_env::fs::write_atomic(path, &bytes).map_err(|e| err(path, e.error))
 }
 
-/// The marker of a results folder that `paper collect` is writing or that a collect left
-/// unfinished (killed, out of disk): written before the first job, removed after the last.
-/// Every reader of compact results refuses a folder that holds it ([`check_complete`]).
-pub const UNFINISHED_MARKER: &str = "collect-unfinished.json";
+pub use crate::results_folder::{UNFINISHED_MARKER, check_complete as check_complete_folder};
 
 /// Refuses a results folder that a `paper collect` is still writing or left unfinished
-/// (error naming the marker and the command that completes it).
+/// ([`crate::results_folder::check_complete`]), as a [`CollectError`].
 pub fn check_complete(root: &Path) -> Result<(), CollectError> {
-    chronocooked_env::fs::ensure_not_being_written(root).map_err(|e| err(root, e))?;
-    let marker = root.join(UNFINISHED_MARKER);
-    if marker.exists() {
-        let from = read_json(&marker)
-            .ok()
-            .and_then(|v| v["sweep_out"].as_str().map(String::from))
-            .unwrap_or_else(|| "its sweep output".into());
-        return Err(err(
-            &marker,
-            format!(
-                "this results folder is incomplete: a `paper collect` into it did not finish \
-                 (killed, or stopped by an error); complete it with `chronocooked paper collect \
-                 {from} --out {}`",
-                root.display()
-            ),
-        ));
-    }
-    Ok(())
+    check_complete_folder(root).map_err(|e| err(root, e))
 }
 
 /// Whether the sweep job in `dir` finished every stage it needs (its `progress.json` says

@@ -135,9 +135,11 @@ pub fn read_job(dir: &Path) -> Result<RunResult, BaselineError> {
 /// Every job of a compact results folder (`root/jobs/...`, sorted by path) as leaderboard
 /// runs; an error names the first file that is missing or malformed.
 pub fn read_jobs(root: &Path) -> Result<Vec<RunResult>, BaselineError> {
-    crate::paper::collect::check_complete(root).map_err(|e| BaselineError::NotStudyResults {
-        path: root.display().to_string(),
-        message: e.to_string(),
+    crate::results_folder::check_complete(root).map_err(|message| {
+        BaselineError::NotStudyResults {
+            path: root.display().to_string(),
+            message,
+        }
     })?;
     let jobs = root.join("jobs");
     if !jobs.is_dir() {

@@ -132,8 +132,19 @@ fn row_label(folder: &Path, model: &str) -> String {
 /// An optional file beside an evaluation: `None` when absent; when present but unreadable,
 /// also `None`, with a warning naming it (never ignored silently).
 fn optional_json<T: serde::de::DeserializeOwned>(path: &Path) -> Option<T> {
-    let text = std::fs::read_to_string(path).ok()?;
-    match serde_json::from_str(&text) {
+    if !path.is_file() {
+        return None;
+    }
+    // Checked against its SHA-256 record where the folder keeps one: an edited summary is
+    // never shown as a result.
+    let text = match chronocooked_env::integrity::read_checked(path) {
+        Ok(bytes) => bytes,
+        Err(e) => {
+            eprintln!("warning: {e}; ignored");
+            return None;
+        }
+    };
+    match serde_json::from_slice(&text) {
         Ok(v) => Some(v),
         Err(e) => {
             eprintln!("warning: {}: {e}; ignored", path.display());

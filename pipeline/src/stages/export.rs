@@ -29,7 +29,12 @@ pub fn export(
     let _lock = chronocooked_env::fs::FolderLock::acquire(out)?;
     let mut files = Vec::new();
     if let Some(path) = activity {
-        let text = std::fs::read(path).map_err(|e| PipelineError::read(path, e))?;
+        let text = chronocooked_env::integrity::read_checked(path).map_err(|e| match e {
+            chronocooked_env::integrity::IntegrityError::Io { source, .. } => {
+                PipelineError::read(path, source)
+            }
+            other => PipelineError::Analysis(other.to_string()),
+        })?;
         let ds = chronocooked_models::ActivityDataset::from_json(&text).map_err(|message| {
             PipelineError::NotA {
                 path: path.to_path_buf(),

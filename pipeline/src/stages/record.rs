@@ -195,21 +195,20 @@ pub fn record(req: &RecordRequest) -> Result<RecordOutcome, PipelineError> {
         }
         dataset.trials.extend(more.trials);
     }
+    // With SHA-256 records (`SHA256SUMS` beside them): an edited dataset is refused.
     let write = |path: &std::path::Path, bytes: &[u8]| {
-        chronocooked_env::fs::write_atomic(path, bytes).map_err(PipelineError::from)
+        chronocooked_env::integrity::write_recorded(path, bytes)
+            .map_err(|e| PipelineError::Analysis(e.to_string()))
     };
     // The summary of an older dataset never stays beside a new one: removed first, written
     // after the dataset.
     let summary_path = req.out.with_extension("summary.json");
-    for p in [&req.out, &summary_path] {
+    let manifest = folder.join(chronocooked_env::integrity::MANIFEST);
+    for p in [&req.out, &summary_path, &manifest] {
         chronocooked_env::fs::remove_temp_files_of(p);
     }
-    match std::fs::remove_file(&summary_path) {
-        Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
-            return Err(PipelineError::write(&summary_path, e));
-        }
-        _ => {}
-    }
+    chronocooked_env::integrity::remove_recorded(&summary_path)
+        .map_err(|e| PipelineError::Analysis(e.to_string()))?;
     write(&req.out, &json_bytes(&dataset, false)?)?;
     if let Some(dir) = &req.figures {
         chronocooked_analysis::report::figures::neural_figures(&dataset, dir)

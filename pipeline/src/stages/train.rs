@@ -116,15 +116,18 @@ fn train_ppo(
 ) -> Result<(RunSummary, FolderLock), PipelineError> {
     let mut progress = PpoBridge(observer);
     if let Some(dir) = &req.resume {
-        if req.steps.is_some() || !req.sets.is_empty() {
+        if !req.sets.is_empty() {
             return Err(PipelineError::Invalid(
-                "--resume continues a run with its saved config; --steps/--set cannot be combined with it"
+                "--resume continues a run with its saved config; --set cannot be combined with it (--steps N extends its budget)"
                     .into(),
             ));
         }
         // Not a run folder: said before any lock file is made there.
-        chronocooked_training::RunDir::open(dir)?;
+        let run = chronocooked_training::RunDir::open(dir)?;
         let lock = lock_dir(dir)?;
+        if let Some(steps) = req.steps {
+            run.extend_budget(steps)?;
+        }
         return Ok((run_training(None, dir, &req.command, &mut progress)?, lock));
     }
     let model: Architecture = req.model.parse().map_err(PipelineError::Invalid)?;

@@ -151,6 +151,10 @@ pub fn variant_label(sets: &[String]) -> String {
         .join("_")
 }
 
+/// Most jobs one sweep may expand to: 40 times the paper's whole grid (≈ 2,500 jobs); a
+/// larger study is several sweeps.
+pub const MAX_JOBS: usize = 100_000;
+
 impl SweepFile {
     /// Checks every list and name (typed errors name the field and allowed values).
     pub fn validate(&self) -> Result<(), TrainError> {
@@ -177,14 +181,39 @@ impl SweepFile {
                 &chronocooked_training::ppo::presets::PRESETS.join(", "),
             ));
         }
-        if self.steps == Some(0) {
-            return Err(bad("steps", 0, "a positive env-step budget"));
-        }
-        if self.episodes == Some(0) {
-            return Err(bad("episodes", 0, "a positive number of episodes"));
-        }
-        if self.stochastic == Some(0) {
-            return Err(bad("stochastic", 0, "a positive number of episodes"));
+        // Every budget within what the lab can run (the same bounds as the CLI and the
+        // settings tables), so that no job of the sweep can run without end.
+        let max_steps = chronocooked_training::settings::ppo::MAX_TOTAL_STEPS;
+        let max_episodes = chronocooked_training::settings::timing::MAX_EPISODES as u64;
+        let max_stochastic =
+            chronocooked_analysis::evaluation::protocol::MAX_STOCHASTIC_EPISODES as u64;
+        for (field, value, max, what) in [
+            ("steps", self.steps, max_steps, "env steps"),
+            (
+                "episodes",
+                self.episodes.map(|e| e as u64),
+                max_episodes,
+                "episodes",
+            ),
+            (
+                "stochastic",
+                self.stochastic.map(|e| e as u64),
+                max_stochastic,
+                "episodes per condition",
+            ),
+            (
+                "adapt_episodes",
+                self.adapt_episodes.map(|e| e as u64),
+                max_episodes,
+                "episodes",
+            ),
+            ("adapt_steps", self.adapt_steps, max_steps, "env steps"),
+        ] {
+            if let Some(v) = value
+                && !(1..=max).contains(&v)
+            {
+                return Err(bad(field, v, &format!("1..={max} {what}")));
+            }
         }
         for m in self.expanded_models() {
             family_of(&m)?;
@@ -266,6 +295,28 @@ impl SweepFile {
     /// variant settings that apply to its family ([`applies`]: baselines only the task
     /// settings); the deterministic oracle runs one seed only.
     pub fn jobs(&self) -> Result<Vec<Job>, TrainError> {
+        let crossed = [
+            self.tasks.len(),
+            self.expanded_models().len(),
+            self.seeds.len(),
+            self.variants.len().max(1),
+            self.task_variants
+                .values()
+                .map(Vec::len)
+                .max()
+                .unwrap_or(1)
+                .max(1),
+        ]
+        .iter()
+        .try_fold(1usize, |acc, &n| acc.checked_mul(n))
+        .unwrap_or(usize::MAX);
+        if crossed > MAX_JOBS {
+            return Err(bad(
+                "seeds × models × tasks × variants",
+                format!("{crossed} jobs"),
+                &format!("at most {MAX_JOBS} jobs per sweep (split it into several sweeps)"),
+            ));
+        }
         let mut jobs = Vec::new();
         for task in &self.tasks {
             let variants = self.variant_parts(task);

@@ -54,7 +54,7 @@ pub fn run_training(
             }
             let trainer = Trainer::new(cfg.clone())?;
             let json = serde_json::to_string_pretty(&cfg).unwrap_or_default();
-            write_atomic(&run.path.join(run_folder::CONFIG), json.as_bytes())?;
+            crate::run_dir::write_config(&run.path, json.as_bytes())?;
             let pj = serde_json::to_string_pretty(trainer.policy_config()).unwrap_or_default();
             integrity::write_recorded(&run.path.join(run_folder::POLICY), pj.as_bytes())?;
             write_atomic(
