@@ -32,8 +32,8 @@ def evaluate(policy, task: str, out, *, obs_mode: str = "codes", stochastic: int
 
     The folder is a leaderboard row: ``chronocooked report --eval OUT``.
     """
+    # The folder is created once the protocol has run: a failing policy leaves nothing.
     out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
     return _core.evaluate(policy, task, os.fspath(out), overrides(params), obs_mode,
                           stochastic, int(seed), name)
 

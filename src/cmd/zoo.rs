@@ -77,6 +77,15 @@ pub fn run_zoo(cmd: ZooCommand) -> Result<()> {
             json,
         } => {
             let mut entry = zoo_entry(&model)?;
+            // Every argument is checked, also those this model does not use: a typo never
+            // passes unnoticed.
+            chronocooked_env::find_task(&task)?;
+            if entry.family != Family::DeepRl && preset != "reference" {
+                anyhow::bail!(
+                    "--preset `{preset}`: presets configure deep-RL models only; {model} is a {} (drop --preset)",
+                    entry.family.label()
+                );
+            }
             let settings = if entry.family == Family::DeepRl {
                 let arch: Architecture = model.parse().map_err(anyhow::Error::msg)?;
                 let pairs = preset_settings(&task, arch, &preset)?;
