@@ -34,9 +34,15 @@ fn train_and_zoo_commands_work_and_reject_bad_input() {
         (vec!["train", "--set", "bogus=1"], "unknown setting"),
         (vec!["train", "--set", "env.td=0"], "td"),
         // zoo show checks every argument, also those the model does not use.
-        (vec!["zoo", "show", "oracle", "--task", "Nope-v0"], "Nope-v0"),
+        (
+            vec!["zoo", "show", "oracle", "--task", "Nope-v0"],
+            "Nope-v0",
+        ),
         (vec!["zoo", "show", "ddm", "--task", "Nope-v0"], "Nope-v0"),
-        (vec!["zoo", "show", "ddm", "--preset", "fast"], "deep-RL models only"),
+        (
+            vec!["zoo", "show", "ddm", "--preset", "fast"],
+            "deep-RL models only",
+        ),
         (
             vec!["train", "--resume", "/nonexistent/run"],
             "not a run folder",

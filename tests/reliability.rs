@@ -714,7 +714,11 @@ fn counts_beyond_what_the_lab_can_run_are_refused_before_any_work() {
         ("stochastic = 10001", "stochastic", "1..=10000"),
         ("steps = 2000000001", "steps", "1..=2000000000"),
         ("episodes = 10000001", "episodes", "1..=10000000"),
-        ("adapt_episodes = 10000001", "adapt_episodes", "1..=10000000"),
+        (
+            "adapt_episodes = 10000001",
+            "adapt_episodes",
+            "1..=10000000",
+        ),
         ("adapt_steps = 2000000001", "adapt_steps", "1..=2000000000"),
         (&*format!("seeds = [{}]", seeds.join(",")), "jobs", "100000"),
     ];
