@@ -115,6 +115,32 @@ fn env_replay_rejects_bad_input_with_clear_messages() {
     assert!(e.contains("`td`") && e.contains("1..=10000"), "{e}");
     let e = run_err(&["env", "replay", "Nope-v0", "--actions", "1"]);
     assert!(e.contains("registered"), "{e}");
+    // A lost action and two spellings of one setting that disagree are refused.
+    let e = run_err(&["env", "replay", "FixedInterval-v0", "--actions", "0,0,,0"]);
+    assert!(e.contains("action 3 is empty"), "{e}");
+    let e = run_err(&[
+        "env",
+        "replay",
+        "FixedInterval-v0",
+        "--set",
+        "td=6",
+        "--td",
+        "9",
+        "--actions",
+        "0",
+    ]);
+    assert!(e.contains("--td 9 and --set td=6 disagree"), "{e}");
+    let e = run_err(&[
+        "env",
+        "replay",
+        "FixedInterval-v0",
+        "--reference",
+        "--set",
+        "reference_compat=false",
+        "--actions",
+        "0",
+    ]);
+    assert!(e.contains("disagree"), "{e}");
     let e = run_err(&[
         "env",
         "replay",

@@ -70,10 +70,26 @@ impl Action {
 
 /// Parses a comma-separated list of action codes such as `"3,5,1,0"`.
 pub fn parse_action_list(text: &str) -> Result<Vec<Action>, EnvError> {
-    text.split(',')
+    // One trailing comma is allowed (`3,5,`); an empty item elsewhere (`3,,5`) is a lost
+    // action, which would shift every later step, so it is refused.
+    let body = text.trim();
+    let body = body.strip_suffix(',').unwrap_or(body);
+    if body.trim().is_empty() {
+        return Ok(Vec::new());
+    }
+    body.split(',')
         .map(str::trim)
-        .filter(|s| !s.is_empty())
-        .map(|s| {
+        .enumerate()
+        .map(|(i, s)| {
+            if s.is_empty() {
+                return Err(EnvError::BadOverride {
+                    text: text.to_string(),
+                    reason: format!(
+                        "action {} is empty (allowed: integers 0..=5 separated by single commas)",
+                        i + 1
+                    ),
+                });
+            }
             let code: i64 = s.parse().map_err(|_| EnvError::BadOverride {
                 text: s.to_string(),
                 reason: "actions must be integers 0..=5 separated by commas".into(),
@@ -86,6 +102,16 @@ pub fn parse_action_list(text: &str) -> Result<Vec<Action>, EnvError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn action_lists_refuse_empty_items_but_take_a_trailing_comma() {
+        assert_eq!(parse_action_list("3,5,").unwrap().len(), 2);
+        assert_eq!(parse_action_list(" 3 , 5 ").unwrap().len(), 2);
+        assert!(parse_action_list("").unwrap().is_empty());
+        let e = parse_action_list("0,0,,0").unwrap_err().to_string();
+        assert!(e.contains("action 3 is empty"), "{e}");
+        assert!(parse_action_list(",0").is_err());
+    }
 
     #[test]
     fn codes_round_trip_and_out_of_range_is_typed() {

@@ -54,6 +54,28 @@ pub struct TaskArgs {
 impl TaskArgs {
     /// Builds the env and the reset options.
     pub fn build(&self) -> Result<(ChronoEnv, ResetOptions)> {
+        // Two spellings of one setting that disagree are refused, never resolved silently.
+        let set_value = |key: &str| {
+            self.set.iter().find_map(|kv| {
+                let (k, v) = kv.split_once('=')?;
+                (k.trim().eq_ignore_ascii_case(key)).then(|| v.trim().to_string())
+            })
+        };
+        if self.reference
+            && let Some(v) = set_value("reference_compat")
+            && v != "true"
+        {
+            anyhow::bail!(
+                "--reference and --set reference_compat={v} disagree (--reference means reference_compat=true): drop one"
+            );
+        }
+        if let (Some(td), Some(v)) = (&self.td, set_value("td"))
+            && td.trim() != v
+        {
+            anyhow::bail!(
+                "--td {td} and --set td={v} disagree (--td sets this episode's target duration): drop one"
+            );
+        }
         let mut overrides = self.set.clone();
         if self.reference {
             overrides.push("reference_compat=true".into());
