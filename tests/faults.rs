@@ -10,7 +10,7 @@
 
 mod common;
 
-use common::{bin, run_ok, temp_dir};
+use common::{bin, curves_without_clock, files_below, run_ok, temp_dir};
 use std::os::unix::process::ExitStatusExt;
 use std::path::{Path, PathBuf};
 use std::process::{Output, Stdio};
@@ -18,22 +18,6 @@ use std::time::{Duration, Instant};
 
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()
-}
-
-fn files_below(dir: &Path) -> Vec<PathBuf> {
-    let mut out = Vec::new();
-    let Ok(rd) = std::fs::read_dir(dir) else {
-        return out;
-    };
-    for e in rd.flatten() {
-        if e.file_type().unwrap().is_dir() {
-            out.extend(files_below(&e.path()));
-        } else {
-            out.push(e.path());
-        }
-    }
-    out.sort();
-    out
 }
 
 /// Temporary files of interrupted writes and lock files left anywhere below `dir`.
@@ -44,22 +28,6 @@ fn leftovers(dir: &Path) -> Vec<PathBuf> {
             let name = p.file_name().and_then(|n| n.to_str()).unwrap_or_default();
             chronocooked_env::fs::is_temp_name(name)
                 || name == chronocooked_env::fs::lock::LOCK_FILE
-        })
-        .collect()
-}
-
-/// `curves.csv` of a PPO run without its wall-clock columns.
-fn curves_without_clock(dir: &Path) -> Vec<String> {
-    std::fs::read_to_string(dir.join("curves.csv"))
-        .unwrap()
-        .lines()
-        .map(|l| {
-            l.split(',')
-                .enumerate()
-                .filter(|(i, _)| !(2..=5).contains(i))
-                .map(|(_, f)| f.to_string())
-                .collect::<Vec<_>>()
-                .join(",")
         })
         .collect()
 }

@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{bin, run_err, run_ok, temp_dir};
+use common::{bin, curves_without_clock, files_below, run_err, run_ok, temp_dir};
 use std::path::{Path, PathBuf};
 use std::process::Stdio;
 use std::time::{Duration, Instant};
@@ -25,35 +25,6 @@ const PPO: [&str; 10] = [
 
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()
-}
-
-/// `curves.csv` without its wall-clock columns (wall_s, steps_per_s, rollout_s, optimize_s).
-fn curves_without_clock(dir: &Path) -> Vec<String> {
-    std::fs::read_to_string(dir.join("curves.csv"))
-        .unwrap()
-        .lines()
-        .map(|l| {
-            l.split(',')
-                .enumerate()
-                .filter(|(i, _)| !(2..=5).contains(i))
-                .map(|(_, f)| f)
-                .collect::<Vec<_>>()
-                .join(",")
-        })
-        .collect()
-}
-
-fn files_below(dir: &Path) -> Vec<PathBuf> {
-    let mut out = Vec::new();
-    for e in std::fs::read_dir(dir).unwrap().flatten() {
-        let t = e.file_type().unwrap();
-        if t.is_dir() {
-            out.extend(files_below(&e.path()));
-        } else {
-            out.push(e.path());
-        }
-    }
-    out
 }
 
 fn checkpoint_count(dir: &Path) -> usize {

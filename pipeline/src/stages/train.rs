@@ -84,13 +84,12 @@ pub fn train(
     let timing_resume = req.resume.as_deref().is_some_and(is_timing_run_config);
     let timing = timing_resume || chronocooked_models::timing::zoo::is_timing_model(&req.model);
     // The run folder's lock is held over training and the figure (training takes it again:
-    // a no-op inside this process); taken once the folder is known.
-    let lock_dir = |dir: &std::path::Path| chronocooked_env::fs::FolderLock::acquire(dir);
+    // a no-op inside this process); each trainer takes it once the folder is known.
     let (outcome, _lock) = if timing {
-        let (o, l) = train_timing(req, observer, lock_dir)?;
+        let (o, l) = train_timing(req, observer)?;
         (TrainOutcome::Timing(o), l)
     } else {
-        let (o, l) = train_ppo(req, observer, lock_dir)?;
+        let (o, l) = train_ppo(req, observer)?;
         (TrainOutcome::Ppo(o), l)
     };
     chronocooked_env::fs::remove_temp_files(
@@ -102,9 +101,6 @@ pub fn train(
     Ok((outcome, figure_error))
 }
 
-/// Takes the lock of a run folder.
-type LockDir = fn(&std::path::Path) -> Result<FolderLock, chronocooked_env::fs::LockError>;
-
 fn default_dir(task: &str, model: &str, seed: u64) -> PathBuf {
     PathBuf::from(format!("runs/{task}/{model}/seed{seed}"))
 }
@@ -112,7 +108,6 @@ fn default_dir(task: &str, model: &str, seed: u64) -> PathBuf {
 fn train_ppo(
     req: &TrainRequest,
     observer: &mut dyn TrainObserver,
-    lock_dir: LockDir,
 ) -> Result<(RunSummary, FolderLock), PipelineError> {
     let mut progress = PpoBridge(observer);
     if let Some(dir) = &req.resume {
@@ -124,7 +119,7 @@ fn train_ppo(
         }
         // Not a run folder: said before any lock file is made there.
         let run = chronocooked_training::RunDir::open(dir)?;
-        let lock = lock_dir(dir)?;
+        let lock = FolderLock::acquire(dir)?;
         if let Some(steps) = req.steps {
             run.extend_budget(steps)?;
         }
@@ -140,7 +135,7 @@ fn train_ppo(
         .out
         .clone()
         .unwrap_or_else(|| default_dir(&cfg.task, &model.name(), req.seed));
-    let lock = lock_dir(&dir)?;
+    let lock = FolderLock::acquire(&dir)?;
     Ok((
         run_training(Some(cfg), &dir, &req.command, &mut progress)?,
         lock,
@@ -150,7 +145,6 @@ fn train_ppo(
 fn train_timing(
     req: &TrainRequest,
     observer: &mut dyn TrainObserver,
-    lock_dir: LockDir,
 ) -> Result<(TimingRunSummary, FolderLock), PipelineError> {
     if req.steps.is_some() {
         return Err(PipelineError::Invalid(
@@ -161,7 +155,7 @@ fn train_timing(
         Some(dir) if dir.join(chronocooked_models::run_folder::SUMMARY).is_file() => {
             // A finished run: nothing to train; its learning-curve figure is drawn again (a
             // run whose figure write failed gets it here).
-            let lock = lock_dir(dir)?;
+            let lock = FolderLock::acquire(dir)?;
             let path = dir.join(chronocooked_models::run_folder::SUMMARY);
             let text = std::fs::read(&path).map_err(|e| PipelineError::read(&path, e))?;
             let summary = serde_json::from_slice(&text).map_err(|e| PipelineError::NotA {
@@ -186,7 +180,7 @@ fn train_timing(
     };
     let total = cfg.train.episodes;
     cfg.validate()?;
-    let lock = lock_dir(&dir)?;
+    let lock = FolderLock::acquire(&dir)?;
     let summary = run_timing_training(&cfg, &dir, &req.command, |p| {
         observer.timing_point(p, total)
     })?;
