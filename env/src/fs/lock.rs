@@ -10,8 +10,7 @@
 //! [`ensure_not_being_written`] to refuse a folder another process is still writing.
 //!
 //! A process may take the lock of a folder it already holds (a sweep job's stages inside
-//! the job's folder): the inner guard is a no-op. A sweep hands its own lock to its worker
-//! processes through the environment variable [`INHERITED_ENV`].
+//! the job's folder): the inner guard is a no-op.
 
 use serde::{Deserialize, Serialize};
 use std::fs::{File, OpenOptions};
@@ -23,15 +22,11 @@ use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
 /// Name of the lock file in a locked folder.
 pub const LOCK_FILE: &str = ".chronocooked.lock";
 
-/// Environment variable through which a process hands the folders it holds to the child
-/// processes it starts for them (paths joined by the platform's path-list separator).
-pub const INHERITED_ENV: &str = "CHRONOCOOKED_HELD_LOCKS";
-
 /// Levels of sub-folders below a locked output folder in which [`FolderLock::acquire`]
 /// removes temporary files (1: `eval/figures/`, `run/checkpoints/`).
 pub const CLEAN_DEPTH: usize = 1;
 
-/// Folders this process holds (canonical paths), including those inherited from a parent.
+/// Folders this process holds (canonical paths).
 static HELD: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
 
 /// Who holds a folder (the content of its lock file).
@@ -200,13 +195,6 @@ impl FolderLock {
     pub fn dir(&self) -> &Path {
         &self.dir
     }
-
-    /// The value of [`INHERITED_ENV`] that hands every folder this process holds to a
-    /// child process.
-    pub fn inherited_value() -> std::ffi::OsString {
-        let held = HELD.lock().map(|h| h.clone()).unwrap_or_default();
-        std::env::join_paths(held).unwrap_or_default()
-    }
 }
 
 impl Drop for FolderLock {
@@ -263,19 +251,9 @@ fn remove_temp_files_below(dir: &Path, depth: usize) {
     }
 }
 
-/// Whether `dir` (canonical) is held by this process, itself or through a parent that
-/// handed it down ([`INHERITED_ENV`]).
+/// Whether `dir` (canonical) is held by this process.
 fn held_by_this_process(dir: &Path) -> bool {
-    let Ok(mut held) = HELD.lock() else {
-        return false;
-    };
-    static INHERITED: std::sync::Once = std::sync::Once::new();
-    INHERITED.call_once(|| {
-        if let Some(v) = std::env::var_os(INHERITED_ENV) {
-            held.extend(std::env::split_paths(&v).filter(|p| p.is_absolute()));
-        }
-    });
-    held.iter().any(|d| d == dir)
+    HELD.lock().is_ok_and(|held| held.iter().any(|d| d == dir))
 }
 
 fn hold(dir: PathBuf) {
