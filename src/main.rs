@@ -3,7 +3,8 @@
 mod cmd;
 
 use cmd::{
-    adapt, bench, demo, env, eval, export, mechanisms, paper, record, report, sweep, train, zoo,
+    adapt, bench, demo, env, eval, export, fingerprint, mechanisms, paper, record, report, sweep,
+    train, zoo,
 };
 
 use clap::{Parser, Subcommand};
@@ -55,6 +56,10 @@ enum Command {
     /// neural signatures and, per trained agent, the distance to every timing mechanism and
     /// the nearest one (bootstrap over seeds).
     Mechanisms(mechanisms::MechanismsArgs),
+    /// Which timing mechanism does one agent resemble? Its runs (fixed interval TD 6 and
+    /// TD 12, bisection 4-12) play the mechanisms protocol; its signature is placed among
+    /// the committed timing mechanisms, each distance beside that mechanism's own seeds'.
+    Fingerprint(fingerprint::FingerprintArgs),
     /// The paper's study: collect a sweep's compact results, analyse them as the paper does
     /// and compare with the paper's numbers.
     Paper {
@@ -128,6 +133,7 @@ fn main() -> ExitCode {
         Command::Zoo { command } => zoo::run_zoo(command),
         Command::Paper { command } => paper::run(command),
         Command::Mechanisms(args) => mechanisms::run(args),
+        Command::Fingerprint(args) => fingerprint::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

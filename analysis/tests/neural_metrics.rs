@@ -118,6 +118,41 @@ fn time_cells_are_found_and_decoders_recover_time() {
     assert!(decode_time(&noise, Decoder::Ridge, 5, 1.0).mean_abs_error > 4.0);
 }
 
+/// A unit silent on every trial but one (a delay-line cell that fires on a single trial):
+/// in the fold that tests that trial it is constant on the training trials, and must not
+/// turn the read-out of a perfect ramp into nonsense. With a second perfect ramp the error
+/// stays near 0; the read-out also never leaves the window.
+#[test]
+fn a_unit_constant_on_the_training_trials_does_not_break_the_ridge_read_out() {
+    let (trials, time) = (12, 12);
+    let c = cube(trials, time, 3, |k, t, i| match i {
+        0 => t as f64,
+        1 => 0.5 * t as f64 + 3.0,
+        _ => {
+            if k == 7 && t == 4 {
+                250.0
+            } else {
+                0.0
+            }
+        }
+    });
+    let r = decode_time(&c, Decoder::Ridge, 12, 1e-3);
+    // Exact ramps: the only error is trial 7, step 4, where the odd unit is 250 — with the
+    // unit weightless there, the error is that of the ramps alone (≈ 0).
+    assert!(r.mean_abs_error < 0.05, "{}", r.mean_abs_error);
+    // Read-outs are clipped: no bin's error can exceed the window.
+    let bad = cube(
+        trials,
+        time,
+        1,
+        |k, t, _| if k == 3 { 1e6 } else { t as f64 },
+    );
+    let r = decode_time(&bad, Decoder::Ridge, 12, 1e-3);
+    for e in r.error_by_time.iter().filter(|e| e.is_finite()) {
+        assert!(*e <= (time - 1) as f64 + 1e-9, "{e}");
+    }
+}
+
 #[test]
 fn heat_map_and_chart_figures_are_written_and_non_empty() {
     use chronocooked_analysis::report::figures::{Chart, Series, write_chart, write_heatmap};

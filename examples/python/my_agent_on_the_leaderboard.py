@@ -24,28 +24,43 @@ import chronocooked
 
 WAIT, DOWN, UP, RIGHT, LEFT, INTERACT = range(6)
 STEPS = {DOWN: (1, 0), UP: (-1, 0), RIGHT: (0, 1), LEFT: (0, -1)}
-ONION, DELIVERY, OVEN = 3, 4, 5
+ONION, DELIVERY, OVEN, LONG_COUNTER = 3, 4, 5, 8
 
 
 class PacemakerAgent:
     """Observations: reference codes ``uint8 [R, C, 6]`` (ch0 objects, ch1 agent, ch2 onion
-    carried, ch3 soup carried, ch4 oven 0 off / 1 on). Activity: ``float32 [8]``."""
+    carried, ch3 soup carried, ch4 oven 0 off / 1 on / 2 ready — bisection's cue).
+    Activity: ``float32 [1 + time cells]``: the count and Gaussian time cells every 2 counts."""
 
-    def __init__(self, td, rate_sd=0.08, seed=0):
-        self.td, self.rate_sd = td, rate_sd
+    def __init__(self, td=None, rate_sd=0.08, seed=0, criterion=None):
+        """``td``: the fixed interval it checks at (steps); or, for bisection, ``criterion``:
+        the count above which a duration is "long" (takes the soup to the long counter)."""
+        if (td is None) == (criterion is None):
+            raise ValueError("give td (fixed interval) or criterion (bisection)")
+        self.td, self.criterion, self.rate_sd = td, criterion, rate_sd
         self.rng = np.random.default_rng(seed)
-        self.centres = np.arange(0, td + 1, 2, dtype=np.float32)
+        self.centres = np.arange(0, (td or criterion) + 1, 2, dtype=np.float32)
+        self.long = False
 
     def __call__(self, obs, state, episode_start):
         if episode_start:
             self.count, self.rate = 0.0, max(0.5, 1 + self.rate_sd * self.rng.standard_normal())
+            self.long = False
         me = tuple(int(x) for x in np.argwhere(obs[:, :, 1] == 1)[0])
         oven = tuple(int(x) for x in np.argwhere(obs[:, :, 0] == OVEN)[0])
         oven_on = obs[oven][4] > 0
         if obs[:, :, 3].any():
-            action = self.go_and_interact(obs, me, DELIVERY)
+            action = self.go_and_interact(obs, me, LONG_COUNTER if self.long else DELIVERY)
         elif obs[:, :, 2].any():
             action = self.go_and_interact(obs, me, OVEN)
+        elif oven_on and self.criterion is not None:
+            # Bisection: count until the ready cue, then judge the duration and take the soup.
+            ready = obs[oven][4] == 2
+            if not ready:
+                self.count += self.rate
+            self.long = self.count > self.criterion
+            near = self.go_and_interact(obs, me, OVEN)
+            action = near if near != INTERACT or ready else WAIT
         elif oven_on:
             self.count += self.rate  # one noisy pulse per step while the oven is on
             near = self.go_and_interact(obs, me, OVEN)

@@ -6,6 +6,9 @@
 * :func:`evaluate` runs the lab's reference evaluation protocol with any Python policy and
   writes the same evaluation folder as ``chronocooked eval`` (a leaderboard row for
   ``chronocooked report --eval DIR``).
+* :func:`fingerprint` runs the lab's mechanisms protocol with your agent and names the
+  timing mechanism it resembles; :func:`summarize` gives the neural summary of any
+  recording;
 * :func:`load_eval` / :func:`load_activity` read evaluation folders and activity exports;
   :func:`to_nwb` writes a model run as an NWB file (needs ``pynwb``).
 * :mod:`chronocooked.zoo` holds the repository's trained agents (``zoo.load("lstm125/
@@ -18,7 +21,23 @@ from ._core import EVENT_FLAGS, PolicyError, __version__, reference_conditions
 from .envs import ChronoEnv, ChronoVectorEnv, overrides, register_envs, task_ids
 from . import zoo
 from .evaluation import evaluate, load_activity, load_eval
+from .fingerprint import CONDITIONS, fingerprint, summarize
 from .zoo import report
+
+
+def probability_of_improvement(x, y):
+    """``P(X > Y)`` for a random run of ``x`` and one of ``y`` (sequences of numbers), ties
+    counting one half: rliable's probability of improvement for one task."""
+    return _core.probability_of_improvement([float(v) for v in x], [float(v) for v in y])
+
+
+def iqm(values, strata=None, level=0.95, resamples=2000, seed=0):
+    """The interquartile mean of ``values`` and its stratified percentile bootstrap interval:
+    ``(iqm, (lo, hi))`` (``None`` for fewer than 2 values); ``strata`` labels each value's
+    stratum (e.g. its task setting), resampled within."""
+    return _core.iqm([float(v) for v in values],
+                     None if strata is None else [str(s) for s in strata],
+                     float(level), int(resamples), int(seed))
 
 
 def tasks():
@@ -37,18 +56,23 @@ def to_nwb(activity, eval_dir, path, **kwargs):
 register_envs()
 
 __all__ = [
+    "CONDITIONS",
     "ChronoEnv",
     "ChronoVectorEnv",
     "EVENT_FLAGS",
     "PolicyError",
     "__version__",
     "evaluate",
+    "fingerprint",
     "load_activity",
     "load_eval",
     "overrides",
+    "iqm",
+    "probability_of_improvement",
     "reference_conditions",
     "register_envs",
     "report",
+    "summarize",
     "task_ids",
     "tasks",
     "to_nwb",

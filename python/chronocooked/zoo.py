@@ -41,14 +41,17 @@ def provenance(policy):
     return json.loads(policy.provenance_json)
 
 
-def report(evals, out, baselines=True):
+def report(evals, out, baselines=True, improvement=None):
     """Writes the leaderboard (``report.html``, ``report.md``, ``report.csv``) of the
     evaluation folders ``evals`` (a path or a list of paths, from :func:`chronocooked.evaluate`
     or ``chronocooked eval``) into ``out``, with committed baselines: ``True`` (default) the
     repository's ``results/paper-core`` (found from the current folder upwards, or
     ``$CHRONOCOOKED_BASELINES``), a path or list of compact study results folders, or
-    ``False``/``None`` for none. Baseline rows are labelled ``model (study)``. Returns the
-    written paths."""
+    ``False``/``None`` for none. Baseline rows are labelled ``model (study)``. Multi-run
+    cells show mean ± SD and the interquartile mean with its stratified bootstrap 95%
+    interval (CSV columns ``<metric>_iqm``, ``_iqm_lo``, ``_iqm_hi``). ``improvement``: a
+    column (e.g. ``"fi_success"``) whose probability of improvement between every two rows
+    is also written (``improvement.csv`` / ``.md``). Returns the written paths."""
     if isinstance(evals, (str, os.PathLike)):
         evals = [evals]
     if baselines is True:
@@ -59,5 +62,5 @@ def report(evals, out, baselines=True):
         extra, default = [str(baselines)], False
     else:
         extra, default = [str(b) for b in baselines], False
-    files = _core.report([str(e) for e in evals], str(out), extra, default)
+    files = _core.report([str(e) for e in evals], str(out), extra, default, improvement)
     return [Path(f) for f in files]

@@ -1,177 +1,17 @@
 //! The lab's evaluation protocol with a Python policy.
 //!
-//! The policy is a callable `(obs, state, episode_start) -> (action, state)` or
-//! `-> (action, state, activity)`; `activity` (a 1-D float vector of the same length at every
-//! step) is recorded as the model's population `units`. The protocol, seeds and output
-//! folder are those of `chronocooked eval` (`run_protocol_recorded`, `write_eval_folder`).
+//! The policy is a [`PyAgent`] (see [`crate::agent`] for its contract). The protocol,
+//! seeds and output folder are those of `chronocooked eval` (`run_protocol_recorded`,
+//! `write_eval_folder`).
 
+use crate::agent::PyAgent;
 use crate::errors::{env_err, runtime_err, value_err};
 use chronocooked_analysis::evaluation::folder::{EvalInfo, write_eval_folder};
 use chronocooked_analysis::{Mode, run_protocol_recorded};
-use chronocooked_env::{Action, ChronoEnv, OneHotEncoder};
-use chronocooked_models::Agent;
-use chronocooked_models::activity::{ActivityMeta, StepRecorder, TrialRecorder};
-use numpy::{IntoPyArray, PyArray1, PyArrayMethods, PyReadonlyArray1};
+use chronocooked_models::activity::{ActivityMeta, TrialRecorder};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList, PyTuple};
+use pyo3::types::{PyDict, PyList};
 use std::path::PathBuf;
-
-/// Observation geometry of one layout: codes length, codes shape, one-hot encoder.
-struct Geometry {
-    len: usize,
-    shape: [usize; 3],
-    encoder: OneHotEncoder,
-}
-
-/// A Python callable as a lab [`Agent`]. The first Python error stops the policy (later
-/// steps wait) and is raised when the protocol returns.
-struct PyAgent<'py> {
-    py: Python<'py>,
-    policy: Bound<'py, PyAny>,
-    name: String,
-    onehot: bool,
-    geometries: Vec<Geometry>,
-    state: Bound<'py, PyAny>,
-    episode_start: bool,
-    activity: Option<Vec<f32>>,
-    units: Option<usize>,
-    /// Episodes begun (1-based index of the current one) and steps of the current one.
-    episode: usize,
-    step: usize,
-    /// The first failure: (episode, step, error).
-    error: Option<(usize, usize, PyErr)>,
-}
-
-impl<'py> PyAgent<'py> {
-    fn obs_array(&self, obs: &[u8]) -> PyResult<Bound<'py, PyAny>> {
-        let g = self
-            .geometries
-            .iter()
-            .find(|g| g.len == obs.len())
-            .ok_or_else(|| runtime_err(format!("no layout with {} obs codes", obs.len())))?;
-        if self.onehot {
-            let mut out = vec![0f32; g.encoder.len()];
-            g.encoder.encode(obs, &mut out);
-            Ok(out
-                .into_pyarray(self.py)
-                .reshape(g.encoder.shape())?
-                .into_any())
-        } else {
-            Ok(PyArray1::from_slice(self.py, obs)
-                .reshape(g.shape)?
-                .into_any())
-        }
-    }
-
-    fn read_activity(&mut self, a: &Bound<'py, PyAny>) -> PyResult<()> {
-        if a.is_none() {
-            self.activity = None;
-            return Ok(());
-        }
-        let v: Vec<f32> = if let Ok(x) = a.extract::<PyReadonlyArray1<'_, f32>>() {
-            x.as_slice()?.to_vec()
-        } else if let Ok(x) = a.extract::<PyReadonlyArray1<'_, f64>>() {
-            x.as_slice()?.iter().map(|&v| v as f32).collect()
-        } else {
-            let np = self.py.import("numpy")?;
-            let flat = np
-                .call_method1("asarray", (a, "float32"))?
-                .call_method0("ravel")?;
-            flat.extract::<PyReadonlyArray1<'_, f32>>()?
-                .as_slice()?
-                .to_vec()
-        };
-        if let Some(i) = v.iter().position(|x| !x.is_finite()) {
-            return Err(value_err(format!(
-                "policy activity holds {} at unit {i} (allowed: finite numbers)",
-                v[i]
-            )));
-        }
-        match self.units {
-            Some(n) if n != v.len() => {
-                return Err(value_err(format!(
-                    "policy activity changed size: {} units, earlier {n} (allowed: the same length at every step)",
-                    v.len()
-                )));
-            }
-            None => self.units = Some(v.len()),
-            _ => {}
-        }
-        self.activity = Some(v);
-        Ok(())
-    }
-
-    fn call(&mut self, obs: &[u8]) -> PyResult<Action> {
-        let o = self.obs_array(obs)?;
-        let out = self
-            .policy
-            .call1((o, self.state.clone(), self.episode_start))?;
-        self.episode_start = false;
-        let tuple = out.cast::<PyTuple>().map_err(|_| {
-            value_err(
-                "the policy must return (action, state) or (action, state, activity), got a non-tuple",
-            )
-        })?;
-        if !(2..=3).contains(&tuple.len()) {
-            return Err(value_err(format!(
-                "the policy returned {} values (allowed: (action, state) or (action, state, activity))",
-                tuple.len()
-            )));
-        }
-        let action = tuple.get_item(0)?;
-        let code: i64 = action
-            .extract::<i64>()
-            .or_else(|_| action.call_method0("item")?.extract::<i64>())
-            .map_err(|_| {
-                value_err(format!(
-                    "the policy's action must be an integer in 0..=5 (or a one-element integer array), got {}",
-                    action.repr().map_or_else(|_| "?".into(), |r| r.to_string())
-                ))
-            })?;
-        self.state = tuple.get_item(1)?;
-        if tuple.len() == 3 {
-            self.read_activity(&tuple.get_item(2)?)?;
-        } else if self.units.is_some() {
-            return Err(value_err(
-                "the policy stopped returning activity (allowed: activity at every step or never)",
-            ));
-        }
-        Action::from_code(code).map_err(env_err)
-    }
-}
-
-impl Agent for PyAgent<'_> {
-    fn name(&self) -> String {
-        self.name.clone()
-    }
-
-    fn begin_episode(&mut self, _obs: &[u8], _seed: u64) {
-        self.episode += 1;
-        self.step = 0;
-        self.episode_start = true;
-        self.state = self.py.None().into_bound(self.py);
-    }
-
-    fn act(&mut self, obs: &[u8]) -> Action {
-        if self.error.is_some() {
-            return Action::Wait;
-        }
-        self.step += 1;
-        match self.call(obs) {
-            Ok(a) => a,
-            Err(e) => {
-                self.error = Some((self.episode, self.step, e));
-                Action::Wait
-            }
-        }
-    }
-
-    fn record(&self, rec: &mut StepRecorder) {
-        if let Some(a) = &self.activity {
-            rec.record("units", a);
-        }
-    }
-}
 
 /// Runs the reference protocol of `task` (or `stochastic` episodes per condition) with a
 /// Python `policy` and writes the evaluation folder `out` (`records.jsonl`, `eval.json`,
@@ -191,11 +31,6 @@ pub fn evaluate<'py>(
     seed: u64,
     name: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
-    if !policy.is_callable() {
-        return Err(value_err(
-            "`policy` must be callable: (obs, state, episode_start) -> (action, state[, activity])",
-        ));
-    }
     let onehot = match crate::env::ObsMode::parse(obs_mode)? {
         crate::env::ObsMode::Codes => false,
         crate::env::ObsMode::OneHot => true,
@@ -222,47 +57,14 @@ pub fn evaluate<'py>(
     }
     let conditions =
         chronocooked_analysis::reference_conditions(task, &overrides).map_err(env_err)?;
-    let mut geometries: Vec<Geometry> = Vec::new();
-    let mut seen: Vec<(&str, &[String])> = Vec::new();
+    let mut tasks: Vec<(String, Vec<String>)> = Vec::new();
     for c in &conditions {
         // One env per distinct (task, overrides): conditions mostly differ only in TD.
-        if seen.contains(&(c.task.as_str(), c.env.as_slice())) {
-            continue;
-        }
-        seen.push((c.task.as_str(), c.env.as_slice()));
-        let env = ChronoEnv::from_id(&c.task, &c.env).map_err(env_err)?;
-        let shape = env.codes_space().shape;
-        let shape = [shape[0], shape[1], shape[2]];
-        let len = shape.iter().product();
-        match geometries.iter().find(|g| g.len == len) {
-            Some(g) if g.shape != shape => {
-                return Err(runtime_err(format!(
-                    "conditions of {task} mix layouts {:?} and {shape:?} of equal size",
-                    g.shape
-                )));
-            }
-            Some(_) => {}
-            None => geometries.push(Geometry {
-                len,
-                shape,
-                encoder: env.onehot_encoder().clone(),
-            }),
+        if !tasks.iter().any(|(t, e)| *t == c.task && *e == c.env) {
+            tasks.push((c.task.clone(), c.env.clone()));
         }
     }
-    let mut agent = PyAgent {
-        py,
-        policy,
-        name: name.to_string(),
-        onehot,
-        geometries,
-        state: py.None().into_bound(py),
-        episode_start: true,
-        activity: None,
-        units: None,
-        episode: 0,
-        step: 0,
-        error: None,
-    };
+    let mut agent = PyAgent::new(py, policy, name, onehot, &tasks, 1)?;
     let meta = ActivityMeta::new(name, task, &overrides, seed);
     let mut recorder = TrialRecorder::new(meta);
     let records = run_protocol_recorded(&mut agent, &conditions, mode, seed, Some(&mut recorder))
@@ -303,7 +105,7 @@ pub fn evaluate<'py>(
 /// A [`PolicyError`](crate::errors::PolicyError) saying where the policy failed (episode
 /// and step, and the episode's task and TD from the protocol's records), with the
 /// original error as its `__cause__`.
-fn policy_error(
+pub(crate) fn policy_error(
     py: Python<'_>,
     records: &[chronocooked_analysis::EvalRecord],
     episode: usize,

@@ -4,7 +4,10 @@
 //!   ANSI and RGB rendering;
 //! * [`vector`] — N envs stepped in Rust (`VecEnv`), batched numpy outputs;
 //! * [`info`] — the Rust `Info` as a dict of plain Python values, or a dict of arrays;
+//! * [`agent`] — a Python policy as a lab agent (actions, state, named activity);
 //! * [`evaluate`] — the lab's evaluation protocol with a Python policy;
+//! * [`fingerprint`] — the mechanisms protocol with a Python agent's policies, its
+//!   placement among the timing mechanisms, and the neural summary of any recording;
 //! * [`registry`] — the task registry and parameter documentation;
 //! * [`zoo`] — the zoo of trained agents (`ZooPolicy`) and the leaderboard (`report`);
 //! * [`errors`] — Rust errors as Python exceptions (`ValueError` for bad input).
@@ -13,9 +16,11 @@
 
 #![warn(missing_docs)]
 
+mod agent;
 mod env;
 mod errors;
 mod evaluate;
+mod fingerprint;
 mod info;
 mod registry;
 mod vector;
@@ -39,10 +44,14 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(registry::resolve, m)?)?;
     m.add_function(wrap_pyfunction!(evaluate::evaluate, m)?)?;
     m.add("PolicyError", m.py().get_type::<errors::PolicyError>())?;
+    m.add_function(wrap_pyfunction!(fingerprint::fingerprint, m)?)?;
+    m.add_function(wrap_pyfunction!(fingerprint::summarize, m)?)?;
     m.add_function(wrap_pyfunction!(evaluate::reference_conditions, m)?)?;
     m.add_class::<zoo::ZooPolicy>()?;
     m.add_function(wrap_pyfunction!(zoo::zoo_agents, m)?)?;
     m.add_function(wrap_pyfunction!(zoo::report, m)?)?;
+    m.add_function(wrap_pyfunction!(zoo::probability_of_improvement, m)?)?;
+    m.add_function(wrap_pyfunction!(zoo::iqm, m)?)?;
     m.add_function(wrap_pyfunction!(_panic_for_tests, m)?)?;
     m.add("EVENT_FLAGS", info::event_flags(m.py())?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

@@ -105,14 +105,16 @@ impl ZooPolicy {
 
 /// Writes the leaderboard of evaluation folders `evals` into `out` (report.html, .md,
 /// .csv), with the committed baselines `baselines` (compact study results folders) and,
-/// when `default_baselines`, the repository's `results/paper-core`. Returns the files.
+/// when `default_baselines`, the repository's `results/paper-core`; with `improvement`, also
+/// the probability of improvement between every two rows on that column. Returns the files.
 #[pyfunction]
-#[pyo3(signature = (evals, out, baselines = Vec::new(), default_baselines = true))]
+#[pyo3(signature = (evals, out, baselines = Vec::new(), default_baselines = true, improvement = None))]
 pub fn report(
     evals: Vec<PathBuf>,
     out: PathBuf,
     baselines: Vec<PathBuf>,
     default_baselines: bool,
+    improvement: Option<String>,
 ) -> PyResult<Vec<PathBuf>> {
     use chronocooked_analysis::report::baselines::{load_baseline_rows, locate_default_baselines};
     let mut rows = chronocooked_analysis::report::load_rows(&evals).map_err(value_err)?;
@@ -131,5 +133,50 @@ pub fn report(
             "nothing to report: no evaluation folder and no baselines",
         ));
     }
-    chronocooked_analysis::report::write_report(&rows, &out).map_err(runtime_err)
+    let mut files =
+        chronocooked_analysis::report::write_report(&rows, &out).map_err(runtime_err)?;
+    if let Some(metric) = improvement {
+        files.extend(
+            chronocooked_analysis::report::write_improvement(&rows, &metric, &out)
+                .map_err(value_err)?,
+        );
+    }
+    Ok(files)
+}
+
+/// `P(X > Y)` for a random value of `x` and one of `y`, ties counting one half (NaN values
+/// left out; NaN when either is empty).
+#[pyfunction]
+pub fn probability_of_improvement(x: Vec<f64>, y: Vec<f64>) -> f64 {
+    chronocooked_analysis::stats::robust::probability_of_improvement(&x, &y)
+}
+
+/// The interquartile mean of `values` and its percentile bootstrap interval at `level`
+/// (`strata`: one label per value, resampled within; default one stratum), `resamples`
+/// resamples seeded by `seed`: `(iqm, (lo, hi) or None)`.
+#[pyfunction]
+#[pyo3(signature = (values, strata = None, level = 0.95, resamples = 2000, seed = 0))]
+pub fn iqm(
+    values: Vec<f64>,
+    strata: Option<Vec<String>>,
+    level: f64,
+    resamples: usize,
+    seed: u64,
+) -> PyResult<(f64, Option<(f64, f64)>)> {
+    use chronocooked_analysis::stats::robust;
+    let strata = strata.unwrap_or_else(|| vec![String::new(); values.len()]);
+    if strata.len() != values.len() {
+        return Err(value_err(format!(
+            "`strata` has {} labels for {} values (allowed: one label per value)",
+            strata.len(),
+            values.len()
+        )));
+    }
+    if !(level > 0.0 && level < 1.0) || !(1..=1_000_000).contains(&resamples) {
+        return Err(value_err(format!(
+            "invalid `level` {level} or `resamples` {resamples} (allowed: 0 < level < 1, 1..=1000000 resamples)"
+        )));
+    }
+    let ci = robust::stratified_bootstrap_ci(&values, &strata, robust::iqm, level, resamples, seed);
+    Ok((robust::iqm(&values), ci))
 }

@@ -45,3 +45,8 @@ def extension_cases():
 
     with open(ROOT / "env" / "tests" / "golden" / "extension_traces.jsonl") as f:
         return [json.loads(line) for line in f if line.strip()]
+
+
+def pytest_configure(config):
+    config.addinivalue_line(
+        "markers", "sb3: needs stable-baselines3 and sb3-contrib (skipped where absent)")

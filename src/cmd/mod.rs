@@ -12,6 +12,8 @@
 //! * [`sweep`] — `sweep` and the hidden `sweep-job`;
 //! * [`paper`] — `paper collect | analyse`: the paper's study;
 //! * [`mechanisms`] — `mechanisms`: fingerprints and each agent's nearest timing mechanism;
+//! * [`fingerprint`] — `fingerprint`: one agent's runs through the mechanisms protocol,
+//!   placed among the committed mechanisms;
 //! * [`zoo`] — `zoo list | show | add`; [`zoo_agents`] — the trained agents of the zoo
 //!   (`--run zoo:<model>/<task>`);
 //! * [`bench`] — `bench env | train | timing`.
@@ -22,6 +24,7 @@ pub mod demo;
 pub mod env;
 pub mod eval;
 pub mod export;
+pub mod fingerprint;
 pub mod mechanisms;
 pub mod paper;
 pub mod record;

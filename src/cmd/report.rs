@@ -27,6 +27,11 @@ pub struct ReportArgs {
     /// Output folder (report.html, report.md, report.csv, psychometric_grid.svg/png).
     #[arg(long, default_value = "report")]
     pub out: PathBuf,
+    /// Also write the probability of improvement between every two rows on this column
+    /// (`improvement.csv` / `.md`: P(row > column) over pairs of their runs), e.g.
+    /// `fi_success`.
+    #[arg(long, value_name = "METRIC")]
+    pub improvement: Option<String>,
 }
 
 /// Runs `report`.
@@ -73,9 +78,15 @@ pub fn run(args: ReportArgs) -> Result<()> {
             );
         }
     }
-    for f in
-        chronocooked_analysis::report::write_report(&rows, &args.out).map_err(anyhow::Error::msg)?
-    {
+    let mut files = chronocooked_analysis::report::write_report(&rows, &args.out)
+        .map_err(anyhow::Error::msg)?;
+    if let Some(metric) = &args.improvement {
+        files.extend(
+            chronocooked_analysis::report::write_improvement(&rows, metric, &args.out)
+                .map_err(anyhow::Error::msg)?,
+        );
+    }
+    for f in files {
         println!("{}", f.display());
     }
     Ok(())

@@ -9,11 +9,12 @@
 //!   distances to its own (rebuilt) fingerprint: how far an unseen seed of that mechanism
 //!   lies from it. It is the scale of "near".
 //! * An **agent** is *identified* with its nearest mechanism only when its distance (on the
-//!   same scale: fingerprints and SDs from all mechanism signatures) lies within that
+//!   same scale: fingerprints, SDs and feature weights from all mechanism signatures) lies
+//!   within that
 //!   mechanism's self-distance range (at most its largest held-out distance); otherwise it
 //!   is "not identified", however near it is relative to the other mechanisms.
 
-use super::{MECHANISMS, Signature, distance, feature_sds, mean_features};
+use super::{MECHANISMS, Scale, Signature, distance, mean_features};
 use std::collections::BTreeMap;
 
 /// One held-out signature of a mechanism and what it was named.
@@ -106,12 +107,12 @@ fn fingerprints<'a>(sigs: &[&'a Signature]) -> BTreeMap<&'a str, BTreeMap<&'stat
 fn nearest(
     x: &BTreeMap<&'static str, f64>,
     prints: &BTreeMap<&str, BTreeMap<&'static str, f64>>,
-    sds: &BTreeMap<&'static str, f64>,
+    scale: &Scale,
     own: &str,
 ) -> (Option<(String, f64)>, f64, f64) {
     let d: Vec<(&str, f64)> = prints
         .iter()
-        .map(|(m, p)| (*m, distance(x, p, sds)))
+        .map(|(m, p)| (*m, distance(x, p, scale)))
         .filter(|(_, d)| d.is_finite())
         .collect();
     let best = d
@@ -146,9 +147,9 @@ pub fn identify(sigs: &[Signature]) -> Identification {
         if !rest.iter().any(|s| s.model == h.model) {
             continue;
         }
-        let sds = feature_sds(rest.iter().copied());
+        let scale = Scale::of(&rest, &MECHANISMS);
         let x = mean_features(&[*h]);
-        let (best, own, other) = nearest(&x, &fingerprints(&rest), &sds, &h.model);
+        let (best, own, other) = nearest(&x, &fingerprints(&rest), &scale, &h.model);
         held_out.push(HeldOut {
             mechanism: h.model.clone(),
             seed: h.seed,
@@ -167,7 +168,7 @@ pub fn identify(sigs: &[Signature]) -> Identification {
         held_out,
         agents: Vec::new(),
     };
-    let sds = feature_sds(mechs.iter().copied());
+    let scale = Scale::of(&mechs, &MECHANISMS);
     let prints = fingerprints(&mechs);
     let mut agents: BTreeMap<&str, Vec<&Signature>> = BTreeMap::new();
     for s in sigs
@@ -177,7 +178,7 @@ pub fn identify(sigs: &[Signature]) -> Identification {
         agents.entry(s.model.as_str()).or_default().push(s);
     }
     for (a, seeds) in agents {
-        let (best, _, _) = nearest(&mean_features(&seeds), &prints, &sds, "");
+        let (best, _, _) = nearest(&mean_features(&seeds), &prints, &scale, "");
         if let Some((m, d)) = best {
             let identified = id.self_range(&m).is_some_and(|(_, hi)| d <= hi);
             id.agents.push(AgentVerdict {

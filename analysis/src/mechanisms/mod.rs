@@ -25,11 +25,17 @@
 //!   unit-weighted mean over the populations.
 //!
 //! Features are standardised by their SD over every signature, a model's fingerprint is the
-//! mean of its seeds' signatures, and the distance between two fingerprints is the root mean
-//! square of their standardised differences over the features both have. Each agent's
+//! mean of its seeds' signatures, and the distance between two fingerprints is the weighted
+//! root mean square of their standardised differences over the features both have. A
+//! feature's weight is how well it tells the mechanisms apart, `F / (1 + F)` with `F`
+//! Fisher's ratio of the variance between the mechanisms' means to the pooled variance of
+//! their seeds: a feature every mechanism shares (the Weber fraction, ≈ 0.12 for all)
+//! hardly counts, so an agent's Weber fraction does not decide which mechanism it is
+//! nearest; the unit categories count fully. Each agent's
 //! nearest mechanism is bootstrapped over seeds (seeds of every model resampled with
 //! replacement): the fraction of resamples in which each mechanism is the nearest.
 
+pub mod fingerprint;
 mod identify;
 mod read;
 mod tables;
@@ -118,21 +124,97 @@ fn mean_features(sigs: &[&Signature]) -> BTreeMap<&'static str, f64> {
     per_feature(sigs.iter().copied(), |s| (s.n > 0).then_some(s.mean))
 }
 
-/// RMS of the standardised differences over the features both fingerprints have (NaN when
-/// they share none).
+/// How much each feature tells the mechanisms apart: with `F` the variance of the
+/// mechanisms' means over the pooled variance of their seeds (Fisher's discriminant
+/// ratio), the weight `F / (1 + F)` — near 1 for a feature the mechanisms differ in far
+/// beyond their seed-to-seed spread (the unit categories), near 0 for one they share (the
+/// Weber fraction: every mechanism ≈ 0.12). Features seen in fewer than two mechanisms are
+/// left out.
+fn feature_weights(mechs: &[&Signature]) -> BTreeMap<&'static str, f64> {
+    let mut by_model: BTreeMap<&str, Vec<&Signature>> = BTreeMap::new();
+    for s in mechs {
+        by_model.entry(s.model.as_str()).or_default().push(s);
+    }
+    let mut out = BTreeMap::new();
+    for f in FEATURES {
+        let groups: Vec<Vec<f64>> = by_model
+            .values()
+            .map(|v| {
+                v.iter()
+                    .filter_map(|s| s.features.get(f).copied())
+                    .collect::<Vec<f64>>()
+            })
+            .filter(|v| !v.is_empty())
+            .collect();
+        if groups.len() < 2 {
+            continue;
+        }
+        let means: Vec<f64> = groups
+            .iter()
+            .map(|g| g.iter().sum::<f64>() / g.len() as f64)
+            .collect();
+        let between = crate::stats::Spread::of(means.iter().copied()).sd.powi(2);
+        let (mut ss, mut dof) = (0.0, 0usize);
+        for (g, m) in groups.iter().zip(&means) {
+            ss += g.iter().map(|x| (x - m).powi(2)).sum::<f64>();
+            dof += g.len() - 1;
+        }
+        let within = if dof > 0 { ss / dof as f64 } else { f64::NAN };
+        let weight = if between.is_nan() || between <= 0.0 {
+            0.0
+        } else if within.is_nan() || within <= 0.0 {
+            1.0
+        } else {
+            let ratio = between / within;
+            ratio / (1.0 + ratio)
+        };
+        out.insert(f, weight);
+    }
+    out
+}
+
+/// The scale of a distance: each feature's SD and its weight.
+#[derive(Debug, Clone, PartialEq)]
+struct Scale {
+    sds: BTreeMap<&'static str, f64>,
+    weights: BTreeMap<&'static str, f64>,
+}
+
+impl Scale {
+    /// SDs over `sigs`, weights from the signatures of the `mechanisms` among them.
+    fn of(sigs: &[&Signature], mechanisms: &[&str]) -> Self {
+        let mechs: Vec<&Signature> = sigs
+            .iter()
+            .copied()
+            .filter(|s| mechanisms.contains(&s.model.as_str()))
+            .collect();
+        Scale {
+            sds: feature_sds(sigs.iter().copied()),
+            weights: feature_weights(&mechs),
+        }
+    }
+}
+
+/// The weighted RMS of the standardised differences over the features both fingerprints
+/// have: `√(Σ w_f z_f² / Σ w_f)`, `z_f` the difference in SDs of feature `f` (NaN when they
+/// share no weighted feature).
 fn distance(
     a: &BTreeMap<&'static str, f64>,
     b: &BTreeMap<&'static str, f64>,
-    sds: &BTreeMap<&'static str, f64>,
+    scale: &Scale,
 ) -> f64 {
-    let d: Vec<f64> = sds
-        .iter()
-        .filter_map(|(f, sd)| Some(((a.get(f)? - b.get(f)?) / sd).powi(2)))
-        .collect();
-    if d.is_empty() {
-        f64::NAN
+    let (mut sum, mut weight) = (0.0, 0.0);
+    for (f, sd) in &scale.sds {
+        let (Some(x), Some(y), Some(w)) = (a.get(f), b.get(f), scale.weights.get(f)) else {
+            continue;
+        };
+        sum += w * ((x - y) / sd).powi(2);
+        weight += w;
+    }
+    if weight > 0.0 {
+        (sum / weight).sqrt()
     } else {
-        (d.iter().sum::<f64>() / d.len() as f64).sqrt()
+        f64::NAN
     }
 }
 
@@ -160,7 +242,7 @@ pub fn compare(
     resamples: usize,
     seed: u64,
 ) -> Vec<Comparison> {
-    let sds = feature_sds(sigs.iter());
+    let scale = Scale::of(&sigs.iter().collect::<Vec<_>>(), mechanisms);
     let mut by_model: BTreeMap<&str, Vec<&Signature>> = BTreeMap::new();
     for s in sigs {
         by_model.entry(s.model.as_str()).or_default().push(s);
@@ -192,7 +274,7 @@ pub fn compare(
             let am = draw(a);
             let nearest = mech_means
                 .iter()
-                .map(|(m, mm)| (*m, distance(&am, mm, &sds)))
+                .map(|(m, mm)| (*m, distance(&am, mm, &scale)))
                 .filter(|(_, d)| d.is_finite())
                 .min_by(|x, y| x.1.total_cmp(&y.1));
             if let Some((m, _)) = nearest {
@@ -207,7 +289,7 @@ pub fn compare(
             out.push(Comparison {
                 agent: a.to_string(),
                 mechanism: m.to_string(),
-                distance: distance(&am, &mean_of(m), &sds),
+                distance: distance(&am, &mean_of(m), &scale),
                 nearest_fraction: wins.get(&(a, m)).copied().unwrap_or(0) as f64
                     / resamples.max(1) as f64,
                 seeds: (by_model[a].len(), by_model[m].len()),
@@ -278,13 +360,41 @@ mod tests {
     }
 
     #[test]
-    fn distance_is_the_rms_of_standardised_differences_over_shared_features() {
+    fn distance_is_the_weighted_rms_of_standardised_differences_over_shared_features() {
         let a: BTreeMap<&str, f64> = [("wf", 0.1), ("foc_cv", 0.2)].into_iter().collect();
-        let b: BTreeMap<&str, f64> = [("wf", 0.3)].into_iter().collect();
-        let sds: BTreeMap<&str, f64> = [("wf", 0.1), ("foc_cv", 0.05)].into_iter().collect();
-        // Only `wf` is shared: |0.1 − 0.3| / 0.1 = 2.
-        assert!((distance(&a, &b, &sds) - 2.0).abs() < 1e-12);
+        let b: BTreeMap<&str, f64> = [("wf", 0.3), ("foc_cv", 0.1)].into_iter().collect();
+        let scale = Scale {
+            sds: [("wf", 0.1), ("foc_cv", 0.05)].into_iter().collect(),
+            weights: [("wf", 0.75), ("foc_cv", 0.25)].into_iter().collect(),
+        };
+        // z = 2 (wf) and 2 (foc_cv): √((0.75·4 + 0.25·4) / 1) = 2.
+        assert!((distance(&a, &b, &scale) - 2.0).abs() < 1e-12);
+        // Only `wf` shared: |0.1 − 0.3| / 0.1 = 2 whatever its weight.
+        let c: BTreeMap<&str, f64> = [("wf", 0.3)].into_iter().collect();
+        assert!((distance(&a, &c, &scale) - 2.0).abs() < 1e-12);
+        // z = 4 on a weight-0.25 feature, 0 on a weight-0.75 one: √(0.25·16) = 2.
+        let d: BTreeMap<&str, f64> = [("wf", 0.1), ("foc_cv", 0.0)].into_iter().collect();
+        assert!((distance(&a, &d, &scale) - 2.0).abs() < 1e-12);
         let none: BTreeMap<&str, f64> = BTreeMap::new();
-        assert!(distance(&a, &none, &sds).is_nan());
+        assert!(distance(&a, &none, &scale).is_nan());
+    }
+
+    /// Fisher weights by hand: two mechanisms, two seeds each. Feature `wf`: means 0.1 and
+    /// 0.3 (between variance 0.02), seeds ±0.01 around them (within variance 0.0002):
+    /// F = 100, weight 100/101. Feature `foc_cv`: means 0.2 and 0.2: weight 0. Feature
+    /// `pi_cv`: 0.1/0.1 and 0.3/0.3 (no spread within): weight 1.
+    #[test]
+    fn features_are_weighted_by_how_far_apart_the_mechanisms_are_for_their_spread() {
+        let s = [
+            sig("ddm", 0, &[("wf", 0.09), ("foc_cv", 0.1), ("pi_cv", 0.1)]),
+            sig("ddm", 1, &[("wf", 0.11), ("foc_cv", 0.3), ("pi_cv", 0.1)]),
+            sig("sbf", 0, &[("wf", 0.29), ("foc_cv", 0.3), ("pi_cv", 0.3)]),
+            sig("sbf", 1, &[("wf", 0.31), ("foc_cv", 0.1), ("pi_cv", 0.3)]),
+        ];
+        let w = feature_weights(&s.iter().collect::<Vec<_>>());
+        assert!((w["wf"] - 100.0 / 101.0).abs() < 1e-9, "{w:?}");
+        assert_eq!(w["foc_cv"], 0.0);
+        assert_eq!(w["pi_cv"], 1.0);
+        assert!(!w.contains_key("frac_ramp"));
     }
 }

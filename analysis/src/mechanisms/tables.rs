@@ -104,7 +104,9 @@ pub fn write_tables(
     }
     md.push_str(&format!(
         "\n## Nearest mechanism\n\nDistance: RMS of feature differences in units of each \
-         feature's SD over all signatures; nearest: the share of {resamples} bootstrap \
+         feature's SD over all signatures, each feature weighted by how well it tells the \
+         mechanisms apart (F/(1+F), F = variance between the mechanisms' means over the \
+         pooled variance of their seeds); nearest: the share of {resamples} bootstrap \
          resamples of the seeds in which the mechanism is the nearest.\n\n| agent | {} | nearest (bootstrap share) |\n|---|{}---|\n",
         MECHANISMS.join(" | "),
         "---|".repeat(MECHANISMS.len())

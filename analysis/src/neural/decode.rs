@@ -1,7 +1,8 @@
 //! Elapsed-time decoding from population activity, cross-validated over trials.
 //!
 //! * ridge regression of time on the population vector (with intercept, features
-//!   standardised on the training folds, penalty `λ`);
+//!   standardised on the training folds, penalty `λ`; units constant on the training
+//!   folds get no weight, and decoded times are clipped to the window);
 //! * Bayesian decoder: per time bin a Gaussian per unit (mean per bin, variance pooled over
 //!   bins, floored), flat prior over bins; the decoded time is the posterior mode.
 //!
@@ -60,10 +61,19 @@ fn fit_ridge(x: &[Vec<f64>], y: &[usize], lambda: f64) -> Option<impl Fn(&[f64])
     let mean: Vec<f64> = (0..n)
         .map(|i| x.iter().map(|r| r[i]).sum::<f64>() / m)
         .collect();
+    // A unit constant on the training trials carries no information there; standardising
+    // it by a floored SD would turn any test value into an enormous feature (a
+    // microstimulus cell silent on every training trial once gave errors of 4 × TD).
+    // Such units get no weight: their standardised value is 0 on every trial.
     let sd: Vec<f64> = (0..n)
         .map(|i| {
             let v = x.iter().map(|r| (r[i] - mean[i]).powi(2)).sum::<f64>() / m;
-            v.sqrt().max(1e-9)
+            let sd = v.sqrt();
+            if sd > 1e-9 * (1.0 + mean[i].abs()) {
+                sd
+            } else {
+                f64::INFINITY
+            }
         })
         .collect();
     let ym = y.iter().map(|&v| v as f64).sum::<f64>() / m;
@@ -159,8 +169,11 @@ pub fn decode_time(cube: &Cube, decoder: Decoder, folds: usize, lambda: f64) -> 
                 None => continue,
             },
         };
+        // The decoded elapsed time lies in the window: a linear read-out beyond it is
+        // clipped to its ends.
+        let last = cube.time.saturating_sub(1) as f64;
         for (v, &t) in xte.iter().zip(&yte) {
-            err[t] += (predict(v) - t as f64).abs();
+            err[t] += (predict(v).clamp(0.0, last) - t as f64).abs();
             cnt[t] += 1.0;
         }
     }

@@ -16,6 +16,7 @@ pub mod decode;
 pub mod geometry;
 mod locking;
 pub mod oscillation;
+pub mod probe;
 pub mod shape;
 pub mod speed;
 pub mod summary;

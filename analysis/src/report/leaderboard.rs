@@ -7,12 +7,13 @@
 //! `activity.summary.json` (from `record --summary`), `neural_figures/` (heat maps) and
 //! `run/figures/` (learning curve). A parent folder named `<model>~<variant>` labels the row.
 
-use crate::behaviour::aggregate::{Spread, aggregate};
+use crate::behaviour::aggregate::{Spread, aggregate, headline};
 use crate::behaviour::foc::{FocStats, pool_foc_stats, scalar_property};
 use crate::behaviour::metrics::{BisectionMetrics, Metrics};
 use crate::job_folder;
 use crate::neural::summary::NeuralSummary;
 use crate::records::{EVAL_INFO, RECORDS, read_eval_info};
+use crate::stats::robust::{BOOTSTRAP_RESAMPLES, iqm, stratified_bootstrap_ci};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -30,10 +31,83 @@ pub struct Row {
     /// Fixed interval: first-oven-check statistics per TD, pooled over the row's runs
     /// (sorted by TD; empty without FI runs).
     pub foc: Vec<FocStats>,
+    /// Interquartile mean and its stratified bootstrap 95% interval of every column with
+    /// per-run values (headline and neural columns), with those values.
+    pub robust: BTreeMap<String, Robust>,
     /// `Some(study)` for a committed baseline row read from compact study results
     /// (`results/<study>/jobs/`, see [`crate::report::baselines`]); `None` for a row of
     /// evaluation folders.
     pub baseline: Option<String>,
+}
+
+/// The few-run statistics of one column of a row (rliable's IQM and interval).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Robust {
+    /// Interquartile mean over the runs with a value.
+    pub iqm: f64,
+    /// Stratified percentile bootstrap 95% interval of the IQM (runs resampled within
+    /// their task settings, [`BOOTSTRAP_RESAMPLES`] resamples, seed 0); `None` below 2 runs.
+    pub ci: Option<(f64, f64)>,
+    /// The per-run values (NaN: the run lacks the metric), in run order.
+    pub values: Vec<f64>,
+}
+
+/// The stratum of a run: the conditions it was evaluated on (task and TD of each), so runs
+/// trained at different TDs or anchors are resampled separately.
+fn stratum(m: &Metrics) -> String {
+    let mut c: Vec<String> = m
+        .conditions
+        .iter()
+        .map(|c| format!("{}:{}", c.task, c.td))
+        .collect();
+    c.sort();
+    c.dedup();
+    c.join(",")
+}
+
+/// The [`Robust`] statistics of every column with per-run values.
+fn robust_columns(
+    metrics: &[Metrics],
+    neural: &[Option<&NeuralSummary>],
+) -> BTreeMap<String, Robust> {
+    let heads: Vec<BTreeMap<String, f64>> = metrics.iter().map(headline).collect();
+    let strata: Vec<String> = metrics.iter().map(stratum).collect();
+    let mut keys: Vec<String> = heads.iter().flat_map(|h| h.keys().cloned()).collect();
+    keys.sort();
+    keys.dedup();
+    let mut columns: Vec<(String, Vec<f64>)> = keys
+        .into_iter()
+        .map(|k| {
+            let v = heads
+                .iter()
+                .map(|h| h.get(&k).copied().unwrap_or(f64::NAN))
+                .collect();
+            (k, v)
+        })
+        .collect();
+    if neural.iter().any(Option::is_some) {
+        for key in NEURAL_COLUMNS {
+            let v = neural
+                .iter()
+                .map(|s| s.map_or(f64::NAN, |s| neural_value(s, key)))
+                .collect();
+            columns.push((key.to_string(), v));
+        }
+    }
+    columns
+        .into_iter()
+        .map(|(k, values)| {
+            let ci = stratified_bootstrap_ci(&values, &strata, iqm, 0.95, BOOTSTRAP_RESAMPLES, 0);
+            (
+                k,
+                Robust {
+                    iqm: iqm(&values),
+                    ci,
+                    values,
+                },
+            )
+        })
+        .collect()
 }
 
 /// One evaluated run, ready to be grouped into a row: what an evaluation folder or a
@@ -259,6 +333,8 @@ pub fn group_rows(results: Vec<RunResult>) -> Vec<Row> {
         runs: Vec<PathBuf>,
         metrics: Vec<Metrics>,
         neural: Vec<NeuralSummary>,
+        /// Per run, the index of its neural summary in `neural`.
+        neural_of_run: Vec<Option<usize>>,
         adapt: Vec<Option<usize>>,
     }
     let mut groups: Vec<Group> = Vec::new();
@@ -271,6 +347,7 @@ pub fn group_rows(results: Vec<RunResult>) -> Vec<Row> {
                     runs: vec![],
                     metrics: vec![],
                     neural: vec![],
+                    neural_of_run: vec![],
                     adapt: vec![],
                 });
                 groups.len() - 1
@@ -279,6 +356,8 @@ pub fn group_rows(results: Vec<RunResult>) -> Vec<Row> {
         let g = &mut groups[idx];
         g.adapt.extend(r.adapt);
         g.runs.push(r.path);
+        g.neural_of_run
+            .push(r.neural.is_some().then_some(g.neural.len()));
         g.neural.extend(r.neural);
         g.metrics.push(r.metrics);
     }
@@ -286,6 +365,12 @@ pub fn group_rows(results: Vec<RunResult>) -> Vec<Row> {
         .into_iter()
         .map(|g| {
             let mut values = aggregate(&g.metrics);
+            let per_run_neural: Vec<Option<&NeuralSummary>> = g
+                .neural_of_run
+                .iter()
+                .map(|i| i.map(|i| &g.neural[i]))
+                .collect();
+            let robust = robust_columns(&g.metrics, &per_run_neural);
             if !g.neural.is_empty() {
                 for key in NEURAL_COLUMNS {
                     let v = g.neural.iter().map(|s| neural_value(s, key));
@@ -331,6 +416,7 @@ pub fn group_rows(results: Vec<RunResult>) -> Vec<Row> {
                 values,
                 bisection,
                 foc: pooled,
+                robust,
                 baseline: None,
             }
         })

@@ -8,18 +8,20 @@
 
 pub mod baselines;
 pub mod figures;
+pub mod improvement;
 pub mod leaderboard;
 pub(crate) mod markup;
 pub mod mechanisms;
 
 use crate::behaviour::aggregate::Spread;
-pub use crate::report::leaderboard::{Row, load_metrics, load_rows, load_rows_from_runs};
+pub use crate::report::improvement::write_improvement;
+pub use crate::report::leaderboard::{Robust, Row, load_metrics, load_rows, load_rows_from_runs};
 use markup::{figure, figure_file, inline_svg};
 use maud::{Markup, html};
 use std::path::{Path, PathBuf};
 
 /// What the `runs` column counts.
-pub const RUNS_LEGEND: &str = "evaluation folders aggregated in the row (seeds, and task settings such as FI TDs); every other cell is the mean ± SD over the runs that have the metric";
+pub const RUNS_LEGEND: &str = "evaluation folders aggregated in the row (seeds, and task settings such as FI TDs); every other cell is the mean ± SD over the runs that have the metric and, for two or more runs, the interquartile mean (IQM: the mean of the middle 50% of the runs) with its 95% stratified bootstrap interval (runs resampled within their task settings; rliable, Agarwal et al. 2021)";
 
 /// What a row labelled `model (study)` is (rows with [`Row::baseline`]).
 pub const BASELINE_LEGEND: &str = "rows labelled `model (study)` are committed baselines: the compact results of that study in the repository (results/<study>/jobs/, one run per job), grouped exactly as evaluation folders are";
@@ -175,6 +177,13 @@ fn cell(s: Option<&Spread>) -> String {
         Some(s) if s.mean.is_finite() => format!("{:.3}", s.mean),
         _ => "–".into(),
     }
+}
+
+/// The IQM and its bootstrap interval of a multi-run cell (`None` for fewer than 2 runs).
+fn iqm_cell(r: Option<&Robust>) -> Option<String> {
+    let r = r?;
+    let (lo, hi) = r.ci?;
+    Some(format!("IQM {:.3} [{lo:.3}, {hi:.3}]", r.iqm))
 }
 
 /// Runs per row and task whose behaviour figures are inlined in the HTML (the other runs
@@ -335,7 +344,12 @@ fn theme_tables(rows: &[Row], cols: &[(&str, &str)]) -> Markup {
                 @for r in rows.iter().filter(|r| keys.iter().any(|k| r.values.contains_key(*k))) {
                     tr {
                         td { (r.model) } td { (r.runs.len()) }
-                        @for k in &keys { td { (cell(r.values.get(*k))) } }
+                        @for k in &keys {
+                            td {
+                                (cell(r.values.get(*k)))
+                                @if let Some(i) = iqm_cell(r.robust.get(*k)) { br; small { (i) } }
+                            }
+                        }
                     }
                 }
             }
@@ -385,6 +399,9 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
     for (k, _) in &cols {
         header.push(k.to_string());
         header.push(format!("{k}_sd"));
+        for suffix in ["iqm", "iqm_lo", "iqm_hi"] {
+            header.push(format!("{k}_{suffix}"));
+        }
     }
     let table: Vec<Vec<String>> = rows
         .iter()
@@ -395,6 +412,13 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
                 match r.values.get(*k) {
                     Some(s) => line.extend([s.mean.to_string(), s.sd.to_string()]),
                     None => line.extend([String::new(), String::new()]),
+                }
+                match r.robust.get(*k) {
+                    Some(x) => {
+                        let (lo, hi) = x.ci.unwrap_or((f64::NAN, f64::NAN));
+                        line.extend([x.iqm, lo, hi].map(|v| v.to_string()));
+                    }
+                    None => line.extend([String::new(), String::new(), String::new()]),
                 }
             }
             line
@@ -413,7 +437,11 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
     for r in rows {
         md += &format!("| {} | {} |", r.model, r.runs.len());
         for (k, _) in &cols {
-            md += &format!(" {} |", cell(r.values.get(*k)));
+            md += &format!(" {}", cell(r.values.get(*k)));
+            if let Some(i) = iqm_cell(r.robust.get(*k)) {
+                md += &format!("; {i}");
+            }
+            md += " |";
         }
         md.push('\n');
     }

@@ -1,11 +1,14 @@
 //! Small statistics shared by the behavioural and neural analyses:
 //!
 //! * [`Spread`] — mean, sample SD and count of one number across runs;
-//! * [`nan_json`] — JSON with `null` for undefined floats read back as NaN.
+//! * [`nan_json`] — JSON with `null` for undefined floats read back as NaN;
+//! * [`robust`] — interquartile mean, stratified bootstrap intervals, probability of
+//!   improvement (few-run statistics as rliable reports them).
 //!
 //! Special functions (normal CDF, incomplete beta, …) come from `statrs`.
 
 pub mod nan_json;
+pub mod robust;
 
 use serde::{Deserialize, Serialize};
 

@@ -14,6 +14,7 @@
 pub mod adapt;
 pub mod evaluate;
 pub mod export;
+pub mod fingerprint;
 pub mod levels;
 pub mod record;
 pub mod scaling;
@@ -24,6 +25,7 @@ pub use evaluate::{
     EvalOutcome, EvalRequest, EvalSubject, evaluate, evaluate_human, rescore_eval_folder, run_seed,
 };
 pub use export::export;
+pub use fingerprint::{FingerprintOutcome, FingerprintRequest, fingerprint};
 pub use record::{RecordOutcome, RecordRequest, record};
 pub use scaling::{ScalingJob, ScalingOutcome, record_scaling};
 pub use train::{Quiet, TrainObserver, TrainOutcome, TrainRequest, train};

@@ -8,17 +8,14 @@
 //! into one dataset, so the summary can measure temporal scaling between TDs.
 
 use crate::PipelineError;
-use chronocooked_analysis::neural::summary::{SummaryOptions, neural_summary};
-use chronocooked_env::{TaskFamily, make_config};
+pub use chronocooked_analysis::neural::probe::{PROBE_MARGIN, can_probe};
+use chronocooked_analysis::neural::probe::{PROBE_TASK, population_summaries, probe_task};
+use chronocooked_env::make_config;
 use chronocooked_models::ActivityDataset;
 use chronocooked_models::agent::record_dataset;
 use chronocooked_training::eval_tds;
 use chronocooked_training::timing_run::{is_timing_run, load_agent, load_timing_config, run_task};
 use std::path::{Path, PathBuf};
-
-/// Steps a probe episode lasts beyond `2 × TD`: time to fetch the onion and turn the oven
-/// on (the kitchen's free cells are at most ~10 steps from the oven).
-pub const PROBE_MARGIN: u32 = 40;
 
 /// What to record (the arguments of `chronocooked record`).
 #[derive(Debug, Clone)]
@@ -73,43 +70,6 @@ fn json_bytes<T: serde::Serialize>(value: &T, pretty: bool) -> Result<Vec<u8>, P
     bytes.map_err(|e| PipelineError::Analysis(format!("serialising the activity: {e}")))
 }
 
-/// Whether runs trained on `task` can be recorded on probe trials (`record --probe`).
-pub fn can_probe(task: &str) -> bool {
-    make_config(task, &[] as &[&str]).is_ok_and(|c| {
-        matches!(
-            c.family(),
-            TaskFamily::FixedInterval | TaskFamily::PeakInterval
-        )
-    })
-}
-
-/// The probe task of a run trained on `task` with overrides `env` at TDs `tds`: the same
-/// settings on `PeakInterval-v0` with the soup never released, and (unless the run set it)
-/// `max_timesteps = 2 × max TD + PROBE_MARGIN`.
-pub fn probe_task(task: &str, env: &[String], tds: &[u32]) -> Result<Vec<String>, PipelineError> {
-    if !can_probe(task) {
-        return Err(PipelineError::Invalid(format!(
-            "--probe plays peak-interval probe trials, for runs trained on FixedInterval-v0 or \
-             PeakInterval-v0 (this run: {task}); record it without --probe"
-        )));
-    }
-    let key = |e: &String| e.split('=').next().unwrap_or("").trim().to_string();
-    let mut out: Vec<String> = env
-        .iter()
-        .filter(|e| !matches!(key(e).as_str(), "probe_factor" | "k"))
-        .cloned()
-        .collect();
-    out.push("probe_factor=0".into());
-    if !env
-        .iter()
-        .any(|e| matches!(key(e).as_str(), "max_timesteps" | "max_steps"))
-    {
-        let longest = tds.iter().copied().max().unwrap_or(12);
-        out.push(format!("max_timesteps={}", 2 * longest + PROBE_MARGIN));
-    }
-    Ok(out)
-}
-
 /// Records one run: `(task, env, dataset)`.
 fn record_run(
     req: &RecordRequest,
@@ -129,8 +89,8 @@ fn record_run(
     };
     let (task, env) = if req.probe {
         (
-            "PeakInterval-v0".to_string(),
-            probe_task(&task, &env, &tds)?,
+            PROBE_TASK.to_string(),
+            probe_task(&task, &env, &tds).map_err(PipelineError::Invalid)?,
         )
     } else {
         (task, env)
@@ -215,17 +175,7 @@ pub fn record(req: &RecordRequest) -> Result<RecordOutcome, PipelineError> {
             .map_err(|e| PipelineError::Analysis(e.to_string()))?;
     }
     if req.summary {
-        let mut opts = SummaryOptions {
-            units_correspond: units_correspond(&runs),
-            ..SummaryOptions::default()
-        };
-        opts.categories.seed = req.seed;
-        let summaries: Vec<_> = dataset
-            .meta
-            .populations
-            .iter()
-            .filter_map(|p| neural_summary(&dataset, Some(&p.name), &opts).ok())
-            .collect();
+        let summaries = population_summaries(&dataset, units_correspond(&runs), req.seed);
         write(&summary_path, &json_bytes(&summaries, true)?)?;
     }
     Ok(RecordOutcome {

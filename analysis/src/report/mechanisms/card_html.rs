@@ -46,39 +46,12 @@ fn category_bar(c: &TdClassification) -> Markup {
     }
 }
 
-/// A model's signature card: heading, category bar and the four panels (heat map,
-/// example units, spectrum, and the scaling profile when two TDs were recorded); the
-/// panels' files go to `dir`.
-pub(super) fn card_html(card: &Card, dir: &Path) -> Result<Markup, String> {
+/// The line-chart panels of a card — example units, spectrum and (with two TDs) the
+/// scaling profile — as `(file name, chart, caption)`.
+pub(crate) fn card_charts(card: &Card) -> Vec<(&'static str, Chart, String)> {
     let long = card.by_td.last().expect("a card has a TD");
     let short = &card.by_td[0];
-    let tds: Vec<String> = card.by_td.iter().map(|c| c.td.to_string()).collect();
-    let heading = format!(
-        "{} — {} ({} varying of {} units at TD {}; seed {}; TDs {})",
-        card.model,
-        card.population,
-        long.varying.len(),
-        long.size,
-        long.td,
-        card.seed,
-        tds.join(", ")
-    );
-    let mut panels = Vec::new();
-    let stem = |name: &str| dir.join(format!("{}-{name}", card.model));
-    // Heat map.
-    let heat = write_heatmap_sized(
-        &stem("heatmap"),
-        &format!("TD {} probe trials", long.td),
-        &varying_average(long),
-        long.varying.len(),
-        PANEL,
-    )
-    .map_err(|e| e.to_string())?;
-    panels.push(figure_file(
-        &heat[0],
-        "units sorted by peak time, each min–max normalised",
-        Some("panel"),
-    )?);
+    let mut out = Vec::new();
     // Example units.
     let avg = long.cube.average();
     let units = long.cube.units;
@@ -105,11 +78,11 @@ pub(super) fn card_html(card: &Card, dir: &Path) -> Result<Markup, String> {
         markers: vec![(f64::from(long.td), "TD".into())],
         y_range: None,
     };
-    panels.push(panel(
-        &stem("units"),
-        &chart,
-        "example units, one per category it has",
-    )?);
+    out.push((
+        "units",
+        chart,
+        "example units, one per category it has".to_string(),
+    ));
     // Spectrum.
     let spectrum = population_spectrum(long);
     let chart = Chart {
@@ -125,11 +98,11 @@ pub(super) fn card_html(card: &Card, dir: &Path) -> Result<Markup, String> {
         markers: vec![(1.0 / f64::from(long.td), "1/TD".into())],
         y_range: None,
     };
-    panels.push(panel(
-        &stem("spectrum"),
-        &chart,
-        "mean single-trial power spectrum of the units",
-    )?);
+    out.push((
+        "spectrum",
+        chart,
+        "mean single-trial power spectrum of the units".to_string(),
+    ));
     // Scaling.
     if card.by_td.len() >= 2 {
         let ratio = f64::from(long.td) / f64::from(short.td);
@@ -173,7 +146,45 @@ pub(super) fn card_html(card: &Card, dir: &Path) -> Result<Markup, String> {
             card.scaling_index
                 .map_or("undefined".into(), |i| format!("{i:.2}"))
         );
-        panels.push(panel(&stem("scaling"), &chart, &caption)?);
+        out.push(("scaling", chart, caption));
+    }
+    out
+}
+
+/// A model's signature card: heading, category bar and the four panels (heat map,
+/// example units, spectrum, and the scaling profile when two TDs were recorded); the
+/// panels' files go to `dir`.
+pub(super) fn card_html(card: &Card, dir: &Path) -> Result<Markup, String> {
+    let long = card.by_td.last().expect("a card has a TD");
+    let tds: Vec<String> = card.by_td.iter().map(|c| c.td.to_string()).collect();
+    let heading = format!(
+        "{} — {} ({} varying of {} units at TD {}; seed {}; TDs {})",
+        card.model,
+        card.population,
+        long.varying.len(),
+        long.size,
+        long.td,
+        card.seed,
+        tds.join(", ")
+    );
+    let mut panels = Vec::new();
+    let stem = |name: &str| dir.join(format!("{}-{name}", card.model));
+    // Heat map.
+    let heat = write_heatmap_sized(
+        &stem("heatmap"),
+        &format!("TD {} probe trials", long.td),
+        &varying_average(long),
+        long.varying.len(),
+        PANEL,
+    )
+    .map_err(|e| e.to_string())?;
+    panels.push(figure_file(
+        &heat[0],
+        "units sorted by peak time, each min–max normalised",
+        Some("panel"),
+    )?);
+    for (name, chart, caption) in card_charts(card) {
+        panels.push(panel(&stem(name), &chart, &caption)?);
     }
     Ok(html! {
         div.card {

@@ -30,7 +30,7 @@ use crate::records::{METRICS, read_eval_info};
 use crate::report::leaderboard::Row;
 use crate::report::markup::figure_file;
 use card::card_and_scaling;
-use card_html::card_html;
+use card_html::{card_charts, card_html};
 use maud::{Markup, html};
 use std::path::{Path, PathBuf};
 
@@ -140,6 +140,35 @@ fn nearest_tables(sigs: &[Signature]) -> Option<(Markup, String)> {
     Some((html, md))
 }
 
+/// A card's line-chart panels: `(file name, chart, caption)`.
+pub type CardPanels = Vec<(&'static str, crate::report::figures::Chart, String)>;
+
+/// The signature card of one agent from its fixed-interval evaluation folders `fi_evals`
+/// (each with the probe recording `activity.json` beside it, as in a study's job folders
+/// or a fingerprint's condition folders): the card's HTML (panel files written to `dir`)
+/// and its line-chart panels `(file name, chart, caption)`. `None` when no recording has a
+/// timing population with varying units.
+pub fn agent_card(
+    model: &str,
+    fi_evals: &[PathBuf],
+    dir: &Path,
+) -> Result<Option<(Markup, CardPanels)>, String> {
+    let row = Row {
+        model: model.to_string(),
+        runs: fi_evals.to_vec(),
+        values: Default::default(),
+        bisection: Vec::new(),
+        foc: Vec::new(),
+        robust: Default::default(),
+        baseline: None,
+    };
+    let runs: Vec<RunInfo> = fi_evals.iter().map(|e| run_info(e)).collect();
+    let (card, _) = card_and_scaling(&row, &runs)?;
+    let Some(card) = card else { return Ok(None) };
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    Ok(Some((card_html(&card, dir)?, card_charts(&card))))
+}
+
 /// What the "Mechanisms" section shows (its first paragraph).
 const MECHANISMS_INTRO: &str = "How each model keeps time, on peak-interval probe trials \
      (soup withheld, windows of 2 × TD steps after oven-on): its timing population's \
@@ -154,7 +183,9 @@ const MECHANISMS_INTRO: &str = "How each model keeps time, on peak-interval prob
 /// How the nearest-mechanism table is read (the paragraph above it).
 const NEAREST_LEGEND: &str = "Distance: RMS over the shared \
      features of the difference in units of each feature's SD over all \
-     signatures (models × seeds); nearest: the share of 1,000 bootstrap \
+     signatures (models × seeds), each feature weighted by how well it tells the \
+     timing mechanisms apart (F/(1+F), F = variance between their means over the \
+     pooled variance of their seeds); nearest: the share of 1,000 bootstrap \
      resamples of the seeds in which it is the nearest. With one seed per \
      model the share is 1 by construction: run more seeds for a test.";
 

@@ -92,6 +92,7 @@ fn row(root: &Path, model: &str, sets: Vec<ActivityDataset>) -> Row {
         values: BTreeMap::new(),
         bisection: Vec::new(),
         foc: Vec::new(),
+        robust: Default::default(),
         baseline: None,
     }
 }

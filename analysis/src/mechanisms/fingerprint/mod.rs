@@ -1,0 +1,30 @@
+//! The fingerprint of one agent: which timing mechanism does it resemble?
+//!
+//! The agent plays the mechanisms study's protocol ([`PROTOCOL`]): fixed interval at TD 6
+//! and TD 12 and bisection 4–12, each evaluated with the reference protocol (every free
+//! start cell, [`chronocooked_models::timing::NOISE_DRAWS`] times for a noisy agent) and
+//! the fixed-interval conditions also recorded on peak-interval probe trials with the
+//! neural summary. Its [`Signature`] (the features of [`crate::mechanisms`]) is placed
+//! among the committed mechanism signatures ([`reference_signatures`]): its distance to
+//! every mechanism's fingerprint beside that mechanism's self-distance range (the
+//! distances of its own held-out seeds, leave one seed out), the bootstrap share of each
+//! mechanism being the nearest, and the verdict: *identified* with the nearest mechanism
+//! only when its distance lies within that mechanism's self-distance range.
+//!
+//! The folder of one fingerprint:
+//!
+//! * `<condition>/eval/` — the condition's evaluation folder (as `chronocooked eval`);
+//! * `<condition>/activity.json`, `<condition>/activity.summary.json` — the probe recording
+//!   and its neural summary (fixed interval, agents with activity);
+//! * `fingerprint.json`, `fingerprint.md`, `fingerprint.html`, `fingerprint.png` — the
+//!   signature, the placement and the card ([`write_fingerprint`]).
+
+mod card;
+mod place;
+mod play;
+
+pub use card::{verdict, write_fingerprint};
+pub use place::{MechanismDistance, Placement, place, reference_signatures, signatures_from_csv};
+pub use play::{
+    ConditionPlay, PROTOCOL, ProtocolCondition, agent_signature, play_condition, write_condition,
+};

@@ -1,0 +1,121 @@
+//! Peak-interval probe trials: the recording condition of the neural summary.
+//!
+//! An agent trained on fixed interval plays `PeakInterval-v0` with the same settings and
+//! `probe_factor=0` (the soup is never released), so every trial goes on for at least
+//! `2 × TD` steps after oven-on — the window the neural summary analyses. Used by `record
+//! --probe`, the mechanisms study and the fingerprint protocol.
+
+use crate::neural::summary::{NeuralSummary, SummaryOptions, neural_summary};
+use chronocooked_env::{TaskFamily, make_config};
+use chronocooked_models::ActivityDataset;
+
+/// Steps a probe episode lasts beyond `2 × TD`: time to fetch the onion and turn the oven
+/// on (the kitchen's free cells are at most ~10 steps from the oven).
+pub const PROBE_MARGIN: u32 = 40;
+
+/// The task probe trials are played on.
+pub const PROBE_TASK: &str = "PeakInterval-v0";
+
+/// Whether agents trained on `task` can be recorded on probe trials.
+pub fn can_probe(task: &str) -> bool {
+    make_config(task, &[] as &[&str]).is_ok_and(|c| {
+        matches!(
+            c.family(),
+            TaskFamily::FixedInterval | TaskFamily::PeakInterval
+        )
+    })
+}
+
+/// The overrides of [`PROBE_TASK`] for an agent trained on `task` with overrides `env`, at
+/// TDs `tds`: the same settings with the soup never released and (unless `env` sets it)
+/// `max_timesteps = 2 × max TD + PROBE_MARGIN`. An error (saying why) for tasks that
+/// [`can_probe`] refuses.
+pub fn probe_task(task: &str, env: &[String], tds: &[u32]) -> Result<Vec<String>, String> {
+    if !can_probe(task) {
+        return Err(format!(
+            "--probe plays peak-interval probe trials, for runs trained on FixedInterval-v0 or \
+             PeakInterval-v0 (this run: {task}); record it without --probe"
+        ));
+    }
+    let key = |e: &String| e.split('=').next().unwrap_or("").trim().to_string();
+    let mut out: Vec<String> = env
+        .iter()
+        .filter(|e| !matches!(key(e).as_str(), "probe_factor" | "k"))
+        .cloned()
+        .collect();
+    out.push("probe_factor=0".into());
+    if !env
+        .iter()
+        .any(|e| matches!(key(e).as_str(), "max_timesteps" | "max_steps"))
+    {
+        let longest = tds.iter().copied().max().unwrap_or(12);
+        out.push(format!("max_timesteps={}", 2 * longest + PROBE_MARGIN));
+    }
+    Ok(out)
+}
+
+/// The neural summary of every population of `dataset` (populations the summary cannot
+/// analyse, e.g. without oven-on, are left out); `units_correspond` says whether unit `j`
+/// is the same unit in every trial's agent (one network, or timing models of one model
+/// and seed), `seed` seeds the category tests' surrogates.
+pub fn population_summaries(
+    dataset: &ActivityDataset,
+    units_correspond: bool,
+    seed: u64,
+) -> Vec<NeuralSummary> {
+    let mut opts = SummaryOptions {
+        units_correspond,
+        ..SummaryOptions::default()
+    };
+    opts.categories.seed = seed;
+    dataset
+        .meta
+        .populations
+        .iter()
+        .filter_map(|p| neural_summary(dataset, Some(&p.name), &opts).ok())
+        .collect()
+}
+
+/// The neural summary of a recorded activity dataset: `path` is an `activity.json` (from
+/// `record`, or an evaluation folder's) or a folder holding one. Writes the summary beside
+/// it (`activity.summary.json`, SHA-256-recorded) and returns its path and the summaries.
+/// `units_correspond` and `seed` as in [`population_summaries`].
+pub fn summarize_file(
+    path: &std::path::Path,
+    units_correspond: bool,
+    seed: u64,
+) -> Result<(std::path::PathBuf, Vec<NeuralSummary>), String> {
+    let file = if path.is_dir() {
+        path.join(crate::job_folder::ACTIVITY)
+    } else {
+        path.to_path_buf()
+    };
+    if !file.is_file() {
+        return Err(format!(
+            "{}: no activity dataset (an evaluation folder of an agent that returned activity, \
+             or an activity.json from `record`)",
+            file.display()
+        ));
+    }
+    let folder = match file.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => std::path::PathBuf::from("."),
+    };
+    let _lock = chronocooked_env::fs::FolderLock::acquire_shared_folder(&folder)
+        .map_err(|e| e.to_string())?;
+    let bytes = chronocooked_env::integrity::read_checked(&file).map_err(|e| e.to_string())?;
+    let dataset =
+        ActivityDataset::from_json(&bytes).map_err(|e| format!("{}: {e}", file.display()))?;
+    let summaries = population_summaries(&dataset, units_correspond, seed);
+    if summaries.is_empty() {
+        return Err(format!(
+            "{}: no population could be summarised (the summary needs trials with oven-on; \
+             record fixed-interval agents on probe trials)",
+            file.display()
+        ));
+    }
+    let out = file.with_extension("summary.json");
+    let json = serde_json::to_vec_pretty(&summaries).map_err(|e| e.to_string())?;
+    chronocooked_env::integrity::write_recorded(&out, &json).map_err(|e| e.to_string())?;
+    Ok((out, summaries))
+}

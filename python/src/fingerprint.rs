@@ -1,0 +1,215 @@
+//! `fingerprint`: which timing mechanism does a Python agent resemble? The agent's policies
+//! play the mechanisms protocol ([`PROTOCOL`]); its signature is placed among the
+//! committed mechanism signatures (see `chronocooked_analysis::mechanisms::fingerprint`).
+
+use crate::agent::PyAgent;
+use crate::errors::{env_err, runtime_err, value_err};
+use chronocooked_analysis::mechanisms::fingerprint::{
+    ConditionPlay, PROTOCOL, ProtocolCondition, agent_signature, place, play_condition,
+    reference_signatures, write_condition, write_fingerprint,
+};
+use chronocooked_analysis::neural::probe::{PROBE_TASK, probe_task};
+use chronocooked_models::timing::agent::NOISE_DRAWS;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyMapping};
+use std::path::PathBuf;
+
+/// The condition's task parameters as a dict of integers (`{"td": 6}`).
+fn params<'py>(py: Python<'py>, c: &ProtocolCondition) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    for kv in c.env {
+        let (k, v) = kv
+            .split_once('=')
+            .expect("protocol parameters are key=value");
+        d.set_item(
+            k,
+            v.parse::<u32>().expect("protocol parameters are integers"),
+        )?;
+    }
+    Ok(d)
+}
+
+/// The policy for condition `c`: `policies[c.name]` from a mapping, or
+/// `policies(task, params)` from a factory; `None` when the agent has none for it (the key
+/// is absent, or the factory returned `None`). A mapping with a key that is no condition
+/// is refused (a typo would silently drop a condition).
+fn policy_for<'py>(
+    py: Python<'py>,
+    policies: &Bound<'py, PyAny>,
+    c: &ProtocolCondition,
+) -> PyResult<Option<Bound<'py, PyAny>>> {
+    let names: Vec<&str> = PROTOCOL.iter().map(|c| c.name).collect();
+    if let Ok(m) = policies.cast::<PyMapping>() {
+        for key in m.keys()?.iter() {
+            let k: String = key.extract().unwrap_or_default();
+            if !names.contains(&k.as_str()) {
+                return Err(value_err(format!(
+                    "`policies` has a key `{}` that is no condition of the protocol (allowed: {})",
+                    key.repr().map_or_else(|_| "?".into(), |r| r.to_string()),
+                    names.join(", ")
+                )));
+            }
+        }
+        return Ok(if m.contains(c.name)? {
+            Some(m.get_item(c.name)?).filter(|p| !p.is_none())
+        } else {
+            None
+        });
+    }
+    if policies.is_callable() {
+        let p = policies.call1((c.task, params(py, c)?))?;
+        return Ok((!p.is_none()).then_some(p));
+    }
+    Err(value_err(format!(
+        "`policies` must be a callable make_policy(task, params) -> policy, or a mapping \
+         condition -> policy with keys among {}",
+        names.join(", ")
+    )))
+}
+
+/// Every (task, overrides) the agent of condition `c` meets: its protocol's conditions and
+/// the probe trials.
+fn tasks_of(c: &ProtocolCondition) -> PyResult<Vec<(String, Vec<String>)>> {
+    let env = c.env_strings();
+    let mut out: Vec<(String, Vec<String>)> = Vec::new();
+    for cond in chronocooked_analysis::reference_conditions(c.task, &env).map_err(env_err)? {
+        if !out.iter().any(|(t, e)| *t == cond.task && *e == cond.env) {
+            out.push((cond.task, cond.env));
+        }
+    }
+    if let Some(td) = c.probe_td {
+        out.push((
+            PROBE_TASK.to_string(),
+            probe_task(c.task, &env, &[td]).map_err(runtime_err)?,
+        ));
+    }
+    Ok(out)
+}
+
+/// Plays the mechanisms protocol with the user's policies and writes the fingerprint into
+/// `out`; returns the placement as a dict (see `chronocooked.fingerprint`).
+#[pyfunction]
+#[pyo3(signature = (policies, out, seed = 0, obs_mode = "codes", units_correspond = false, name = "python-agent", draws = NOISE_DRAWS, resamples = 1000))]
+#[allow(clippy::too_many_arguments)]
+pub fn fingerprint<'py>(
+    py: Python<'py>,
+    policies: Bound<'py, PyAny>,
+    out: PathBuf,
+    seed: u64,
+    obs_mode: &str,
+    units_correspond: bool,
+    name: &str,
+    draws: usize,
+    resamples: usize,
+) -> PyResult<Bound<'py, PyAny>> {
+    let onehot = match crate::env::ObsMode::parse(obs_mode)? {
+        crate::env::ObsMode::Codes => false,
+        crate::env::ObsMode::OneHot => true,
+    };
+    if name.trim().is_empty() {
+        return Err(value_err(
+            "invalid value for `name`: empty (allowed: a model name)",
+        ));
+    }
+    if !(1..=256).contains(&draws) {
+        return Err(value_err(format!(
+            "invalid value for `draws`: {draws} (allowed: 1..=256 episodes per start cell; the \
+             lab's noisy timing models get {NOISE_DRAWS})"
+        )));
+    }
+    if !(1..=100_000).contains(&resamples) {
+        return Err(value_err(format!(
+            "invalid value for `resamples`: {resamples} (allowed: 1..=100000)"
+        )));
+    }
+    // Play every condition first: a failing policy leaves nothing behind.
+    let mut plays: Vec<ConditionPlay> = Vec::new();
+    for c in &PROTOCOL {
+        let Some(policy) = policy_for(py, &policies, c)? else {
+            continue;
+        };
+        let mut agent = PyAgent::new(py, policy, name, onehot, &tasks_of(c)?, draws)?;
+        let play = play_condition(&mut agent, c, seed).map_err(|e| runtime_err(e.to_string()))?;
+        if let Some((episode, step, cause)) = agent.error.take() {
+            let err = crate::errors::PolicyError::new_err(format!(
+                "the policy failed in condition {} ({} {}) at episode {episode}, step {step}: {}",
+                c.name,
+                c.task,
+                c.env.join(" "),
+                cause.value(py)
+            ));
+            let value = err.value(py);
+            for (k, v) in [("episode", episode), ("step", step)] {
+                let _ = value.setattr(k, v);
+            }
+            let _ = value.setattr("task", c.task);
+            let _ = value.setattr("condition", c.name);
+            let _ = value.setattr("td", c.probe_td.unwrap_or(0));
+            err.set_cause(py, Some(cause));
+            return Err(err);
+        }
+        plays.push(play);
+    }
+    if plays.is_empty() {
+        return Err(value_err(format!(
+            "`policies` gave no policy for any condition (conditions: {})",
+            PROTOCOL
+                .iter()
+                .map(|c| c.name)
+                .collect::<Vec<_>>()
+                .join(", ")
+        )));
+    }
+    let io = |e: chronocooked_analysis::mechanisms::MechanismError| {
+        pyo3::exceptions::PyOSError::new_err(e.to_string())
+    };
+    let _lock = chronocooked_env::fs::FolderLock::acquire(&out)
+        .map_err(|e| pyo3::exceptions::PyOSError::new_err(e.to_string()))?;
+    // The placement is written last: a folder with `fingerprint.json` is a complete one.
+    let _ = std::fs::remove_file(out.join("fingerprint.json"));
+    for c in &PROTOCOL {
+        // A condition not played now leaves no earlier folder behind.
+        if !plays.iter().any(|p| p.condition.name == c.name) {
+            let _ = std::fs::remove_dir_all(out.join(c.name));
+        }
+    }
+    for play in &plays {
+        write_condition(&out, play, name, seed).map_err(io)?;
+    }
+    let signature = agent_signature(&out, name, units_correspond, seed).map_err(io)?;
+    let placement = place(&signature, &reference_signatures(), resamples, seed);
+    let files = write_fingerprint(&out, &placement).map_err(io)?;
+    let json = serde_json::json!({
+        "out": out,
+        "conditions": plays.iter().map(|p| p.condition.name).collect::<Vec<_>>(),
+        "model": placement.model,
+        "signature": placement.signature,
+        "missing": placement.missing,
+        "distances": placement.distances,
+        "nearest": placement.nearest,
+        "identified": placement.identified,
+        "verdict": chronocooked_analysis::mechanisms::fingerprint::verdict(&placement),
+        "reference_identification": placement.reference_identification,
+        "files": files,
+    });
+    py.import("json")?
+        .call_method1("loads", (json.to_string(),))
+}
+
+/// The neural summary of an activity dataset (an evaluation folder with `activity.json`,
+/// or the file itself), written beside it as `activity.summary.json`; returns the list of
+/// per-population summaries (dicts).
+#[pyfunction]
+#[pyo3(signature = (path, units_correspond = false, seed = 0))]
+pub fn summarize<'py>(
+    py: Python<'py>,
+    path: PathBuf,
+    units_correspond: bool,
+    seed: u64,
+) -> PyResult<Bound<'py, PyAny>> {
+    let (_, summaries) =
+        chronocooked_analysis::neural::probe::summarize_file(&path, units_correspond, seed)
+            .map_err(value_err)?;
+    let json = serde_json::to_string(&summaries).map_err(|e| runtime_err(e.to_string()))?;
+    py.import("json")?.call_method1("loads", (json,))
+}
