@@ -321,3 +321,118 @@ fn the_committed_study_names_every_held_out_mechanism_and_not_a_random_agent() {
     let random = id.agents.iter().find(|a| a.agent == "random").unwrap();
     assert!(!random.identified, "{random:?}");
 }
+
+/// `fingerprint` on the lab's own runs: timing mechanisms trained as the reference study
+/// trains them, with a seed no study or doc uses (43), are identified as themselves —
+/// within their own held-out seeds' distances — and the runs of a condition outside the
+/// protocol, or two runs of one condition, are refused naming them.
+#[test]
+fn fingerprint_identifies_held_out_seeds_of_the_mechanisms_from_their_runs() {
+    let dir = common::temp_dir("fingerprint");
+    let d = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    for m in ["ddm", "timecells-ms", "timecells-csc"] {
+        let runs = [
+            (
+                "fi6",
+                "FixedInterval-v0",
+                vec!["env.td=6", "stop_at_success=none"],
+            ),
+            (
+                "fi12",
+                "FixedInterval-v0",
+                vec!["env.td=12", "stop_at_success=none"],
+            ),
+            (
+                "bis",
+                "Bisection-v0",
+                vec!["env.short=4", "env.long=12", "stop_at_success=0.95"],
+            ),
+        ];
+        let mut args = vec!["fingerprint".to_string()];
+        for (name, task, sets) in &runs {
+            let out = d(&format!("{m}-{name}"));
+            let mut train = vec!["train", "--model", m, "--task", task, "--seed", "43"];
+            for s in sets {
+                train.extend(["--set", s]);
+            }
+            train.extend(["--out", &out]);
+            run_ok(&train);
+            args.extend(["--run".to_string(), out]);
+        }
+        args.extend([
+            "--out".into(),
+            d(&format!("fp-{m}")),
+            "--resamples".into(),
+            "200".into(),
+        ]);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let out = run_ok(&args);
+        assert!(
+            out.contains(&format!("is identified as {m}:")),
+            "{m}: {out}"
+        );
+        let fp: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(dir.join(format!("fp-{m}/fingerprint.json"))).unwrap(),
+        )
+        .unwrap();
+        assert_eq!(fp["placement"]["nearest"], m);
+        assert_eq!(fp["placement"]["missing"], json!([]));
+        for f in [
+            "fingerprint.html",
+            "fingerprint.png",
+            "fi-td6/activity.summary.json",
+        ] {
+            assert!(dir.join(format!("fp-{m}/{f}")).is_file(), "{f}");
+        }
+    }
+    // A run of no protocol condition (FI at TD 9), and two runs of one condition.
+    run_ok(&[
+        "train",
+        "--model",
+        "ddm",
+        "--task",
+        "FixedInterval-v0",
+        "--set",
+        "env.td=9",
+        "--seed",
+        "43",
+        "--out",
+        &d("fi9"),
+    ]);
+    let err = common::run_err(&["fingerprint", "--run", &d("fi9"), "--out", &d("x")]);
+    assert!(
+        err.contains("no condition of the fingerprint protocol"),
+        "{err}"
+    );
+    let err = common::run_err(&[
+        "fingerprint",
+        "--run",
+        &d("ddm-fi6"),
+        "--run",
+        &d("timecells-ms-fi6"),
+        "--out",
+        &d("x"),
+    ]);
+    assert!(err.contains("both runs of the condition fi-td6"), "{err}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The reference study behind `chronocooked.fingerprint` (8 seeds per mechanism, rules 2):
+/// leave one seed out, at least 95% of the held-out seeds are named as their own mechanism.
+#[test]
+fn the_reference_study_names_its_held_out_seeds() {
+    use chronocooked_analysis::mechanisms::identify;
+    let study = Path::new(env!("CARGO_MANIFEST_DIR")).join("results/mechanisms-reference");
+    let id = identify(&signatures(&study).unwrap());
+    let correct = id
+        .held_out
+        .iter()
+        .filter(|h| h.named.as_deref() == Some(h.mechanism.as_str()))
+        .count();
+    assert_eq!(id.held_out.len(), 40);
+    assert!(
+        correct as f64 >= 0.95 * 40.0,
+        "{correct}/40: {:?}",
+        id.held_out
+    );
+}

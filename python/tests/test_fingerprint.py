@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import chronocooked
+from conftest import ROOT
 from policies import TimingOracle
 from timing_agents import Accumulator, OscillatorBank
 
@@ -133,3 +134,47 @@ def test_named_populations_are_recorded_and_summarized_from_an_evaluation_folder
 
     with pytest.raises(chronocooked.PolicyError, match="changed size"):
         chronocooked.evaluate(unstable, "FixedInterval-v0", tmp_path / "bad", td=6)
+
+
+def _example_env(tmp_path):
+    import os
+
+    return dict(os.environ, PYTHONPATH=str(ROOT / "examples" / "python"),
+                CHRONOCOOKED_CACHE=str(tmp_path / "cache"))
+
+
+def test_the_worked_example_runs_as_written_in_under_a_minute(tmp_path):
+    import subprocess
+    import sys
+    import time
+
+    start = time.time()
+    out = subprocess.run([sys.executable, str(ROOT / "examples/python/fingerprint_my_agent.py"),
+                          str(tmp_path / "fp")], cwd=tmp_path, env=_example_env(tmp_path),
+                         capture_output=True, text=True)
+    seconds = time.time() - start
+    assert out.returncode == 0, out.stderr
+    assert seconds < 60, f"{seconds:.0f} s"
+    for agent in ("pacemaker", "lstm125"):
+        saved = json.loads((tmp_path / "fp" / agent / "fingerprint.json").read_text())
+        assert saved["placement"]["nearest"] in {"ddm", "sbf", "timecells-csc", "timecells-ms",
+                                                 "timecells-laplace"}
+    # The zoo agent has no TD-6 run: the trend and scaling features are missing.
+    lstm = json.loads((tmp_path / "fp" / "lstm125" / "fingerprint.json").read_text())
+    assert {"foc_cv_trend", "scaling_index"} <= set(lstm["placement"]["missing"])
+    assert out.stdout.count("distance") >= 10, out.stdout
+
+
+def test_the_readme_fingerprint_block_runs_as_written(tmp_path):
+    import re
+    import subprocess
+    import sys
+
+    text = (ROOT / "README.md").read_text()
+    block = re.search(r"<!-- example: fingerprint -->\s*```python\n(.*?)```", text, re.S)
+    assert block, "README has the fingerprint example"
+    out = subprocess.run([sys.executable, "-c", block.group(1)], cwd=tmp_path,
+                         env=_example_env(tmp_path), capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    assert (tmp_path / "lab-out" / "fp-mine" / "fingerprint.json").is_file()
+    assert "my-pacemaker" in out.stdout

@@ -1,6 +1,10 @@
 //! `fingerprint`: which timing mechanism do trained runs of one agent resemble? The runs
 //! (fixed interval TD 6 / TD 12, bisection 4-12; any subset) play the mechanisms protocol
-//! and the agent's signature is placed among the committed timing mechanisms.
+//! and the agent's signature is placed among the committed timing mechanisms. They are
+//! compared with mechanisms trained as `sweeps/mechanisms-reference.toml` trains them
+//! (fixed interval with `stop_at_success=none`, bisection stopping at 0.95): train the
+//! runs the same way for a like-for-like comparison (a timing model stopped at its first
+//! solution behaves differently).
 
 use anyhow::Result;
 use clap::Args;

@@ -53,19 +53,31 @@ pub fn verdict(p: &Placement) -> String {
     }
 }
 
-/// The distance panel: the agent's distance to each mechanism (dots) beside the
-/// mechanism's self-distance range (bars).
+/// The distance panel: per mechanism (nearest first, one colour each) the agent's distance
+/// to its fingerprint (dot) beside the mechanism's self-distance range (bar).
 fn distance_chart(p: &Placement) -> Chart {
-    let mut dots = Vec::new();
-    let mut bars = Vec::new();
-    let mut markers = Vec::new();
+    let mut series = Vec::new();
     for (i, d) in p.distances.iter().enumerate() {
         let x = i as f64;
-        dots.push((x, d.distance));
+        series.push(Series {
+            label: d.mechanism.clone(),
+            points: vec![(x, d.distance)],
+            line: false,
+            color: i,
+        });
         if let Some((lo, hi)) = d.self_range {
-            bars.extend([(x, lo), (x, hi), (f64::NAN, f64::NAN)]);
+            // The bar: a short line at x from lo to hi, drawn thick by three offsets.
+            let pts = [-0.04, 0.0, 0.04]
+                .iter()
+                .flat_map(|dx| [(x + dx, lo), (x + dx, hi), (f64::NAN, f64::NAN)])
+                .collect();
+            series.push(Series {
+                label: String::new(),
+                points: pts,
+                line: true,
+                color: i,
+            });
         }
-        markers.push((x, d.mechanism.clone()));
     }
     let top = p
         .distances
@@ -75,24 +87,11 @@ fn distance_chart(p: &Placement) -> Chart {
         .fold(1.0f64, f64::max);
     Chart {
         title: format!("{}: distance to each mechanism", p.model),
-        x_label: "mechanism (nearest first)".into(),
+        x_label: "mechanism, nearest first (bar: its own seeds)".into(),
         y_label: "distance (feature SDs)".into(),
-        series: vec![
-            Series {
-                label: "self-distance range".into(),
-                points: bars,
-                line: true,
-                color: 7,
-            },
-            Series {
-                label: p.model.clone(),
-                points: dots,
-                line: false,
-                color: 3,
-            },
-        ],
-        markers,
-        y_range: Some((0.0, 1.15 * top)),
+        series,
+        markers: Vec::new(),
+        y_range: Some((0.0, 1.3 * top)),
     }
 }
 
@@ -159,8 +158,13 @@ pub fn write_fingerprint(dir: &Path, p: &Placement) -> Result<Vec<PathBuf>, Mech
         .map(|c| dir.join(c.name).join(job_folder::EVAL))
         .filter(|e| e.is_dir())
         .collect();
-    let card = crate::report::mechanisms::agent_card(&p.model, &fi_evals, &panels_dir)
-        .map_err(|e| error(&panels_dir, e))?;
+    let card = crate::report::mechanisms::agent_card(
+        &p.model,
+        &fi_evals,
+        &panels_dir,
+        p.signature.get("scaling_index").copied(),
+    )
+    .map_err(|e| error(&panels_dir, e))?;
     let chart = distance_chart(p);
     let distance_files = write_chart_sized(&panels_dir.join("distances"), &chart, (560, 360))
         .map_err(|e| error(&panels_dir, e))?;

@@ -147,11 +147,14 @@ pub type CardPanels = Vec<(&'static str, crate::report::figures::Chart, String)>
 /// (each with the probe recording `activity.json` beside it, as in a study's job folders
 /// or a fingerprint's condition folders): the card's HTML (panel files written to `dir`)
 /// and its line-chart panels `(file name, chart, caption)`. `None` when no recording has a
-/// timing population with varying units.
+/// timing population with varying units. `scaling_index`, when given, is the agent's own
+/// (e.g. its fingerprint's, whose units may correspond across TDs) and replaces the card's
+/// geometry-only one.
 pub fn agent_card(
     model: &str,
     fi_evals: &[PathBuf],
     dir: &Path,
+    scaling_index: Option<f64>,
 ) -> Result<Option<(Markup, CardPanels)>, String> {
     let row = Row {
         model: model.to_string(),
@@ -164,7 +167,10 @@ pub fn agent_card(
     };
     let runs: Vec<RunInfo> = fi_evals.iter().map(|e| run_info(e)).collect();
     let (card, _) = card_and_scaling(&row, &runs)?;
-    let Some(card) = card else { return Ok(None) };
+    let Some(mut card) = card else {
+        return Ok(None);
+    };
+    card.scaling_index = scaling_index.or(card.scaling_index);
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     Ok(Some((card_html(&card, dir)?, card_charts(&card))))
 }
