@@ -1,29 +1,11 @@
 """Adapters from common Python agents to the policy callable of `chronocooked.evaluate`:
-``policy(obs, state, episode_start) -> (action, state[, activity])``.
+``policy(obs, state, episode_start) -> (action, state[, activity])``. Stable-Baselines3
+models have theirs in the package: ``chronocooked.sb3.policy(model)``.
 
 Not required dependencies of the package: import what you use.
 """
 
 import numpy as np
-
-
-def sb3_policy(model, deterministic=True):
-    """A Stable-Baselines3 ``PPO`` (or any model with ``predict``) as a policy. For
-    sb3-contrib ``RecurrentPPO`` the LSTM state is threaded through ``state`` and the hidden
-    state is returned as the activity (``[hidden]`` of the actor LSTM's output state)."""
-    recurrent = hasattr(model.policy, "lstm_actor")
-
-    def policy(obs, state, episode_start):
-        if recurrent:
-            action, state = model.predict(obs[None], state=state,
-                                          episode_start=np.array([episode_start]),
-                                          deterministic=deterministic)
-            hidden = np.asarray(state[0]).reshape(-1)  # (layers, 1, H) -> [H]
-            return int(action[0]), state, hidden.astype(np.float32)
-        action, _ = model.predict(obs, deterministic=deterministic)
-        return int(action), None
-
-    return policy
 
 
 def torch_policy(module, recurrent=False):

@@ -24,8 +24,6 @@ from stable_baselines3 import PPO
 from stable_baselines3.common.callbacks import BaseCallback
 from stable_baselines3.common.torch_layers import BaseFeaturesExtractor
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from adapters import sb3_policy  # noqa: E402
 
 
 class PaperCNN(BaseFeaturesExtractor):
@@ -95,7 +93,7 @@ def main():
     if args.env == "chronocooked":
         import chronocooked
         out = args.out or f"lab-out/sb3-fi{args.td}"
-        s = chronocooked.evaluate(sb3_policy(model), "FixedInterval-v0", out, name="sb3-ppo-cnn",
+        s = chronocooked.evaluate(chronocooked.sb3.policy(model, record=False), "FixedInterval-v0", out, name="sb3-ppo-cnn",
                                   td=args.td, max_timesteps=200)
         _, conditions = chronocooked.load_eval(out)
         fi = conditions[conditions["kind"] == "fi"]

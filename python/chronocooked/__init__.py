@@ -11,6 +11,7 @@
   recording;
 * :func:`load_eval` / :func:`load_activity` read evaluation folders and activity exports;
   :func:`to_nwb` writes a model run as an NWB file (needs ``pynwb``).
+* :mod:`chronocooked.sb3` turns Stable-Baselines3 models into policies (SB3 optional);
 * :mod:`chronocooked.zoo` holds the repository's trained agents (``zoo.load("lstm125/
   FixedInterval-v0")`` is a policy for :func:`evaluate`); :func:`report` writes the
   leaderboard of evaluation folders next to the committed baselines.
@@ -19,7 +20,7 @@
 from . import _core
 from ._core import EVENT_FLAGS, PolicyError, __version__, reference_conditions
 from .envs import ChronoEnv, ChronoVectorEnv, overrides, register_envs, task_ids
-from . import zoo
+from . import sb3, zoo
 from .evaluation import evaluate, load_activity, load_eval
 from .fingerprint import CONDITIONS, fingerprint, summarize
 from .zoo import report
@@ -71,6 +72,7 @@ __all__ = [
     "probability_of_improvement",
     "reference_conditions",
     "register_envs",
+    "sb3",
     "report",
     "summarize",
     "task_ids",

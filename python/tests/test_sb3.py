@@ -97,4 +97,8 @@ def test_a_recurrent_ppo_trained_on_the_lab_env_is_evaluated_recorded_and_finger
     assert arrays["activity"].shape[1] == sum(n for _, n in names)
     assert {"hidden", "cell"} <= {p["name"] for p in meta["populations"]}
     r = chronocooked.fingerprint({"fi-td6": policy}, tmp_path / "fp", draws=1)
-    assert r["conditions"] == ["fi-td6"] and r["nearest"] is not None
+    assert r["conditions"] == ["fi-td6"]
+    assert (tmp_path / "fp" / "fingerprint.json").is_file()
+    # 2,048 steps rarely teach the task: an agent that never turns the oven on has no
+    # timing features at all (and says so); one that does is placed.
+    assert (r["nearest"] is not None) == bool(r["signature"]), r
