@@ -172,7 +172,7 @@ pub fn iqm(
             values.len()
         )));
     }
-    if !(level > 0.0 && level < 1.0) || !(1..=1_000_000).contains(&resamples) {
+    if !(level > 0.0 && level < 1.0 && (1..=1_000_000).contains(&resamples)) {
         return Err(value_err(format!(
             "invalid `level` {level} or `resamples` {resamples} (allowed: 0 < level < 1, 1..=1000000 resamples)"
         )));
