@@ -33,6 +33,7 @@
 pub mod behaviour;
 pub mod evaluation;
 pub mod export;
+pub mod fingerprint;
 pub mod job_folder;
 pub mod mechanisms;
 pub mod neural;

@@ -1,7 +1,7 @@
 //! The fingerprint's compiled-in mechanism signatures are the committed study's.
 
+use chronocooked_analysis::fingerprint::{reference_signatures, signatures_from_csv};
 use chronocooked_analysis::mechanisms::MECHANISMS;
-use chronocooked_analysis::mechanisms::fingerprint::{reference_signatures, signatures_from_csv};
 
 #[test]
 fn the_compiled_in_signatures_equal_the_committed_study() {

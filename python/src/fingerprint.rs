@@ -1,10 +1,10 @@
 //! `fingerprint`: which timing mechanism does a Python agent resemble? The agent's policies
 //! play the mechanisms protocol ([`PROTOCOL`]); its signature is placed among the
-//! committed mechanism signatures (see `chronocooked_analysis::mechanisms::fingerprint`).
+//! committed mechanism signatures (see `chronocooked_analysis::fingerprint`).
 
 use crate::agent::PyAgent;
 use crate::errors::{env_err, runtime_err, value_err};
-use chronocooked_analysis::mechanisms::fingerprint::{
+use chronocooked_analysis::fingerprint::{
     ConditionPlay, PROTOCOL, ProtocolCondition, agent_signature, place, play_condition,
     reference_signatures, write_condition, write_fingerprint,
 };
@@ -188,7 +188,7 @@ pub fn fingerprint<'py>(
         "distances": placement.distances,
         "nearest": placement.nearest,
         "identified": placement.identified,
-        "verdict": chronocooked_analysis::mechanisms::fingerprint::verdict(&placement),
+        "verdict": chronocooked_analysis::fingerprint::verdict(&placement),
         "reference_identification": placement.reference_identification,
         "files": files,
     });

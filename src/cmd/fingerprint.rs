@@ -53,7 +53,7 @@ pub fn run(args: FingerprintArgs) -> Result<()> {
         "{} ({}): {}",
         p.model,
         r.conditions.join(", "),
-        chronocooked_analysis::mechanisms::fingerprint::verdict(p)
+        chronocooked_analysis::fingerprint::verdict(p)
     );
     for d in &p.distances {
         println!(

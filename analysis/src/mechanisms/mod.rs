@@ -35,7 +35,6 @@
 //! nearest mechanism is bootstrapped over seeds (seeds of every model resampled with
 //! replacement): the fraction of resamples in which each mechanism is the nearest.
 
-pub mod fingerprint;
 mod identify;
 mod read;
 mod tables;
@@ -113,14 +112,14 @@ fn per_feature<'a>(
 }
 
 /// SD of each feature over `sigs` (features with fewer than 2 values or no spread left out).
-fn feature_sds<'a>(
+pub(crate) fn feature_sds<'a>(
     sigs: impl Iterator<Item = &'a Signature> + Clone,
 ) -> BTreeMap<&'static str, f64> {
     per_feature(sigs, |s| (s.sd.is_finite() && s.sd > 0.0).then_some(s.sd))
 }
 
 /// Mean of each feature over `sigs` (features no signature has are absent).
-fn mean_features(sigs: &[&Signature]) -> BTreeMap<&'static str, f64> {
+pub(crate) fn mean_features(sigs: &[&Signature]) -> BTreeMap<&'static str, f64> {
     per_feature(sigs.iter().copied(), |s| (s.n > 0).then_some(s.mean))
 }
 
@@ -175,14 +174,14 @@ fn feature_weights(mechs: &[&Signature]) -> BTreeMap<&'static str, f64> {
 
 /// The scale of a distance: each feature's SD and its weight.
 #[derive(Debug, Clone, PartialEq)]
-struct Scale {
+pub(crate) struct Scale {
     sds: BTreeMap<&'static str, f64>,
     weights: BTreeMap<&'static str, f64>,
 }
 
 impl Scale {
     /// SDs over `sigs`, weights from the signatures of the `mechanisms` among them.
-    fn of(sigs: &[&Signature], mechanisms: &[&str]) -> Self {
+    pub(crate) fn of(sigs: &[&Signature], mechanisms: &[&str]) -> Self {
         let mechs: Vec<&Signature> = sigs
             .iter()
             .copied()
@@ -198,7 +197,7 @@ impl Scale {
 /// The weighted RMS of the standardised differences over the features both fingerprints
 /// have: `√(Σ w_f z_f² / Σ w_f)`, `z_f` the difference in SDs of feature `f` (NaN when they
 /// share no weighted feature).
-fn distance(
+pub(crate) fn distance(
     a: &BTreeMap<&'static str, f64>,
     b: &BTreeMap<&'static str, f64>,
     scale: &Scale,

@@ -1,10 +1,10 @@
 //! The fingerprint stage: which timing mechanism do the lab's own trained runs resemble?
 //! Each run folder (or zoo agent) plays the fingerprint protocol's condition it was trained
 //! for (matched by its task and settings), and the agent's signature is placed among the
-//! committed mechanism signatures (`chronocooked_analysis::mechanisms::fingerprint`).
+//! committed mechanism signatures (`chronocooked_analysis::fingerprint`).
 
 use crate::PipelineError;
-use chronocooked_analysis::mechanisms::fingerprint::{
+use chronocooked_analysis::fingerprint::{
     PROTOCOL, Placement, ProtocolCondition, agent_signature, place, play_condition,
     reference_signatures, write_condition, write_fingerprint,
 };

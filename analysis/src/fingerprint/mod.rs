@@ -4,7 +4,7 @@
 //! and TD 12 and bisection 4–12, each evaluated with the reference protocol (every free
 //! start cell, [`chronocooked_models::timing::NOISE_DRAWS`] times for a noisy agent) and
 //! the fixed-interval conditions also recorded on peak-interval probe trials with the
-//! neural summary. Its [`Signature`] (the features of [`crate::mechanisms`]) is placed
+//! neural summary. Its [`Signature`](crate::mechanisms::Signature) (the features of [`crate::mechanisms`]) is placed
 //! among the committed mechanism signatures ([`reference_signatures`]): its distance to
 //! every mechanism's fingerprint beside that mechanism's self-distance range (the
 //! distances of its own held-out seeds, leave one seed out), the bootstrap share of each

@@ -12,7 +12,7 @@ use std::collections::BTreeMap;
 /// the mechanisms study on the reference preset (`results/mechanisms-reference/
 /// signatures.csv`, 8 seeds per mechanism, unit categories of rules version 2), compiled
 /// in so an installed package needs no repository.
-const REFERENCE_CSV: &str = include_str!("../../../data/mechanism-signatures.csv");
+const REFERENCE_CSV: &str = include_str!("../../data/mechanism-signatures.csv");
 
 /// Where [`reference_signatures`] come from (printed beside every placement).
 pub const REFERENCE_SOURCE: &str =
