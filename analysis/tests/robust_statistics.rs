@@ -96,6 +96,12 @@ fn stratified_resamples_keep_every_strata_size() {
     let one = vec![String::from("a"); 6];
     let (lo, hi) = stratified_bootstrap_ci(&runs, &one, mean, 0.95, 500, 1).unwrap();
     assert!(lo < 5.0 && hi > 5.0, "{lo} {hi}");
+    // One run per stratum: every resample is the sample itself, so no interval.
+    let each: Vec<String> = ["a", "b", "c"].map(String::from).to_vec();
+    assert_eq!(
+        stratified_bootstrap_ci(&[1.0, 2.0, 3.0], &each, mean, 0.95, 100, 1),
+        None
+    );
     // Fewer than two runs: no interval.
     assert_eq!(
         stratified_bootstrap_ci(&[1.0, f64::NAN], &one[..2], mean, 0.95, 100, 1),

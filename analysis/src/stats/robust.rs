@@ -43,7 +43,8 @@ pub fn quantile_sorted(sorted: &[f64], q: f64) -> f64 {
 /// Percentile bootstrap `(lo, hi)` interval at `level` (e.g. 0.95) of `statistic` over
 /// `values` with `strata[i]` the stratum of `values[i]`: each of `resamples` resamples
 /// draws, within every stratum, as many values as it has, with replacement (seeded by
-/// `seed`). Non-finite values are left out first; `None` below 2 values.
+/// `seed`). Non-finite values are left out first; `None` below 2 values, and when no
+/// stratum has two (a row of one run per task setting has nothing to resample).
 pub fn stratified_bootstrap_ci(
     values: &[f64],
     strata: &[String],
@@ -63,7 +64,8 @@ pub fn stratified_bootstrap_ci(
         }
     }
     let n: usize = groups.iter().map(|(_, g)| g.len()).sum();
-    if n < 2 || resamples == 0 {
+    // With one value per stratum every resample is the sample itself: no interval.
+    if n < 2 || resamples == 0 || groups.iter().all(|(_, g)| g.len() < 2) {
         return None;
     }
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
