@@ -4,12 +4,13 @@
 //! committed mechanism signatures (`chronocooked_analysis::fingerprint`).
 
 use crate::PipelineError;
+use crate::stages::record::units_correspond;
 use chronocooked_analysis::fingerprint::{
     PROTOCOL, Placement, ProtocolCondition, agent_signature, place, play_condition,
     reference_signatures, write_condition, write_fingerprint,
 };
 use chronocooked_env::{TaskParams, make_config};
-use chronocooked_training::timing_run::{is_timing_run, load_agent, load_timing_config, run_task};
+use chronocooked_training::timing_run::{load_agent, run_task};
 use std::path::{Path, PathBuf};
 
 /// What to fingerprint (the arguments of `chronocooked fingerprint`).
@@ -75,20 +76,6 @@ fn condition_of(run: &Path) -> Result<&'static ProtocolCondition, PipelineError>
         })
 }
 
-/// Whether unit `j` is the same unit in every run: timing-model runs of one model and seed
-/// (fixed oscillators, time-cell bases); separately trained networks do not correspond.
-fn units_correspond(runs: &[PathBuf]) -> bool {
-    let keys: Option<Vec<(String, u64)>> = runs
-        .iter()
-        .map(|r| {
-            is_timing_run(r)
-                .then(|| load_timing_config(r).ok().map(|c| (c.model, c.seed)))
-                .flatten()
-        })
-        .collect();
-    keys.is_some_and(|k| k.windows(2).all(|w| w[0] == w[1]))
-}
-
 /// Plays each run's condition, writes the condition folders and the fingerprint into
 /// `req.out`.
 pub fn fingerprint(req: &FingerprintRequest) -> Result<FingerprintOutcome, PipelineError> {
@@ -139,7 +126,7 @@ pub fn fingerprint(req: &FingerprintRequest) -> Result<FingerprintOutcome, Pipel
     for play in &plays {
         write_condition(&req.out, play, &name, req.seed).map_err(analysis)?;
     }
-    let runs: Vec<PathBuf> = matched.iter().map(|(_, r)| (*r).clone()).collect();
+    let runs: Vec<&PathBuf> = matched.iter().map(|(_, r)| *r).collect();
     let signature =
         agent_signature(&req.out, &name, units_correspond(&runs), req.seed).map_err(analysis)?;
     let placement = place(&signature, &reference_signatures(), req.resamples, req.seed);

@@ -111,7 +111,7 @@ fn record_run(
 
 /// Whether unit `j` is the same unit in every run: one run, or timing-model runs of the
 /// same model and seed (fixed oscillator frequencies, time-cell bases).
-fn units_correspond(runs: &[&PathBuf]) -> bool {
+pub(crate) fn units_correspond(runs: &[&PathBuf]) -> bool {
     if runs.len() <= 1 {
         return true;
     }
