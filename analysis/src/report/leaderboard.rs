@@ -46,7 +46,8 @@ pub struct Robust {
     /// Interquartile mean over the runs with a value.
     pub iqm: f64,
     /// Stratified percentile bootstrap 95% interval of the IQM (runs resampled within
-    /// their task settings, [`BOOTSTRAP_RESAMPLES`] resamples, seed 0); `None` below 2 runs.
+    /// their task settings, [`BOOTSTRAP_RESAMPLES`] resamples, seed 0); `None` below 2 runs
+    /// or when every task setting has one run.
     pub ci: Option<(f64, f64)>,
     /// The per-run values (NaN: the run lacks the metric), in run order.
     pub values: Vec<f64>,
