@@ -317,3 +317,28 @@ fn baselines_are_read_from_a_named_folder_and_bad_folders_are_named() {
     assert!(err.contains("no `jobs/` folder"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A study with jobs that did not train with PPO (timing models: `wall_s` and the final
+/// episode statistics are `null` in their `job.json`) is a baseline like any other: the
+/// committed mechanisms reference study gives one row per mechanism with its 24 runs.
+#[test]
+fn a_study_of_timing_models_is_a_baseline() {
+    let dir = temp_dir("baselines-timing");
+    let out = dir.join("r");
+    let study = Path::new(ROOT).join("results/mechanisms-reference");
+    run_ok(&[
+        "report",
+        "--baselines",
+        study.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let rows = read_csv(&out.join("report.csv"));
+    let ddm = rows
+        .iter()
+        .find(|r| r["model"] == "ddm (mechanisms-reference)")
+        .expect("a drift-diffusion row");
+    // 8 seeds × (FI TD 6, FI TD 12, bisection 4-12).
+    assert_eq!(ddm["runs"], "24");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

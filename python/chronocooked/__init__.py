@@ -32,6 +32,18 @@ def probability_of_improvement(x, y):
     return _core.probability_of_improvement([float(v) for v in x], [float(v) for v in y])
 
 
+def collect(sweep_out, out):
+    """Writes the compact results of every finished job of a sweep's output folder into
+    ``out`` (what ``chronocooked paper collect`` writes: ``out/jobs/<job id>/`` with
+    ``job.json``, ``metrics.json``, ``episodes.csv``, ``curve.csv`` and the neural summary),
+    safe while the sweep runs; returns ``(written, unfinished)`` job counts. The folder is a
+    baseline for :func:`report` (``baselines=out``). ``OSError`` naming the folder on a
+    missing sweep output or a folder another process writes."""
+    import os
+
+    return _core.collect(os.fspath(sweep_out), os.fspath(out))
+
+
 def iqm(values, strata=None, level=0.95, resamples=2000, seed=0):
     """The interquartile mean of ``values`` and its stratified percentile bootstrap interval:
     ``(iqm, (lo, hi))`` (``None`` for fewer than 2 values); ``strata`` labels each value's
@@ -63,6 +75,7 @@ __all__ = [
     "EVENT_FLAGS",
     "PolicyError",
     "__version__",
+    "collect",
     "evaluate",
     "fingerprint",
     "load_activity",

@@ -52,6 +52,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(zoo::report, m)?)?;
     m.add_function(wrap_pyfunction!(zoo::probability_of_improvement, m)?)?;
     m.add_function(wrap_pyfunction!(zoo::iqm, m)?)?;
+    m.add_function(wrap_pyfunction!(zoo::collect, m)?)?;
     m.add_function(wrap_pyfunction!(_panic_for_tests, m)?)?;
     m.add("EVENT_FLAGS", info::event_flags(m.py())?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

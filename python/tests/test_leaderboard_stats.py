@@ -46,3 +46,25 @@ def test_the_leaderboard_writes_iqm_columns_and_the_pairwise_table(tmp_path):
     with pytest.raises(ValueError, match="two are needed"):
         chronocooked.report(evals[:1], tmp_path / "r1", baselines=False,
                             improvement="foc_over_td")
+
+
+def test_a_sweep_is_collected_from_python_and_becomes_a_baseline(tmp_path, cli):
+    import subprocess
+
+    sweep = tmp_path / "tiny.toml"
+    # The oracle is deterministic (one job); drift-diffusion trains in a second per seed.
+    sweep.write_text('name = "tiny"\ntasks = ["FixedInterval-v0"]\nmodels = ["oracle", "ddm"]\n'
+                     'seeds = [0, 1]\nrecord = false\nexport = false\n')
+    subprocess.run([cli, "sweep", str(sweep), "--out", str(tmp_path / "out"), "--workers", "1",
+                    "--no-report"], check=True, capture_output=True)
+    written, unfinished = chronocooked.collect(tmp_path / "out", tmp_path / "results")
+    assert (written, unfinished) == (3, 0)
+    jobs = sorted(f"{p.parent.parent.name}/{p.parent.name}"
+                  for p in (tmp_path / "results").rglob("metrics.json"))
+    assert jobs == ["ddm/seed0", "ddm/seed1", "oracle/seed0"]
+    files = chronocooked.report([], tmp_path / "report", baselines=tmp_path / "results")
+    rows = (tmp_path / "report" / "report.csv").read_text().splitlines()
+    assert sorted(r.split(",")[0] for r in rows[1:]) == ["ddm (results)", "oracle (results)"]
+    assert any(f.name == "report.html" for f in files)
+    with pytest.raises(OSError, match="no such sweep output folder"):
+        chronocooked.collect(tmp_path / "missing", tmp_path / "r2")

@@ -37,12 +37,16 @@ pub struct JobSummary {
     pub total_steps: u64,
     /// Env steps done.
     pub steps_done: u64,
-    /// Training wall-clock seconds (one core).
+    /// Training wall-clock seconds (one core; NaN — `null` in the file — for jobs without
+    /// PPO training: timing models, oracle, random).
+    #[serde(deserialize_with = "crate::stats::nan_if_null")]
     pub wall_s: f64,
     /// Mean episode length of the last 100 training episodes at the end (the paper's
     /// `rollout/ep_len_mean`, used to exclude bisection runs).
+    #[serde(deserialize_with = "crate::stats::nan_if_null")]
     pub final_ep_len_mean: f64,
     /// Mean return of the last 100 training episodes at the end.
+    #[serde(deserialize_with = "crate::stats::nan_if_null")]
     pub final_ep_return_mean: f64,
     /// Multi-timer curriculum: env steps at which each level was entered (level 0 at 0).
     pub level_steps: Vec<u64>,
