@@ -5,8 +5,7 @@
 use crate::agent::PyAgent;
 use crate::errors::{env_err, runtime_err, value_err};
 use chronocooked_analysis::fingerprint::{
-    ConditionPlay, PROTOCOL, ProtocolCondition, agent_signature, place, play_condition,
-    reference_signatures, write_condition, write_fingerprint,
+    ConditionPlay, PROTOCOL, ProtocolCondition, play_condition, write_and_place,
 };
 use chronocooked_analysis::neural::probe::{PROBE_TASK, probe_task};
 use chronocooked_models::timing::agent::NOISE_DRAWS;
@@ -160,25 +159,8 @@ pub fn fingerprint<'py>(
                 .join(", ")
         )));
     }
-    let io = |e: chronocooked_analysis::mechanisms::MechanismError| {
-        pyo3::exceptions::PyOSError::new_err(e.to_string())
-    };
-    let _lock = chronocooked_env::fs::FolderLock::acquire(&out)
+    let (placement, files) = write_and_place(&out, &plays, name, units_correspond, seed, resamples)
         .map_err(|e| pyo3::exceptions::PyOSError::new_err(e.to_string()))?;
-    // The placement is written last: a folder with `fingerprint.json` is a complete one.
-    let _ = std::fs::remove_file(out.join("fingerprint.json"));
-    for c in &PROTOCOL {
-        // A condition not played now leaves no earlier folder behind.
-        if !plays.iter().any(|p| p.condition.name == c.name) {
-            let _ = std::fs::remove_dir_all(out.join(c.name));
-        }
-    }
-    for play in &plays {
-        write_condition(&out, play, name, seed).map_err(io)?;
-    }
-    let signature = agent_signature(&out, name, units_correspond, seed).map_err(io)?;
-    let placement = place(&signature, &reference_signatures(), resamples, seed);
-    let files = write_fingerprint(&out, &placement).map_err(io)?;
     let json = serde_json::json!({
         "out": out,
         "conditions": plays.iter().map(|p| p.condition.name).collect::<Vec<_>>(),

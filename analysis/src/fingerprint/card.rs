@@ -11,13 +11,6 @@ use crate::report::markup::{figure_file, page};
 use maud::html;
 use std::path::{Path, PathBuf};
 
-fn error(path: &Path, message: impl ToString) -> MechanismError {
-    MechanismError::File {
-        path: path.to_path_buf(),
-        message: message.to_string(),
-    }
-}
-
 fn fmt(x: f64) -> String {
     if x.is_finite() {
         format!("{x:.2}")
@@ -139,7 +132,8 @@ fn markdown(p: &Placement) -> String {
 pub fn write_fingerprint(dir: &Path, p: &Placement) -> Result<Vec<PathBuf>, MechanismError> {
     let write = |name: &str, bytes: &[u8]| {
         let path = dir.join(name);
-        chronocooked_env::fs::write_atomic(&path, bytes).map_err(|e| error(&path, e.error))?;
+        chronocooked_env::fs::write_atomic(&path, bytes)
+            .map_err(|e| MechanismError::at(&path, e.error))?;
         Ok::<PathBuf, MechanismError>(path)
     };
     let mut files = Vec::new();
@@ -149,7 +143,7 @@ pub fn write_fingerprint(dir: &Path, p: &Placement) -> Result<Vec<PathBuf>, Mech
         "reference": REFERENCE_SOURCE,
         "features": FEATURES,
     });
-    let text = serde_json::to_string_pretty(&json).map_err(|e| error(dir, e))? + "\n";
+    let text = serde_json::to_string_pretty(&json).map_err(|e| MechanismError::at(dir, e))? + "\n";
     files.push(write("fingerprint.md", markdown(p).as_bytes())?);
     let panels_dir = dir.join("card");
     let fi_evals: Vec<PathBuf> = PROTOCOL
@@ -164,10 +158,10 @@ pub fn write_fingerprint(dir: &Path, p: &Placement) -> Result<Vec<PathBuf>, Mech
         &panels_dir,
         p.signature.get("scaling_index").copied(),
     )
-    .map_err(|e| error(&panels_dir, e))?;
+    .map_err(|e| MechanismError::at(&panels_dir, e))?;
     let chart = distance_chart(p);
     let distance_files = write_chart_sized(&panels_dir.join("distances"), &chart, (560, 360))
-        .map_err(|e| error(&panels_dir, e))?;
+        .map_err(|e| MechanismError::at(&panels_dir, e))?;
     let distance_figure = figure_file(
         &distance_files[0],
         "distance to each mechanism's fingerprint (dots) beside the distances of the \
@@ -175,7 +169,7 @@ pub fn write_fingerprint(dir: &Path, p: &Placement) -> Result<Vec<PathBuf>, Mech
          unseen seed of that mechanism",
         Some("half"),
     )
-    .map_err(|e| error(&panels_dir, e))?;
+    .map_err(|e| MechanismError::at(&panels_dir, e))?;
     let body = html! {
         p { (verdict(p)) "." }
         p { (format!("Compared with {REFERENCE_SOURCE}: {} of {} held-out mechanism seeds named as their own mechanism.", p.reference_identification.0, p.reference_identification.1)) }
@@ -205,7 +199,7 @@ pub fn write_fingerprint(dir: &Path, p: &Placement) -> Result<Vec<PathBuf>, Mech
         charts.extend(panels.into_iter().map(|(_, c, _)| Some(c)));
     }
     let png = write_panels(&dir.join("fingerprint"), (1, charts.len()), &charts)
-        .map_err(|e| error(dir, e))?;
+        .map_err(|e| MechanismError::at(dir, e))?;
     files.extend(png);
     // The placement last: a folder with `fingerprint.json` is a complete fingerprint.
     files.push(write("fingerprint.json", text.as_bytes())?);

@@ -28,3 +28,35 @@ pub use place::{MechanismDistance, Placement, place, reference_signatures, signa
 pub use play::{
     ConditionPlay, PROTOCOL, ProtocolCondition, agent_signature, play_condition, write_condition,
 };
+
+/// Writes the played conditions into `out` (holding its lock; folders of conditions not
+/// played now are removed, `fingerprint.json` first removed so that it is written last)
+/// and places the agent `model`: its signature (`units_correspond` as in
+/// [`agent_signature`]), the placement among [`reference_signatures`] (`resamples`
+/// bootstrap resamples, `seed`) and the fingerprint's files. Returns the placement and the
+/// files.
+pub fn write_and_place(
+    out: &std::path::Path,
+    plays: &[ConditionPlay],
+    model: &str,
+    units_correspond: bool,
+    seed: u64,
+    resamples: usize,
+) -> Result<(Placement, Vec<std::path::PathBuf>), crate::mechanisms::MechanismError> {
+    use crate::mechanisms::MechanismError;
+    let _lock =
+        chronocooked_env::fs::FolderLock::acquire(out).map_err(|e| MechanismError::at(out, e))?;
+    let _ = std::fs::remove_file(out.join("fingerprint.json"));
+    for c in &PROTOCOL {
+        if !plays.iter().any(|p| p.condition.name == c.name) {
+            let _ = std::fs::remove_dir_all(out.join(c.name));
+        }
+    }
+    for play in plays {
+        write_condition(out, play, model, seed)?;
+    }
+    let signature = agent_signature(out, model, units_correspond, seed)?;
+    let placement = place(&signature, &reference_signatures(), resamples, seed);
+    let files = write_fingerprint(out, &placement)?;
+    Ok((placement, files))
+}

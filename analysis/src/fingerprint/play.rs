@@ -67,13 +67,6 @@ pub struct ConditionPlay {
     pub probe: Option<ActivityDataset>,
 }
 
-fn error(path: &Path, message: impl ToString) -> MechanismError {
-    MechanismError::File {
-        path: path.to_path_buf(),
-        message: message.to_string(),
-    }
-}
-
 /// Plays `condition` with `agent`: the reference evaluation protocol (seeded by `seed`),
 /// then — for a fixed-interval condition — one probe trial per free start cell at its TD.
 /// Writes nothing (see [`write_condition`]).
@@ -84,15 +77,18 @@ pub fn play_condition(
 ) -> Result<ConditionPlay, MechanismError> {
     let env = condition.env_strings();
     let here = Path::new(condition.name);
-    let conditions = reference_conditions(condition.task, &env).map_err(|e| error(here, e))?;
-    let records =
-        run_protocol(agent, &conditions, Mode::Reference, seed).map_err(|e| error(here, e))?;
+    let conditions =
+        reference_conditions(condition.task, &env).map_err(|e| MechanismError::at(here, e))?;
+    let records = run_protocol(agent, &conditions, Mode::Reference, seed)
+        .map_err(|e| MechanismError::at(here, e))?;
     let probe = match condition.probe_td {
         Some(td) => {
-            let probe_env = probe_task(condition.task, &env, &[td]).map_err(|e| error(here, e))?;
-            let config = make_config(PROBE_TASK, &probe_env).map_err(|e| error(here, e))?;
+            let probe_env =
+                probe_task(condition.task, &env, &[td]).map_err(|e| MechanismError::at(here, e))?;
+            let config =
+                make_config(PROBE_TASK, &probe_env).map_err(|e| MechanismError::at(here, e))?;
             let ds = record_dataset(agent, &config, PROBE_TASK, &probe_env, &[td], 1, seed)
-                .map_err(|e| error(here, e))?;
+                .map_err(|e| MechanismError::at(here, e))?;
             (ds.meta.n_units() > 0).then_some(ds)
         }
         None => None,
@@ -124,17 +120,20 @@ pub fn write_condition(
         seed,
         unfinished_at_step: None,
     };
-    write_eval_folder(&eval, &info, &play.records).map_err(|e| error(&eval, e))?;
+    write_eval_folder(&eval, &info, &play.records).map_err(|e| MechanismError::at(&eval, e))?;
     let activity = folder.join(job_folder::ACTIVITY);
     let summary = folder.join(job_folder::ACTIVITY_SUMMARY);
-    chronocooked_env::integrity::remove_recorded(&summary).map_err(|e| error(&summary, e))?;
-    chronocooked_env::integrity::remove_recorded(&activity).map_err(|e| error(&activity, e))?;
+    chronocooked_env::integrity::remove_recorded(&summary)
+        .map_err(|e| MechanismError::at(&summary, e))?;
+    chronocooked_env::integrity::remove_recorded(&activity)
+        .map_err(|e| MechanismError::at(&activity, e))?;
     if let Some(ds) = &play.probe {
-        let bytes = serde_json::to_vec(ds).map_err(|e| error(&activity, e))?;
-        write_recorded(&activity, &bytes).map_err(|e| error(&activity, e))?;
+        let bytes = serde_json::to_vec(ds).map_err(|e| MechanismError::at(&activity, e))?;
+        write_recorded(&activity, &bytes).map_err(|e| MechanismError::at(&activity, e))?;
         let summaries = population_summaries(ds, true, seed);
-        let bytes = serde_json::to_vec_pretty(&summaries).map_err(|e| error(&summary, e))?;
-        write_recorded(&summary, &bytes).map_err(|e| error(&summary, e))?;
+        let bytes =
+            serde_json::to_vec_pretty(&summaries).map_err(|e| MechanismError::at(&summary, e))?;
+        write_recorded(&summary, &bytes).map_err(|e| MechanismError::at(&summary, e))?;
     }
     Ok(folder)
 }
@@ -144,10 +143,11 @@ fn read_dataset(path: &Path) -> Result<Option<ActivityDataset>, MechanismError> 
     if !path.is_file() {
         return Ok(None);
     }
-    let bytes = chronocooked_env::integrity::read_checked(path).map_err(|e| error(path, e))?;
+    let bytes =
+        chronocooked_env::integrity::read_checked(path).map_err(|e| MechanismError::at(path, e))?;
     ActivityDataset::from_json(&bytes)
         .map(Some)
-        .map_err(|e| error(path, e))
+        .map_err(|e| MechanismError::at(path, e))
 }
 
 /// The signature of the agent whose protocol folders are under `dir` (conditions without a
@@ -198,7 +198,7 @@ pub fn agent_signature(
         }
         if tds >= 2 {
             let summaries = population_summaries(&merged, units_correspond, seed);
-            let json = serde_json::to_value(&summaries).map_err(|e| error(dir, e))?;
+            let json = serde_json::to_value(&summaries).map_err(|e| MechanismError::at(dir, e))?;
             if let Some(i) = scaling_index_of_summary(&json).filter(|i| i.is_finite()) {
                 scaling.push((model.to_string(), seed, i));
             }

@@ -84,6 +84,16 @@ pub enum MechanismError {
     Empty(PathBuf),
 }
 
+impl MechanismError {
+    /// A [`MechanismError::File`] error about `path`.
+    pub fn at(path: &std::path::Path, message: impl ToString) -> Self {
+        MechanismError::File {
+            path: path.to_path_buf(),
+            message: message.to_string(),
+        }
+    }
+}
+
 /// One model's signature from one training seed: feature name → value (missing = not
 /// measured for that model, e.g. no bisection job).
 #[derive(Debug, Clone, PartialEq)]

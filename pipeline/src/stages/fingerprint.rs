@@ -6,8 +6,7 @@
 use crate::PipelineError;
 use crate::stages::record::units_correspond;
 use chronocooked_analysis::fingerprint::{
-    PROTOCOL, Placement, ProtocolCondition, agent_signature, place, play_condition,
-    reference_signatures, write_condition, write_fingerprint,
+    PROTOCOL, Placement, ProtocolCondition, play_condition, write_and_place,
 };
 use chronocooked_env::{TaskParams, make_config};
 use chronocooked_training::timing_run::{load_agent, run_task};
@@ -113,24 +112,16 @@ pub fn fingerprint(req: &FingerprintRequest) -> Result<FingerprintOutcome, Pipel
         );
     }
     let name = req.name.clone().or(model).unwrap_or_else(|| "agent".into());
-    let analysis = |e: chronocooked_analysis::mechanisms::MechanismError| {
-        PipelineError::Analysis(e.to_string())
-    };
-    let _lock = chronocooked_env::fs::FolderLock::acquire(&req.out)?;
-    let _ = std::fs::remove_file(req.out.join("fingerprint.json"));
-    for c in &PROTOCOL {
-        if !plays.iter().any(|p| p.condition.name == c.name) {
-            let _ = std::fs::remove_dir_all(req.out.join(c.name));
-        }
-    }
-    for play in &plays {
-        write_condition(&req.out, play, &name, req.seed).map_err(analysis)?;
-    }
     let runs: Vec<&PathBuf> = matched.iter().map(|(_, r)| *r).collect();
-    let signature =
-        agent_signature(&req.out, &name, units_correspond(&runs), req.seed).map_err(analysis)?;
-    let placement = place(&signature, &reference_signatures(), req.resamples, req.seed);
-    let files = write_fingerprint(&req.out, &placement).map_err(analysis)?;
+    let (placement, files) = write_and_place(
+        &req.out,
+        &plays,
+        &name,
+        units_correspond(&runs),
+        req.seed,
+        req.resamples,
+    )
+    .map_err(|e| PipelineError::Analysis(e.to_string()))?;
     Ok(FingerprintOutcome {
         placement,
         conditions: matched.iter().map(|(c, _)| c.name).collect(),
