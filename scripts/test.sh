@@ -5,7 +5,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo test --release --workspace --locked
-cargo build --release --locked --bin chronocooked
+# `--workspace`: the features `cargo test --workspace` resolved, so nothing is rebuilt.
+cargo build --release --locked --workspace --bins
 python=${PYTHON:-python3}
 if [[ ! -x .venv/bin/python ]]; then
     "$python" -m venv .venv || {

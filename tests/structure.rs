@@ -402,3 +402,58 @@ fn the_sweep_pipeline_is_a_library_and_the_binary_does_not_run_stages() {
     }
     assert!(sweep.contains("chronocooked_pipeline::run_job"));
 }
+
+/// Package → enabled features, as `cargo tree` resolves them for `selection` (`-e edges`).
+fn resolved_features(selection: &[&str], edges: &str) -> BTreeMap<String, String> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let out = std::process::Command::new(env!("CARGO"))
+        .current_dir(root)
+        .args([
+            "tree", "--locked", "--prefix", "none", "-f", "{p}|{f}", "-e", edges,
+        ])
+        .args(selection)
+        .output()
+        .expect("cargo runs");
+    assert!(
+        out.status.success(),
+        "cargo tree {selection:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .map(|l| l.replace(" (*)", "").replace(" (proc-macro)", ""))
+        .filter_map(|l| {
+            let (p, f) = l.split_once('|')?;
+            Some((p.trim().to_string(), f.trim().to_string()))
+        })
+        .collect()
+}
+
+/// Every dependency the wheel (`chronocooked-py` alone, as maturin builds it) and the binary
+/// (`cargo build --workspace --bins`) share with the test build (`cargo test --workspace`)
+/// is resolved with the same features, so neither build compiles burn and the lab a second
+/// time. A difference names the package; python/Cargo.toml's unification block fixes it.
+#[test]
+fn the_wheel_and_the_binary_reuse_the_test_build() {
+    let tests = resolved_features(&["--workspace"], "all");
+    for (what, selection) in [
+        ("the wheel", vec!["-p", "chronocooked-py"]),
+        ("the binary", vec!["--workspace"]),
+    ] {
+        let build = resolved_features(&selection, "normal,build");
+        let differ: Vec<String> = build
+            .iter()
+            .filter(|(p, f)| tests.get(*p).is_some_and(|t| t != *f))
+            .map(|(p, f)| format!("{p}: [{f}] vs tests [{}]", tests[p]))
+            .collect();
+        assert!(
+            build.len() > 100,
+            "{what}: cargo tree listed {}",
+            build.len()
+        );
+        assert!(
+            differ.is_empty(),
+            "{what} resolves other features: {differ:#?}"
+        );
+    }
+}
