@@ -6,6 +6,8 @@
 * :func:`evaluate` runs the lab's reference evaluation protocol with any Python policy and
   writes the same evaluation folder as ``chronocooked eval`` (a leaderboard row for
   ``chronocooked report --eval DIR``).
+* :func:`record` records a Python policy's activity on probe trials (``chronocooked record
+  --probe --summary``) with its NPZ export and neural summary;
 * :func:`fingerprint` runs the lab's mechanisms protocol with your agent and names the
   timing mechanism it resembles; :func:`summarize` gives the neural summary of any
   recording;
@@ -14,14 +16,16 @@
 * :mod:`chronocooked.sb3` turns Stable-Baselines3 models into policies (SB3 optional);
 * :mod:`chronocooked.zoo` holds the repository's trained agents (``zoo.load("lstm125/
   FixedInterval-v0")`` is a policy for :func:`evaluate`); :func:`report` writes the
-  leaderboard of evaluation folders next to the committed baselines.
+  leaderboard of evaluation folders next to the committed baselines;
+* :func:`collect`, :func:`analyse` and :func:`mechanisms` are ``paper collect``,
+  ``paper analyse`` and ``mechanisms`` on a study's sweep output and compact results.
 """
 
 from . import _core
 from ._core import EVENT_FLAGS, PolicyError, __version__, reference_conditions
 from .envs import ChronoEnv, ChronoVectorEnv, overrides, register_envs, task_ids
 from . import sb3, zoo
-from .evaluation import evaluate, load_activity, load_eval
+from .evaluation import evaluate, load_activity, load_eval, record
 from .fingerprint import CONDITIONS, fingerprint, summarize
 from .zoo import report
 
@@ -42,6 +46,34 @@ def collect(sweep_out, out):
     import os
 
     return _core.collect(os.fspath(sweep_out), os.fspath(out))
+
+
+def analyse(results):
+    """``chronocooked paper analyse``: the paper's analyses (and the lab's) of a study's
+    compact results ``results`` (from :func:`collect`), written into that folder
+    (``tables.md``, ``comparison.csv``, ``agreement.json``, ``figures/``, ``report.html``).
+    Returns the study as a dict (``jobs``, ``fi``, ``bisection``, ``comparison``,
+    ``agreement``, …) with ``report`` and ``figures`` (paths). ``OSError`` naming the file
+    on unreadable results or a folder another process writes."""
+    import os
+
+    return _core.analyse(os.fspath(results))
+
+
+def mechanisms(results, out=None, *, resamples=1000, seed=0):
+    """``chronocooked mechanisms``: every model's timing signature in a study's compact
+    results ``results`` (e.g. ``results/mechanisms-reference``), the leave-one-seed-out
+    identification of the timing mechanisms and each agent's nearest mechanism, written into
+    ``out`` (default ``results``: ``signatures.csv``, ``mechanisms.csv``, ``mechanisms.md``,
+    the fingerprint figures). Returns a dict: ``files``, ``signatures`` (count), ``agents``
+    (count), ``held_out`` (per mechanism seed: ``mechanism``, ``seed``, ``named``,
+    ``self_distance``, ``other_distance``) and ``verdicts`` (per agent: ``agent``,
+    ``nearest``, ``distance``, ``identified``). ``ValueError`` when the folder holds no
+    finished job; ``OSError`` naming the file otherwise."""
+    import os
+
+    return _core.mechanisms(os.fspath(results), None if out is None else os.fspath(out),
+                            int(resamples), int(seed))
 
 
 def iqm(values, strata=None, level=0.95, resamples=2000, seed=0):
@@ -75,14 +107,17 @@ __all__ = [
     "EVENT_FLAGS",
     "PolicyError",
     "__version__",
+    "analyse",
     "collect",
     "evaluate",
     "fingerprint",
     "load_activity",
     "load_eval",
+    "mechanisms",
     "overrides",
     "iqm",
     "probability_of_improvement",
+    "record",
     "reference_conditions",
     "register_envs",
     "sb3",

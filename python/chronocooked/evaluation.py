@@ -38,6 +38,37 @@ def evaluate(policy, task: str, out, *, obs_mode: str = "codes", stochastic: int
                           stochastic, int(seed), name)
 
 
+def record(policy, task: str, out, *, probe: bool = True, tds=None, repeats: int = 1,
+           seed: int = 0, obs_mode: str = "codes", name: str = "python-policy",
+           summary: bool = True, units_correspond: bool = True, **params) -> dict:
+    """Records a Python ``policy``'s neural activity as ``chronocooked record`` records a
+    trained run's, and writes it into the folder ``out``.
+
+    ``policy`` as for :func:`evaluate`, returning activity (a 1-D float vector or a dict of
+    named vectors, one per population). With ``probe`` (the default, for fixed- and
+    peak-interval tasks) it plays peak-interval probe trials: the soup is never released,
+    so every trial lasts at least 2 × TD steps after oven-on, the window the neural summary
+    analyses. ``tds`` (steps) are the target durations to play (default: the task's TD with
+    ``probe``, else the task's evaluation TDs); each is played from every free start cell,
+    ``repeats`` times (1–100, repetition ``r`` seeded ``seed + r``).
+
+    Writes ``activity.json``, the NPZ export ``activity/`` (:func:`load_activity` reads it)
+    and, with ``summary``, ``activity.summary.json`` (units' categories, speed,
+    sequentiality, decoding error; with two TDs the scaling factor — per unit only when
+    ``units_correspond``, i.e. one network timed both). Nothing is written when the policy
+    fails (:class:`chronocooked.PolicyError` with episode and step) or returns no activity
+    (``ValueError``).
+
+    Returns a dict: ``out``, ``task`` and ``env`` (what was played), ``tds``, ``trials``,
+    ``units``, ``files`` and ``summary`` (the per-population summaries).
+    """
+    if tds is not None:
+        tds = [int(t) for t in tds]
+    return _core.record(policy, task, os.fspath(Path(out)), overrides(params), bool(probe),
+                        tds, int(repeats), int(seed), obs_mode, name, bool(summary),
+                        bool(units_correspond))
+
+
 def read_records(path) -> list[dict]:
     """The per-episode records (``records.jsonl``) of an evaluation folder as dicts with
     ``condition`` and ``episode``; errors name the file and line."""

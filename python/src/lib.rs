@@ -8,6 +8,8 @@
 //! * [`evaluate`] — the lab's evaluation protocol with a Python policy;
 //! * [`fingerprint`] — the mechanisms protocol with a Python agent's policies, its
 //!   placement among the timing mechanisms, and the neural summary of any recording;
+//! * [`record`] — a Python policy's activity on probe trials, with its neural summary;
+//! * [`study`] — `paper collect`, `paper analyse` and `mechanisms` on a study's results;
 //! * [`registry`] — the task registry and parameter documentation;
 //! * [`zoo`] — the zoo of trained agents (`ZooPolicy`) and the leaderboard (`report`);
 //! * [`errors`] — Rust errors as Python exceptions (`ValueError` for bad input).
@@ -22,7 +24,9 @@ mod errors;
 mod evaluate;
 mod fingerprint;
 mod info;
+mod record;
 mod registry;
+mod study;
 mod vector;
 mod zoo;
 
@@ -46,13 +50,16 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("PolicyError", m.py().get_type::<errors::PolicyError>())?;
     m.add_function(wrap_pyfunction!(fingerprint::fingerprint, m)?)?;
     m.add_function(wrap_pyfunction!(fingerprint::summarize, m)?)?;
+    m.add_function(wrap_pyfunction!(record::record, m)?)?;
     m.add_function(wrap_pyfunction!(evaluate::reference_conditions, m)?)?;
     m.add_class::<zoo::ZooPolicy>()?;
     m.add_function(wrap_pyfunction!(zoo::zoo_agents, m)?)?;
     m.add_function(wrap_pyfunction!(zoo::report, m)?)?;
     m.add_function(wrap_pyfunction!(zoo::probability_of_improvement, m)?)?;
     m.add_function(wrap_pyfunction!(zoo::iqm, m)?)?;
-    m.add_function(wrap_pyfunction!(zoo::collect, m)?)?;
+    m.add_function(wrap_pyfunction!(study::collect, m)?)?;
+    m.add_function(wrap_pyfunction!(study::analyse, m)?)?;
+    m.add_function(wrap_pyfunction!(study::mechanisms, m)?)?;
     m.add_function(wrap_pyfunction!(_panic_for_tests, m)?)?;
     m.add("EVENT_FLAGS", info::event_flags(m.py())?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

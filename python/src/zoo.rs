@@ -180,12 +180,3 @@ pub fn iqm(
     let ci = robust::stratified_bootstrap_ci(&values, &strata, robust::iqm, level, resamples, seed);
     Ok((robust::iqm(&values), ci))
 }
-
-/// `paper collect` from Python: writes the compact results of every finished job of the
-/// sweep output `sweep_out` into `out` (`out/jobs/<job id>/`, the layout `report
-/// --baselines`, `paper analyse` and `mechanisms` read); returns `(written, unfinished)`.
-#[pyfunction]
-pub fn collect(sweep_out: PathBuf, out: PathBuf) -> PyResult<(usize, usize)> {
-    chronocooked_analysis::paper::collect::collect(&sweep_out, &out)
-        .map_err(|e| pyo3::exceptions::PyOSError::new_err(e.to_string()))
-}

@@ -2,7 +2,7 @@
 //! the repository, the paper's analyses beside the lab's, and the comparison table.
 
 use anyhow::{Context, Result};
-use chronocooked_analysis::paper::{collect, heldout, study};
+use chronocooked_analysis::paper::{collect, heldout};
 use clap::{Args, Subcommand};
 use std::path::PathBuf;
 
@@ -77,20 +77,9 @@ pub fn run(cmd: PaperCommand) -> Result<()> {
             Ok(())
         }
         PaperCommand::Analyse(a) => {
-            // It writes into the results folder: one writer at a time.
-            let _lock = chronocooked_env::fs::FolderLock::acquire(&a.results)?;
-            let s = study::analyse(&a.results)
+            let analysed = chronocooked_analysis::paper::analyse::analyse_folder(&a.results)
                 .with_context(|| format!("analysing {}", a.results.display()))?;
-            study::write_study(&a.results, &s)?;
-            let figures = chronocooked_analysis::paper::figures::write_figures(
-                &a.results.join("figures"),
-                &s,
-            )?;
-            let report = chronocooked_analysis::paper::report::write_paper_report(
-                &a.results,
-                &s,
-                &a.results.join("figures"),
-            )?;
+            let (s, report, figures) = (&analysed.study, &analysed.report, &analysed.figures);
             // The main text's numbers; the appendix's sizes are counted on their own.
             let (appendix, main): (Vec<_>, Vec<_>) = s.comparison.iter().partition(|r| {
                 r.table

@@ -46,7 +46,7 @@ pub struct AgentVerdict {
 }
 
 /// Leave-one-seed-out identification of every mechanism, and the agents' verdicts.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Identification {
     /// Every held-out mechanism signature, in mechanism then seed order.
     pub held_out: Vec<HeldOut>,

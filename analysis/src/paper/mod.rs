@@ -20,9 +20,11 @@
 //! * [`heldout`] — a held-out seed's run against each condition's 95% range for a new run;
 //! * [`figures`] — the study's figures in the paper's form;
 //! * [`study`] — the whole analysis of a results folder, written as JSON, CSV and Markdown;
-//! * [`report`] — the study's `report.html`: agreement per table, figures, every row.
+//! * [`report`] — the study's `report.html`: agreement per table, figures, every row;
+//! * [`analyse`] — all of it for one results folder (`paper analyse`).
 
 pub mod agreement;
+pub mod analyse;
 pub mod bisection;
 pub mod claims;
 pub mod collect;
