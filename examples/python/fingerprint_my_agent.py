@@ -30,8 +30,10 @@ def show(result):
     print(result["verdict"])
     for d in result["distances"]:
         lo, hi = d["self_range"] or (float("nan"), float("nan"))
+        limit = float("nan") if d["limit"] is None else d["limit"]
         print(f"  {d['mechanism']:<18} distance {d['distance']:5.2f}   its own seeds "
-              f"{lo:.2f}-{hi:.2f}   bootstrap share {d['bootstrap_share']:.2f}")
+              f"{lo:.2f}-{hi:.2f}   limit {limit:.2f}   bootstrap share "
+              f"{d['bootstrap_share']:.2f}")
     if result["missing"]:
         print("  missing features:", ", ".join(result["missing"]))
 

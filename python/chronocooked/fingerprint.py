@@ -56,10 +56,11 @@ def fingerprint(policies, out, *, seed: int = 0, obs_mode: str = "codes",
 
     Returns a dict: ``signature`` (feature -> value), ``missing`` (features the agent
     lacks, e.g. the neural ones without activity), ``distances`` (per mechanism, nearest
-    first: ``distance`` in feature SDs, ``self_range`` — the distances of that mechanism's
-    own held-out seeds — and ``bootstrap_share``), ``nearest``, ``identified`` (the
-    distance lies within the nearest mechanism's self-distance range), ``verdict`` (one
-    sentence), ``reference_identification`` and ``files``.
+    first: ``distance`` in seed-to-seed SDs of a mechanism, ``self_range`` — the distances
+    of that mechanism's own held-out seeds —, ``limit`` — the upper 99% prediction limit
+    for a new seed's distance — and ``bootstrap_share``), ``nearest``, ``identified`` (the
+    distance lies within the nearest mechanism's limit), ``verdict`` (one sentence),
+    ``reference_identification`` and ``files``.
     """
     kwargs = {"seed": int(seed), "obs_mode": obs_mode, "units_correspond": bool(units_correspond),
               "name": name, "resamples": int(resamples)}

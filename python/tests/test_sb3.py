@@ -96,6 +96,16 @@ def test_a_recurrent_ppo_trained_on_the_lab_env_is_evaluated_recorded_and_finger
     arrays, meta = chronocooked.load_activity(out)
     assert arrays["activity"].shape[1] == sum(n for _, n in names)
     assert {"hidden", "cell"} <= {p["name"] for p in meta["populations"]}
+    try:
+        from pynwb import NWBHDF5IO
+    except ImportError:
+        NWBHDF5IO = None
+    if NWBHDF5IO is not None:  # the NWB export, where pynwb is installed
+        path = chronocooked.to_nwb(out / "activity", out, tmp_path / "rppo.nwb")
+        with NWBHDF5IO(str(path), "r") as io:
+            ts = io.read().processing["model"]["unit_activity"]
+            assert ts.data.shape[1] == sum(n for _, n in names)
+            assert '"hidden"' in ts.comments and '"cell"' in ts.comments
     r = chronocooked.fingerprint({"fi-td6": policy}, tmp_path / "fp", draws=1)
     assert r["conditions"] == ["fi-td6"]
     assert (tmp_path / "fp" / "fingerprint.json").is_file()

@@ -57,11 +57,12 @@ pub fn run(args: FingerprintArgs) -> Result<()> {
     );
     for d in &p.distances {
         println!(
-            "  {:<18} distance {:5.2}  its own seeds {}  bootstrap share {:.2}",
+            "  {:<18} distance {:5.2}  its own seeds {}  limit {}  bootstrap share {:.2}",
             d.mechanism,
             d.distance,
             d.self_range
                 .map_or("–".into(), |(lo, hi)| format!("{lo:.2}–{hi:.2}")),
+            d.limit.map_or("–".into(), |l| format!("{l:.2}")),
             d.bootstrap_share
         );
     }

@@ -66,7 +66,10 @@ pub fn run(args: MechanismsArgs) -> Result<()> {
             let range = id
                 .self_range(m)
                 .map_or(String::new(), |(lo, hi)| format!(", self {lo:.2}–{hi:.2}"));
-            format!("{m} {}/{n}{range}", id.count(m, m))
+            let limit = id
+                .limit(m)
+                .map_or(String::new(), |l| format!(", limit {l:.2}"));
+            format!("{m} {}/{n}{range}{limit}", id.count(m, m))
         })
         .collect();
     println!(
@@ -77,8 +80,12 @@ pub fn run(args: MechanismsArgs) -> Result<()> {
         let range = id
             .self_range(&a.nearest)
             .map_or(String::new(), |(lo, hi)| format!("{lo:.2}–{hi:.2}"));
+        let limit = id
+            .limit(&a.nearest)
+            .map_or("–".into(), |l| format!("{l:.2}"));
         println!(
-            "{}: {} (nearest {}, distance {:.2}; its seeds lie {range} from it)",
+            "{}: {} (nearest {}, distance {:.2}; its limit {limit}, its seeds lie {range} \
+             from it)",
             a.agent,
             if a.identified {
                 "identified"

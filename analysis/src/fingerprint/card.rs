@@ -25,18 +25,24 @@ fn range(r: Option<(f64, f64)>) -> String {
 
 /// One sentence: what the placement says.
 pub fn verdict(p: &Placement) -> String {
+    let limit = |d: &crate::fingerprint::MechanismDistance| {
+        d.limit.map_or("–".into(), |l| format!("{l:.2}"))
+    };
     match (&p.nearest, p.distances.first()) {
         (Some(m), Some(d)) if p.identified => format!(
-            "{} is identified as {m}: distance {} lies within {m}'s self-distance range {}",
+            "{} is identified as {m}: distance {} lies within {m}'s identification limit {} \
+             (its own held-out seeds lie {} from it)",
             p.model,
             fmt(d.distance),
+            limit(d),
             range(d.self_range)
         ),
         (Some(m), Some(d)) => format!(
-            "{} is not identified: its nearest mechanism is {m} at distance {}, outside {m}'s \
-             self-distance range {} (the distances of {m}'s own held-out seeds)",
+            "{} is not identified: its nearest mechanism is {m} at distance {}, beyond {m}'s \
+             identification limit {} (its own held-out seeds lie {} from it)",
             p.model,
             fmt(d.distance),
+            limit(d),
             range(d.self_range)
         ),
         _ => format!(
@@ -47,7 +53,8 @@ pub fn verdict(p: &Placement) -> String {
 }
 
 /// The distance panel: per mechanism (nearest first, one colour each) the agent's distance
-/// to its fingerprint (dot) beside the mechanism's self-distance range (bar).
+/// to its fingerprint (dot) beside a bar from the nearest of the mechanism's own held-out
+/// seeds to its identification limit.
 fn distance_chart(p: &Placement) -> Chart {
     let mut series = Vec::new();
     for (i, d) in p.distances.iter().enumerate() {
@@ -58,7 +65,7 @@ fn distance_chart(p: &Placement) -> Chart {
             line: false,
             color: i,
         });
-        if let Some((lo, hi)) = d.self_range {
+        if let (Some((lo, _)), Some(hi)) = (d.self_range, d.limit) {
             // The bar: a short line at x from lo to hi, drawn thick by three offsets.
             let pts = [-0.04, 0.0, 0.04]
                 .iter()
@@ -75,13 +82,13 @@ fn distance_chart(p: &Placement) -> Chart {
     let top = p
         .distances
         .iter()
-        .flat_map(|d| [d.distance, d.self_range.map_or(0.0, |r| r.1)])
+        .flat_map(|d| [d.distance, d.limit.unwrap_or(0.0)])
         .filter(|v| v.is_finite())
         .fold(1.0f64, f64::max);
     Chart {
         title: format!("{}: distance to each mechanism", p.model),
-        x_label: "mechanism, nearest first (bar: its own seeds)".into(),
-        y_label: "distance (feature SDs)".into(),
+        x_label: "mechanism, nearest first (bar: its own seeds up to its limit)".into(),
+        y_label: "distance (seed SDs)".into(),
         series,
         markers: Vec::new(),
         y_range: Some((0.0, 1.3 * top)),
@@ -93,21 +100,22 @@ fn markdown(p: &Placement) -> String {
     md += &format!(
         "Compared with {REFERENCE_SOURCE}; the reference names {} of its {} held-out \
          mechanism seeds as their own mechanism. Distance: RMS over the shared features of \
-         the differences in units of each feature's SD over the mechanism signatures, each \
-         feature weighted by how well it tells the mechanisms apart (F/(1+F), F the ratio \
-         of the variance between mechanisms to that between seeds); \
-         self-distance: the range of the mechanism's own held-out seeds' distances; \
+         the differences in units of each feature's seed-to-seed SD within a mechanism \
+         (pooled over the mechanisms; 1 = one seed SD on every feature); \
+         self-distance: the range of the mechanism's own held-out seeds' distances; limit: \
+         the upper 99% prediction limit for a new seed's distance (identified within it); \
          bootstrap share: of {} resamples of the mechanisms' seeds, the share in which the \
          mechanism is the nearest.\n\n",
         p.reference_identification.0, p.reference_identification.1, p.resamples
     );
-    md += "| mechanism | distance | self-distance | bootstrap share |\n|---|---|---|---|\n";
+    md += "| mechanism | distance | self-distance | limit | bootstrap share |\n|---|---|---|---|---|\n";
     for d in &p.distances {
         md += &format!(
-            "| {} | {} | {} | {:.2} |\n",
+            "| {} | {} | {} | {} | {:.2} |\n",
             d.mechanism,
             fmt(d.distance),
             range(d.self_range),
+            d.limit.map_or("–".into(), fmt),
             d.bootstrap_share
         );
     }
@@ -164,9 +172,10 @@ pub fn write_fingerprint(dir: &Path, p: &Placement) -> Result<Vec<PathBuf>, Mech
         .map_err(|e| MechanismError::at(&panels_dir, e))?;
     let distance_figure = figure_file(
         &distance_files[0],
-        "distance to each mechanism's fingerprint (dots) beside the distances of the \
-         mechanism's own held-out seeds (bars): a dot within its bar is as near as an \
-         unseen seed of that mechanism",
+        "distance to each mechanism's fingerprint (dots) beside bars from the nearest of the \
+         mechanism's own held-out seeds to its identification limit (the upper 99% \
+         prediction limit for a new seed): a dot within its bar is as near as an unseen \
+         seed of that mechanism",
         Some("half"),
     )
     .map_err(|e| MechanismError::at(&panels_dir, e))?;
@@ -174,10 +183,11 @@ pub fn write_fingerprint(dir: &Path, p: &Placement) -> Result<Vec<PathBuf>, Mech
         p { (verdict(p)) "." }
         p { (format!("Compared with {REFERENCE_SOURCE}: {} of {} held-out mechanism seeds named as their own mechanism.", p.reference_identification.0, p.reference_identification.1)) }
         table {
-            tr { th { "mechanism" } th { "distance" } th { "self-distance" } th { "bootstrap share" } }
+            tr { th { "mechanism" } th { "distance" } th { "self-distance" } th { "limit" } th { "bootstrap share" } }
             @for d in &p.distances {
                 tr {
                     td { (d.mechanism) } td { (fmt(d.distance)) } td { (range(d.self_range)) }
+                    td { (d.limit.map_or("–".into(), fmt)) }
                     td { (format!("{:.2}", d.bootstrap_share)) }
                 }
             }

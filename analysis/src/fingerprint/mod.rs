@@ -7,9 +7,10 @@
 //! neural summary. Its [`Signature`](crate::mechanisms::Signature) (the features of [`crate::mechanisms`]) is placed
 //! among the committed mechanism signatures ([`reference_signatures`]): its distance to
 //! every mechanism's fingerprint beside that mechanism's self-distance range (the
-//! distances of its own held-out seeds, leave one seed out), the bootstrap share of each
-//! mechanism being the nearest, and the verdict: *identified* with the nearest mechanism
-//! only when its distance lies within that mechanism's self-distance range.
+//! distances of its own held-out seeds, leave one seed out) and identification limit (the
+//! upper 99% prediction limit for a new seed), the bootstrap share of each mechanism being
+//! the nearest, and the verdict: *identified* with the nearest mechanism only when its
+//! distance lies within that mechanism's identification limit.
 //!
 //! The folder of one fingerprint:
 //!

@@ -84,13 +84,16 @@ pub struct MechanismDistance {
     /// The mechanism.
     pub mechanism: String,
     /// Distance of the agent's signature to the mechanism's fingerprint (seed mean): the
-    /// weighted RMS over shared features of the differences in units of each feature's SD
-    /// over the mechanism signatures (weights: how well a feature tells the mechanisms
-    /// apart, see [`crate::mechanisms`]).
+    /// RMS over shared features of the differences in units of each feature's pooled
+    /// within-mechanism SD (see [`crate::mechanisms`]).
     pub distance: f64,
     /// The distances of the mechanism's own held-out seeds to its fingerprint (leave one
     /// seed out, `(min, max)`): how far an unseen seed of it lies.
     pub self_range: Option<(f64, f64)>,
+    /// The mechanism's identification limit: the upper 99% prediction limit for a new seed's
+    /// distance (see [`crate::mechanisms::identify`]); the agent is identified with its
+    /// nearest mechanism only within it.
+    pub limit: Option<f64>,
     /// Share of bootstrap resamples (every mechanism's seeds resampled with replacement)
     /// in which this mechanism is the nearest.
     pub bootstrap_share: f64,
@@ -110,7 +113,7 @@ pub struct Placement {
     pub distances: Vec<MechanismDistance>,
     /// The nearest mechanism (`None`: no feature shared with any).
     pub nearest: Option<String>,
-    /// Whether its distance lies within the nearest mechanism's self-distance range.
+    /// Whether its distance lies within the nearest mechanism's identification limit.
     pub identified: bool,
     /// Held-out mechanism seeds named as their own mechanism, of all held out (the
     /// reference's own check).
@@ -171,6 +174,7 @@ pub fn place(
             mechanism: m.to_string(),
             distance: distance(&x, &mean_features(seeds), &scale),
             self_range: id.self_range(m),
+            limit: id.limit(m),
             bootstrap_share: wins.get(m).copied().unwrap_or(0) as f64 / resamples.max(1) as f64,
         })
         .collect();

@@ -24,14 +24,15 @@
 //!   ramp) and the units correspond, `ln(median unit factor) / ln(TD ratio)`; the
 //!   unit-weighted mean over the populations.
 //!
-//! Features are standardised by their SD over every signature, a model's fingerprint is the
-//! mean of its seeds' signatures, and the distance between two fingerprints is the weighted
-//! root mean square of their standardised differences over the features both have. A
-//! feature's weight is how well it tells the mechanisms apart, `F / (1 + F)` with `F`
-//! Fisher's ratio of the variance between the mechanisms' means to the pooled variance of
-//! their seeds: a feature every mechanism shares (the Weber fraction, ≈ 0.12 for all)
-//! hardly counts, so an agent's Weber fraction does not decide which mechanism it is
-//! nearest; the unit categories count fully. Each agent's
+//! A model's fingerprint is the mean of its seeds' signatures. The distance between two
+//! fingerprints is the root mean square, over the features both have, of their differences
+//! in units of each feature's pooled within-mechanism SD — how far apart a feature's values
+//! are for the seed-to-seed spread of one mechanism (a nearest-centroid classifier with a
+//! diagonal pooled covariance: diagonal linear discriminant analysis, Dudoit, Fridlyand &
+//! Speed 2002). A feature every mechanism shares (the Weber fraction, ≈ 0.12 for all) moves
+//! every mechanism's distance alike and so does not decide the nearest; one they differ in
+//! far beyond their seed spread (the unit categories) decides it. A distance of 1 is one
+//! seed-to-seed SD on every feature. Each agent's
 //! nearest mechanism is bootstrapped over seeds (seeds of every model resampled with
 //! replacement): the fraction of resamples in which each mechanism is the nearest.
 
@@ -133,64 +134,48 @@ pub(crate) fn mean_features(sigs: &[&Signature]) -> BTreeMap<&'static str, f64> 
     per_feature(sigs.iter().copied(), |s| (s.n > 0).then_some(s.mean))
 }
 
-/// How much each feature tells the mechanisms apart: with `F` the variance of the
-/// mechanisms' means over the pooled variance of their seeds (Fisher's discriminant
-/// ratio), the weight `F / (1 + F)` — near 1 for a feature the mechanisms differ in far
-/// beyond their seed-to-seed spread (the unit categories), near 0 for one they share (the
-/// Weber fraction: every mechanism ≈ 0.12). Features seen in fewer than two mechanisms are
-/// left out.
-fn feature_weights(mechs: &[&Signature]) -> BTreeMap<&'static str, f64> {
+/// Floor of a feature's scale as a share of its SD over every mechanism signature. It only
+/// matters for a feature that no mechanism varies from seed to seed (a category fraction
+/// fixed by construction), whose pooled within-mechanism SD is 0: without it, any deviation
+/// would be infinitely far. Leave-one-seed-out identification is the same for floors from
+/// 0.0001 to 0.2 on both committed studies (40/40 and 20/20).
+const SCALE_FLOOR: f64 = 0.05;
+
+/// The pooled within-mechanism SD of each feature over the mechanism signatures `mechs`
+/// (the SD of the seeds around their own mechanism's mean, pooled over the mechanisms),
+/// floored at [`SCALE_FLOOR`] × the feature's SD over all of them. Features no two
+/// signatures have, or with no spread at all, are left out.
+fn within_sds(mechs: &[&Signature]) -> BTreeMap<&'static str, f64> {
     let mut by_model: BTreeMap<&str, Vec<&Signature>> = BTreeMap::new();
     for s in mechs {
         by_model.entry(s.model.as_str()).or_default().push(s);
     }
+    let total = feature_sds(mechs.iter().copied());
     let mut out = BTreeMap::new();
-    for f in FEATURES {
-        let groups: Vec<Vec<f64>> = by_model
-            .values()
-            .map(|v| {
-                v.iter()
-                    .filter_map(|s| s.features.get(f).copied())
-                    .collect::<Vec<f64>>()
-            })
-            .filter(|v| !v.is_empty())
-            .collect();
-        if groups.len() < 2 {
-            continue;
-        }
-        let means: Vec<f64> = groups
-            .iter()
-            .map(|g| g.iter().sum::<f64>() / g.len() as f64)
-            .collect();
-        let between = crate::stats::Spread::of(means.iter().copied()).sd.powi(2);
+    for (f, total_sd) in total {
         let (mut ss, mut dof) = (0.0, 0usize);
-        for (g, m) in groups.iter().zip(&means) {
-            ss += g.iter().map(|x| (x - m).powi(2)).sum::<f64>();
-            dof += g.len() - 1;
+        for seeds in by_model.values() {
+            let xs: Vec<f64> = seeds.iter().filter_map(|s| s.features.get(f).copied()).collect();
+            if xs.len() >= 2 {
+                let m = xs.iter().sum::<f64>() / xs.len() as f64;
+                ss += xs.iter().map(|x| (x - m).powi(2)).sum::<f64>();
+                dof += xs.len() - 1;
+            }
         }
-        let within = if dof > 0 { ss / dof as f64 } else { f64::NAN };
-        let weight = if between.is_nan() || between <= 0.0 {
-            0.0
-        } else if within.is_nan() || within <= 0.0 {
-            1.0
-        } else {
-            let ratio = between / within;
-            ratio / (1.0 + ratio)
-        };
-        out.insert(f, weight);
+        let within = if dof > 0 { (ss / dof as f64).sqrt() } else { 0.0 };
+        out.insert(f, within.max(SCALE_FLOOR * total_sd));
     }
     out
 }
 
-/// The scale of a distance: each feature's SD and its weight.
+/// The scale of a distance: each feature's pooled within-mechanism SD.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Scale {
     sds: BTreeMap<&'static str, f64>,
-    weights: BTreeMap<&'static str, f64>,
 }
 
 impl Scale {
-    /// SDs over `sigs`, weights from the signatures of the `mechanisms` among them.
+    /// The within-mechanism SDs of the signatures of the `mechanisms` among `sigs`.
     pub(crate) fn of(sigs: &[&Signature], mechanisms: &[&str]) -> Self {
         let mechs: Vec<&Signature> = sigs
             .iter()
@@ -198,30 +183,29 @@ impl Scale {
             .filter(|s| mechanisms.contains(&s.model.as_str()))
             .collect();
         Scale {
-            sds: feature_sds(sigs.iter().copied()),
-            weights: feature_weights(&mechs),
+            sds: within_sds(&mechs),
         }
     }
 }
 
-/// The weighted RMS of the standardised differences over the features both fingerprints
-/// have: `√(Σ w_f z_f² / Σ w_f)`, `z_f` the difference in SDs of feature `f` (NaN when they
-/// share no weighted feature).
+/// The RMS of the standardised differences over the features both fingerprints have:
+/// `√(Σ z_f² / n)`, `z_f` the difference in feature `f`'s within-mechanism SDs (NaN when
+/// they share no feature of the scale).
 pub(crate) fn distance(
     a: &BTreeMap<&'static str, f64>,
     b: &BTreeMap<&'static str, f64>,
     scale: &Scale,
 ) -> f64 {
-    let (mut sum, mut weight) = (0.0, 0.0);
+    let (mut sum, mut n) = (0.0, 0usize);
     for (f, sd) in &scale.sds {
-        let (Some(x), Some(y), Some(w)) = (a.get(f), b.get(f), scale.weights.get(f)) else {
+        let (Some(x), Some(y)) = (a.get(f), b.get(f)) else {
             continue;
         };
-        sum += w * ((x - y) / sd).powi(2);
-        weight += w;
+        sum += ((x - y) / sd).powi(2);
+        n += 1;
     }
-    if weight > 0.0 {
-        (sum / weight).sqrt()
+    if n > 0 {
+        (sum / n as f64).sqrt()
     } else {
         f64::NAN
     }
@@ -369,41 +353,40 @@ mod tests {
     }
 
     #[test]
-    fn distance_is_the_weighted_rms_of_standardised_differences_over_shared_features() {
+    fn distance_is_the_rms_of_standardised_differences_over_shared_features() {
         let a: BTreeMap<&str, f64> = [("wf", 0.1), ("foc_cv", 0.2)].into_iter().collect();
         let b: BTreeMap<&str, f64> = [("wf", 0.3), ("foc_cv", 0.1)].into_iter().collect();
         let scale = Scale {
-            sds: [("wf", 0.1), ("foc_cv", 0.05)].into_iter().collect(),
-            weights: [("wf", 0.75), ("foc_cv", 0.25)].into_iter().collect(),
+            sds: [("wf", 0.1), ("foc_cv", 0.025)].into_iter().collect(),
         };
-        // z = 2 (wf) and 2 (foc_cv): √((0.75·4 + 0.25·4) / 1) = 2.
-        assert!((distance(&a, &b, &scale) - 2.0).abs() < 1e-12);
-        // Only `wf` shared: |0.1 − 0.3| / 0.1 = 2 whatever its weight.
+        // z = 2 (wf) and 4 (foc_cv): √((4 + 16) / 2) = √10.
+        assert!((distance(&a, &b, &scale) - 10f64.sqrt()).abs() < 1e-12);
+        // Only `wf` shared: |0.1 − 0.3| / 0.1 = 2.
         let c: BTreeMap<&str, f64> = [("wf", 0.3)].into_iter().collect();
         assert!((distance(&a, &c, &scale) - 2.0).abs() < 1e-12);
-        // z = 4 on a weight-0.25 feature, 0 on a weight-0.75 one: √(0.25·16) = 2.
-        let d: BTreeMap<&str, f64> = [("wf", 0.1), ("foc_cv", 0.0)].into_iter().collect();
-        assert!((distance(&a, &d, &scale) - 2.0).abs() < 1e-12);
         let none: BTreeMap<&str, f64> = BTreeMap::new();
         assert!(distance(&a, &none, &scale).is_nan());
     }
 
-    /// Fisher weights by hand: two mechanisms, two seeds each. Feature `wf`: means 0.1 and
-    /// 0.3 (between variance 0.02), seeds ±0.01 around them (within variance 0.0002):
-    /// F = 100, weight 100/101. Feature `foc_cv`: means 0.2 and 0.2: weight 0. Feature
-    /// `pi_cv`: 0.1/0.1 and 0.3/0.3 (no spread within): weight 1.
+    /// Within-mechanism SDs by hand: two mechanisms, two seeds each. Feature `wf`: seeds
+    /// 0.09/0.11 and 0.29/0.31, each ±0.01 around its mechanism's mean: pooled SD
+    /// √((2·0.0001 + 2·0.0001) / 2) = √0.0002. Feature `foc_cv`: 0.1/0.3 twice: √0.02.
+    /// Feature `pi_cv`: 0.1/0.1 and 0.3/0.3 (no spread within): the floor, `SCALE_FLOOR` ×
+    /// the SD of the four values.
     #[test]
-    fn features_are_weighted_by_how_far_apart_the_mechanisms_are_for_their_spread() {
+    fn features_are_scaled_by_the_seed_spread_within_a_mechanism() {
         let s = [
             sig("ddm", 0, &[("wf", 0.09), ("foc_cv", 0.1), ("pi_cv", 0.1)]),
             sig("ddm", 1, &[("wf", 0.11), ("foc_cv", 0.3), ("pi_cv", 0.1)]),
             sig("sbf", 0, &[("wf", 0.29), ("foc_cv", 0.3), ("pi_cv", 0.3)]),
             sig("sbf", 1, &[("wf", 0.31), ("foc_cv", 0.1), ("pi_cv", 0.3)]),
         ];
-        let w = feature_weights(&s.iter().collect::<Vec<_>>());
-        assert!((w["wf"] - 100.0 / 101.0).abs() < 1e-9, "{w:?}");
-        assert_eq!(w["foc_cv"], 0.0);
-        assert_eq!(w["pi_cv"], 1.0);
-        assert!(!w.contains_key("frac_ramp"));
+        let sds = within_sds(&s.iter().collect::<Vec<_>>());
+        assert!((sds["wf"] - 0.0002f64.sqrt()).abs() < 1e-12, "{sds:?}");
+        assert!((sds["foc_cv"] - 0.02f64.sqrt()).abs() < 1e-12, "{sds:?}");
+        // SD of (0.1, 0.1, 0.3, 0.3): √(4 · 0.01 / 3).
+        let total = (0.04f64 / 3.0).sqrt();
+        assert!((sds["pi_cv"] - SCALE_FLOOR * total).abs() < 1e-12, "{sds:?}");
+        assert!(!sds.contains_key("frac_ramp"));
     }
 }

@@ -104,9 +104,8 @@ pub fn write_tables(
     }
     md.push_str(&format!(
         "\n## Nearest mechanism\n\nDistance: RMS of feature differences in units of each \
-         feature's SD over all signatures, each feature weighted by how well it tells the \
-         mechanisms apart (F/(1+F), F = variance between the mechanisms' means over the \
-         pooled variance of their seeds); nearest: the share of {resamples} bootstrap \
+         feature's seed-to-seed SD within a mechanism (pooled over the mechanisms; 1 = one \
+         seed SD on every feature); nearest: the share of {resamples} bootstrap \
          resamples of the seeds in which the mechanism is the nearest.\n\n| agent | {} | nearest (bootstrap share) |\n|---|{}---|\n",
         MECHANISMS.join(" | "),
         "---|".repeat(MECHANISMS.len())
@@ -147,13 +146,16 @@ pub fn write_tables(
 pub fn identification_markdown(id: &super::Identification) -> String {
     let mut md = String::from(
         "\n## Identification (leave one seed out)\n\nEach mechanism seed held out in turn, the \
-         fingerprints rebuilt from the other mechanism signatures (features standardised by \
-         their SD over those), the held-out seed named by its nearest fingerprint. Rows: true \
+         fingerprints rebuilt from the other mechanism signatures (features in units of their \
+         seed-to-seed SD within a mechanism, pooled over those), the held-out seed named by \
+         its nearest fingerprint. Rows: true \
          mechanism; columns: named as. Self-distance: the held-out seeds' distances to their \
-         own fingerprint (min–max); nearest other: their smallest distance to another.\n\n",
+         own fingerprint (min–max); limit: the upper 99% prediction limit for a new seed's \
+         self-distance (log-normal, spread pooled over the mechanisms); nearest other: their \
+         smallest distance to another.\n\n",
     );
     md.push_str(&format!(
-        "| mechanism | {} | correct | self-distance | nearest other |\n|---|{}---|---|---|\n",
+        "| mechanism | {} | correct | self-distance | limit | nearest other |\n|---|{}---|---|---|---|\n",
         MECHANISMS.join(" | "),
         "---|".repeat(MECHANISMS.len())
     ));
@@ -174,27 +176,29 @@ pub fn identification_markdown(id: &super::Identification) -> String {
             .map(|h| h.other_distance)
             .fold(f64::INFINITY, f64::min);
         md.push_str(&format!(
-            "| {m} | {} | {}/{} | {range} | {} |\n",
+            "| {m} | {} | {}/{} | {range} | {} | {} |\n",
             cells.join(" | "),
             id.count(m, m),
             mine.len(),
+            id.limit(m).map_or("–".into(), |l| fmt(l, 2)),
             fmt(other, 2)
         ));
     }
     md.push_str(
         "\nAgents on the same scale (fingerprints and SDs from every mechanism signature): \
          identified only when the distance to the nearest mechanism lies within that \
-         mechanism's self-distance range.\n\n| agent | nearest | distance | its self-distance | verdict |\n|---|---|---|---|---|\n",
+         mechanism's limit.\n\n| agent | nearest | distance | its self-distance | its limit | verdict |\n|---|---|---|---|---|---|\n",
     );
     for a in &id.agents {
         let range = id.self_range(&a.nearest).map_or("–".into(), |(lo, hi)| {
             format!("{}–{}", fmt(lo, 2), fmt(hi, 2))
         });
         md.push_str(&format!(
-            "| {} | {} | {} | {range} | {} |\n",
+            "| {} | {} | {} | {range} | {} | {} |\n",
             a.agent,
             a.nearest,
             fmt(a.distance, 2),
+            id.limit(&a.nearest).map_or("–".into(), |l| fmt(l, 2)),
             if a.identified {
                 "identified"
             } else {
