@@ -140,9 +140,15 @@ def to_nwb(activity, eval_dir, path, *, overwrite: bool = False, experimenter=No
                     "sink, button); timestamp = start of the env step the event happened in",
         source_description="Chronocooked env step information (info.events)",
     )
-    events.add_column(name="event", description="event name")
-    events.add_column(name="trial", description="trial (episode) index")
-    events.add_column(name="step", description="step of the event within its trial")
+    # Typed empty columns when no event happened (an agent that never acts on the task):
+    # pynwb cannot infer a dtype from an empty list.
+    empty = len(et) == 0
+    events.add_column(name="event", description="event name",
+                      **({"data": np.array([], dtype="U")} if empty else {}))
+    events.add_column(name="trial", description="trial (episode) index",
+                      **({"data": np.array([], dtype=np.int64)} if empty else {}))
+    events.add_column(name="step", description="step of the event within its trial",
+                      **({"data": np.array([], dtype=np.int64)} if empty else {}))
     for k, s, c in zip(et.tolist(), es.tolist(), ec.tolist()):
         events.add_row(timestamp=float((offsets[k] + s) * dt), event=names.get(c, f"event_{c}"),
                        trial=int(k), step=int(s))

@@ -126,6 +126,25 @@ def test_activity_is_recorded_exported_and_written_to_nwb(tmp_path):
         chronocooked.to_nwb(out / "activity", out, path)
 
 
+def test_an_agent_that_never_acts_on_the_task_still_gets_an_nwb_file(tmp_path):
+    # Waiting in place all episode: no task event at all (a barely trained agent does this).
+    from pynwb import NWBHDF5IO
+
+    def wait(obs, state, episode_start):
+        return 0, state, np.array([1.0 if episode_start else 0.0, 0.5], np.float32)
+
+    out = tmp_path / "idle"
+    chronocooked.evaluate(wait, "FixedInterval-v0", out, td=6)
+    arrays, _ = chronocooked.load_activity(out / "activity")
+    assert len(arrays["event_code"]) == 0
+    path = chronocooked.to_nwb(out / "activity", out, tmp_path / "idle.nwb")
+    with NWBHDF5IO(str(path), "r") as io:
+        nwb = io.read()
+        assert len(nwb.events["task_events"].to_dataframe()) == 0
+        assert nwb.processing["model"]["unit_activity"].data.shape[1] == 2
+        assert len(nwb.trials) == len(arrays["td"])
+
+
 def test_nwb_refuses_activity_from_another_run(tmp_path):
     a = tmp_path / "a"
     b = tmp_path / "b"

@@ -105,7 +105,7 @@ def test_a_recurrent_ppo_trained_on_the_lab_env_is_evaluated_recorded_and_finger
         with NWBHDF5IO(str(path), "r") as io:
             ts = io.read().processing["model"]["unit_activity"]
             assert ts.data.shape[1] == sum(n for _, n in names)
-            assert '"hidden"' in ts.comments and '"cell"' in ts.comments
+            assert '"hidden[15]"' in ts.comments and '"cell[15]"' in ts.comments
     r = chronocooked.fingerprint({"fi-td6": policy}, tmp_path / "fp", draws=1)
     assert r["conditions"] == ["fi-td6"]
     assert (tmp_path / "fp" / "fingerprint.json").is_file()
