@@ -128,11 +128,15 @@ pub fn record<'py>(
     let result = PyDict::new(py);
     if summary {
         let summaries = population_summaries(&dataset, units_correspond, seed);
-        let bytes = serde_json::to_vec_pretty(&summaries).map_err(|e| runtime_err(e.to_string()))?;
+        let bytes =
+            serde_json::to_vec_pretty(&summaries).map_err(|e| runtime_err(e.to_string()))?;
         write_recorded(&summary_path, &bytes).map_err(|e| os_err(e.to_string()))?;
         files.push(summary_path);
         let json = serde_json::to_string(&summaries).map_err(|e| runtime_err(e.to_string()))?;
-        result.set_item("summary", py.import("json")?.call_method1("loads", (json,))?)?;
+        result.set_item(
+            "summary",
+            py.import("json")?.call_method1("loads", (json,))?,
+        )?;
     }
     result.set_item("out", out)?;
     result.set_item("task", play_task)?;

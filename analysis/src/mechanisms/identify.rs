@@ -92,11 +92,14 @@ impl Identification {
         let logs = |m: &str| -> Vec<f64> {
             self.held_out
                 .iter()
-                .filter(|h| h.mechanism == m && h.self_distance.is_finite() && h.self_distance > 0.0)
+                .filter(|h| {
+                    h.mechanism == m && h.self_distance.is_finite() && h.self_distance > 0.0
+                })
                 .map(|h| h.self_distance.ln())
                 .collect()
         };
-        let mut mechanisms: Vec<&str> = self.held_out.iter().map(|h| h.mechanism.as_str()).collect();
+        let mut mechanisms: Vec<&str> =
+            self.held_out.iter().map(|h| h.mechanism.as_str()).collect();
         mechanisms.dedup();
         let (mut ss, mut dof) = (0.0, 0usize);
         for m in mechanisms {
@@ -251,7 +254,9 @@ mod tests {
     #[test]
     fn held_out_seeds_are_named_as_their_mechanism_and_a_halfway_agent_is_not_identified() {
         let mut s = Vec::new();
-        let jitter = [-0.0175, -0.0125, -0.0075, -0.0025, 0.0025, 0.0075, 0.0125, 0.0175];
+        let jitter = [
+            -0.0175, -0.0125, -0.0075, -0.0025, 0.0025, 0.0075, 0.0125, 0.0175,
+        ];
         for (k, e) in jitter.iter().enumerate() {
             s.push(sig(
                 "ddm",
@@ -314,8 +319,16 @@ mod tests {
             ],
             agents: vec![],
         };
-        assert!((id.limit("a").unwrap() - 3.341).abs() < 2e-3, "{:?}", id.limit("a"));
-        assert!((id.limit("b").unwrap() - 4.510).abs() < 2e-3, "{:?}", id.limit("b"));
+        assert!(
+            (id.limit("a").unwrap() - 3.341).abs() < 2e-3,
+            "{:?}",
+            id.limit("a")
+        );
+        assert!(
+            (id.limit("b").unwrap() - 4.510).abs() < 2e-3,
+            "{:?}",
+            id.limit("b")
+        );
         assert_eq!(id.limit("c"), None);
         let single = Identification {
             held_out: vec![held("a", 1.0), held("b", 2.0)],

@@ -155,14 +155,21 @@ fn within_sds(mechs: &[&Signature]) -> BTreeMap<&'static str, f64> {
     for (f, total_sd) in total {
         let (mut ss, mut dof) = (0.0, 0usize);
         for seeds in by_model.values() {
-            let xs: Vec<f64> = seeds.iter().filter_map(|s| s.features.get(f).copied()).collect();
+            let xs: Vec<f64> = seeds
+                .iter()
+                .filter_map(|s| s.features.get(f).copied())
+                .collect();
             if xs.len() >= 2 {
                 let m = xs.iter().sum::<f64>() / xs.len() as f64;
                 ss += xs.iter().map(|x| (x - m).powi(2)).sum::<f64>();
                 dof += xs.len() - 1;
             }
         }
-        let within = if dof > 0 { (ss / dof as f64).sqrt() } else { 0.0 };
+        let within = if dof > 0 {
+            (ss / dof as f64).sqrt()
+        } else {
+            0.0
+        };
         out.insert(f, within.max(SCALE_FLOOR * total_sd));
     }
     out
@@ -386,7 +393,10 @@ mod tests {
         assert!((sds["foc_cv"] - 0.02f64.sqrt()).abs() < 1e-12, "{sds:?}");
         // SD of (0.1, 0.1, 0.3, 0.3): √(4 · 0.01 / 3).
         let total = (0.04f64 / 3.0).sqrt();
-        assert!((sds["pi_cv"] - SCALE_FLOOR * total).abs() < 1e-12, "{sds:?}");
+        assert!(
+            (sds["pi_cv"] - SCALE_FLOOR * total).abs() < 1e-12,
+            "{sds:?}"
+        );
         assert!(!sds.contains_key("frac_ramp"));
     }
 }
