@@ -25,7 +25,7 @@ from . import _core
 from ._core import EVENT_FLAGS, PolicyError, __version__, reference_conditions
 from .envs import ChronoEnv, ChronoVectorEnv, overrides, register_envs, task_ids
 from . import sb3, zoo
-from .evaluation import evaluate, load_activity, load_eval, record
+from .evaluation import check_export, evaluate, load_activity, load_eval, record
 from .fingerprint import CONDITIONS, fingerprint, summarize
 from .zoo import report
 
@@ -108,6 +108,7 @@ __all__ = [
     "PolicyError",
     "__version__",
     "analyse",
+    "check_export",
     "collect",
     "evaluate",
     "fingerprint",

@@ -155,17 +155,46 @@ def _npz_path(path) -> Path:
     return path
 
 
+def check_export(folder) -> None:
+    """Checks that ``folder`` holds a complete export: its marker ``export.json`` (written
+    last by ``chronocooked export`` and :func:`evaluate`) exists and every file it lists has
+    the recorded size and SHA-256. ``FileNotFoundError`` when the marker is missing (an
+    interrupted export, or one from an older version: rerun it); ``ValueError`` naming the
+    file when one differs (the folder mixes two exports)."""
+    import hashlib
+
+    folder = Path(folder)
+    marker = folder / "export.json"
+    if not marker.is_file():
+        raise FileNotFoundError(
+            f"{marker}: missing — the export in {folder} is incomplete (interrupted, or written "
+            "by an older version): rerun `chronocooked export`")
+    try:
+        files = json.loads(marker.read_text())["files"]
+    except (ValueError, KeyError, TypeError) as e:
+        raise ValueError(f"{marker}: not an export marker ({e})") from None
+    for f in files:
+        p = folder / f["name"]
+        data = p.read_bytes()
+        if len(data) != f["bytes"] or hashlib.sha256(data).hexdigest() != f["sha256"]:
+            raise ValueError(f"{p}: differs from its record in {marker} (the folder mixes two "
+                             "exports): rerun `chronocooked export`")
+
+
 def load_activity(path):
     """Reads an activity export (``activity.npz`` + ``activity.meta.json``, from
-    ``chronocooked export`` or :func:`evaluate`; a folder holding them also works).
+    ``chronocooked export`` or :func:`evaluate`; a folder holding them also works). An
+    incomplete or mixed export is refused (:func:`check_export`).
 
     Returns ``(arrays, meta)``: a dict of numpy arrays (``activity`` ``[T_total, N]``,
     ``trial_offsets`` ``[K+1]``, ``aligned`` ``[K', W, N]``, ``td``, ``start``, event arrays,
     …) and the metadata dict (model, task, seed, dt, units, array descriptions).
     """
     npz = _npz_path(path)
+    # Only a complete export is read: the marker, then every file as recorded.
+    check_export(npz.parent)
     with np.load(npz, allow_pickle=False) as data:
         arrays = {k: data[k] for k in data.files}
     meta_path = npz.with_name(npz.name[: -len(".npz")] + ".meta.json")
-    meta = json.loads(meta_path.read_text()) if meta_path.is_file() else {}
+    meta = json.loads(meta_path.read_text())
     return arrays, meta

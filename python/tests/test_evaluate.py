@@ -145,6 +145,22 @@ def test_an_agent_that_never_acts_on_the_task_still_gets_an_nwb_file(tmp_path):
         assert len(nwb.trials) == len(arrays["td"])
 
 
+def test_an_interrupted_or_mixed_export_is_refused(tmp_path):
+    a, b = tmp_path / "a", tmp_path / "b"
+    chronocooked.evaluate(TimingOracle(td=6, activity=True), "FixedInterval-v0", a, td=6)
+    chronocooked.evaluate(TimingOracle(td=9, activity=True), "FixedInterval-v0", b, td=9)
+    marker = json.loads((a / "activity" / "export.json").read_text())
+    assert {f["name"] for f in marker["files"]} >= {"activity.npz", "activity.meta.json"}
+    # A file of another export in the folder: the sizes or hashes differ.
+    (a / "activity" / "activity.npz").write_bytes((b / "activity" / "activity.npz").read_bytes())
+    with pytest.raises(ValueError, match=r"activity\.npz.*differs"):
+        chronocooked.load_activity(a / "activity")
+    # No marker: an export cut short before its last file.
+    (b / "activity" / "export.json").unlink()
+    with pytest.raises(FileNotFoundError, match="incomplete"):
+        chronocooked.load_activity(b / "activity")
+
+
 def test_nwb_refuses_activity_from_another_run(tmp_path):
     a = tmp_path / "a"
     b = tmp_path / "b"

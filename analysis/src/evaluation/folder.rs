@@ -89,10 +89,9 @@ pub fn write_activity(
     let json = serde_json::to_vec(dataset).map_err(|e| e.to_string())?;
     write_recorded(&path, &json).map_err(|e| e.to_string())?;
     let mut files = vec![path];
-    files.extend(crate::export::export_activity(
-        dataset,
+    files.extend(crate::export::marker::write_export(
         &out.join("activity"),
-        200,
+        |dir| crate::export::export_activity(dataset, dir, 200),
     )?);
     Ok(files)
 }

@@ -2,8 +2,10 @@
 //! CSV, and a JSON metadata file that describes every array (shape, dtype, units, meaning),
 //! the event codes, dt and model/task/seed. Files are written atomically.
 //!
-//! Submodule: [`npz`] — the NPZ container (zip of `.npy` arrays).
+//! Submodules: [`npz`] — the NPZ container (zip of `.npy` arrays); [`marker`] — the
+//! folder's completeness marker `export.json`, written last.
 
+pub mod marker;
 pub mod npz;
 
 use crate::export::npz::{NpyArray, NpyData, npz_bytes};

@@ -100,6 +100,7 @@ impl Identification {
         };
         let mut mechanisms: Vec<&str> =
             self.held_out.iter().map(|h| h.mechanism.as_str()).collect();
+        mechanisms.sort_unstable();
         mechanisms.dedup();
         let (mut ss, mut dof) = (0.0, 0usize);
         for m in mechanisms {

@@ -27,33 +27,46 @@ pub fn export(
         }
     }
     let _lock = chronocooked_env::fs::FolderLock::acquire(out)?;
-    let mut files = Vec::new();
-    if let Some(path) = activity {
-        let text = chronocooked_env::integrity::read_checked(path).map_err(|e| match e {
-            chronocooked_env::integrity::IntegrityError::Io { source, .. } => {
-                PipelineError::read(path, source)
-            }
-            other => PipelineError::Analysis(other.to_string()),
-        })?;
-        let ds = chronocooked_models::ActivityDataset::from_json(&text).map_err(|message| {
-            PipelineError::NotA {
-                path: path.to_path_buf(),
-                what: "an activity dataset (from `record`)",
-                message,
-            }
-        })?;
-        files.extend(
-            chronocooked_analysis::export::export_activity(&ds, out, window)
-                .map_err(PipelineError::Analysis)?,
-        );
-    }
-    if let Some(dir) = eval {
-        let records = chronocooked_analysis::evaluation::protocol::read_records(dir)
-            .map_err(|e| PipelineError::Analysis(format!("{e} (not an eval folder)")))?;
-        files.extend(
-            chronocooked_analysis::export::export_eval(&records, out)
-                .map_err(PipelineError::Analysis)?,
-        );
-    }
+    // Files are written between the removal of the completeness marker and its rewrite.
+    let ds = match activity {
+        Some(path) => {
+            let text = chronocooked_env::integrity::read_checked(path).map_err(|e| match e {
+                chronocooked_env::integrity::IntegrityError::Io { source, .. } => {
+                    PipelineError::read(path, source)
+                }
+                other => PipelineError::Analysis(other.to_string()),
+            })?;
+            Some(
+                chronocooked_models::ActivityDataset::from_json(&text).map_err(|message| {
+                    PipelineError::NotA {
+                        path: path.to_path_buf(),
+                        what: "an activity dataset (from `record`)",
+                        message,
+                    }
+                })?,
+            )
+        }
+        None => None,
+    };
+    let records = match eval {
+        Some(dir) => Some(
+            chronocooked_analysis::evaluation::protocol::read_records(dir)
+                .map_err(|e| PipelineError::Analysis(format!("{e} (not an eval folder)")))?,
+        ),
+        None => None,
+    };
+    let files = chronocooked_analysis::export::marker::write_export(out, |out| {
+        let mut files = Vec::new();
+        if let Some(ds) = &ds {
+            files.extend(chronocooked_analysis::export::export_activity(
+                ds, out, window,
+            )?);
+        }
+        if let Some(records) = &records {
+            files.extend(chronocooked_analysis::export::export_eval(records, out)?);
+        }
+        Ok(files)
+    })
+    .map_err(PipelineError::Analysis)?;
     Ok(files)
 }

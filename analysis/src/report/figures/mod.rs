@@ -4,6 +4,7 @@
 //! primitives (charts, heat maps) live in [`draw`].
 
 mod draw;
+pub mod extensions;
 pub mod grid;
 mod matrix;
 
@@ -19,7 +20,9 @@ use std::path::{Path, PathBuf};
 
 /// The standard figures of one evaluation into `dir` (SVG + PNG each): psychometric curve
 /// (bisection), FOC strip per TD (FI), PI response curves with their Gaussian fits,
-/// reward and oven-off time vs TD (multi-timer). Returns the files written.
+/// reward and oven-off time vs TD (multi-timer), the share of choices of each counter
+/// (multi-anchor) and each oven's P(long) beside the one-oven curve (multi-oven). Returns the
+/// files written.
 pub fn eval_figures(
     dir: &Path,
     metrics: &crate::behaviour::metrics::Metrics,
@@ -224,6 +227,14 @@ pub fn eval_figures(
             ..Chart::default()
         };
         out.extend(write_chart(&dir.join("multi_timer"), &chart)?);
+    }
+    if let Some(m) = &metrics.multi_anchor {
+        let chart = extensions::multi_anchor_chart(model, m);
+        out.extend(write_chart(&dir.join("categorization"), &chart)?);
+    }
+    if let Some(m) = &metrics.multi_oven {
+        let chart = extensions::multi_oven_chart(model, m);
+        out.extend(write_chart(&dir.join("ovens"), &chart)?);
     }
     Ok(out)
 }
