@@ -76,6 +76,21 @@ def mechanisms(results, out=None, *, resamples=1000, seed=0):
                             int(resamples), int(seed))
 
 
+def export(out, *, activity=None, eval=None, window=200):
+    """``chronocooked export``: writes the folder ``out`` from ``activity`` (an
+    ``activity.json`` from :func:`record` / :func:`evaluate`, or a folder holding one) and/or
+    ``eval`` (an evaluation folder): ``activity.npz`` (+ ``.meta.json``, ``trials.csv``,
+    ``units.csv``; aligned arrays up to ``window`` steps after oven-on) and ``episodes.npz``
+    (+ metadata and CSV), then the completeness marker ``export.json`` last. Returns the
+    files written. ``ValueError`` for inputs that are not what they should be (naming the
+    file), ``OSError`` for unreadable inputs or an unwritable / busy ``out``; a bad input
+    leaves an earlier export in ``out`` as it was."""
+    import os
+
+    return _core.export(os.fspath(out), None if activity is None else os.fspath(activity),
+                        None if eval is None else os.fspath(eval), int(window))
+
+
 def iqm(values, strata=None, level=0.95, resamples=2000, seed=0):
     """The interquartile mean of ``values`` and its stratified percentile bootstrap interval:
     ``(iqm, (lo, hi))`` (``None`` for fewer than 2 values); ``strata`` labels each value's
@@ -111,6 +126,7 @@ __all__ = [
     "check_export",
     "collect",
     "evaluate",
+    "export",
     "fingerprint",
     "load_activity",
     "load_eval",

@@ -9,6 +9,7 @@
 //! * [`fingerprint`] — the mechanisms protocol with a Python agent's policies, its
 //!   placement among the timing mechanisms, and the neural summary of any recording;
 //! * [`record`] — a Python policy's activity on probe trials, with its neural summary;
+//! * [`export`] — activity and evaluation records as NPZ/CSV/JSON (`chronocooked export`);
 //! * [`study`] — `paper collect`, `paper analyse` and `mechanisms` on a study's results;
 //! * [`registry`] — the task registry and parameter documentation;
 //! * [`zoo`] — the zoo of trained agents (`ZooPolicy`) and the leaderboard (`report`);
@@ -22,6 +23,7 @@ mod agent;
 mod env;
 mod errors;
 mod evaluate;
+mod export;
 mod fingerprint;
 mod info;
 mod record;
@@ -51,6 +53,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fingerprint::fingerprint, m)?)?;
     m.add_function(wrap_pyfunction!(fingerprint::summarize, m)?)?;
     m.add_function(wrap_pyfunction!(record::record, m)?)?;
+    m.add_function(wrap_pyfunction!(export::export, m)?)?;
     m.add_function(wrap_pyfunction!(evaluate::reference_conditions, m)?)?;
     m.add_class::<zoo::ZooPolicy>()?;
     m.add_function(wrap_pyfunction!(zoo::zoo_agents, m)?)?;

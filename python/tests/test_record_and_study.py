@@ -122,3 +122,29 @@ def test_paper_analyse_from_python_writes_what_the_cli_writes(tmp_path, cli):
     assert r["figures"] and all(str(p).startswith(str(a)) for p in r["figures"])
     with pytest.raises(OSError):
         chronocooked.analyse(tmp_path / "missing")
+
+
+def test_export_from_python_writes_what_the_cli_writes_and_a_bad_input_keeps_it(tmp_path, cli):
+    ev = tmp_path / "ev"
+    chronocooked.evaluate(Accumulator("FixedInterval-v0", {"td": 6}, seed=2), "FixedInterval-v0",
+                          ev, td=6, seed=2)
+    py, c = tmp_path / "py" / "x", tmp_path / "cli" / "x"
+    files = chronocooked.export(py, activity=ev, eval=ev, window=30)
+    assert files[-1].name == "export.json"
+    subprocess.run([cli, "export", "--activity", str(ev / "activity.json"), "--eval", str(ev),
+                    "--window", "30", "--out", str(c)], check=True, capture_output=True)
+    names = sorted(p.name for p in py.iterdir())
+    assert names == sorted(p.name for p in c.iterdir())
+    assert {"activity.npz", "episodes.npz", "export.json"} <= set(names)
+    for n in names:
+        if n != "SHA256SUMS":
+            assert (py / n).read_bytes() == (c / n).read_bytes(), n
+    chronocooked.check_export(py)
+    arrays, _ = chronocooked.load_activity(py)
+    assert arrays["aligned"].shape[1] <= 30
+    # Bad requests: nothing to export, a folder that is no evaluation; the export stays whole.
+    with pytest.raises(ValueError, match="say what to export"):
+        chronocooked.export(py)
+    with pytest.raises(ValueError, match="not an evaluation folder"):
+        chronocooked.export(py, eval=tmp_path / "py")
+    chronocooked.check_export(py)

@@ -76,6 +76,28 @@ fn save(dir: &Path, stem: &str, arrays: &[NpyArray], meta: Value) -> Result<Vec<
     Ok(vec![npz, meta_path])
 }
 
+/// One export folder `out` from an activity dataset and/or an evaluation's records (what
+/// `chronocooked export` writes): the files of [`export_activity`] and [`export_eval`]
+/// between the removal of the completeness marker and its rewrite
+/// ([`marker::write_export`]). Aligned activity spans up to `window` steps after oven-on.
+pub fn export_folder(
+    out: &Path,
+    activity: Option<&ActivityDataset>,
+    records: Option<&[EvalRecord]>,
+    window: usize,
+) -> Result<Vec<PathBuf>, String> {
+    marker::write_export(out, |out| {
+        let mut files = Vec::new();
+        if let Some(ds) = activity {
+            files.extend(export_activity(ds, out, window)?);
+        }
+        if let Some(records) = records {
+            files.extend(export_eval(records, out)?);
+        }
+        Ok(files)
+    })
+}
+
 /// Exports `dataset` into `dir`: `activity.npz`, `activity.meta.json`, `trials.csv`,
 /// `units.csv`. Aligned arrays use oven-on and a window of up to `max_window` steps.
 pub fn export_activity(

@@ -27,7 +27,7 @@ pub fn export(
         }
     }
     let _lock = chronocooked_env::fs::FolderLock::acquire(out)?;
-    // Files are written between the removal of the completeness marker and its rewrite.
+    // The inputs are read first: a bad one leaves an earlier complete export as it was.
     let ds = match activity {
         Some(path) => {
             let text = chronocooked_env::integrity::read_checked(path).map_err(|e| match e {
@@ -55,18 +55,8 @@ pub fn export(
         ),
         None => None,
     };
-    let files = chronocooked_analysis::export::marker::write_export(out, |out| {
-        let mut files = Vec::new();
-        if let Some(ds) = &ds {
-            files.extend(chronocooked_analysis::export::export_activity(
-                ds, out, window,
-            )?);
-        }
-        if let Some(records) = &records {
-            files.extend(chronocooked_analysis::export::export_eval(records, out)?);
-        }
-        Ok(files)
-    })
-    .map_err(PipelineError::Analysis)?;
+    let files =
+        chronocooked_analysis::export::export_folder(out, ds.as_ref(), records.as_deref(), window)
+            .map_err(PipelineError::Analysis)?;
     Ok(files)
 }

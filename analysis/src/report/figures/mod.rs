@@ -7,6 +7,7 @@ mod draw;
 pub mod extensions;
 pub mod grid;
 mod matrix;
+pub mod reproduction;
 
 use crate::records::ConditionKind;
 use chronocooked_models::run_folder;
@@ -21,8 +22,8 @@ use std::path::{Path, PathBuf};
 /// The standard figures of one evaluation into `dir` (SVG + PNG each): psychometric curve
 /// (bisection), FOC strip per TD (FI), PI response curves with their Gaussian fits,
 /// reward and oven-off time vs TD (multi-timer), the share of choices of each counter
-/// (multi-anchor) and each oven's P(long) beside the one-oven curve (multi-oven). Returns the
-/// files written.
+/// (multi-anchor), each oven's P(long) beside the one-oven curve (multi-oven) and mean tp
+/// against ts with the fitted observer (reproduction). Returns the files written.
 pub fn eval_figures(
     dir: &Path,
     metrics: &crate::behaviour::metrics::Metrics,
@@ -235,6 +236,14 @@ pub fn eval_figures(
     if let Some(m) = &metrics.multi_oven {
         let chart = extensions::multi_oven_chart(model, m);
         out.extend(write_chart(&dir.join("ovens"), &chart)?);
+    }
+    if let Some(m) = metrics
+        .reproduction
+        .as_ref()
+        .filter(|m| !m.contexts.is_empty())
+    {
+        let chart = reproduction::reproduction_chart(model, m);
+        out.extend(write_chart(&dir.join("reproduction"), &chart)?);
     }
     Ok(out)
 }
