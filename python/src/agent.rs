@@ -21,6 +21,21 @@ struct Geometry {
     encoder: OneHotEncoder,
 }
 
+/// What every entry point that plays a Python policy checks first: its `obs_mode` (returns
+/// whether observations are one-hot) and the agent's `name` (not empty).
+pub(crate) fn onehot_and_name(obs_mode: &str, name: &str) -> PyResult<bool> {
+    let onehot = matches!(
+        crate::env::ObsMode::parse(obs_mode)?,
+        crate::env::ObsMode::OneHot
+    );
+    if name.trim().is_empty() {
+        return Err(value_err(
+            "invalid value for `name`: empty (allowed: a model name)",
+        ));
+    }
+    Ok(onehot)
+}
+
 /// A Python callable as a lab [`Agent`]. The first Python error stops the policy (later
 /// steps wait) and is kept in [`PyAgent::error`] for the caller to raise.
 pub struct PyAgent<'py> {

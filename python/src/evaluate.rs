@@ -31,10 +31,7 @@ pub fn evaluate<'py>(
     seed: u64,
     name: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let onehot = match crate::env::ObsMode::parse(obs_mode)? {
-        crate::env::ObsMode::Codes => false,
-        crate::env::ObsMode::OneHot => true,
-    };
+    let onehot = crate::agent::onehot_and_name(obs_mode, name)?;
     let mode = match stochastic {
         Some(0) => {
             return Err(value_err(
@@ -50,11 +47,6 @@ pub fn evaluate<'py>(
         Some(n) => Mode::Stochastic { episodes: n },
         None => Mode::Reference,
     };
-    if name.trim().is_empty() {
-        return Err(value_err(
-            "invalid value for `name`: empty (allowed: a model name)",
-        ));
-    }
     let conditions =
         chronocooked_analysis::reference_conditions(task, &overrides).map_err(env_err)?;
     let mut tasks: Vec<(String, Vec<String>)> = Vec::new();

@@ -101,15 +101,7 @@ pub fn fingerprint<'py>(
     draws: usize,
     resamples: usize,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let onehot = match crate::env::ObsMode::parse(obs_mode)? {
-        crate::env::ObsMode::Codes => false,
-        crate::env::ObsMode::OneHot => true,
-    };
-    if name.trim().is_empty() {
-        return Err(value_err(
-            "invalid value for `name`: empty (allowed: a model name)",
-        ));
-    }
+    let onehot = crate::agent::onehot_and_name(obs_mode, name)?;
     if !(1..=256).contains(&draws) {
         return Err(value_err(format!(
             "invalid value for `draws`: {draws} (allowed: 1..=256 episodes per start cell; the \

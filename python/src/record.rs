@@ -41,20 +41,12 @@ pub fn record<'py>(
     summary: bool,
     units_correspond: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let onehot = match crate::env::ObsMode::parse(obs_mode)? {
-        crate::env::ObsMode::Codes => false,
-        crate::env::ObsMode::OneHot => true,
-    };
+    let onehot = crate::agent::onehot_and_name(obs_mode, name)?;
     if !(1..=MAX_REPEATS).contains(&repeats) {
         return Err(value_err(format!(
             "invalid value for `repeats`: {repeats} (allowed: 1..={MAX_REPEATS} repetitions of \
              every start cell)"
         )));
-    }
-    if name.trim().is_empty() {
-        return Err(value_err(
-            "invalid value for `name`: empty (allowed: a model name)",
-        ));
     }
     if probe && !can_probe(task) {
         return Err(value_err(format!(
