@@ -166,8 +166,7 @@ pub fn fingerprint<'py>(
         "reference_identification": placement.reference_identification,
         "files": files,
     });
-    py.import("json")?
-        .call_method1("loads", (json.to_string(),))
+    crate::info::to_py(py, &json)
 }
 
 /// The neural summary of an activity dataset (an evaluation folder with `activity.json`,
@@ -184,6 +183,5 @@ pub fn summarize<'py>(
     let (_, summaries) =
         chronocooked_analysis::neural::probe::summarize_file(&path, units_correspond, seed)
             .map_err(value_err)?;
-    let json = serde_json::to_string(&summaries).map_err(|e| runtime_err(e.to_string()))?;
-    py.import("json")?.call_method1("loads", (json,))
+    crate::info::to_py(py, &summaries)
 }

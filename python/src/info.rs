@@ -11,6 +11,16 @@ use numpy::{IntoPyArray, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+/// A serialisable Rust value as plain Python objects (dicts, lists, numbers; through JSON).
+pub(crate) fn to_py<'py>(
+    py: Python<'py>,
+    value: &impl serde::Serialize,
+) -> PyResult<Bound<'py, PyAny>> {
+    let json =
+        serde_json::to_string(value).map_err(|e| crate::errors::runtime_err(e.to_string()))?;
+    py.import("json")?.call_method1("loads", (json,))
+}
+
 fn counter_name(c: Option<Counter>) -> Option<String> {
     c.map(|c| match c {
         Counter::Main => "main".into(),

@@ -124,11 +124,7 @@ pub fn record<'py>(
             serde_json::to_vec_pretty(&summaries).map_err(|e| runtime_err(e.to_string()))?;
         write_recorded(&summary_path, &bytes).map_err(|e| os_err(e.to_string()))?;
         files.push(summary_path);
-        let json = serde_json::to_string(&summaries).map_err(|e| runtime_err(e.to_string()))?;
-        result.set_item(
-            "summary",
-            py.import("json")?.call_method1("loads", (json,))?,
-        )?;
+        result.set_item("summary", crate::info::to_py(py, &summaries)?)?;
     }
     result.set_item("out", out)?;
     result.set_item("task", play_task)?;

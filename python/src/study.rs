@@ -1,17 +1,11 @@
 //! Studies from Python: `paper collect`, `paper analyse` and `mechanisms` on a sweep's
 //! output and its compact results, as the CLI runs them.
 
-use crate::errors::runtime_err;
+use crate::info::to_py;
 use chronocooked_analysis::mechanisms::MechanismError;
 use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
 use std::path::PathBuf;
-
-/// A serialisable value as Python objects (through JSON).
-fn to_py<'py>(py: Python<'py>, value: &impl serde::Serialize) -> PyResult<Bound<'py, PyAny>> {
-    let json = serde_json::to_string(value).map_err(|e| runtime_err(e.to_string()))?;
-    py.import("json")?.call_method1("loads", (json,))
-}
 
 /// `paper collect` from Python: writes the compact results of every finished job of the
 /// sweep output `sweep_out` into `out` (`out/jobs/<job id>/`, the layout `report
