@@ -3,7 +3,7 @@
 //! independently, from the job files (`episodes.csv`, one line per evaluation episode) —
 //! and equal the table of RESULTS.md ("Committed baselines on the leaderboard").
 
-mod common;
+use crate::common;
 
 use common::{run_ok, temp_dir};
 use std::collections::BTreeMap;

@@ -2,7 +2,7 @@
 //! render / play, the env demo and `bench env` (runs, evaluation and reports:
 //! `tests/cli_runs.rs`).
 
-mod common;
+use crate::common;
 
 use common::{bin, json_lines, run_err, run_ok, temp_dir};
 use serde_json::Value;

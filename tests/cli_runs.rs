@@ -1,7 +1,7 @@
 //! End-to-end tests of the `chronocooked` binary on runs: train and zoo, timing models,
 //! eval, report, and the errors for folders and files that are not what they should be.
 
-mod common;
+use crate::common;
 
 use common::{bin, run_err, run_ok, temp_dir};
 use serde_json::Value;

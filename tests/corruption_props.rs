@@ -7,7 +7,7 @@
 //! with the record rewritten to the corrupted content (as by hand), which exercises the
 //! consistency checks behind the hash.
 
-mod common;
+use crate::common;
 
 use chronocooked_env::integrity;
 use chronocooked_training::{RunDir, Trainer, load_policy, load_timing_agent};
@@ -276,7 +276,7 @@ fn plant(file: &Path, bytes: &[u8], rerecord: bool) {
 }
 
 /// 64 cases per reader with a fixed seed (CI reruns the same corruptions); a wider campaign:
-/// `PROPTEST_CASES=2000 PROPTEST_RNG_SEED=<n> cargo test --release --test corruption_props`.
+/// `PROPTEST_CASES=2000 PROPTEST_RNG_SEED=<n> cargo test --release --test integration corruption_props`.
 fn config() -> ProptestConfig {
     let default = ProptestConfig::default();
     let rng_seed = match std::env::var("PROPTEST_RNG_SEED") {

@@ -8,7 +8,7 @@
 //! After each fault: the error names the path, nothing is left that a later command takes
 //! for complete, and a rerun equals a clean run with no stray files.
 
-mod common;
+use crate::common;
 
 use common::{bin, curves_without_clock, files_below, run_ok, temp_dir};
 use std::os::unix::process::ExitStatusExt;

@@ -2,7 +2,7 @@
 //! features read by hand from the job files, and an agent built as a copy of one mechanism
 //! is nearest to it in every bootstrap resample.
 
-mod common;
+use crate::common;
 
 use chronocooked_analysis::mechanisms::{compare, signatures};
 use common::run_ok;

@@ -3,7 +3,7 @@
 //! corrupt learned state is refused naming the file, walks never follow symlinks, sweep
 //! files are checked fully by `--dry-run`, and every output is created with the umask.
 
-mod common;
+use crate::common;
 
 use common::{bin, curves_without_clock, files_below, run_err, run_ok, temp_dir};
 use std::path::{Path, PathBuf};

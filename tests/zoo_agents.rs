@@ -3,7 +3,7 @@
 //! activity; corrupt or edited zoo files are refused with an error naming them; the copy
 //! compiled into the program works outside the repository.
 
-mod common;
+use crate::common;
 
 use chronocooked_analysis::paper::collect::EpisodeRow;
 use common::{bin, run_err, run_ok, temp_dir};

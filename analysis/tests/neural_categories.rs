@@ -2,7 +2,7 @@
 //! exclusivity on clean shapes, and degenerate inputs: constant units, too few trials, too
 //! short windows, small populations (counts and Wilson intervals, no fractions).
 
-mod synthetic;
+use crate::synthetic;
 
 use chronocooked_analysis::neural::Cube;
 use chronocooked_analysis::neural::categories::{

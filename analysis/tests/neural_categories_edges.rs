@@ -7,7 +7,7 @@
 //!   window are counted as `beyond_window`;
 //! * noise recorded beyond the window does not make fields beyond it.
 
-mod synthetic;
+use crate::synthetic;
 
 use chronocooked_analysis::neural::categories::{Category, CategoryConfig, classify_units};
 use rand::{Rng, SeedableRng};

@@ -2,7 +2,7 @@
 //! psychometric fit, the notebook's FI pooling rule, the run exclusion and per-run
 //! fits of bisection, the WF regression and the agreement rules of the comparison.
 
-mod common;
+use crate::common;
 
 use chronocooked_analysis::paper::bisection::{analyse_bisection, pearson};
 use chronocooked_analysis::paper::collect::{CompactJob, EpisodeRow, JobSummary};

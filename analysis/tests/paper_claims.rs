@@ -2,7 +2,7 @@
 //! in `paper_claims_multitimer.rs`),
 //! tested on constructed runs whose verdicts are known by hand.
 
-mod common;
+use crate::common;
 
 use chronocooked_analysis::paper::claims::{
     ClaimRow, bisection_claims, exact_timer_claims, exact_timer_run_means, fi_claims, fi_run_stat,

@@ -1,7 +1,7 @@
 //! The paper's multi-timer statements (levels, timers stored, capacity) and the per-level
 //! figure, tested on constructed runs whose verdicts are known by hand.
 
-mod common;
+use crate::common;
 
 use chronocooked_analysis::paper::claims::{capacity_claims, multitimer_claims, shift_claims};
 use chronocooked_analysis::paper::collect::{CompactJob, LevelEpisode};

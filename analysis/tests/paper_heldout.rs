@@ -2,7 +2,7 @@
 //! against the study's 95% range for a new run (computed by hand), a run the paper's rule
 //! excludes, a condition the study lacks, and a "held-out" seed the study already used.
 
-mod common;
+use crate::common;
 
 use chronocooked_analysis::paper::collect::CompactJob;
 use chronocooked_analysis::paper::heldout::{HeldOutError, HeldOutVerdict, check_held_out};

@@ -2,7 +2,7 @@
 //! per-level multi-timer evaluation and its comparison, the exact timer, spreads and new-run
 //! ranges, and z verdicts where the old rule has none.
 
-mod common;
+use crate::common;
 
 use chronocooked_analysis::paper::collect::{CompactJob, EpisodeRow};
 use common::{curve_at, ep, job, mt_ep};

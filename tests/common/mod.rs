@@ -1,6 +1,5 @@
 //! Helpers shared by the CLI test files: run the `chronocooked` binary, read its output,
 //! make temporary folders.
-#![allow(dead_code)] // each test file uses a subset
 
 use serde_json::Value;
 use std::process::Command;

@@ -55,6 +55,54 @@ fn solve_spd(a: Vec<f64>, b: Vec<f64>, n: usize) -> Option<Vec<f64>> {
     Some(x.data.into())
 }
 
+/// Ridge weights `w = (ZᵀZ + λI)⁻¹ Zᵀy` from the primal `[n, n]` system (`z`: `[m, n]`
+/// standardised samples, `y` centred): the cheaper form when samples outnumber units.
+fn ridge_weights_primal(z: &[Vec<f64>], y: &[f64], lambda: f64) -> Option<Vec<f64>> {
+    let n = z.first()?.len();
+    let mut a = vec![0.0; n * n];
+    let mut b = vec![0.0; n];
+    for (r, &t) in z.iter().zip(y) {
+        for i in 0..n {
+            b[i] += r[i] * t;
+            for j in 0..=i {
+                a[i * n + j] += r[i] * r[j];
+            }
+        }
+    }
+    for i in 0..n {
+        for j in 0..i {
+            a[j * n + i] = a[i * n + j];
+        }
+        a[i * n + i] += lambda;
+    }
+    solve_spd(a, b, n)
+}
+
+/// The same ridge weights from the dual `[m, m]` system, `w = Zᵀ(ZZᵀ + λI)⁻¹y` (the
+/// push-through identity `(ZᵀZ + λI)⁻¹Zᵀ = Zᵀ(ZZᵀ + λI)⁻¹`): the cheaper form when units
+/// outnumber samples (a population of 1,000 oscillators recorded on a few hundred steps).
+fn ridge_weights_dual(z: &[Vec<f64>], y: &[f64], lambda: f64) -> Option<Vec<f64>> {
+    let n = z.first()?.len();
+    let m = z.len();
+    let mut k = vec![0.0; m * m];
+    for s in 0..m {
+        for u in 0..=s {
+            let d: f64 = z[s].iter().zip(&z[u]).map(|(a, b)| a * b).sum();
+            k[s * m + u] = d;
+            k[u * m + s] = d;
+        }
+        k[s * m + s] += lambda;
+    }
+    let alpha = solve_spd(k, y.to_vec(), m)?;
+    let mut w = vec![0.0; n];
+    for (r, a) in z.iter().zip(&alpha) {
+        for (wi, zi) in w.iter_mut().zip(r) {
+            *wi += a * zi;
+        }
+    }
+    Some(w)
+}
+
 fn fit_ridge(x: &[Vec<f64>], y: &[usize], lambda: f64) -> Option<impl Fn(&[f64]) -> f64> {
     let n = x.first()?.len();
     let m = x.len() as f64;
@@ -77,24 +125,16 @@ fn fit_ridge(x: &[Vec<f64>], y: &[usize], lambda: f64) -> Option<impl Fn(&[f64])
         })
         .collect();
     let ym = y.iter().map(|&v| v as f64).sum::<f64>() / m;
-    let mut a = vec![0.0; n * n];
-    let mut b = vec![0.0; n];
-    for (r, &t) in x.iter().zip(y) {
-        let z: Vec<f64> = (0..n).map(|i| (r[i] - mean[i]) / sd[i]).collect();
-        for i in 0..n {
-            b[i] += z[i] * (t as f64 - ym);
-            for j in 0..=i {
-                a[i * n + j] += z[i] * z[j];
-            }
-        }
-    }
-    for i in 0..n {
-        for j in 0..i {
-            a[j * n + i] = a[i * n + j];
-        }
-        a[i * n + i] += lambda;
-    }
-    let w = solve_spd(a, b, n)?;
+    let z: Vec<Vec<f64>> = x
+        .iter()
+        .map(|r| (0..n).map(|i| (r[i] - mean[i]) / sd[i]).collect())
+        .collect();
+    let yc: Vec<f64> = y.iter().map(|&t| t as f64 - ym).collect();
+    let w = if z.len() < n {
+        ridge_weights_dual(&z, &yc, lambda)?
+    } else {
+        ridge_weights_primal(&z, &yc, lambda)?
+    };
     Some(move |v: &[f64]| ym + (0..n).map(|i| w[i] * (v[i] - mean[i]) / sd[i]).sum::<f64>())
 }
 
@@ -187,5 +227,56 @@ pub fn decode_time(cube: &Cube, decoder: Decoder, folds: usize, lambda: f64) -> 
             .map(|(e, c)| if *c > 0.0 { e / c } else { f64::NAN })
             .collect(),
         mean_abs_error: if n > 0.0 { total / n } else { f64::NAN },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_xoshiro::Xoshiro256PlusPlus;
+
+    fn random(m: usize, n: usize, seed: u64) -> (Vec<Vec<f64>>, Vec<f64>) {
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+        let z = (0..m)
+            .map(|_| (0..n).map(|_| rng.random_range(-1.0..1.0)).collect())
+            .collect();
+        let y = (0..m).map(|_| rng.random_range(-5.0..5.0)).collect();
+        (z, y)
+    }
+
+    /// `‖(ZᵀZ + λI)w − Zᵀy‖∞`, the residual of the ridge normal equations.
+    fn normal_residual(z: &[Vec<f64>], y: &[f64], lambda: f64, w: &[f64]) -> f64 {
+        let n = w.len();
+        let zw: Vec<f64> = z
+            .iter()
+            .map(|r| r.iter().zip(w).map(|(a, b)| a * b).sum())
+            .collect();
+        (0..n)
+            .map(|i| {
+                let lhs: f64 =
+                    z.iter().zip(&zw).map(|(r, v)| r[i] * v).sum::<f64>() + lambda * w[i];
+                let rhs: f64 = z.iter().zip(y).map(|(r, t)| r[i] * t).sum();
+                (lhs - rhs).abs()
+            })
+            .fold(0.0, f64::max)
+    }
+
+    #[test]
+    fn both_forms_solve_the_ridge_normal_equations_and_agree() {
+        // More units than samples (the dual's case) and more samples than units.
+        for (m, n, seed) in [(30, 80, 1), (80, 30, 2), (40, 40, 3)] {
+            let (z, y) = random(m, n, seed);
+            let primal = ridge_weights_primal(&z, &y, 0.5).unwrap();
+            let dual = ridge_weights_dual(&z, &y, 0.5).unwrap();
+            assert!(normal_residual(&z, &y, 0.5, &primal) < 1e-9, "{m}×{n}");
+            assert!(normal_residual(&z, &y, 0.5, &dual) < 1e-9, "{m}×{n}");
+            for (a, b) in primal.iter().zip(&dual) {
+                assert!(
+                    (a - b).abs() < 1e-9 * (1.0 + a.abs()),
+                    "{m}×{n}: {a} vs {b}"
+                );
+            }
+        }
     }
 }

@@ -13,9 +13,12 @@ pub(crate) fn rotated_average(trials: &[Vec<f64>], shifts: &[usize], len: usize)
     let mut sum = vec![0.0; len];
     let mut n = vec![0usize; len];
     for (x, &s) in trials.iter().zip(shifts) {
+        // Step t reads x[(t + s) mod l]: the tail x[s..] first, then the head.
         let l = x.len();
-        for t in 0..l.min(len) {
-            sum[t] += x[(t + s) % l];
+        let s = if l > 0 { s % l } else { 0 };
+        let (tail, head) = (&x[s..], &x[..s]);
+        for (t, v) in tail.iter().chain(head).take(len).enumerate() {
+            sum[t] += v;
             n[t] += 1;
         }
     }
@@ -95,4 +98,22 @@ pub(crate) fn locking_p(
     }
     let p_of = |count: usize| (count + 1) as f64 / (surrogates + 1) as f64;
     (2.0 * p_of(above).min(p_of(tighter))).min(1.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::rotated_average;
+
+    #[test]
+    fn rotated_average_by_hand() {
+        // Trial 1 rotated by 1: [2, 3, 1]; trial 2 rotated by 5 ≡ 1: [5, 6, 7, 4].
+        let trials = vec![vec![1.0, 2.0, 3.0], vec![4.0, 5.0, 6.0, 7.0]];
+        assert_eq!(
+            rotated_average(&trials, &[1, 5], 4),
+            vec![3.5, 4.5, 4.0, 4.0]
+        );
+        let none = rotated_average(&trials, &[0, 0], 5);
+        assert_eq!(&none[..4], &[2.5, 3.5, 4.5, 7.0]);
+        assert!(none[4].is_nan(), "no trial reaches step 4");
+    }
 }

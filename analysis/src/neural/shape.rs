@@ -182,11 +182,15 @@ pub fn periodogram(y: &[f64]) -> Vec<f64> {
         .enumerate()
         .map(|(i, v)| (v - mean) * (0.5 - 0.5 * (2.0 * PI * i as f64 / n as f64).cos()))
         .collect();
+    // sin and cos of 2π·m/n, m = 0 … n − 1: every phase `k·j mod n` the sums below need.
+    let twiddle: Vec<(f64, f64)> = (0..n)
+        .map(|m| (2.0 * PI * m as f64 / n as f64).sin_cos())
+        .collect();
     (0..=n / 2)
         .map(|k| {
             let (mut re, mut im) = (0.0, 0.0);
             for (j, v) in w.iter().enumerate() {
-                let (s, c) = (2.0 * PI * ((k * j) % n) as f64 / n as f64).sin_cos();
+                let (s, c) = twiddle[(k * j) % n];
                 re += v * c;
                 im -= v * s;
             }

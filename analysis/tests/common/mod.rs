@@ -1,7 +1,5 @@
 //! Constructed compact jobs shared by the paper-analysis tests.
 
-#![allow(dead_code)]
-
 use chronocooked_analysis::paper::collect::{EpisodeRow, JobSummary};
 
 /// A constructed `job` for the tests.

@@ -1,5 +1,4 @@
 //! Synthetic populations shared by the unit-category tests.
-#![allow(dead_code)] // each test file uses a subset
 
 use chronocooked_analysis::neural::Cube;
 use rand::Rng;

@@ -1,0 +1,27 @@
+//! Every integration test of `chronocooked-analysis`, compiled into one test binary: one link instead of
+//! one per file, and the tests of all files share the test threads. Each file below is
+//! one topic; `cargo test --release -p chronocooked-analysis <file>` runs one of them.
+
+mod common;
+mod synthetic;
+
+mod eval_protocol;
+mod extension_metrics;
+mod fingerprint_reference;
+mod leaderboard_robust;
+mod neural_categories;
+mod neural_categories_edges;
+mod neural_known_answers;
+mod neural_metrics;
+mod paper_analysis;
+mod paper_claims;
+mod paper_claims_multitimer;
+mod paper_heldout;
+mod paper_levels_spreads;
+mod paper_power;
+mod reproduction_agent;
+mod reproduction_known_answers;
+mod reproduction_protocol;
+mod robust_statistics;
+mod speed_known_answers;
+mod speed_timing_models;

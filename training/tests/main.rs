@@ -1,0 +1,10 @@
+//! Every integration test of `chronocooked-training`, compiled into one test binary: one link instead of
+//! one per file, and the tests of all files share the test threads. Each file below is
+//! one topic; `cargo test --release -p chronocooked-training <file>` runs one of them.
+
+mod adaptation;
+mod faithful;
+mod native_engine;
+mod reproduction_agents;
+mod settings;
+mod training;
