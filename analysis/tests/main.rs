@@ -19,6 +19,7 @@ mod paper_claims_multitimer;
 mod paper_heldout;
 mod paper_levels_spreads;
 mod paper_power;
+mod production_speed;
 mod reproduction_agent;
 mod reproduction_known_answers;
 mod reproduction_protocol;

@@ -169,6 +169,8 @@ fn ramp_dataset(td: u32, trials: usize, varying: usize, constant: usize) -> Acti
                 }],
                 reward: 0.0,
                 success: false,
+                oven_tds: Vec::new(),
+                reproduction: None,
             }
         })
         .collect();

@@ -70,6 +70,8 @@ fn trial(td: u32, steps: usize, activity: Vec<f32>) -> Trial {
         }],
         reward: 0.0,
         success: false,
+        oven_tds: Vec::new(),
+        reproduction: None,
     }
 }
 
@@ -311,4 +313,71 @@ fn rhythms_whose_speed_varies_from_trial_to_trial_still_oscillate() {
         assert_eq!(u.category, Category::Oscillating, "{f}: {u:?}");
         assert!((u.spectral_peak - f).abs() <= bin + 1e-9, "{f}: {u:?}");
     }
+}
+
+/// A multi-oven agent's second clock: oven 1 (TD 10) turns on at step 0 and oven 2 (TD 16)
+/// at step 7, as in an asynchronous episode. Population `bump` peaks 10 steps after oven 1's
+/// onset and `bump_oven2` 16 steps after oven 2's: each is classified at its own oven's
+/// duration and aligned to its own oven's onset, so both are time fields peaking at their
+/// TD (aligned to oven 1, `bump_oven2` would peak at 23 and be summarised at TD 10).
+#[test]
+fn a_second_ovens_population_is_aligned_to_its_own_onset_and_duration() {
+    const TD1: u32 = 10;
+    const TD2: u32 = 16;
+    const ON2: usize = 7;
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(11);
+    let bump = |t: f64, at: u32| (-(t - f64::from(at)).powi(2) / (2.0 * 3.0f64.powi(2))).exp();
+    let populations = vec![
+        Population {
+            name: "bump".into(),
+            size: UNITS,
+        },
+        Population {
+            name: "bump_oven2".into(),
+            size: UNITS,
+        },
+    ];
+    let steps = ON2 + 1 + 2 * TD2 as usize;
+    let trials = (0..TRIALS)
+        .map(|_| {
+            let mut activity = Vec::with_capacity(steps * 2 * UNITS);
+            for s in 0..steps {
+                // Oven k's time 0 is the step after its onset.
+                let t1 = s as f64 - 1.0;
+                let t2 = s as f64 - (ON2 as f64 + 1.0);
+                for (t, td) in [(t1, TD1), (t2, TD2)] {
+                    for _ in 0..UNITS {
+                        let v = if t < 0.0 { 0.0 } else { bump(t, td) };
+                        activity.push((v + 0.05 * gauss(&mut rng)) as f32);
+                    }
+                }
+            }
+            let mut trial = trial(TD1, steps, activity);
+            trial.events.push(Event {
+                step: ON2 as u32,
+                marker: Marker::OvenOn2,
+            });
+            trial.oven_tds = vec![TD1, TD2];
+            trial
+        })
+        .collect();
+    let ds = ActivityDataset {
+        meta: meta(populations, 11),
+        trials,
+    };
+    for (population, td) in [("bump", TD1), ("bump_oven2", TD2)] {
+        let tests = classify_td(&ds, Some(population), td, &opts())
+            .unwrap()
+            .tests
+            .unwrap();
+        for u in &tests {
+            assert_eq!(u.category, Category::TimeField, "{population}: {u:?}");
+            assert_eq!(u.peak_time, td as usize, "{population}: {u:?}");
+        }
+        let s = summary(&ds, population);
+        assert_eq!((s.td, s.window), (td, 2 * td as usize), "{population}");
+        assert_eq!(s.by_td.len(), 1, "{population}: one duration per oven");
+    }
+    // No trial's second oven lasted TD 10.
+    assert!(classify_td(&ds, Some("bump_oven2"), TD1, &opts()).is_err());
 }

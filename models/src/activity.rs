@@ -39,11 +39,22 @@ pub enum Marker {
     Sink,
     /// The manual oven button (uncertainty task).
     Button,
+    /// Oven 2 of a multi-oven task turned on (with the put in synchronous mode, at its
+    /// on-time in asynchronous mode; its oven time 0 is the step after).
+    OvenOn2,
+    /// Oven 3 of a multi-oven task turned on.
+    OvenOn3,
+    /// Reproduction: the oven flashed Ready (the measurement epoch begins).
+    Ready,
+    /// Reproduction: the oven flashed Set, `ts` steps after Ready (the production epoch
+    /// begins; production time 0 is the step after).
+    Set,
 }
 
 impl Marker {
-    /// Markers of one step from the environment's event flags and reward.
-    pub fn from_events(events: chronocooked_env::Events, reward: f32) -> Vec<Marker> {
+    /// Markers of one step from its info (event flags, and each multi-oven oven that turned
+    /// on during the step) and reward.
+    pub fn of_step(info: &chronocooked_env::Info, reward: f32) -> Vec<Marker> {
         use chronocooked_env::Events as E;
         let mut out = Vec::new();
         for (flag, m) in [
@@ -55,14 +66,61 @@ impl Marker {
             (E::SINK, Marker::Sink),
             (E::BUTTON, Marker::Button),
         ] {
-            if events.has(flag) {
+            if info.events.has(flag) {
                 out.push(m);
+            }
+        }
+        // Reproduction: the Set flash starts the production timer (0 at the end of its
+        // step); Ready leaves it off.
+        if info.events.has(E::CUE) {
+            out.push(if info.oven_timer == 0 {
+                Marker::Set
+            } else {
+                Marker::Ready
+            });
+        }
+        // An oven's timer reads 1 at the end of the step on which it started (it is set to
+        // 0 and counts the step), and never again: it only counts up, and once emptied it
+        // stays off.
+        let ovens = &info.ovens;
+        for oven in 2..=(ovens.n as usize).min(3) {
+            if ovens.timer[oven - 1] == 1 {
+                out.push(Marker::oven_on(oven));
             }
         }
         if reward != 0.0 {
             out.push(Marker::Reward);
         }
         out
+    }
+
+    /// The marker of oven `oven` (1, 2 or 3) turning on; oven 1's is [`Marker::OvenOn`].
+    pub fn oven_on(oven: usize) -> Marker {
+        match oven {
+            2 => Marker::OvenOn2,
+            3 => Marker::OvenOn3,
+            _ => Marker::OvenOn,
+        }
+    }
+}
+
+/// The population-name suffix of oven `oven` (1 …) of a multi-oven agent: oven 1 records
+/// under the plain names, the others as `<name>_oven2`, `<name>_oven3`.
+pub fn oven_suffix(oven: usize) -> String {
+    if oven <= 1 {
+        String::new()
+    } else {
+        format!("_oven{oven}")
+    }
+}
+
+/// The oven (1, 2 or 3) whose clock population `name` records ([`oven_suffix`]); 1 for
+/// every name without an oven suffix.
+pub fn population_oven(name: &str) -> usize {
+    match name.rsplit_once("_oven").map(|(_, k)| k) {
+        Some("2") => 2,
+        Some("3") => 3,
+        _ => 1,
     }
 }
 
@@ -143,9 +201,25 @@ pub struct Trial {
     pub reward: f32,
     /// Whether the episode ended in a success (`agent::is_success`).
     pub success: bool,
+    /// Multi-oven tasks: every oven's duration (steps; oven 1's is `td`); empty otherwise.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub oven_tds: Vec<u32>,
+    /// Reproduction: the episode's prior and gain (indices into the task's lists) and
+    /// foreperiod (`td` is its sample interval `ts`); absent for the other tasks.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reproduction: Option<chronocooked_env::RsgState>,
 }
 
 impl Trial {
+    /// The duration of oven `oven` (1 …): `td` for oven 1 and for single-oven tasks,
+    /// `None` for an oven the trial does not have.
+    pub fn oven_td(&self, oven: usize) -> Option<u32> {
+        match oven {
+            0 | 1 => Some(self.td),
+            k => self.oven_tds.get(k - 1).copied(),
+        }
+    }
+
     /// Step of the first `marker`, if any.
     pub fn first(&self, marker: Marker) -> Option<u32> {
         self.events
@@ -332,7 +406,21 @@ impl TrialRecorder {
             events: Vec::new(),
             reward: 0.0,
             success: false,
+            oven_tds: Vec::new(),
+            reproduction: None,
         });
+    }
+
+    /// Sets the current trial's task context from the env's state after the reset: every
+    /// oven's duration (multi-oven tasks; steps), the prior and gain (reproduction).
+    pub fn set_context(&mut self, state: &chronocooked_env::KitchenState) {
+        if let Some(t) = self.current.as_mut() {
+            if let Some(mo) = &state.multi_oven {
+                let n = mo.td.iter().take_while(|&&td| td > 0).count();
+                t.oven_tds = mo.td[..n].to_vec();
+            }
+            t.reproduction = state.reproduction;
+        }
     }
 
     /// The per-step recorder to hand to the agent (cleared for the new step).

@@ -254,6 +254,7 @@ pub fn run_episode(
     agent.begin_episode(env.obs_codes(), derive_seed(seed, 0xA6E7));
     if let Some(r) = recorder.as_deref_mut() {
         r.begin_trial(info.td, start);
+        r.set_context(&env.state());
     }
     let mut rec = EpisodeRecord {
         td: info.td,
@@ -278,7 +279,7 @@ pub fn run_episode(
             rec.success = true;
         }
         if let Some(r) = recorder.as_deref_mut() {
-            r.end_step(&Marker::from_events(t.info.events, t.reward), t.reward);
+            r.end_step(&Marker::of_step(&t.info, t.reward), t.reward);
         }
         agent.observe(t.reward, env.obs_codes(), t.terminated, t.truncated);
         if t.done() {
@@ -293,7 +294,9 @@ pub fn run_episode(
 
 /// Records `repeats` × (every start cell × `tds`) greedy episodes of `agent` on `config`
 /// into an activity dataset (`task` and `env` name the task in its metadata; repetition
-/// `r` is seeded `seed + r`, so noisy models give different trials).
+/// `r` is seeded `seed + r`, so noisy models give different trials). On the reproduction
+/// task each `ts` is played in every context that can hold it: under each prior whose
+/// range contains it (drawn by the env when none does) and at each gain.
 pub fn record_dataset(
     agent: &mut dyn Agent,
     config: &TaskConfig,
@@ -305,10 +308,57 @@ pub fn record_dataset(
 ) -> Result<crate::ActivityDataset, EnvError> {
     let meta = crate::activity::ActivityMeta::new(&agent.name(), task, env, seed);
     let mut rec = TrialRecorder::new(meta);
+    let conditions = recording_conditions(config, tds);
     for r in 0..repeats.max(1) {
-        evaluate_agent(agent, config, tds, seed.wrapping_add(r), Some(&mut rec))?;
+        play_conditions(
+            agent,
+            config,
+            &conditions,
+            seed.wrapping_add(r),
+            Some(&mut rec),
+        )?;
     }
     Ok(rec.finish())
+}
+
+/// The reset options (without a start cell) a recording plays for `tds`: one per TD, and
+/// on the reproduction task one per (prior containing the `ts`, gain).
+fn recording_conditions(config: &TaskConfig, tds: &[u32]) -> Vec<ResetOptions> {
+    let plain = |td: u32| ResetOptions {
+        td: Some(td),
+        ..ResetOptions::default()
+    };
+    let chronocooked_env::TaskParams::Reproduction { priors, gains, .. } = &config.params else {
+        return tds.iter().map(|&td| plain(td)).collect();
+    };
+    let ranges: Vec<Option<(u32, u32)>> = priors
+        .iter()
+        .map(|p| chronocooked_env::task::parse_prior(p).ok())
+        .collect();
+    let mut out = Vec::new();
+    for &ts in tds {
+        let holding: Vec<Option<u8>> = ranges
+            .iter()
+            .enumerate()
+            .filter(|(_, r)| r.is_some_and(|(lo, hi)| (lo..=hi).contains(&ts)))
+            .map(|(i, _)| Some(i as u8))
+            .collect();
+        let prior_choices = if holding.is_empty() {
+            vec![None]
+        } else {
+            holding
+        };
+        for prior in prior_choices {
+            for gain in 0..gains.len().max(1) {
+                out.push(ResetOptions {
+                    prior,
+                    gain: Some(gain as u8),
+                    ..plain(ts)
+                });
+            }
+        }
+    }
+    out
 }
 
 /// Deterministic evaluation: one greedy episode per free start cell per TD in `tds`.
@@ -318,19 +368,37 @@ pub fn evaluate_agent(
     config: &TaskConfig,
     tds: &[u32],
     seed: u64,
+    recorder: Option<&mut TrialRecorder>,
+) -> Result<Vec<EpisodeRecord>, EnvError> {
+    let conditions: Vec<ResetOptions> = tds
+        .iter()
+        .map(|&td| ResetOptions {
+            td: Some(td),
+            ..ResetOptions::default()
+        })
+        .collect();
+    play_conditions(agent, config, &conditions, seed, recorder)
+}
+
+/// One greedy episode per free start cell per condition (`conditions` without start
+/// cells), in condition order; episode `i` of condition `k` is seeded
+/// `derive_seed(seed, k·1000 + i)`.
+fn play_conditions(
+    agent: &mut dyn Agent,
+    config: &TaskConfig,
+    conditions: &[ResetOptions],
+    seed: u64,
     mut recorder: Option<&mut TrialRecorder>,
 ) -> Result<Vec<EpisodeRecord>, EnvError> {
     let mut env = ChronoEnv::new(config)?;
     agent.set_training(false);
     let layout = env.layout().clone();
     let mut out = Vec::new();
-    for (k, &td) in tds.iter().enumerate() {
+    for (k, condition) in conditions.iter().enumerate() {
         for (i, &cell) in layout.free_cells().iter().enumerate() {
             let options = ResetOptions {
                 start: Some(layout.coords(cell as usize)),
-                td: Some(td),
-                never_ready: None,
-                ..ResetOptions::default()
+                ..*condition
             };
             let s = derive_seed(seed, (k * 1000 + i) as u64);
             out.push(run_episode(

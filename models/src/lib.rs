@@ -18,7 +18,10 @@ pub mod deep;
 pub mod run_folder;
 pub mod timing;
 
-pub use activity::{ActivityDataset, ActivityMeta, Marker, StepRecorder, TrialRecorder};
+pub use activity::{
+    ActivityDataset, ActivityMeta, Marker, StepRecorder, TrialRecorder, oven_suffix,
+    population_oven,
+};
 pub use agent::{Agent, EpisodeRecord, Percept, PerceptParser, evaluate_agent, run_episode};
 pub use deep::cores::{CoreConfig, CoreInit, CoreKind, CoreState, RecurrentCore};
 pub use deep::policy::{ActorCritic, Architecture, PAPER_SIZES, PolicyConfig, PolicyOutput};

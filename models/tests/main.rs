@@ -4,5 +4,6 @@
 
 mod categories;
 mod multi_oven_agents;
+mod recorded_markers;
 mod reproduction_timers;
 mod timing_models;

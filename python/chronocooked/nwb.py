@@ -11,7 +11,8 @@ Written file:
 * ``trials`` — one row per episode: ``td``, ``start_row``, ``start_col``, ``reward``,
   ``success``, ``condition`` (protocol condition kind), start/stop times;
 * ``events/task_events`` — an ``EventsTable``: one row per task event (oven_on, oven_ready,
-  oven_check, pickup, delivery, reward, sink, button) with its timestamp, name, trial and
+  oven_check, pickup, delivery, reward, sink, button; oven_on2/3 when a multi-oven task's
+  second/third oven turns on; ready/set, the reproduction task's cues) with its timestamp, name, trial and
   step;
 * ``processing/behavior/Position/agent_position`` — grid cell ``(row, col)`` after each
   step; ``processing/behavior/actions/action`` — action codes (0 wait, 1 down, 2 up,
@@ -137,7 +138,8 @@ def to_nwb(activity, eval_dir, path, *, overwrite: bool = False, experimenter=No
     events = nwb.create_events_table(
         name="task_events",
         description="Task events (oven_on, oven_ready, oven_check, pickup, delivery, reward, "
-                    "sink, button); timestamp = start of the env step the event happened in",
+                    "sink, button, oven_on2, oven_on3, ready, set); timestamp = start of the env step the "
+                    "event happened in",
         source_description="Chronocooked env step information (info.events)",
     )
     # Typed empty columns when no event happened (an agent that never acts on the task):

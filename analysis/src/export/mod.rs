@@ -16,7 +16,7 @@ use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
 
 /// Event codes used in exported `event_code` arrays.
-pub const EVENT_CODES: [(Marker, &str); 8] = [
+pub const EVENT_CODES: [(Marker, &str); 12] = [
     (Marker::OvenOn, "oven_on"),
     (Marker::OvenReady, "oven_ready"),
     (Marker::OvenCheck, "oven_check"),
@@ -25,6 +25,10 @@ pub const EVENT_CODES: [(Marker, &str); 8] = [
     (Marker::Reward, "reward"),
     (Marker::Sink, "sink"),
     (Marker::Button, "button"),
+    (Marker::OvenOn2, "oven_on2"),
+    (Marker::OvenOn3, "oven_on3"),
+    (Marker::Ready, "ready"),
+    (Marker::Set, "set"),
 ];
 
 fn code(m: Marker) -> i64 {

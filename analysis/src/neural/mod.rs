@@ -9,7 +9,9 @@
 //! autocorrelation, phase coherence and the oscillation test; [`shape`] — monotone and
 //! unimodal fits, periodograms; [`categories`] — the mutually exclusive unit categories
 //! (ramp, time field, oscillating, mixed, untuned, beyond the window) with surrogate tests; [`summary`] — the
-//! per-population neural summary (`record --summary`, the leaderboard's neural columns).
+//! per-population neural summary (`record --summary`, the leaderboard's neural columns);
+//! [`speed`] — KiNeT timing by speed; [`production`] — KiNeT on a reproduction dataset's
+//! trajectories after Set.
 
 pub mod categories;
 pub mod decode;
@@ -17,6 +19,7 @@ pub mod geometry;
 mod locking;
 pub mod oscillation;
 pub mod probe;
+pub mod production;
 pub mod shape;
 pub mod speed;
 pub mod summary;

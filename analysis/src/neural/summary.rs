@@ -22,8 +22,9 @@ use crate::neural::categories::{
     UnitTests, classify_units, wilson_interval,
 };
 use crate::neural::decode::{Decoder, decode_time};
+use crate::neural::production::{ProductionSpeed, production_speed};
 use crate::neural::{Cube, scaling_factor_from, sequentiality_index};
-use chronocooked_models::{ActivityDataset, Marker};
+use chronocooked_models::{ActivityDataset, Marker, population_oven};
 use serde::{Deserialize, Serialize};
 
 /// Populations smaller than this get counts and intervals, no fractions.
@@ -65,7 +66,7 @@ pub enum SummaryError {
     /// The dataset has no such population.
     #[error("no population `{0}` in the dataset")]
     UnknownPopulation(String),
-    /// No trial turned the oven on.
+    /// No trial turned the oven on (for a multi-oven population: its own oven).
     #[error("no trial turned the oven on: nothing to align")]
     NoOvenOn,
 }
@@ -210,6 +211,10 @@ pub struct NeuralSummary {
     pub scaling: Option<Scaling>,
     /// Every TD, shortest first.
     pub by_td: Vec<TdSummary>,
+    /// Reproduction datasets: timing by speed after Set, per context (prior × gain;
+    /// [`crate::neural::production`]); empty for the other tasks.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub production_speed: Vec<ProductionSpeed>,
 }
 
 /// One TD's window of a population: the cube of its varying units and their tests.
@@ -237,18 +242,53 @@ fn finite(v: f64) -> Option<f64> {
 
 /// TDs of the trials that turned the oven on, ascending.
 pub fn recorded_tds(dataset: &ActivityDataset) -> Vec<u32> {
+    recorded_oven_tds(dataset, 1)
+}
+
+/// Durations of oven `oven` (1 …) on the trials that turned it on, ascending (oven 1: the
+/// trials' TDs; reproduction: the sample intervals of the trials that reached Set).
+pub fn recorded_oven_tds(dataset: &ActivityDataset, oven: usize) -> Vec<u32> {
+    let marker = alignment(dataset, oven);
+    let gain = first_gain(dataset);
     let mut tds: Vec<u32> = dataset
         .trials
         .iter()
-        .filter(|t| t.first(Marker::OvenOn).is_some())
-        .map(|t| t.td)
+        .filter(|t| t.first(marker).is_some())
+        .filter(|t| t.reproduction.map(|r| r.gain) == gain)
+        .filter_map(|t| t.oven_td(oven))
         .collect();
     tds.sort_unstable();
     tds.dedup();
     tds
 }
 
+/// The event a population's windows start after: on reproduction trials Set (the window is
+/// the production epoch, `td` its sample interval), otherwise the onset of the
+/// population's oven.
+fn alignment(dataset: &ActivityDataset, oven: usize) -> Marker {
+    if dataset.trials.iter().any(|t| t.reproduction.is_some()) {
+        Marker::Set
+    } else {
+        Marker::oven_on(oven)
+    }
+}
+
+/// The lowest gain index among a reproduction dataset's trials (`None` for other tasks):
+/// the unit categories use that gain's trials.
+fn first_gain(dataset: &ActivityDataset) -> Option<u8> {
+    dataset
+        .trials
+        .iter()
+        .filter_map(|t| t.reproduction.map(|r| r.gain))
+        .min()
+}
+
 /// Classifies the units of `population` (every unit when `None`) on the trials of TD `td`.
+/// A multi-oven agent's population of oven k (`<name>_ovenk`, [`population_oven`]) is
+/// classified on the trials whose oven k lasted `td`, aligned to that oven's onset. A
+/// reproduction dataset is classified on its production epochs (aligned to Set, `td` =
+/// `ts`) of the first gain it holds (a gain changes the production's length; its other
+/// gains' speed is in [`NeuralSummary::production_speed`]).
 pub fn classify_td(
     dataset: &ActivityDataset,
     population: Option<&str>,
@@ -263,20 +303,24 @@ pub fn classify_td(
             .ok_or_else(|| SummaryError::UnknownPopulation(p.into()))?,
         None => 0..n,
     };
+    let oven = population.map_or(1, population_oven);
+    let marker = alignment(dataset, oven);
+    let gain = first_gain(dataset);
     let window = opts.window.unwrap_or(2 * td as usize).max(2);
     let sub = ActivityDataset {
         meta: dataset.meta.clone(),
         trials: dataset
             .trials
             .iter()
-            .filter(|t| t.td == td)
+            .filter(|t| t.oven_td(oven) == Some(td))
+            .filter(|t| t.reproduction.map(|r| r.gain) == gain)
             .cloned()
             .collect(),
     };
     // The category tests also read the steps after the window: the rhythm test up to
     // `rhythm_window`, the beyond-window test up to `EXTENDED_WINDOWS` windows.
     let span = (EXTENDED_WINDOWS * window).max(opts.categories.rhythm_window);
-    let (aligned, used) = sub.aligned(Marker::OvenOn, span - 1);
+    let (aligned, used) = sub.aligned(marker, span - 1);
     if used.is_empty() {
         return Err(SummaryError::NoOvenOn);
     }
@@ -456,7 +500,7 @@ pub fn neural_summary(
     population: Option<&str>,
     opts: &SummaryOptions,
 ) -> Result<NeuralSummary, SummaryError> {
-    let tds = recorded_tds(dataset);
+    let tds = recorded_oven_tds(dataset, population.map_or(1, population_oven));
     if tds.is_empty() {
         return Err(SummaryError::NoOvenOn);
     }
@@ -482,6 +526,7 @@ pub fn neural_summary(
         decode_bayes: head.decode_bayes,
         scaling: (classes.len() >= 2).then(|| scaling(first, last, opts)),
         by_td,
+        production_speed: production_speed(dataset, population),
     })
 }
 

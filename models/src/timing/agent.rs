@@ -63,7 +63,7 @@ pub use reproduction::ReproductionCues;
 
 use multi_oven::{OvenClock, OvenView};
 
-use crate::activity::StepRecorder;
+use crate::activity::{StepRecorder, oven_suffix};
 use crate::agent::{Agent, Percept, PerceptParser};
 use crate::timing::judgment::{LONG, SHORT};
 use crate::timing::sarsa::{SarsaConfig, SarsaLambda};
@@ -687,12 +687,7 @@ impl Agent for TimingAgent {
                     .get(i)
                     .and_then(|c| c.timer.as_ref())
                     .unwrap_or(&self.timer);
-                let suffix = if i == 0 {
-                    String::new()
-                } else {
-                    format!("_oven{}", i + 1)
-                };
-                timer.record_as(rec, &suffix);
+                timer.record_as(rec, &oven_suffix(i + 1));
             }
         } else {
             self.timer.record(rec);

@@ -45,6 +45,8 @@ fn dataset(
                 }],
                 reward: 0.0,
                 success: false,
+                oven_tds: Vec::new(),
+                reproduction: None,
             }
         })
         .collect();
