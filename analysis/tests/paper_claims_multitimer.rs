@@ -147,6 +147,7 @@ fn level_episode(level: usize, td: u32, off: i32) -> LevelEpisode {
         reward: if off == td as i32 { 1.0 } else { 0.0 },
         success: off == td as i32,
         oven_off_time: off,
+        kind: None,
     }
 }
 

@@ -21,6 +21,7 @@ fn level_ep(
         reward,
         success: reward == 1.0,
         oven_off_time: if reward > 0.0 { td as i32 } else { -1 },
+        kind: None,
     }
 }
 

@@ -110,3 +110,74 @@ fn every_kept_level_is_evaluated_on_its_own_tds_then_the_untrained_ones_from_eve
     assert_eq!(evaluate_levels(&run, &dir.join("eval3"), 7).unwrap(), None);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The growing curricula of the extensions: each level's policy plays its own level's task
+/// (multi-anchor: 2, 3, 4 counters of the anchors 3, 10, 20, 25; multi-oven: 1, 2 ovens)
+/// with that task's reference protocol — every probe 1 … largest active anchor + 4 (multi-
+/// anchor), or 1 … L + 4 on each oven and the one-oven baseline (multi-oven) — from every
+/// start cell. Thresholds 0 move the run up a level as soon as the window has filled.
+#[test]
+fn each_growth_level_plays_its_own_task_with_its_protocol() {
+    use chronocooked_analysis::ConditionKind;
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("cc-growth-levels-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    for (task, sets, levels, kind) in [
+        (
+            "MultiAnchor-v0",
+            vec!["env.anchors=3,10,20,25", "curriculum_thresholds=0,0"],
+            3,
+            ConditionKind::MultiAnchor,
+        ),
+        (
+            "MultiOven-v0",
+            vec![
+                "env.ovens=2",
+                "env.short=3",
+                "env.long=9",
+                "curriculum_thresholds=0",
+            ],
+            2,
+            ConditionKind::MultiOven,
+        ),
+    ] {
+        let mut all = vec![
+            "total_steps=6000",
+            "n_steps=250",
+            "n_epochs=1",
+            "curriculum_window=10",
+        ];
+        all.extend(&sets);
+        let cfg = resolve(task, "lstm8".parse().unwrap(), "reference", 3, &all).unwrap();
+        let run = dir.join(task).join("run");
+        run_training(Some(cfg), &run, "test", &mut Silent).unwrap();
+        let out = dir.join(task).join("eval");
+        assert_eq!(
+            evaluate_levels(&run, &out, 7).unwrap(),
+            Some(levels),
+            "{task}"
+        );
+        let rows = read_level_episodes(&out.join(LEVELS_CSV)).unwrap();
+        for level in 0..levels {
+            let tds: std::collections::BTreeSet<u32> = rows
+                .iter()
+                .filter(|r| r.level == level)
+                .map(|r| r.td)
+                .collect();
+            let longest = match task {
+                "MultiAnchor-v0" => [10, 20, 25][level],
+                _ => 9,
+            };
+            assert_eq!(tds, (1..=longest + 4).collect(), "{task} level {level}");
+        }
+        // Multi-oven: the one-oven level has no second oven to probe; the two-oven level
+        // probes both ovens and the one-oven baseline, so it plays more episodes.
+        let count = |level| rows.iter().filter(|r| r.level == level).count();
+        if task == "MultiOven-v0" {
+            assert!(count(1) > count(0), "{} vs {}", count(1), count(0));
+        }
+        assert!(rows.iter().all(|r| r.kind.is_some()));
+        assert!(rows.iter().any(|r| r.kind == Some(kind)), "{task}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

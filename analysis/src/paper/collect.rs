@@ -154,6 +154,10 @@ pub struct LevelEpisode {
     pub success: bool,
     /// Steps from the onion put to the soup pickup (−1: never taken).
     pub oven_off_time: i32,
+    /// The protocol condition the episode played (absent in files written before it was
+    /// kept; multi-timer levels play only multi-timer conditions).
+    #[serde(default)]
+    pub kind: Option<ConditionKind>,
 }
 
 impl LevelEpisode {
@@ -169,6 +173,7 @@ impl LevelEpisode {
             reward: e.reward,
             success: e.success,
             oven_off_time: e.oven_off_time,
+            kind: Some(e.kind),
         }
     }
 }
@@ -305,7 +310,8 @@ pub fn summarise_job(dir: &Path) -> Result<Option<CompactJob>, CollectError> {
         serde_json::Value::Null
     };
     // A multi-timer curriculum run that kept its levels' policies is evaluated once they are
-    // too (the levels stage; the multi-anchor/multi-oven curricula have none yet).
+    // too (the levels stage). The multi-anchor/multi-oven curricula's levels are copied when
+    // evaluated (jobs evaluated before that stage covered them have none).
     let kept_levels = dir.join(job_folder::RUN).join(run_folder::LEVELS).is_dir();
     let multi_timer = cfg["curriculum"]["kind"].as_str() == Some("multi_timer");
     if kept_levels && multi_timer && !eval.join(LEVELS_CSV).is_file() {

@@ -18,17 +18,22 @@
 //! final policy's own evaluation goes to max + 3, the lab's OOD range.) The analysis tells
 //! them apart by the run's TD list.
 //!
+//! The growing curricula of the extensions (multi-anchor: 2 → 3 → 4 counters; multi-oven:
+//! 1 → 2 → 3 ovens) are evaluated the same way: each level's policy plays its own level's
+//! task (its counters or ovens) with that task's reference protocol — a run that stopped at
+//! three counters is scored on three, as the extension notebooks do, beside the final
+//! task's evaluation.
+//!
 //! Written as `levels.csv` ([`LevelEpisode`] rows) in the evaluation folder.
 
 use crate::PipelineError;
 use chronocooked_analysis::paper::collect::{
     LEVELS_CSV, LevelEpisode, read_curve, write_level_episodes,
 };
-use chronocooked_analysis::{Condition, ConditionKind, Mode, run_protocol};
+use chronocooked_analysis::{Condition, ConditionKind, Mode, reference_conditions, run_protocol};
 use chronocooked_env::{CueMode, RewardMode, TaskParams, make_config};
 use chronocooked_models::run_folder;
 use chronocooked_training::ppo::agent::PpoAgent;
-use chronocooked_training::ppo::config::Curriculum;
 use chronocooked_training::run_dir::RunDir;
 use std::path::Path;
 
@@ -99,7 +104,7 @@ pub fn evaluate_levels(run: &Path, out: &Path, seed: u64) -> Result<Option<usize
     }
     let dir = RunDir::open(run)?;
     let cfg = dir.config()?;
-    if !matches!(cfg.curriculum, Curriculum::MultiTimer { .. }) {
+    if !cfg.curriculum.has_levels() {
         return Ok(None);
     }
     let levels = dir.saved_levels();
@@ -120,6 +125,21 @@ pub fn evaluate_levels(run: &Path, out: &Path, seed: u64) -> Result<Option<usize
             run.join(run_folder::LEVELS).display(),
             curve_path.display()
         )));
+    }
+    if let Some(growth) = cfg.curriculum.growth() {
+        let mut rows = Vec::new();
+        for &level in &levels {
+            // The level's own task: `first + level` counters or ovens, as the trainer
+            // built it, played with that task's reference protocol.
+            let mut env = cfg.env.clone();
+            env.push(format!("{}={}", growth.key, growth.first + level));
+            let config = make_config(&cfg.task, &env)?;
+            let mut agent = PpoAgent::load_level(run, level, &config)?;
+            let conditions = reference_conditions(&cfg.task, &env)?;
+            let records = run_protocol(&mut agent, &conditions, Mode::Reference, seed)?;
+            rows.extend(records.iter().map(|r| LevelEpisode::of(level, r)));
+        }
+        return write_levels(out, &rows).map(|()| Some(levels.len()));
     }
     let task = make_config(&cfg.task, &cfg.env)?;
     let TaskParams::MultiTimer {
@@ -165,11 +185,16 @@ pub fn evaluate_levels(run: &Path, out: &Path, seed: u64) -> Result<Option<usize
         let records = run_protocol(&mut agent, &conditions(&probe), Mode::Reference, seed)?;
         rows.extend(records.iter().map(|r| LevelEpisode::of(level, r)));
     }
+    write_levels(out, &rows)?;
+    Ok(Some(levels.len()))
+}
+
+/// Writes `out/levels.csv`.
+fn write_levels(out: &Path, rows: &[LevelEpisode]) -> Result<(), PipelineError> {
     std::fs::create_dir_all(out)
         .map_err(|e| PipelineError::Analysis(format!("{}: {e}", out.display())))?;
-    write_level_episodes(&out.join(LEVELS_CSV), &rows)
-        .map_err(|e| PipelineError::Analysis(e.to_string()))?;
-    Ok(Some(levels.len()))
+    write_level_episodes(&out.join(LEVELS_CSV), rows)
+        .map_err(|e| PipelineError::Analysis(e.to_string()))
 }
 
 #[cfg(test)]
