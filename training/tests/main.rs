@@ -7,4 +7,5 @@ mod faithful;
 mod native_engine;
 mod reproduction_agents;
 mod settings;
+mod tolerance_curriculum;
 mod training;

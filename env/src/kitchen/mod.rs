@@ -242,12 +242,15 @@ impl Kitchen {
                 format!("a free cell of the layout ({free:?})"),
             ));
         }
-        let max_timers = self.spec.tds.len().max(1);
-        if s.num_timers == 0 || s.num_timers > max_timers {
+        // As `Kitchen::new` sets it: 1..=|tds| active timers, none for a task without
+        // TDs (reproduction draws its intervals from priors).
+        let max_timers = self.spec.tds.len();
+        let min_timers = max_timers.min(1);
+        if s.num_timers < min_timers || s.num_timers > max_timers {
             return Err(EnvError::param(
                 "num_timers",
                 s.num_timers,
-                format!("1..={max_timers}"),
+                format!("{min_timers}..={max_timers}"),
             ));
         }
         if s.td == 0 && !self.spec.config.reference_compat {

@@ -193,6 +193,26 @@ pub enum Curriculum {
         /// Clear Adam's moments at a change (the reference's multi-oven scripts do not).
         clear_adam: bool,
     },
+    /// Reproduction: the reward window starts wide and narrows to the task's own in
+    /// `levels` steps (shaping, as the adaptive reward windows that trained monkeys in
+    /// Ready-Set-Go: Jazayeri & Shadlen 2015, Remington et al. 2018). Level `k` of `L`
+    /// pays inside `tolerance_k·g·ts + steps_k`, both interpolated linearly from
+    /// (`tolerance_start`, `tolerance_steps_start`) at level 0 to the task's
+    /// (`tolerance`, `tolerance_steps`) at level `L − 1`. A level is left once the share of
+    /// the last `window` episodes (all finished since the last change) that delivered
+    /// inside the window reaches `thresholds[level]`.
+    Tolerance {
+        /// Share of in-window deliveries that ends each level (the last one repeats).
+        thresholds: Vec<f32>,
+        /// Episodes averaged.
+        window: usize,
+        /// Relative tolerance of level 0 (the task's is the last level's).
+        tolerance_start: f64,
+        /// Constant tolerance of level 0 (steps).
+        tolerance_steps_start: f64,
+        /// Levels, the task's own window included (≥ 2).
+        levels: usize,
+    },
     /// Uncertainty: never-ready probability ramps linearly from `start` to `end`
     /// over the first `ramp_fraction` of the budget.
     Uncertainty {
@@ -206,7 +226,7 @@ pub enum Curriculum {
 }
 
 impl Curriculum {
-    /// The curriculum `name` (`none`, `multi_timer`, `uncertainty`) with its defaults.
+    /// The curriculum `name` (one of [`crate::settings::ppo::CURRICULA`]) with its defaults.
     pub fn named(name: &str) -> Option<Curriculum> {
         match name {
             "none" => Some(Curriculum::None),
@@ -229,6 +249,16 @@ impl Curriculum {
                 thresholds: vec![0.95, 0.90],
                 window: 100,
                 clear_adam: false,
+            }),
+            // Level 0 is the window on which LSTM125 learned the task in the pilot
+            // (`results/reproduction/ppo-pilot`); 80% in the window is the usual
+            // criterion of shaping.
+            "tolerance" => Some(Curriculum::Tolerance {
+                thresholds: vec![0.8],
+                window: 100,
+                tolerance_start: 0.5,
+                tolerance_steps_start: 3.0,
+                levels: 4,
             }),
             _ => None,
         }
@@ -263,6 +293,29 @@ impl Curriculum {
             }),
             _ => None,
         }
+    }
+
+    /// The reward window of tolerance-curriculum level `level` for a task whose own window
+    /// is `task` = (`tolerance`, `tolerance_steps`): `(tolerance, steps)` interpolated
+    /// linearly from the curriculum's start (level 0) to `task` (the last level and
+    /// beyond). `None` for other curricula.
+    pub fn tolerance_at(&self, level: usize, task: (f64, f64)) -> Option<(f64, f64)> {
+        let Curriculum::Tolerance {
+            tolerance_start,
+            tolerance_steps_start,
+            levels,
+            ..
+        } = self
+        else {
+            return None;
+        };
+        let last = levels.saturating_sub(1).max(1);
+        let f = level.min(last) as f64 / last as f64;
+        let lerp = |a: f64, b: f64| a + (b - a) * f;
+        Some((
+            lerp(*tolerance_start, task.0),
+            lerp(*tolerance_steps_start, task.1),
+        ))
     }
 
     /// Whether the curriculum moves through levels whose policies are kept
@@ -425,6 +478,49 @@ impl TrainConfig {
             .collect()
     }
 
+    /// Tolerance curriculum: the reward window (`tolerance`, `tolerance_steps`) of the
+    /// configured reproduction task, its last level; `(0, 0)` under other curricula. An
+    /// error naming `curriculum` when the curriculum is set on another task, or naming
+    /// `curriculum_tolerance_start` when its first window is narrower than the task's.
+    pub(crate) fn reproduction_window(&self) -> Result<(f64, f64), TrainError> {
+        let Curriculum::Tolerance {
+            tolerance_start,
+            tolerance_steps_start,
+            ..
+        } = self.curriculum
+        else {
+            return Ok((0.0, 0.0));
+        };
+        let task = chronocooked_env::make_config(&self.task, &self.env)?;
+        let chronocooked_env::TaskParams::Reproduction {
+            tolerance,
+            tolerance_steps,
+            ..
+        } = task.params
+        else {
+            return Err(TrainError::InvalidParam {
+                field: "curriculum".into(),
+                value: "tolerance".into(),
+                allowed: format!(
+                    "a curriculum of the task's family (task {} has no reward window to narrow)",
+                    self.task
+                ),
+            });
+        };
+        let own = (f64::from(tolerance), f64::from(tolerance_steps));
+        if tolerance_start < own.0 || tolerance_steps_start < own.1 {
+            return Err(TrainError::InvalidParam {
+                field: "curriculum_tolerance_start".into(),
+                value: format!("{tolerance_start}, {tolerance_steps_start} steps"),
+                allowed: format!(
+                    "a first window at least the task's own (tolerance >= {}, tolerance_steps >= {})",
+                    own.0, own.1
+                ),
+            });
+        }
+        Ok(own)
+    }
+
     /// The one check of a configuration, however it was made (presets, `--set`, a
     /// hand-edited or resumed `config.json`): every setting's value against its rule in
     /// [`PPO_SETTINGS`] (the rule `--set` parses with), then the cross-field constraints
@@ -432,6 +528,7 @@ impl TrainConfig {
     pub fn validate(&self) -> Result<(), TrainError> {
         settings::check(PPO_SETTINGS, self)?;
         chronocooked_env::make_config(&self.task, &self.env)?;
+        self.reproduction_window()?;
         // The rollout buffer holds n_envs · n_steps transitions: bounded so that a
         // hand-edited config.json cannot ask for more memory than any machine has.
         if self.ppo.n_envs.saturating_mul(self.ppo.n_steps) > MAX_ROLLOUT {

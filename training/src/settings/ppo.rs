@@ -16,7 +16,7 @@ const fn multi_timer(
     doc: &'static str,
 ) -> Spec {
     Spec {
-        only_with: Some("curriculum=multi_timer, multi_anchor or multi_oven"),
+        only_with: Some("curriculum=multi_timer, multi_anchor, multi_oven or tolerance"),
         ..spec(key, path, rule, doc)
     }
 }
@@ -28,6 +28,18 @@ const fn uncertainty(key: &'static str, path: &'static [&'static str], doc: &'st
     }
 }
 
+const fn tolerance(
+    key: &'static str,
+    path: &'static [&'static str],
+    rule: Rule,
+    doc: &'static str,
+) -> Spec {
+    Spec {
+        only_with: Some("curriculum=tolerance"),
+        ..spec(key, path, rule, doc)
+    }
+}
+
 /// Names of the curricula (`curriculum=NAME` starts the named one with its defaults).
 pub const CURRICULA: &[&str] = &[
     "none",
@@ -35,6 +47,7 @@ pub const CURRICULA: &[&str] = &[
     "uncertainty",
     "multi_anchor",
     "multi_oven",
+    "tolerance",
 ];
 
 /// Every setting of a PPO run, in display order. Not settings: `task` and `model`
@@ -237,7 +250,7 @@ pub const PPO_SETTINGS: &[Spec] = &[
         "curriculum_thresholds",
         &["curriculum", "thresholds"],
         Rule::List(&UNIT),
-        "mean reward that ends each level",
+        "mean reward (tolerance: share of deliveries inside the window) that ends each level",
     ),
     multi_timer(
         "curriculum_window",
@@ -263,6 +276,24 @@ pub const PPO_SETTINGS: &[Spec] = &[
             "level 0: one lower-bounded timer with reduced reward before the first TD",
         )
     },
+    tolerance(
+        "curriculum_tolerance_start",
+        &["curriculum", "tolerance_start"],
+        NON_NEGATIVE,
+        "relative tolerance of the first level's reward window (narrows to the task's `tolerance`)",
+    ),
+    tolerance(
+        "curriculum_tolerance_steps_start",
+        &["curriculum", "tolerance_steps_start"],
+        NON_NEGATIVE,
+        "constant tolerance (steps) of the first level's window (narrows to the task's `tolerance_steps`)",
+    ),
+    tolerance(
+        "curriculum_levels",
+        &["curriculum", "levels"],
+        Rule::Int { lo: 2, hi: 100 },
+        "levels from the first window to the task's own, both included",
+    ),
     uncertainty(
         "never_ready_start",
         &["curriculum", "start"],

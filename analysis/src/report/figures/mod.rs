@@ -421,6 +421,14 @@ pub fn neural_figures(
         };
         let title = format!("{} {}", dataset.meta.model, p.name);
         population_figures(&dir.join(&p.name), &title, &pop)?;
+        let speeds = crate::neural::production::production_speed(dataset, Some(&p.name));
+        let title = format!(
+            "{} {}: speed after Set (KiNeT, Remington et al. 2018)",
+            dataset.meta.model, p.name
+        );
+        if let Some(chart) = reproduction::speed_chart(&title, &speeds) {
+            write_chart(&dir.join(&p.name).join("speed"), &chart)?;
+        }
     }
     Ok(())
 }

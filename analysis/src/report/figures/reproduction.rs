@@ -1,10 +1,13 @@
 //! The classic reproduction figure (Jazayeri & Shadlen 2010, Fig. 2): mean production `tp`
 //! against the sample interval `ts`, one colour per context (prior × gain), the best
 //! Bayesian observer's predicted mean where it was fitted, and the veridical line
-//! `tp = g·ts`.
+//! `tp = g·ts`. Beside it, the speed figure (Remington et al. 2018, Fig. 4): KiNeT's
+//! relative speed of the population's trajectory after Set against `ts`, one colour per
+//! context, with the two known answers drawn as lines.
 
 use super::draw::{Chart, Series};
 use crate::behaviour::reproduction::{ContextSummary, ReproductionMetrics};
+use crate::neural::production::ProductionSpeed;
 use crate::reproduction::{Observer, Prior, Rounding, predict};
 
 /// The fitted observer's predicted mean `tp` at each of the context's sample intervals
@@ -84,6 +87,63 @@ pub fn reproduction_chart(model: &str, m: &ReproductionMetrics) -> Chart {
     }
 }
 
+/// Relative speed (KiNeT, reference = the context's middle `ts`) against `ts` for every
+/// context with a speed, and per context the two known answers: time-stretched
+/// trajectories (timing by speed, `speed = ts_ref / ts`) and a clock of fixed speed
+/// (`speed = 1`). `None` when no context has a speed.
+pub fn speed_chart(title: &str, contexts: &[ProductionSpeed]) -> Option<Chart> {
+    let mut series = Vec::new();
+    let mut ts_all = Vec::new();
+    for (k, c) in contexts.iter().enumerate() {
+        let points: Vec<(f64, f64)> = c
+            .conditions
+            .iter()
+            .filter_map(|x| Some((f64::from(x.ts), x.relative_speed?)))
+            .filter(|p| p.1.is_finite())
+            .collect();
+        if points.len() < 2 {
+            continue;
+        }
+        ts_all.extend(points.iter().map(|p| p.0));
+        let index = c.scaling_index.map_or("–".into(), |s| format!("{s:.2}"));
+        series.push(Series {
+            label: format!("prior {}, gain {} (scaling index {index})", c.prior, c.gain),
+            points: points.clone(),
+            line: false,
+            color: k,
+        });
+        let reference = f64::from(c.reference_ts);
+        series.push(Series {
+            label: format!("time-stretched: ts_ref / ts (ts_ref {})", c.reference_ts),
+            points: points.iter().map(|p| (p.0, reference / p.0)).collect(),
+            line: true,
+            color: k,
+        });
+    }
+    if series.is_empty() {
+        return None;
+    }
+    let (lo, hi) = ts_all
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &t| {
+            (a.min(t), b.max(t))
+        });
+    series.push(Series {
+        label: "fixed-speed clock: 1".into(),
+        points: vec![(lo, 1.0), (hi, 1.0)],
+        line: true,
+        color: contexts.len() + 1,
+    });
+    Some(Chart {
+        title: title.into(),
+        x_label: "sample interval ts (steps)".into(),
+        y_label: "relative speed after Set (KiNeT)".into(),
+        series,
+        markers: Vec::new(),
+        y_range: None,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -133,5 +193,55 @@ mod tests {
         assert!((line[1].1 - 10.0).abs() < 0.3, "{line:?}");
         assert_eq!(c.series[3].points, vec![(8.0, 8.0), (12.0, 12.0)]);
         assert_eq!(c.series[4].points, vec![(8.0, 12.0), (12.0, 18.0)]);
+    }
+
+    fn condition(ts: u32, speed: Option<f64>) -> crate::neural::production::ProductionCondition {
+        crate::neural::production::ProductionCondition {
+            ts,
+            trials: 4,
+            steps: ts as usize,
+            relative_speed: speed,
+            mean_signed_distance: None,
+        }
+    }
+
+    /// Speeds as dots, the time-stretched answer `ts_ref / ts` worked out by hand (10/8,
+    /// 10/10, 10/12.5), the fixed clock at 1 across the range; a context with fewer than
+    /// two speeds is left out, and nothing to draw gives no figure.
+    #[test]
+    fn the_speed_figure_has_the_speeds_and_both_known_answers() {
+        let ctx = |prior, conditions| ProductionSpeed {
+            prior,
+            gain: 0,
+            units: 8,
+            reference_ts: 10,
+            conditions,
+            scaling_index: Some(0.9),
+            initial_order: None,
+            distance_order: None,
+        };
+        let a = ctx(
+            0,
+            vec![
+                condition(8, Some(1.2)),
+                condition(10, Some(1.0)),
+                condition(12, None),
+                condition(16, Some(0.7)),
+            ],
+        );
+        let b = ctx(1, vec![condition(14, Some(1.0))]);
+        let c = speed_chart("t", &[a, b.clone()]).expect("a figure");
+        assert_eq!(c.series.len(), 3);
+        assert_eq!(
+            c.series[0].points,
+            vec![(8.0, 1.2), (10.0, 1.0), (16.0, 0.7)]
+        );
+        assert_eq!(
+            c.series[1].points,
+            vec![(8.0, 1.25), (10.0, 1.0), (16.0, 0.625)]
+        );
+        assert_eq!(c.series[2].points, vec![(8.0, 1.0), (16.0, 1.0)]);
+        assert!(c.series[0].label.contains("0.90"), "{}", c.series[0].label);
+        assert!(speed_chart("t", &[b]).is_none());
     }
 }

@@ -1,5 +1,6 @@
-//! Curricula during training: the uncertainty task's never-ready ramp and the multi-timer
-//! levels (with the paper's warm-up level).
+//! Curricula during training: the uncertainty task's never-ready ramp, the multi-timer
+//! levels (with the paper's warm-up level), the growing multi-anchor / multi-oven tasks and
+//! the reproduction task's narrowing reward window.
 
 use super::Trainer;
 use crate::error::TrainError;
@@ -8,6 +9,7 @@ use chronocooked_env::{TaskParams, VecEnv, make_config};
 
 impl Trainer {
     pub(super) fn apply_curriculum(&mut self) -> Result<(), TrainError> {
+        self.apply_tolerance()?;
         if let Curriculum::Uncertainty {
             start,
             end,
@@ -104,6 +106,68 @@ impl Trainer {
         }
         self.state.curriculum_level = level + 1;
         self.state.since_change = 0;
+        Ok(())
+    }
+}
+
+impl Trainer {
+    /// Tolerance curriculum: sets the envs' reward window to the current level's (a spec
+    /// rebuild only when it differs from the envs' own).
+    fn apply_tolerance(&mut self) -> Result<(), TrainError> {
+        let task = self.cfg.reproduction_window()?;
+        let Some((tol, steps)) = self
+            .cfg
+            .curriculum
+            .tolerance_at(self.state.curriculum_level, task)
+        else {
+            return Ok(());
+        };
+        let now = match &self.envs.config().params {
+            TaskParams::Reproduction {
+                tolerance,
+                tolerance_steps,
+                ..
+            } => (f64::from(*tolerance), f64::from(*tolerance_steps)),
+            _ => return Ok(()),
+        };
+        let (tol, steps) = (tol as f32, steps as f32);
+        if now != (f64::from(tol), f64::from(steps)) {
+            self.envs.set_param("tolerance", &tol.to_string())?;
+            self.envs.set_param("tolerance_steps", &steps.to_string())?;
+        }
+        Ok(())
+    }
+
+    /// Tolerance curriculum, checked at the rollout's end: the next level (a narrower
+    /// window) once the share of in-window deliveries among the last `window` episodes,
+    /// all finished since the last change, reaches the level's threshold. Episodes under
+    /// way keep running; their deliveries are paid on the new window.
+    pub(super) fn advance_tolerance(&mut self) -> Result<(), TrainError> {
+        let Curriculum::Tolerance {
+            thresholds,
+            window,
+            levels,
+            ..
+        } = &self.cfg.curriculum
+        else {
+            return Ok(());
+        };
+        let level = self.state.curriculum_level;
+        if level + 1 >= *levels || self.state.since_change < *window {
+            return Ok(());
+        }
+        let threshold = thresholds
+            .get(level)
+            .or(thresholds.last())
+            .copied()
+            .unwrap_or(0.8);
+        let recent = self.state.recent.iter().rev().take(*window);
+        let share = recent.filter(|e| e.success).count() as f32 / *window as f32;
+        if share >= threshold {
+            self.state.curriculum_level = level + 1;
+            self.state.since_change = 0;
+            self.apply_tolerance()?;
+        }
         Ok(())
     }
 }

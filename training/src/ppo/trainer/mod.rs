@@ -226,6 +226,18 @@ impl Trainer {
             }
             t.set_growth_level(state.curriculum_level)?;
         }
+        if let Curriculum::Tolerance { levels, .. } = t.cfg.curriculum
+            && state.curriculum_level >= levels
+        {
+            return Err(TrainError::BadState(crate::ppo::state::StateError {
+                field: "curriculum_level".into(),
+                reason: format!(
+                    "{} (allowed: 0..={}, the levels of this curriculum)",
+                    state.curriculum_level,
+                    levels - 1
+                ),
+            }));
+        }
         t.envs
             .restore(&state.envs)
             .map_err(|e| TrainError::BadState(state_field("envs", e)))?;
@@ -238,6 +250,12 @@ impl Trainer {
     /// The configuration.
     pub fn config(&self) -> &TrainConfig {
         &self.cfg
+    }
+
+    /// The task the envs play now (a curriculum may have changed it from the configured
+    /// one: timers, counters, ovens, reward window).
+    pub fn task(&self) -> &chronocooked_env::TaskConfig {
+        self.envs.config()
     }
 
     /// The policy's architecture description.
@@ -322,7 +340,8 @@ impl Trainer {
         let level = self.state.curriculum_level;
         self.advance_multi_timer()?;
         self.advance_growth()?;
-        if self.state.curriculum_level != level {
+        self.advance_tolerance()?;
+        if self.state.curriculum_level != level && self.cfg.curriculum.has_levels() {
             self.left_level = Some((level, self.state.theta.clone()));
         }
 
