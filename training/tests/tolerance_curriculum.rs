@@ -1,6 +1,7 @@
 //! The reproduction task's tolerance curriculum: the reward window narrows level by level
 //! from the curriculum's first window to the task's own, gated on in-window deliveries,
-//! resumes at its level and is refused where it cannot apply.
+//! steps back when they fall below the fallback, resumes at its level and is refused where
+//! it cannot apply.
 
 use chronocooked_env::{TaskConfig, TaskParams};
 use chronocooked_training::{Trainer, resolve};
@@ -54,7 +55,7 @@ const NARROWING: [&str; 7] = [
 #[test]
 fn the_window_narrows_level_by_level_to_the_task_s_own_and_stays_there() {
     let mut sets = NARROWING.to_vec();
-    sets.push("curriculum_thresholds=0");
+    sets.extend(["curriculum_thresholds=0", "curriculum_fallback=0"]);
     let mut t = Trainer::new(cfg(&sets, 6000)).unwrap();
     assert!(close(window(t.task()), HAND[0]), "{:?}", window(t.task()));
     let mut seen = vec![0];
@@ -108,10 +109,54 @@ fn a_level_is_kept_until_its_share_of_in_window_deliveries_is_reached() {
     );
 }
 
+/// With every level passed at once (threshold 0) and a fallback no untrained policy meets
+/// (every one of the last 3 episodes in the window), the last level steps back: the level
+/// sequence climbs to 3, then alternates, and every step back follows a window of
+/// episodes with a delivery outside the window.
+#[test]
+fn a_level_steps_back_when_its_share_falls_below_the_fallback() {
+    let mut sets = NARROWING.to_vec();
+    sets.extend(["curriculum_thresholds=0", "curriculum_fallback=1"]);
+    let mut t = Trainer::new(cfg(&sets, 8000)).unwrap();
+    let (mut climbed, mut backs) = (false, 0);
+    while !t.finished() {
+        let before = t.state().curriculum_level;
+        t.update().unwrap();
+        let level = t.state().curriculum_level;
+        assert!(close(window(t.task()), HAND[level]), "level {level}");
+        climbed |= level == 3;
+        if level + 1 == before {
+            backs += 1;
+            assert!(
+                climbed && before == 3,
+                "only the last level fails threshold 0"
+            );
+            let last3: Vec<bool> = t
+                .state()
+                .recent
+                .iter()
+                .rev()
+                .take(3)
+                .map(|e| e.success)
+                .collect();
+            assert!(last3.contains(&false), "stepped back after {last3:?}");
+        } else {
+            assert!(
+                level == before || level == before + 1,
+                "{before} -> {level}"
+            );
+        }
+    }
+    assert!(
+        climbed && backs > 0,
+        "climbed {climbed}, stepped back {backs} times"
+    );
+}
+
 #[test]
 fn a_resumed_run_plays_its_level_s_window() {
     let mut sets = NARROWING.to_vec();
-    sets.push("curriculum_thresholds=0");
+    sets.extend(["curriculum_thresholds=0", "curriculum_fallback=0"]);
     let c = cfg(&sets, 3000);
     let mut t = Trainer::new(c.clone()).unwrap();
     while t.state().curriculum_level < 2 {

@@ -198,12 +198,17 @@ pub enum Curriculum {
     /// Ready-Set-Go: Jazayeri & Shadlen 2015, Remington et al. 2018). Level `k` of `L`
     /// pays inside `tolerance_k·g·ts + steps_k`, both interpolated linearly from
     /// (`tolerance_start`, `tolerance_steps_start`) at level 0 to the task's
-    /// (`tolerance`, `tolerance_steps`) at level `L − 1`. A level is left once the share of
-    /// the last `window` episodes (all finished since the last change) that delivered
-    /// inside the window reaches `thresholds[level]`.
+    /// (`tolerance`, `tolerance_steps`) at level `L − 1`. Checked once `window` episodes
+    /// have finished since the last change, on the share of them that delivered inside the
+    /// window: the next (narrower) level once it reaches `thresholds[level]`, the previous
+    /// (wider) one when it falls below `fallback` — an adaptive staircase, so a policy that
+    /// stops producing in a window too narrow for it gets the wider window's reward back.
     Tolerance {
         /// Share of in-window deliveries that ends each level (the last one repeats).
         thresholds: Vec<f32>,
+        /// Share of in-window deliveries below which the level steps back (0 = never).
+        #[serde(default = "default_fallback")]
+        fallback: f32,
         /// Episodes averaged.
         window: usize,
         /// Relative tolerance of level 0 (the task's is the last level's).
@@ -253,8 +258,11 @@ impl Curriculum {
             // Level 0 is the window on which LSTM125 learned the task in the pilot
             // (`results/reproduction/ppo-pilot`); 80% in the window is the usual
             // criterion of shaping.
+            // Stepping back below 50%: where a one-up-one-down staircase on the window
+            // (as trained monkeys) would settle.
             "tolerance" => Some(Curriculum::Tolerance {
                 thresholds: vec![0.8],
+                fallback: default_fallback(),
                 window: 100,
                 tolerance_start: 0.5,
                 tolerance_steps_start: 3.0,
@@ -323,6 +331,11 @@ impl Curriculum {
     pub fn has_levels(&self) -> bool {
         matches!(self, Curriculum::MultiTimer { .. }) || self.growth().is_some()
     }
+}
+
+/// [`Curriculum::Tolerance`]'s default `fallback`.
+fn default_fallback() -> f32 {
+    0.5
 }
 
 /// A curriculum that grows the task by one counter or oven per level.

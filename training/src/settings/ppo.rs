@@ -289,6 +289,12 @@ pub const PPO_SETTINGS: &[Spec] = &[
         "constant tolerance (steps) of the first level's window (narrows to the task's `tolerance_steps`)",
     ),
     tolerance(
+        "curriculum_fallback",
+        &["curriculum", "fallback"],
+        UNIT,
+        "share of deliveries inside the window below which the level steps back to the wider window (0 = never)",
+    ),
+    tolerance(
         "curriculum_levels",
         &["curriculum", "levels"],
         Rule::Int { lo: 2, hi: 100 },

@@ -138,13 +138,15 @@ impl Trainer {
         Ok(())
     }
 
-    /// Tolerance curriculum, checked at the rollout's end: the next level (a narrower
-    /// window) once the share of in-window deliveries among the last `window` episodes,
-    /// all finished since the last change, reaches the level's threshold. Episodes under
-    /// way keep running; their deliveries are paid on the new window.
+    /// Tolerance curriculum, checked at the rollout's end once `window` episodes have
+    /// finished since the last change, on the share of them that delivered inside the
+    /// window: the next (narrower) level once it reaches the level's threshold, the
+    /// previous (wider) one when it falls below `fallback`. Episodes under way keep
+    /// running; their deliveries are paid on the new window.
     pub(super) fn advance_tolerance(&mut self) -> Result<(), TrainError> {
         let Curriculum::Tolerance {
             thresholds,
+            fallback,
             window,
             levels,
             ..
@@ -153,7 +155,7 @@ impl Trainer {
             return Ok(());
         };
         let level = self.state.curriculum_level;
-        if level + 1 >= *levels || self.state.since_change < *window {
+        if self.state.since_change < *window {
             return Ok(());
         }
         let threshold = thresholds
@@ -163,12 +165,16 @@ impl Trainer {
             .unwrap_or(0.8);
         let recent = self.state.recent.iter().rev().take(*window);
         let share = recent.filter(|e| e.success).count() as f32 / *window as f32;
-        if share >= threshold {
-            self.state.curriculum_level = level + 1;
-            self.state.since_change = 0;
-            self.apply_tolerance()?;
-        }
-        Ok(())
+        let next = if level + 1 < *levels && share >= threshold {
+            level + 1
+        } else if level > 0 && share < *fallback {
+            level - 1
+        } else {
+            return Ok(());
+        };
+        self.state.curriculum_level = next;
+        self.state.since_change = 0;
+        self.apply_tolerance()
     }
 }
 
