@@ -109,6 +109,55 @@ fn a_level_is_kept_until_its_share_of_in_window_deliveries_is_reached() {
     );
 }
 
+/// Every check against the rule recomputed from the episodes it saw: with a window of 4
+/// episodes, threshold 0.5 and fallback 0.5, a due check (4 episodes since the last change)
+/// raises the level when at least 2 of the last 4 delivered inside the window and lowers it
+/// when fewer did, except at the ends; a check not yet due keeps the level.
+#[test]
+fn each_check_follows_the_share_of_the_last_window_of_episodes() {
+    let sets = [
+        "curriculum=tolerance",
+        "curriculum_tolerance_start=0.6",
+        "curriculum_tolerance_steps_start=4",
+        "curriculum_levels=4",
+        "curriculum_window=4",
+        "curriculum_thresholds=0.5",
+        "curriculum_fallback=0.5",
+        "env.tolerance=0.3",
+        "env.tolerance_steps=1",
+    ];
+    let mut t = Trainer::new(cfg(&sets, 20000)).unwrap();
+    let (mut ups, mut downs, mut due) = (0, 0, 0);
+    while !t.finished() {
+        let level = t.state().curriculum_level;
+        let (since, episodes) = (t.state().since_change, t.state().episodes);
+        t.update().unwrap();
+        let s = t.state();
+        let seen = since + (s.episodes - episodes) as usize;
+        let hits = s.recent.iter().rev().take(4).filter(|e| e.success).count();
+        let expected = if seen < 4 {
+            level
+        } else if hits >= 2 && level < 3 {
+            level + 1
+        } else if hits < 2 && level > 0 {
+            level - 1
+        } else {
+            level
+        };
+        due += usize::from(seen >= 4);
+        assert_eq!(
+            s.curriculum_level, expected,
+            "level {level}, {seen} episodes since the last change, {hits} of the last 4 in the window"
+        );
+        ups += usize::from(expected > level);
+        downs += usize::from(expected < level);
+    }
+    assert!(
+        due > 10 && ups > 0 && downs > 0,
+        "{due} checks, {ups} up, {downs} down"
+    );
+}
+
 /// With every level passed at once (threshold 0) and a fallback no untrained policy meets
 /// (every one of the last 3 episodes in the window), the last level steps back: the level
 /// sequence climbs to 3, then alternates, and every step back follows a window of
@@ -197,7 +246,39 @@ fn the_curriculum_is_refused_on_other_tasks_and_with_a_narrower_first_window() {
         ],
     );
     assert!(
-        err.contains("curriculum_tolerance_start") && err.contains("tolerance >= 0.2"),
+        err.contains("curriculum_tolerance_start") && err.contains("tolerance >= 0.2,"),
+        "{err}"
+    );
+    // A first window equal to the task's own is accepted (compared as the task stores it).
+    resolve(
+        "Reproduction-v0",
+        "lstm8".parse().unwrap(),
+        "reference",
+        7,
+        &[
+            "curriculum=tolerance",
+            "env.tolerance=0.3",
+            "curriculum_tolerance_start=0.3",
+        ],
+    )
+    .expect("a start window equal to the task's");
+    // The first level's window is checked as a task: one wider than the time limit allows.
+    let err = refused(
+        "Reproduction-v0",
+        &[
+            "curriculum=tolerance",
+            "curriculum_tolerance_steps_start=100",
+            "env.max_timesteps=60",
+        ],
+    );
+    assert!(err.contains("curriculum_tolerance_start"), "{err}");
+    // The curriculum's window cannot exceed the episodes kept for its checks.
+    let err = refused(
+        "Reproduction-v0",
+        &["curriculum=tolerance", "stats_window=50"],
+    );
+    assert!(
+        err.contains("curriculum_window") && err.contains("stats_window (50)"),
         "{err}"
     );
 }

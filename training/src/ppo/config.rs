@@ -207,7 +207,7 @@ pub enum Curriculum {
         /// Share of in-window deliveries that ends each level (the last one repeats).
         thresholds: Vec<f32>,
         /// Share of in-window deliveries below which the level steps back (0 = never).
-        #[serde(default = "default_fallback")]
+        #[serde(default = "no_fallback")]
         fallback: f32,
         /// Episodes averaged.
         window: usize,
@@ -262,7 +262,7 @@ impl Curriculum {
             // (as trained monkeys) would settle.
             "tolerance" => Some(Curriculum::Tolerance {
                 thresholds: vec![0.8],
-                fallback: default_fallback(),
+                fallback: 0.5,
                 window: 100,
                 tolerance_start: 0.5,
                 tolerance_steps_start: 3.0,
@@ -326,6 +326,17 @@ impl Curriculum {
         ))
     }
 
+    /// Episodes averaged by the curriculum's checks (`None` without such checks).
+    pub fn window(&self) -> Option<usize> {
+        match self {
+            Curriculum::MultiTimer { window, .. }
+            | Curriculum::MultiAnchor { window, .. }
+            | Curriculum::MultiOven { window, .. }
+            | Curriculum::Tolerance { window, .. } => Some(*window),
+            Curriculum::None | Curriculum::Uncertainty { .. } => None,
+        }
+    }
+
     /// Whether the curriculum moves through levels whose policies are kept
     /// (`run/levels/level-L.bpk`).
     pub fn has_levels(&self) -> bool {
@@ -333,9 +344,10 @@ impl Curriculum {
     }
 }
 
-/// [`Curriculum::Tolerance`]'s default `fallback`.
-fn default_fallback() -> f32 {
-    0.5
+/// [`Curriculum::Tolerance`]'s `fallback` when a stored configuration has none: 0, the
+/// behaviour before the field existed (never step back), so a resumed run keeps its rule.
+fn no_fallback() -> f32 {
+    0.0
 }
 
 /// A curriculum that grows the task by one counter or oven per level.
@@ -520,18 +532,29 @@ impl TrainConfig {
                 ),
             });
         };
-        let own = (f64::from(tolerance), f64::from(tolerance_steps));
-        if tolerance_start < own.0 || tolerance_steps_start < own.1 {
+        // Compared as the task stores them (f32), so a start equal to the task's passes.
+        if (tolerance_start as f32) < tolerance || (tolerance_steps_start as f32) < tolerance_steps
+        {
             return Err(TrainError::InvalidParam {
                 field: "curriculum_tolerance_start".into(),
                 value: format!("{tolerance_start}, {tolerance_steps_start} steps"),
                 allowed: format!(
-                    "a first window at least the task's own (tolerance >= {}, tolerance_steps >= {})",
-                    own.0, own.1
+                    "a first window at least the task's own (tolerance >= {tolerance}, tolerance_steps >= {tolerance_steps})"
                 ),
             });
         }
-        Ok(own)
+        // The first level's task must itself be valid (e.g. its window inside the time limit).
+        let mut first = self.env.clone();
+        first.push(format!("tolerance={}", tolerance_start as f32));
+        first.push(format!("tolerance_steps={}", tolerance_steps_start as f32));
+        chronocooked_env::make_config(&self.task, &first).map_err(|e| {
+            TrainError::InvalidParam {
+                field: "curriculum_tolerance_start".into(),
+                value: format!("{tolerance_start}, {tolerance_steps_start} steps"),
+                allowed: format!("a first window the task accepts ({e})"),
+            }
+        })?;
+        Ok((f64::from(tolerance), f64::from(tolerance_steps)))
     }
 
     /// The one check of a configuration, however it was made (presets, `--set`, a
@@ -542,6 +565,18 @@ impl TrainConfig {
         settings::check(PPO_SETTINGS, self)?;
         chronocooked_env::make_config(&self.task, &self.env)?;
         self.reproduction_window()?;
+        if let Some(window) = self.curriculum.window()
+            && window > self.stats_window
+        {
+            return Err(TrainError::param(
+                "curriculum_window",
+                window,
+                &format!(
+                    "at most stats_window ({}): the episodes kept for the curriculum's checks",
+                    self.stats_window
+                ),
+            ));
+        }
         // The rollout buffer holds n_envs · n_steps transitions: bounded so that a
         // hand-edited config.json cannot ask for more memory than any machine has.
         if self.ppo.n_envs.saturating_mul(self.ppo.n_steps) > MAX_ROLLOUT {

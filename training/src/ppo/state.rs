@@ -90,7 +90,8 @@ pub struct UpdateLog {
     pub learning_rate: f64,
     /// Multi-timer curriculum: active TDs.
     pub num_timers: usize,
-    /// Multi-timer curriculum level (with the warm-up level 0: 0..=|tds|; else = active TDs).
+    /// Curriculum level: multi-timer (with the warm-up level 0: 0..=|tds|; else = active
+    /// TDs), growth (counters or ovens added) or tolerance (windows narrowed).
     #[serde(default)]
     pub curriculum_level: usize,
     /// Uncertainty curriculum: never-ready probability.
@@ -137,7 +138,7 @@ pub struct TrainerState {
     pub wall_s: f64,
     /// Learning curve so far.
     pub curve: Vec<UpdateLog>,
-    /// Multi-timer curriculum level (see `UpdateLog::curriculum_level`).
+    /// Curriculum level (see `UpdateLog::curriculum_level`).
     #[serde(default)]
     pub curriculum_level: usize,
     /// Reservoir cores with `reservoir_grad_in_norm`: the never-applied core gradient

@@ -256,7 +256,7 @@ pub const PPO_SETTINGS: &[Spec] = &[
         "curriculum_window",
         &["curriculum", "window"],
         POSITIVE_COUNT,
-        "episodes averaged for the thresholds",
+        "episodes averaged for the thresholds (and the tolerance curriculum's fallback)",
     ),
     Spec {
         only_with: Some("curriculum=multi_anchor or multi_oven"),
@@ -279,13 +279,16 @@ pub const PPO_SETTINGS: &[Spec] = &[
     tolerance(
         "curriculum_tolerance_start",
         &["curriculum", "tolerance_start"],
-        NON_NEGATIVE,
+        UNIT,
         "relative tolerance of the first level's reward window (narrows to the task's `tolerance`)",
     ),
     tolerance(
         "curriculum_tolerance_steps_start",
         &["curriculum", "tolerance_steps_start"],
-        NON_NEGATIVE,
+        Rule::Num {
+            ok: |x| (0.0..=100.0).contains(&x),
+            allowed: "number in [0, 100] (steps)",
+        },
         "constant tolerance (steps) of the first level's window (narrows to the task's `tolerance_steps`)",
     ),
     tolerance(

@@ -206,7 +206,7 @@ mod tests {
     }
 
     /// Speeds as dots, the time-stretched answer `ts_ref / ts` worked out by hand (10/8,
-    /// 10/10, 10/12.5), the fixed clock at 1 across the range; a context with fewer than
+    /// 10/10, 10/16), the fixed clock at 1 across the range; a context with fewer than
     /// two speeds is left out, and nothing to draw gives no figure.
     #[test]
     fn the_speed_figure_has_the_speeds_and_both_known_answers() {
