@@ -357,13 +357,15 @@ pub fn population_figures(
 const LEARNER_SIGNALS: [&str; 2] = ["value", "rpe"];
 
 /// Heat maps and population figures of every population (≥ 2 units) of `dataset`, and —
-/// for a model with only one-unit populations — their per-TD traces, aligned to oven-on.
+/// for a model with only one-unit populations — their per-TD traces, aligned to oven-on;
+/// for a reproduction dataset, each population's speed after Set ([`speed_figures`]).
 pub fn neural_figures(
     dataset: &chronocooked_models::ActivityDataset,
     dir: &Path,
 ) -> Result<(), FigureError> {
     use crate::neural::Cube;
     use chronocooked_models::Marker;
+    speed_figures(dataset, dir)?;
     let window = dataset
         .trials
         .iter()
@@ -421,6 +423,21 @@ pub fn neural_figures(
         };
         let title = format!("{} {}", dataset.meta.model, p.name);
         population_figures(&dir.join(&p.name), &title, &pop)?;
+    }
+    Ok(())
+}
+
+/// Reproduction datasets: each population's KiNeT speed after Set against `ts`
+/// (`<population>/speed.svg`; one-unit clocks such as drift-diffusion's accumulator too,
+/// not the learner's `value` / `rpe`). Nothing for other datasets.
+fn speed_figures(
+    dataset: &chronocooked_models::ActivityDataset,
+    dir: &Path,
+) -> Result<(), FigureError> {
+    for p in &dataset.meta.populations {
+        if LEARNER_SIGNALS.contains(&p.name.as_str()) {
+            continue;
+        }
         let speeds = crate::neural::production::production_speed(dataset, Some(&p.name));
         let title = format!(
             "{} {}: speed after Set (KiNeT, Remington et al. 2018)",

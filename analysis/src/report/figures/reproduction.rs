@@ -107,7 +107,10 @@ pub fn speed_chart(title: &str, contexts: &[ProductionSpeed]) -> Option<Chart> {
         ts_all.extend(points.iter().map(|p| p.0));
         let index = c.scaling_index.map_or("–".into(), |s| format!("{s:.2}"));
         series.push(Series {
-            label: format!("prior {}, gain {} (scaling index {index})", c.prior, c.gain),
+            label: format!(
+                "prior #{}, gain #{} (scaling index {index})",
+                c.prior, c.gain
+            ),
             points: points.clone(),
             line: false,
             color: k,
