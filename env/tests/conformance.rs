@@ -210,7 +210,7 @@ fn every_task_s_vec_env_resumes_from_its_snapshot() {
         let mut venv = VecEnv::new(&cfg, 3, Autoreset::SameStep).unwrap();
         venv.reset(17);
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(3);
-        let mut act = |rng: &mut Xoshiro256PlusPlus| -> Vec<u8> {
+        let act = |rng: &mut Xoshiro256PlusPlus| -> Vec<u8> {
             (0..3).map(|_| rng.random_range(0..6)).collect()
         };
         for _ in 0..137 {

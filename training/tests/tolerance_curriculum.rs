@@ -228,8 +228,7 @@ fn a_resumed_run_plays_its_level_s_window() {
 fn the_curriculum_is_refused_on_other_tasks_and_with_a_narrower_first_window() {
     let refused = |task: &str, sets: &[&str]| {
         resolve(task, "lstm8".parse().unwrap(), "reference", 7, sets)
-            .err()
-            .expect("refused")
+            .expect_err("refused")
             .to_string()
     };
     let err = refused("Bisection-v0", &["curriculum=tolerance"]);
