@@ -523,3 +523,40 @@ fn a_timing_run_config_with_an_unknown_field_names_it() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `record --figures` on a reproduction run draws each clock population's speed after Set
+/// (KiNeT) with both known answers, and none for the learner's value signal: drift-diffusion
+/// (whose accumulator times the production by speed).
+#[test]
+fn a_reproduction_recording_draws_the_speed_figure() {
+    let dir = temp_dir("reproduction_speed_figure");
+    let p = |s: &str| dir.join(s).to_string_lossy().to_string();
+    run_ok(&[
+        "train",
+        "--task",
+        "Reproduction-v0",
+        "--model",
+        "ddm",
+        "--set",
+        "episodes=300",
+        "--quiet",
+        "--out",
+        &p("run"),
+    ]);
+    run_ok(&[
+        "record",
+        "--run",
+        &p("run"),
+        "--figures",
+        &p("figures"),
+        "--out",
+        &p("activity.json"),
+    ]);
+    let svg = std::fs::read_to_string(dir.join("figures/accumulator/speed.svg"))
+        .expect("the accumulator's speed figure");
+    for needle in ["time-stretched", "fixed-speed clock", "scaling index"] {
+        assert!(svg.contains(needle), "speed.svg lacks {needle}");
+    }
+    assert!(!dir.join("figures/value/speed.svg").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
