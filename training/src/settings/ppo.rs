@@ -9,36 +9,17 @@ use super::{COUNT, NON_NEGATIVE, POSITIVE, POSITIVE_COUNT, Rule, Spec, UNIT, spe
 /// without end before this bound).
 pub const MAX_TOTAL_STEPS: u64 = 2_000_000_000;
 
-const fn multi_timer(
-    key: &'static str,
-    path: &'static [&'static str],
-    rule: Rule,
-    doc: &'static str,
-) -> Spec {
+/// `spec`, a setting only the configurations `when` names have (e.g.
+/// `curriculum=tolerance`).
+const fn only_with(when: &'static str, spec: Spec) -> Spec {
     Spec {
-        only_with: Some("curriculum=multi_timer, multi_anchor, multi_oven or tolerance"),
-        ..spec(key, path, rule, doc)
+        only_with: Some(when),
+        ..spec
     }
 }
 
-const fn uncertainty(key: &'static str, path: &'static [&'static str], doc: &'static str) -> Spec {
-    Spec {
-        only_with: Some("curriculum=uncertainty"),
-        ..spec(key, path, UNIT, doc)
-    }
-}
-
-const fn tolerance(
-    key: &'static str,
-    path: &'static [&'static str],
-    rule: Rule,
-    doc: &'static str,
-) -> Spec {
-    Spec {
-        only_with: Some("curriculum=tolerance"),
-        ..spec(key, path, rule, doc)
-    }
-}
+/// The curricula whose levels are left on a share of the last `window` episodes.
+const LEVELLED: &str = "curriculum=multi_timer, multi_anchor, multi_oven or tolerance";
 
 /// Names of the curricula (`curriculum=NAME` starts the named one with its defaults).
 pub const CURRICULA: &[&str] = &[
@@ -246,77 +227,107 @@ pub const PPO_SETTINGS: &[Spec] = &[
         Rule::Choice(CURRICULA),
         "curriculum (setting it starts the named one with its defaults)",
     ),
-    multi_timer(
-        "curriculum_thresholds",
-        &["curriculum", "thresholds"],
-        Rule::List(&UNIT),
-        "mean reward (tolerance: share of deliveries inside the window) that ends each level",
+    only_with(
+        LEVELLED,
+        spec(
+            "curriculum_thresholds",
+            &["curriculum", "thresholds"],
+            Rule::List(&UNIT),
+            "mean reward (tolerance: share of deliveries inside the window) that ends each level",
+        ),
     ),
-    multi_timer(
-        "curriculum_window",
-        &["curriculum", "window"],
-        POSITIVE_COUNT,
-        "episodes averaged for the thresholds (and the tolerance curriculum's fallback)",
+    only_with(
+        LEVELLED,
+        spec(
+            "curriculum_window",
+            &["curriculum", "window"],
+            POSITIVE_COUNT,
+            "episodes averaged for the thresholds (and the tolerance curriculum's fallback)",
+        ),
     ),
-    Spec {
-        only_with: Some("curriculum=multi_anchor or multi_oven"),
-        ..spec(
+    only_with(
+        "curriculum=multi_anchor or multi_oven",
+        spec(
             "curriculum_clear_adam",
             &["curriculum", "clear_adam"],
             Rule::Bool,
             "clear Adam's moments when a level adds a counter or an oven",
-        )
-    },
-    Spec {
-        only_with: Some("curriculum=multi_timer"),
-        ..spec(
+        ),
+    ),
+    only_with(
+        "curriculum=multi_timer",
+        spec(
             "curriculum_warmup",
             &["curriculum", "warmup"],
             Rule::Bool,
             "level 0: one lower-bounded timer with reduced reward before the first TD",
-        )
-    },
-    tolerance(
-        "curriculum_tolerance_start",
-        &["curriculum", "tolerance_start"],
-        UNIT,
-        "relative tolerance of the first level's reward window (narrows to the task's `tolerance`)",
+        ),
     ),
-    tolerance(
-        "curriculum_tolerance_steps_start",
-        &["curriculum", "tolerance_steps_start"],
-        Rule::Num {
-            ok: |x| (0.0..=100.0).contains(&x),
-            allowed: "number in [0, 100] (steps)",
-        },
-        "constant tolerance (steps) of the first level's window (narrows to the task's `tolerance_steps`)",
+    only_with(
+        "curriculum=tolerance",
+        spec(
+            "curriculum_tolerance_start",
+            &["curriculum", "tolerance_start"],
+            UNIT,
+            "relative tolerance of the first level's reward window (narrows to the task's `tolerance`)",
+        ),
     ),
-    tolerance(
-        "curriculum_fallback",
-        &["curriculum", "fallback"],
-        UNIT,
-        "share of deliveries inside the window below which the level steps back to the wider window (0 = never)",
+    only_with(
+        "curriculum=tolerance",
+        spec(
+            "curriculum_tolerance_steps_start",
+            &["curriculum", "tolerance_steps_start"],
+            Rule::Num {
+                ok: |x| (0.0..=100.0).contains(&x),
+                allowed: "number in [0, 100] (steps)",
+            },
+            "constant tolerance (steps) of the first level's window (narrows to the task's `tolerance_steps`)",
+        ),
     ),
-    tolerance(
-        "curriculum_levels",
-        &["curriculum", "levels"],
-        Rule::Int { lo: 2, hi: 100 },
-        "levels from the first window to the task's own, both included",
+    only_with(
+        "curriculum=tolerance",
+        spec(
+            "curriculum_fallback",
+            &["curriculum", "fallback"],
+            UNIT,
+            "share of deliveries inside the window below which the level steps back to the wider window (0 = never)",
+        ),
     ),
-    uncertainty(
-        "never_ready_start",
-        &["curriculum", "start"],
-        "initial never-ready probability",
+    only_with(
+        "curriculum=tolerance",
+        spec(
+            "curriculum_levels",
+            &["curriculum", "levels"],
+            Rule::Int { lo: 2, hi: 100 },
+            "levels from the first window to the task's own, both included",
+        ),
     ),
-    uncertainty(
-        "never_ready_end",
-        &["curriculum", "end"],
-        "final never-ready probability",
+    only_with(
+        "curriculum=uncertainty",
+        spec(
+            "never_ready_start",
+            &["curriculum", "start"],
+            UNIT,
+            "initial never-ready probability",
+        ),
     ),
-    uncertainty(
-        "never_ready_ramp",
-        &["curriculum", "ramp_fraction"],
-        "fraction of the budget over which it ramps",
+    only_with(
+        "curriculum=uncertainty",
+        spec(
+            "never_ready_end",
+            &["curriculum", "end"],
+            UNIT,
+            "final never-ready probability",
+        ),
+    ),
+    only_with(
+        "curriculum=uncertainty",
+        spec(
+            "never_ready_ramp",
+            &["curriculum", "ramp_fraction"],
+            UNIT,
+            "fraction of the budget over which it ramps",
+        ),
     ),
 ];
 
