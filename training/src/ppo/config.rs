@@ -257,9 +257,8 @@ impl Curriculum {
             }),
             // Level 0 is the window on which LSTM125 learned the task in the pilot
             // (`results/reproduction/ppo-pilot`); 80% in the window is the usual
-            // criterion of shaping.
-            // Stepping back below 50%: where a one-up-one-down staircase on the window
-            // (as trained monkeys) would settle.
+            // criterion of shaping; below 50% it steps back, where a one-up-one-down
+            // staircase on the window (as monkeys were trained) would settle.
             "tolerance" => Some(Curriculum::Tolerance {
                 thresholds: vec![0.8],
                 fallback: 0.5,
