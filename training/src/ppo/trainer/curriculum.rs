@@ -9,7 +9,6 @@ use chronocooked_env::{TaskParams, VecEnv, make_config};
 
 impl Trainer {
     pub(super) fn apply_curriculum(&mut self) -> Result<(), TrainError> {
-        self.apply_tolerance()?;
         if let Curriculum::Uncertainty {
             start,
             end,
@@ -112,8 +111,9 @@ impl Trainer {
 
 impl Trainer {
     /// Tolerance curriculum: sets the envs' reward window to the current level's (a spec
-    /// rebuild only when it differs from the envs' own).
-    fn apply_tolerance(&mut self) -> Result<(), TrainError> {
+    /// rebuild only when it differs from the envs' own). Called where the level is set: at
+    /// construction, at a restore and at a level change — not every update.
+    pub(super) fn apply_tolerance(&mut self) -> Result<(), TrainError> {
         let task = self.cfg.reproduction_window()?;
         let Some((tol, steps)) = self
             .cfg

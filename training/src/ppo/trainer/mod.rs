@@ -185,6 +185,7 @@ impl Trainer {
             t.set_growth_level(0)?;
         }
         t.apply_curriculum()?;
+        t.apply_tolerance()?;
         Ok(t)
     }
 
@@ -244,6 +245,7 @@ impl Trainer {
         t.engine.sync(&state.theta);
         t.state = state;
         t.apply_curriculum()?;
+        t.apply_tolerance()?;
         Ok(t)
     }
 
