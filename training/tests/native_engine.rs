@@ -421,7 +421,7 @@ fn burn_ctrnn_leak_equals_the_one_scalar_definition() {
 
 #[test]
 fn every_architecture_matches_the_one_parameter_spec_shape_by_shape() {
-    use chronocooked_models::deep::native::Layout;
+    use chronocooked_models::deep::native::ParamLayout;
     use chronocooked_models::deep::spec::{check_shapes, param_spec};
     use chronocooked_training::ppo::params::param_shapes;
     for arch in Architecture::all() {
@@ -430,7 +430,7 @@ fn every_architecture_matches_the_one_parameter_spec_shape_by_shape() {
         let module = pc.init(0, &chronocooked_models::cpu());
         check_shapes(&spec, &param_shapes(&module)).unwrap_or_else(|e| panic!("{arch:?}: {e}"));
         let total: usize = spec.iter().map(|p| p.len()).sum();
-        assert_eq!(Layout::new(&pc).total, total);
+        assert_eq!(ParamLayout::new(&pc).total, total);
         assert_eq!(flat_params(&module).len(), total);
     }
     // A mismatch is named, not counted.

@@ -200,7 +200,7 @@ fn row_figures_html(r: &Row) -> Result<Markup, String> {
     let mut inlined: Vec<(String, Vec<Markup>)> = Vec::new();
     let mut named = Vec::new();
     for run in &r.runs {
-        let task = run_task(run);
+        let task = eval_folder_task(run);
         let count = match shown.iter_mut().find(|s| s.0 == task) {
             Some(s) => {
                 s.1 += 1;
@@ -234,7 +234,7 @@ fn row_figures_html(r: &Row) -> Result<Markup, String> {
 }
 
 /// Task of an evaluation folder (from `eval.json`).
-fn run_task(folder: &Path) -> String {
+fn eval_folder_task(folder: &Path) -> String {
     crate::records::read_eval_info(folder)
         .map(|info| info.task)
         .unwrap_or_else(|_| "unknown task".into())
@@ -242,7 +242,7 @@ fn run_task(folder: &Path) -> String {
 
 /// Caption of one evaluation folder: its task and path.
 fn run_caption(folder: &Path) -> String {
-    format!("{} — {}", run_task(folder), folder.display())
+    format!("{} — {}", eval_folder_task(folder), folder.display())
 }
 
 /// Columns any row has, in [`COLUMNS`] order.

@@ -1,10 +1,10 @@
 //! The one parameter specification of an actor–critic network: every float parameter's
-//! name and shape, in burn's visiting order. The native engine's [`Layout`] is derived
+//! name and shape, in burn's visiting order. The native engine's [`ParamLayout`] is derived
 //! from it (offsets are running sums of the shapes), checkpoints and the optimizer use the
 //! same order (the flat vector of `params::flat_params`), and a native policy built from a
 //! burn module is checked against it shape by shape ([`check_shapes`]).
 //!
-//! [`Layout`]: crate::deep::native::Layout
+//! [`ParamLayout`]: crate::deep::native::ParamLayout
 
 use crate::{CoreKind, PolicyConfig};
 

@@ -211,6 +211,9 @@ struct EpisodeState {
     epoch: reproduction::Epoch,
     cue: u8,
     measurement: Vec<f64>,
+    /// Reproduction, time cells: the conjunctive code `m ⊗ p` at the response, held while
+    /// the soup is carried to the counter.
+    response_code: Vec<f64>,
     pending: Option<(u32, usize, Vec<f64>)>,
     reward: f64,
     value: f64,

@@ -8,13 +8,17 @@ use chronocooked_env::TaskFamily;
 use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 
-/// One timing model of the zoo.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// One timing model of the zoo: its name, what it is, and how its timer is built.
+#[derive(Debug, Clone, Copy)]
 pub struct TimingModelSpec {
     /// Zoo name.
     pub name: &'static str,
     /// One-line description.
     pub description: &'static str,
+    /// Builds the model's untrained timer with its registry defaults (`rng` draws what is
+    /// random at construction, e.g. SBF's frequencies); the agent-level defaults (clock
+    /// and memory noise, response cost, initial values) are set by [`make_timing_agent`].
+    pub build: fn(&mut Xoshiro256PlusPlus) -> Timer,
 }
 
 /// Every timing model, in display order.
@@ -22,30 +26,37 @@ pub const TIMING_MODELS: [TimingModelSpec; 7] = [
     TimingModelSpec {
         name: "ddm",
         description: "drift-diffusion timer (Simen et al. 2011): z 1, m 0.15 (CV 15%), anchor-memory noise 0.2, drift learning at reinforcement; gates oven checks; SARSA(lambda) over [1, x/z, responding]; bisection: short- and long-anchor drifts, ratio rule",
+        build: |_| Timer::ddm(DDM_NOISE),
     },
     TimingModelSpec {
         name: "sbf",
         description: "striatal beat frequency (Matell & Meck 2004): 1000 oscillators 5-15 Hz (random), 25 ms/step, memory noise 0.15, clock noise 0.15, response threshold 0.9; gates oven checks; bisection: coincidence with a criterion pattern at the geometric mean of the anchor memories",
+        build: |rng| Timer::sbf(1000, FrequencyLayout::Random, SBF_MEMORY_NOISE, rng),
     },
     TimingModelSpec {
         name: "sbf-even",
         description: "striatal beat frequency with evenly spaced frequencies (aliases at T + k/df)",
+        build: |rng| Timer::sbf(1000, FrequencyLayout::Even, SBF_MEMORY_NOISE, rng),
     },
     TimingModelSpec {
         name: "timecells-csc",
         description: "complete serial compound (64-unit delay line), clock noise 0.15, memory noise 0.15 + SARSA(lambda) (Ludvig et al. 2008)",
+        build: |_| Timer::time_cells(Representation::csc()),
     },
     TimingModelSpec {
         name: "timecells-ms",
         description: "microstimuli (d 0.95/step, sigma 0.08, m 20), clock noise 0.15, memory noise 0.15 + SARSA(lambda) (Ludvig et al. 2008)",
+        build: |_| Timer::time_cells(Representation::microstimulus()),
     },
     TimingModelSpec {
         name: "timecells-presence",
         description: "presence representation (one unit while the oven is on) + SARSA(lambda): cannot time",
+        build: |_| Timer::time_cells(Representation::Presence),
     },
     TimingModelSpec {
         name: "timecells-laplace",
         description: "scale-invariant Laplace time cells (24 cells, tau* 1-64 steps, k 8), clock noise 0.15, memory noise 0.15 + SARSA(lambda)",
+        build: |_| Timer::time_cells(Representation::laplace()),
     },
 ];
 
@@ -173,22 +184,14 @@ pub fn is_timing_model(name: &str) -> bool {
 /// Errors name the allowed values.
 pub fn make_timing_agent(name: &str, env: &ChronoEnv, seed: u64) -> Result<TimingAgent, String> {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
-    let timer = match name {
-        "ddm" => Timer::ddm(DDM_NOISE),
-        "sbf" => Timer::sbf(1000, FrequencyLayout::Random, SBF_MEMORY_NOISE, &mut rng),
-        "sbf-even" => Timer::sbf(1000, FrequencyLayout::Even, SBF_MEMORY_NOISE, &mut rng),
-        "timecells-csc" => Timer::time_cells(Representation::csc()),
-        "timecells-ms" => Timer::time_cells(Representation::microstimulus()),
-        "timecells-presence" => Timer::time_cells(Representation::Presence),
-        "timecells-laplace" => Timer::time_cells(Representation::laplace()),
-        other => {
-            let names: Vec<&str> = TIMING_MODELS.iter().map(|m| m.name).collect();
-            return Err(format!(
-                "unknown timing model `{other}`; allowed: {}",
-                names.join(", ")
-            ));
-        }
+    let Some(spec) = TIMING_MODELS.iter().find(|m| m.name == name) else {
+        let names: Vec<&str> = TIMING_MODELS.iter().map(|m| m.name).collect();
+        return Err(format!(
+            "unknown timing model `{name}`; allowed: {}",
+            names.join(", ")
+        ));
     };
+    let timer = (spec.build)(&mut rng);
     let mut agent = TimingAgent::new(name, timer, env, TimingAgentConfig::default());
     if name == "timecells-csc" {
         agent.learner.q_init = CSC_Q_INIT;

@@ -9,7 +9,7 @@
 //! outputs and parameter gradients against burn's autodiff for every core kind.
 //!
 //! Parameters are read from the flat vector in the module's visiting order
-//! (`params::flat_params` in the training crate) — see [`Layout`].
+//! (`params::flat_params` in the training crate) — see [`ParamLayout`].
 
 mod core;
 pub mod kernels;
@@ -79,7 +79,7 @@ pub struct SeqBatch<'a> {
 /// Where each parameter lives in the flat vector, in the order and shapes of
 /// [`crate::deep::spec::param_spec`] (burn's visiting order).
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Layout {
+pub struct ParamLayout {
     /// Conv1 weight and bias.
     pub conv1: (Block, Block),
     /// Conv2 weight and bias.
@@ -102,7 +102,7 @@ pub struct Layout {
     pub total: usize,
 }
 
-impl Layout {
+impl ParamLayout {
     /// The flat range of the recurrent core's parameters (input projection, recurrent
     /// weights, CTRNN τ; contiguous in the visiting order), `None` for CNN-MLP.
     pub fn core_range(&self) -> Option<std::ops::Range<usize>> {
@@ -134,7 +134,7 @@ impl Layout {
                 get(b).expect("spec has the bias"),
             )
         };
-        Layout {
+        ParamLayout {
             conv1: pair("trunk.conv1.weight", "trunk.conv1.bias"),
             conv2: pair("trunk.conv2.weight", "trunk.conv2.bias"),
             dense: pair("trunk.dense.weight", "trunk.dense.bias"),

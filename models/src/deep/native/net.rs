@@ -5,7 +5,7 @@ use super::core::{self, CoreCache};
 use super::kernels::{
     Isa, Mat, add_bias, add_col_sums, matmul, matmul_nt, matmul_tn, relu_inplace, tanh_inplace,
 };
-use super::{Block, Layout, SeqBatch, resize, resize_for_overwrite};
+use super::{Block, ParamLayout, SeqBatch, resize, resize_for_overwrite};
 use crate::PolicyConfig;
 
 /// Activations of the last forward pass (kept for the backward pass) and reusable
@@ -66,7 +66,7 @@ impl Cache {
 #[derive(Debug, Clone)]
 pub struct NativePolicy {
     cfg: PolicyConfig,
-    layout: Layout,
+    layout: ParamLayout,
     detach_critic: bool,
     frozen_core: bool,
 }
@@ -76,7 +76,7 @@ impl NativePolicy {
     pub fn new(cfg: &PolicyConfig) -> Self {
         NativePolicy {
             cfg: *cfg,
-            layout: Layout::new(cfg),
+            layout: ParamLayout::new(cfg),
             detach_critic: false,
             frozen_core: false,
         }
@@ -106,7 +106,7 @@ impl NativePolicy {
     }
 
     /// Parameter layout.
-    pub fn layout(&self) -> &Layout {
+    pub fn layout(&self) -> &ParamLayout {
         &self.layout
     }
 
