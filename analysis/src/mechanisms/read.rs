@@ -53,6 +53,12 @@ fn job_features(
     if let Some(pi) = metrics["pi"].as_array() {
         for p in pi.iter().filter(|p| num(&p["factor"]) == Some(2.0)) {
             let td = p["td"].as_f64().unwrap_or(f64::NAN);
+            // A fit wider than the 2 × TD window is not identified (older evaluations
+            // stored such fits; `GaussianFit::identified_within`).
+            let identified = num(&p["fit"]["spread"]).is_some_and(|s| s <= 2.0 * td);
+            if !identified {
+                continue;
+            }
             if let Some(peak) = num(&p["fit"]["peak"]) {
                 out.values.push(("pi_peak_over_td", peak / td));
             }
