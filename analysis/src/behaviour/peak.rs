@@ -207,6 +207,9 @@ mod tests {
             .map(|t| 0.1 + 0.6 * (-0.5 * ((t as f64 - 12.0) / 4.0).powi(2)).exp())
             .collect();
         let f = fit_gaussian(&bump).expect("a bump inside the window");
-        assert!((f.spread - 4.0).abs() < 1e-3 && (f.peak - 12.0).abs() < 1e-3, "{f:?}");
+        assert!(
+            (f.spread - 4.0).abs() < 1e-3 && (f.peak - 12.0).abs() < 1e-3,
+            "{f:?}"
+        );
     }
 }
