@@ -53,13 +53,14 @@ fn job_features(
     if let Some(pi) = metrics["pi"].as_array() {
         for p in pi.iter().filter(|p| num(&p["factor"]) == Some(2.0)) {
             let td = p["td"].as_f64().unwrap_or(f64::NAN);
+            let window = 2.0 * td;
             // A fit wider than the 2 × TD window is not identified (older evaluations
             // stored such fits; `GaussianFit::identified_within`). Its spread is `σ`, or
             // `cv · peak` where only those were written.
             let fit = &p["fit"];
             let spread = num(&fit["spread"])
                 .or_else(|| num(&fit["cv"]).zip(num(&fit["peak"])).map(|(c, m)| c * m));
-            if spread.is_some_and(|s| s > 2.0 * td) {
+            if spread.is_some_and(|s| s > window) {
                 continue;
             }
             if let Some(peak) = num(&p["fit"]["peak"]) {

@@ -165,6 +165,13 @@ impl TimingAgent {
             }
             Epoch::Producing => {
                 if p.carry == 2 && last.carry != 2 {
+                    // The learner's features of the pickup step (bias first) hold the
+                    // code the response was decided on: keep it for the walk.
+                    let n = Self::reproduction_features(&self.timer);
+                    self.ep.response_code.clear();
+                    if let (Timer::TimeCells(_), Some(code)) = (&self.timer, self.phi.get(1..=n)) {
+                        self.ep.response_code.extend_from_slice(code);
+                    }
                     self.ep.running = false;
                     self.ep.interval = Some(self.ep.clock);
                     self.ep.epoch = Epoch::Done;
@@ -198,7 +205,6 @@ impl TimingAgent {
                 for &mi in &self.ep.measurement {
                     features.extend(running.iter().map(|&pj| mi * pj));
                 }
-                self.ep.response_code.clone_from(features);
             } else if self.ep.epoch == Epoch::Done
                 && p.carry == 2
                 && self.ep.response_code.len() == n * n
