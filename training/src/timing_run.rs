@@ -123,8 +123,12 @@ pub const UNCERTAINTY_EPISODES: usize = 40_000;
 /// more episodes than one fixed interval (measured on the default task, seeds 1 and 3:
 /// 6,000 episodes at a constant step size left microstimulus, Laplace and CSC agents at
 /// 2–81% success, unstable from one evaluation to the next; 20,000 with the step size
-/// annealed to [`REPRODUCTION_ALPHA_END`] gave 64–85% on all six runs).
-pub const REPRODUCTION_EPISODES: usize = 20_000;
+/// annealed to [`REPRODUCTION_ALPHA_END`] gave 64–85% on all six runs). With the
+/// exploration of later responses (`response_delay`), on the priors 10–16 and 15–21 that
+/// no doc uses (2026-11-28, seeds 1–2): at 20,000 episodes microstimulus and Laplace agents
+/// produced 0.79–0.80 × `ts` at the long end of a prior, at 60,000 0.83–0.87 — an ideal
+/// observer with their clock noise (0.15) and this reward produces 0.89–0.90 there.
+pub const REPRODUCTION_EPISODES: usize = 60_000;
 
 /// Final SARSA(λ) step size on the reproduction task (annealed from the agent's own `α`,
 /// [`TimingTrainConfig::alpha_end`]): a tenth of Ludvig et al.'s 0.05. A constant step size

@@ -1,16 +1,20 @@
-//! The timing models learn the reproduction task (Ready-Set-Go) with their run defaults, on
-//! a prior no doc uses (9–15 steps, one prior, no cue), productions measured over episodes
-//! from every start cell at every `ts` of the prior. Known answers from the mechanisms:
+//! The timing models learn the reproduction task (Ready-Set-Go) on a prior no doc uses
+//! (9–15 steps, one prior, no cue), productions measured over episodes from every start
+//! cell at every `ts` of the prior. Known answers from the mechanisms:
 //! * drift-diffusion (one-shot drift learning at Set) and SBF (the pattern stored at Set)
 //!   reproduce the trial's own measurement: mean `tp/ts` within 0.8–1.2 at every `ts` (the
 //!   issue's criterion), nearly every episode produces, and the slope of the mean `tp` on
-//!   `ts` is 1 within 0.15 — no regression to the mean;
-//! * the microstimulus time cells learn the production by TD, whose values average the
-//!   rewards over every `ts` that gave a similar population at Set: a learned prior, so the
-//!   slope is below 0.9 (a Bayes least-squares observer with the model's clock noise, ~0.15,
-//!   on this prior has a slope near 0.5). Not asserted here: their `tp/ts` at the prior's
-//!   edges, which the issue wants within 0.8–1.2 and which their regression can exceed
-//!   (measured 1.23 at ts 9 on seed 1; NOTES.md).
+//!   `ts` is 1 within 0.15 — no regression to the mean. Their production is the clock's,
+//!   not a learned value, so they train for 20,000 episodes (the way to the oven and the
+//!   counter), a third of the run default, to keep the suite short;
+//! * the microstimulus and Laplace time cells learn the production by TD with their run
+//!   defaults, whose values average the rewards over every `ts` that gave a similar
+//!   population at Set: a learned prior, so the slope is below 0.9 (an ideal observer with
+//!   the model's clock noise, 0.15, and this reward has a slope near 0.5 and produces
+//!   1.11 … 0.90 × `ts` from the short to the long end), and still within 0.8–1.2 at every
+//!   `ts`. The delay line (CSC) is not asserted: with one unit per step its conjunctive
+//!   code does not generalise between neighbouring measurements and it needs more
+//!   episodes than the default (RESULTS, "The 0.8–1.2 criterion").
 
 use chronocooked_env::{ChronoEnv, ResetOptions, make_config};
 use chronocooked_models::agent::{Agent, run_episode};
@@ -23,9 +27,12 @@ struct Productions {
     slope: f64,
 }
 
-fn productions(model: &str, seed: u64) -> Productions {
+fn productions(model: &str, seed: u64, episodes: Option<usize>) -> Productions {
     let mut cfg = TimingRunConfig::new("Reproduction-v0", model, seed);
     cfg.set("env.priors=9-15").unwrap();
+    if let Some(n) = episodes {
+        cfg.train.episodes = n;
+    }
     cfg.train.eval_every = 0;
     let config = make_config(&cfg.task, &cfg.env).unwrap();
     let mut agent = cfg.build_agent().unwrap();
@@ -89,7 +96,7 @@ fn clocks_that_keep_the_trials_measurement_reproduce_it_without_regression() {
     let mut failures = Vec::new();
     for model in ["ddm", "sbf"] {
         for seed in 1..=2 {
-            let p = productions(model, seed);
+            let p = productions(model, seed, Some(20_000));
             let ok = p
                 .ratios
                 .iter()
@@ -103,15 +110,30 @@ fn clocks_that_keep_the_trials_measurement_reproduce_it_without_regression() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-#[test]
-fn time_cells_learn_the_production_with_a_prior() {
+/// Trains `model` (time cells) with its run defaults and checks the learned prior and the
+/// issue's criterion.
+fn time_cells_reproduce_with_a_prior(model: &str) {
     let mut failures = Vec::new();
     for seed in 1..=2 {
-        let p = productions("timecells-ms", seed);
-        let ok = p.ratios.iter().all(|&(_, _, share)| share >= 0.95) && p.slope < 0.9;
+        let p = productions(model, seed, None);
+        let ok = p
+            .ratios
+            .iter()
+            .all(|&(_, r, share)| (0.8..=1.2).contains(&r) && share >= 0.95)
+            && p.slope < 0.9;
         if !ok {
-            failures.push(describe("timecells-ms", seed, &p));
+            failures.push(describe(model, seed, &p));
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+#[test]
+fn microstimulus_time_cells_learn_the_production_with_a_prior() {
+    time_cells_reproduce_with_a_prior("timecells-ms");
+}
+
+#[test]
+fn laplace_time_cells_learn_the_production_with_a_prior() {
+    time_cells_reproduce_with_a_prior("timecells-laplace");
 }

@@ -62,6 +62,7 @@ mod reproduction;
 pub use reproduction::ReproductionCues;
 
 use multi_oven::{OvenClock, OvenView};
+use reproduction::LaterResponse;
 
 use crate::activity::{StepRecorder, oven_suffix};
 use crate::agent::{Agent, Percept, PerceptParser};
@@ -163,6 +164,19 @@ pub struct TimingAgentConfig {
     /// setting load with `false` (their behaviour unchanged).
     #[serde(default)]
     pub break_and_run: bool,
+    /// Reproduction task, time cells: exploration of later responses. When the learner is
+    /// about to take the soup during a production, with probability ε (the exploration
+    /// rate) it waits instead and responds `z` steps later, `z` uniform on
+    /// `1 ..= ⌈response_delay · t⌉` at production time `t` (a span that scales with the
+    /// elapsed time, as timing noise does). ε-greedy alone tries a response time later
+    /// than the greedy one only with two exploratory actions in a row (wait where it would
+    /// respond, then respond where it would wait: about 0.5% of trials at ε 0.15), so the
+    /// values of later responses stay at their initial value and the learned production
+    /// stays early; this is temporally extended exploration in the sense of Dabney,
+    /// Ostrovski & Barreto (2021, ε z-greedy): one exploratory decision held for a random
+    /// duration. 0 = off (agents saved before the setting load with 0).
+    #[serde(default)]
+    pub response_delay: f64,
 }
 
 /// Episodes per start cell and condition in the reference protocol for a timing agent with
@@ -172,6 +186,11 @@ pub struct TimingAgentConfig {
 /// accuracy of 0.93 was measured with a binomial SE of ≈ 0.03, so one evaluation fell below
 /// 0.90 about one time in five. 128 per probe halves that SE.
 pub const NOISE_DRAWS: usize = 16;
+
+/// Default [`TimingAgentConfig::response_delay`]: later responses are explored up to a
+/// quarter of the elapsed production time, about the scalar spread of a timed response
+/// (Weber fractions 0.1–0.3 in interval reproduction; Jazayeri & Shadlen 2010).
+pub const RESPONSE_DELAY: f64 = 0.25;
 
 /// Default [`TimingAgentConfig::overdue_factor`].
 pub const OVERDUE_FACTOR: f64 = 1.5;
@@ -187,6 +206,7 @@ impl Default for TimingAgentConfig {
             overdue_factor: OVERDUE_FACTOR,
             wait_at_oven: true,
             break_and_run: true,
+            response_delay: RESPONSE_DELAY,
         }
     }
 }
@@ -214,6 +234,9 @@ struct EpisodeState {
     /// Reproduction, time cells: the conjunctive code `m ⊗ p` at the response, held while
     /// the soup is carried to the counter.
     response_code: Vec<f64>,
+    /// Reproduction, time cells, training: the production time at which a delayed
+    /// (exploratory) response is made ([`TimingAgentConfig::response_delay`]).
+    delayed_response: Option<u32>,
     pending: Option<(u32, usize, Vec<f64>)>,
     reward: f64,
     value: f64,
@@ -605,11 +628,26 @@ impl Agent for TimingAgent {
         if run {
             q[check] += self.config.response_cost;
         }
-        let a = self.learner.choose(&q, &allowed, eps, &mut self.rng);
+        let chosen = self.learner.choose(&q, &allowed, eps, &mut self.rng);
+        let delay = if self.reproduces() && self.training {
+            self.explore_later_response(chosen, hold)
+        } else {
+            LaterResponse::None
+        };
+        let a = delay.action(chosen);
         q[check] = q_check;
-        self.learn(Some(q[a]));
+        match delay {
+            // The decision to explore is off-policy: the step before it learns the value
+            // of the action the policy chose, and no trace reaches back past it.
+            LaterResponse::Begins => {
+                self.learn(Some(q[chosen]));
+                self.learner.clear_traces();
+            }
+            LaterResponse::Waiting => {}
+            LaterResponse::None | LaterResponse::Due => self.learn(Some(q[a])),
+        }
         self.ep.value = q[a];
-        if self.training {
+        if self.training && delay.learns() {
             self.learner.visit(s, a, &features);
         }
         let action = Action::ALL[a];
@@ -619,7 +657,7 @@ impl Agent for TimingAgent {
             && action == Action::Interact
             && p.carry == 0
             && self.parser.next_to_oven(p.cell);
-        self.ep.pending = Some((s, a, features.clone()));
+        self.ep.pending = delay.learns().then(|| (s, a, features.clone()));
         self.ep.last = Some(p);
         self.phi = features;
         self.q = q;

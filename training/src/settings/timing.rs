@@ -49,6 +49,10 @@ pub struct TimingAgentSettings {
     /// Time cells: once a check of the running oven failed, keep checking (break-and-run).
     #[serde(default)]
     pub break_and_run: Option<bool>,
+    /// Time cells on reproduction: span of an exploratory delayed response, as a fraction
+    /// of the production time (0 = off).
+    #[serde(default)]
+    pub response_delay: Option<f64>,
     /// Bisection criterion between the remembered anchors.
     #[serde(default)]
     pub decision_rule: Option<DecisionRule>,
@@ -127,6 +131,7 @@ impl TimingAgentSettings {
             overdue_factor: None,
             wait_at_oven: None,
             break_and_run: None,
+            response_delay: None,
             decision_rule: None,
             timer,
         }
@@ -161,6 +166,7 @@ impl TimingAgentSettings {
             overdue_factor: Some(agent.config.overdue_factor),
             wait_at_oven: Some(agent.config.wait_at_oven),
             break_and_run: Some(agent.config.break_and_run),
+            response_delay: Some(agent.config.response_delay),
             decision_rule: Some(agent.timer.decision().rule),
             timer,
         }
@@ -181,6 +187,7 @@ impl TimingAgentSettings {
         put(&mut agent.config.probe, self.probe);
         put(&mut agent.config.opportunity_cost, self.opportunity_cost);
         put(&mut agent.config.overdue_factor, self.overdue_factor);
+        put(&mut agent.config.response_delay, self.response_delay);
         if let Some(w) = self.wait_at_oven {
             agent.config.wait_at_oven = w;
         }
@@ -299,7 +306,7 @@ pub const TIMING_SETTINGS: &[Spec] = &[
             lo: 1,
             hi: MAX_EPISODES as u64,
         },
-        "training episodes (6,000; 40,000 on Uncertainty-v0; 20,000 on Reproduction-v0; per level where the reference trains a curriculum: multi-anchor 2, 3, … counters, multi-oven 1, 2, … ovens)",
+        "training episodes (6,000; 40,000 on Uncertainty-v0; 60,000 on Reproduction-v0; per level where the reference trains a curriculum: multi-anchor 2, 3, … counters, multi-oven 1, 2, … ovens)",
     ),
     spec(
         "epsilon_start",
@@ -403,6 +410,12 @@ pub const TIMING_SETTINGS: &[Spec] = &[
         &["agent", "break_and_run"],
         Rule::Bool,
         "time cells on FI/PI/multi-timer: once a check failed, keep checking unless waiting is worth more by over one response cost",
+    ),
+    spec(
+        "response_delay",
+        &["agent", "response_delay"],
+        UNIT,
+        "time cells on reproduction, training: with probability epsilon a response is delayed by 1..=ceil(x t) steps at production time t (temporally extended exploration; 0 = off)",
     ),
     spec(
         "decision_rule",

@@ -40,7 +40,8 @@
 use super::TimingAgent;
 use crate::agent::Percept;
 use crate::timing::timers::Timer;
-use chronocooked_env::{CODE_CHANNELS, ChronoEnv, ObjectKind, TaskFamily, TaskParams};
+use chronocooked_env::{Action, CODE_CHANNELS, ChronoEnv, ObjectKind, TaskFamily, TaskParams};
+use rand::Rng;
 use serde::{Deserialize, Serialize};
 
 /// What a timing agent knows of a reproduction task: where the context cue is shown and
@@ -87,6 +88,39 @@ impl ReproductionCues {
 /// An `f32` setting as the decimal it was written as (1.5f32 is exact; 1.1f32 is not).
 fn decimal(v: f64) -> f64 {
     (v * 1e6).round() / 1e6
+}
+
+/// The exploration of later responses at one step of a production
+/// ([`TimingAgent::explore_later_response`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum LaterResponse {
+    /// No delayed response: the policy's action, learned on-policy.
+    None,
+    /// The policy would respond; the agent waits instead, and the response is delayed.
+    Begins,
+    /// A delayed response is pending: the agent waits, and nothing is learned (the waits
+    /// are exploratory, not the policy's: on-policy targets through them would teach the
+    /// value of waiting from responses the policy never makes).
+    Waiting,
+    /// The delayed response is due: the agent responds, and learning resumes there, so
+    /// the response's value is learned from its reward.
+    Due,
+}
+
+impl LaterResponse {
+    /// The action taken when the policy chose `chosen`.
+    pub(super) fn action(self, chosen: usize) -> usize {
+        match self {
+            LaterResponse::None => chosen,
+            LaterResponse::Begins | LaterResponse::Waiting => Action::Wait.code() as usize,
+            LaterResponse::Due => Action::Interact.code() as usize,
+        }
+    }
+
+    /// Whether the step's action is learned from (visited, and updated at the next step).
+    pub(super) fn learns(self) -> bool {
+        matches!(self, LaterResponse::None | LaterResponse::Due)
+    }
 }
 
 /// The epochs of a reproduction episode as the agent sees them.
@@ -218,6 +252,32 @@ impl TimingAgent {
         }
     }
 
+    /// Training, time cells at the oven during a production: the exploration of later
+    /// responses ([`super::TimingAgentConfig::response_delay`]) around the action the
+    /// policy `chosen`.
+    pub(super) fn explore_later_response(&mut self, chosen: usize, hold: bool) -> LaterResponse {
+        let respond = Action::Interact.code() as usize;
+        let producing = hold && self.ep.epoch == Epoch::Producing && !self.timer.has_gate();
+        if !producing || self.config.response_delay <= 0.0 {
+            self.ep.delayed_response = None;
+            return LaterResponse::None;
+        }
+        if let Some(due) = self.ep.delayed_response {
+            if self.ep.clock < due {
+                return LaterResponse::Waiting;
+            }
+            self.ep.delayed_response = None;
+            return LaterResponse::Due;
+        }
+        if chosen == respond && self.rng.random::<f64>() < self.config.epsilon {
+            let span = (self.config.response_delay * f64::from(self.ep.clock)).ceil();
+            let span = (span as u32).max(1);
+            self.ep.delayed_response = Some(self.ep.clock + self.rng.random_range(1..=span));
+            return LaterResponse::Begins;
+        }
+        LaterResponse::None
+    }
+
     /// Whether the agent is timing (measuring or producing): it waits at the oven then.
     pub(super) fn reproduction_timing(&self) -> bool {
         matches!(self.ep.epoch, Epoch::Measuring | Epoch::Producing)
@@ -229,6 +289,7 @@ mod tests {
     use super::Epoch;
     use crate::agent::Agent;
     use crate::timing::zoo::make_timing_agent;
+    use chronocooked_env::Action;
     use chronocooked_env::{ChronoEnv, Oracle, ResetOptions, make_config};
 
     /// The time cells' learner reads, on the way to the counter, exactly the conjunctive
@@ -282,5 +343,60 @@ mod tests {
                 "ts {ts}: {carried} {before_set}"
             );
         }
+    }
+
+    /// While training, a response the time cells are about to make is sometimes delayed:
+    /// the agent waits and responds at the drawn time, `1 ..= ⌈0.25 t0⌉` steps after the
+    /// production time `t0` where the policy would have responded, and the waits in between
+    /// teach the learner nothing (they are not the policy's).
+    #[test]
+    fn a_delayed_response_comes_within_its_span_and_its_waits_teach_nothing() {
+        let config = make_config("Reproduction-v0", &["priors=9-15"]).unwrap();
+        let mut env = ChronoEnv::new(&config).unwrap();
+        let mut agent = make_timing_agent("timecells-csc", &env, 3).unwrap();
+        assert!(agent.config.response_delay > 0.0);
+        agent.set_training(true);
+        agent.set_epsilon(0.3);
+        let (mut delays, mut quiet_waits) = (0, 0);
+        for episode in 0..600u64 {
+            env.reset(Some(episode), &ResetOptions::default()).unwrap();
+            agent.begin_episode(env.obs_codes(), episode);
+            loop {
+                let pending = agent.ep.delayed_response;
+                let learner = pending.map(|_| agent.learner.clone());
+                let action = agent.act(env.obs_codes());
+                let t = env.step(action).unwrap();
+                agent.observe(t.reward, env.obs_codes(), t.terminated, t.truncated);
+                match (pending, agent.ep.delayed_response) {
+                    (None, Some(due)) => {
+                        let t0 = agent.ep.clock;
+                        let span = (0.25 * f64::from(t0)).ceil() as u32;
+                        assert_eq!(action, Action::Wait);
+                        assert!(due > t0 && due <= t0 + span.max(1), "t0 {t0}, due {due}");
+                        delays += 1;
+                    }
+                    (Some(_), Some(_)) => {
+                        assert_eq!(action, Action::Wait);
+                        assert!(
+                            learner.as_ref() == Some(&agent.learner),
+                            "a delaying wait changed the values"
+                        );
+                        quiet_waits += 1;
+                    }
+                    (Some(due), None) if agent.ep.epoch == Epoch::Producing || t.terminated => {
+                        assert_eq!(action, Action::Interact);
+                        assert_eq!(agent.ep.clock, due);
+                    }
+                    _ => {}
+                }
+                if t.terminated || t.truncated {
+                    break;
+                }
+            }
+        }
+        assert!(
+            delays >= 20 && quiet_waits >= 1,
+            "{delays} delays, {quiet_waits} waits"
+        );
     }
 }
