@@ -157,8 +157,10 @@ pub struct TimeCells {
     /// the scalar-variability source of scalar expectancy theory (Gibbon 1977; Gibbon,
     /// Church & Meck 1984); applied to a trace it makes every time cell's peak time vary
     /// in proportion to itself.
-    #[serde(default)]
-    pub speed_noise: f64,
+    /// (The `--set` key `clock_noise`; agents saved before the rename spell it
+    /// `speed_noise`.)
+    #[serde(default, alias = "speed_noise")]
+    pub clock_noise: f64,
     /// This trial's clock-speed factor `r` (1 without noise).
     #[serde(skip, default = "unit_speed")]
     speed: f64,
@@ -186,7 +188,7 @@ impl TimeCells {
         TimeCells {
             repr,
             elapsed: None,
-            speed_noise: 0.0,
+            clock_noise: 0.0,
             speed: 1.0,
             derivatives,
             propagators: Vec::new(),
@@ -418,5 +420,26 @@ impl TimeCells {
     /// The Laplace integrators `F(s)` (empty for other representations).
     pub fn laplace_integrators(&self) -> Vec<f64> {
         self.derivatives.iter().map(|g| g[0]).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Representation, TimeCells};
+
+    /// Agents saved before the field took its `--set` key's name (`clock_noise`) spell it
+    /// `speed_noise`; they load with their noise.
+    #[test]
+    fn an_agent_saved_with_the_old_field_name_keeps_its_clock_noise() {
+        let mut cells = TimeCells::new(Representation::microstimulus());
+        cells.clock_noise = 0.15;
+        let mut json = serde_json::to_value(&cells).unwrap();
+        let map = json.as_object_mut().unwrap();
+        let v = map
+            .remove("clock_noise")
+            .expect("serialised as clock_noise");
+        map.insert("speed_noise".into(), v);
+        let old: TimeCells = serde_json::from_value(json).unwrap();
+        assert_eq!(old.clock_noise, 0.15);
     }
 }

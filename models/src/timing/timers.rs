@@ -469,7 +469,7 @@ impl Timer {
         match self {
             Timer::Ddm(d) => d.acc.noise > 0.0 || d.memory_noise > 0.0,
             Timer::Sbf(s) => s.model.memory_noise > 0.0 || s.clock_noise > 0.0,
-            Timer::TimeCells(tc) => tc.cells.speed_noise > 0.0 || tc.memory_noise > 0.0,
+            Timer::TimeCells(tc) => tc.cells.clock_noise > 0.0 || tc.memory_noise > 0.0,
         }
     }
 
@@ -487,7 +487,7 @@ impl Timer {
                 s.clock_noise = 0.0;
             }
             Timer::TimeCells(tc) => {
-                tc.cells.speed_noise = 0.0;
+                tc.cells.clock_noise = 0.0;
                 tc.memory_noise = 0.0;
             }
         }
@@ -530,7 +530,7 @@ impl Timer {
             }
             Timer::Sbf(s) => s.onset(ctx, categories, rng),
             Timer::TimeCells(tc) => {
-                let speed = speed_sample(tc.cells.speed_noise, rng);
+                let speed = speed_sample(tc.cells.clock_noise, rng);
                 tc.cells.onset_with_speed(speed);
                 tc.trial_anchors = remembered_slots(categories, |slot| tc.anchors.draw(slot, rng));
             }
@@ -551,7 +551,7 @@ impl Timer {
                 s.start_clock(None, speed);
             }
             Timer::TimeCells(tc) => {
-                let speed = speed_sample(tc.cells.speed_noise, rng);
+                let speed = speed_sample(tc.cells.clock_noise, rng);
                 tc.cells.onset_with_speed(speed);
                 tc.trial_anchors.clear();
             }
@@ -590,7 +590,7 @@ impl Timer {
                 s.start_clock(Some(stored), speed);
             }
             Timer::TimeCells(tc) => {
-                let speed = speed_sample(tc.cells.speed_noise, rng);
+                let speed = speed_sample(tc.cells.clock_noise, rng);
                 tc.cells.onset_with_speed(speed);
             }
         }

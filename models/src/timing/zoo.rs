@@ -204,7 +204,7 @@ pub fn make_timing_agent(name: &str, env: &ChronoEnv, seed: u64) -> Result<Timin
     }
     match &mut agent.timer {
         Timer::TimeCells(tc) if !matches!(tc.cells.repr, Representation::Presence) => {
-            tc.cells.speed_noise = TIME_CELL_CLOCK_NOISE;
+            tc.cells.clock_noise = TIME_CELL_CLOCK_NOISE;
             tc.memory_noise = TIME_CELL_MEMORY_NOISE;
             agent.config.response_cost = match tc.cells.repr {
                 Representation::Laplace { .. } => LAPLACE_RESPONSE_COST,

@@ -151,7 +151,7 @@ impl TimingAgentSettings {
             },
             Timer::TimeCells(tc) => TimerSettings::TimeCells {
                 memory_noise: Some(tc.memory_noise),
-                clock_noise: Some(tc.cells.speed_noise),
+                clock_noise: Some(tc.cells.clock_noise),
             },
         };
         let sarsa = &agent.learner.config;
@@ -243,7 +243,7 @@ impl TimingAgentSettings {
                 Timer::TimeCells(tc),
             ) => {
                 put(&mut tc.memory_noise, memory_noise);
-                put(&mut tc.cells.speed_noise, clock_noise);
+                put(&mut tc.cells.clock_noise, clock_noise);
             }
             (settings, _) => {
                 return Err(TrainError::param(
