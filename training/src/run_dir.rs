@@ -133,6 +133,41 @@ pub fn read_config_text(dir: &Path) -> Result<String, TrainError> {
     })
 }
 
+/// The fields every run folder's `config.json` shares, PPO or timing model: what a reader
+/// needs before it knows which kind of run it has (the full configurations are
+/// [`TrainConfig`] and [`crate::TimingRunConfig`]).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+pub struct RunHeader {
+    /// `"timing"` for a timing-model run; absent in PPO runs.
+    #[serde(default)]
+    pub kind: Option<String>,
+    /// Task id (runs written before the field existed trained on `FixedInterval-v0`).
+    #[serde(default = "first_task")]
+    pub task: String,
+    /// Task overrides (`key=value`).
+    #[serde(default)]
+    pub env: Vec<String>,
+    /// Training seed.
+    #[serde(default)]
+    pub seed: Option<u64>,
+}
+
+fn first_task() -> String {
+    "FixedInterval-v0".into()
+}
+
+impl RunHeader {
+    /// The header of `dir`'s `config.json` ([`read_config_text`]: checked against its
+    /// SHA-256 record); errors name the file.
+    pub fn read(dir: &Path) -> Result<Self, TrainError> {
+        let text = read_config_text(dir)?;
+        serde_json::from_str(&text).map_err(|e| TrainError::Resume {
+            path: dir.join(run_folder::CONFIG).display().to_string(),
+            reason: e.to_string(),
+        })
+    }
+}
+
 /// Writes a run's `config.json` with its SHA-256 record (so later edits are seen).
 pub fn write_config(dir: &Path, json: &[u8]) -> Result<(), TrainError> {
     integrity::write_recorded(&dir.join(run_folder::CONFIG), json)?;

@@ -10,6 +10,7 @@
 use crate::error::TrainError;
 use crate::evaluate::eval_tds;
 use crate::ppo::config::ENV_KEY;
+use crate::run_dir::RunHeader;
 use crate::settings::{
     self, timing::TIMING_SETTINGS, timing::TimerSettings, timing::TimingAgentSettings,
 };
@@ -308,36 +309,20 @@ pub fn run_timing_training(
 /// Task id and task overrides of any run folder (PPO or timing agent), from its
 /// `config.json`.
 pub fn run_task(dir: &Path) -> Result<(String, Vec<String>), TrainError> {
-    let p = dir.join(run_folder::CONFIG);
-    let text = crate::run_dir::read_config_text(dir)?;
-    let v: serde_json::Value = serde_json::from_str(&text).map_err(|e| TrainError::Resume {
-        path: p.display().to_string(),
-        reason: e.to_string(),
-    })?;
-    let task = v["task"].as_str().unwrap_or("FixedInterval-v0").to_string();
-    let env = v["env"]
-        .as_array()
-        .map(|a| {
-            a.iter()
-                .filter_map(|s| s.as_str().map(String::from))
-                .collect()
-        })
-        .unwrap_or_default();
-    Ok((task, env))
+    let header = RunHeader::read(dir)?;
+    Ok((header.task, header.env))
 }
 
 /// The training seed of any run folder (PPO or timing agent: both keep it at the top level
 /// of `config.json`); `None` when the file or the field is missing or unreadable (loading
 /// the run then reports the problem).
 pub fn run_seed(dir: &Path) -> Option<u64> {
-    let text = crate::run_dir::read_config_text(dir).ok()?;
-    serde_json::from_str::<serde_json::Value>(&text)
-        .ok()?
-        .get("seed")?
-        .as_u64()
+    RunHeader::read(dir).ok()?.seed
 }
 
-/// Whether `dir`'s `config.json` describes a timing-agent run (finished or not).
+/// Whether `dir`'s `config.json` describes a timing-agent run (finished or not). Only
+/// `kind` is read, without the integrity check, so a damaged timing config is still
+/// recognised as one and loading it reports what is wrong.
 pub fn is_timing_run_config(dir: &Path) -> bool {
     std::fs::read_to_string(dir.join(run_folder::CONFIG))
         .ok()
