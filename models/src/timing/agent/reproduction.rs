@@ -30,6 +30,13 @@
 //! (delay line), 0.76–0.86 → 0.82–0.86 (Laplace), and the long prior's slopes 0.10 → 0.23
 //! (Laplace), 0.40 → 0.42 (delay line).
 //!
+//! While training, the time cells explore later responses as one decision: with
+//! probability ε a response the policy is about to make is delayed by a random
+//! `1 ..= ⌈0.25 t⌉` steps ([`super::TimingAgentConfig::response_delay`]), and the waits in
+//! between are not learned from. ε-greedy alone tries a later response only with two
+//! exploratory actions in a row, so the learned production stayed 1–2 steps early at the
+//! long end of a prior even without noise.
+//!
 //! Where a regression to the mean of the prior can come from, per model: drift-diffusion
 //! only from memory averaging (`reproduction_rate` below 1 keeps part of the context's past
 //! drifts); SBF from nothing (the trial's own pattern is matched); the time cells from
