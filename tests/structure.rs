@@ -1,7 +1,8 @@
 //! Structure of the workspace: no import cycles inside any crate, between files or between
 //! top-level folders (a file that names an item of another file through `crate::` or
 //! `super::` depends on it; references to a file's own ancestors — its `mod.rs` /
-//! `lib.rs` — do not count), and the sweep pipeline lives in a library, not in the binary.
+//! `lib.rs` — do not count; a name a module re-exports with `pub use` counts as the file
+//! that defines it), and the sweep pipeline lives in a library, not in the binary.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -105,6 +106,68 @@ fn use_tree(prefix: Vec<String>, tail: &str, out: &mut Vec<Vec<String>>) {
     }
 }
 
+/// The items a module re-exports (`pub use a::b::{X, Y}` in `m` makes `m::X` a name of
+/// `a::b::X`), from every file: full re-exported path → full path of the item. Paths are
+/// relative to the module (`crate::`, `super::` and `self::` roots resolved); globs and
+/// external crates are left out.
+fn re_exports(modules: &BTreeMap<Module, PathBuf>) -> BTreeMap<Module, Module> {
+    let mut out = BTreeMap::new();
+    for (m, f) in modules {
+        let text = std::fs::read_to_string(f).unwrap();
+        let code = text.split("#[cfg(test)]").next().unwrap();
+        for (i, _) in code.match_indices("pub use ") {
+            let mut found = vec![];
+            use_tree(vec![], &code[i + "pub use ".len()..], &mut found);
+            for segs in found {
+                let (mut base, rest): (Module, &[String]) = match segs.first().map(String::as_str) {
+                    Some("crate") => (vec![], &segs[1..]),
+                    Some("self") => (m.clone(), &segs[1..]),
+                    Some("super") => {
+                        let mut b = m.clone();
+                        let mut r = segs.as_slice();
+                        while r.first().is_some_and(|x| x == "super") {
+                            b.pop();
+                            r = &r[1..];
+                        }
+                        (b, r)
+                    }
+                    _ => (m.clone(), segs.as_slice()),
+                };
+                let Some(name) = rest.last() else { continue };
+                base.extend(rest.iter().cloned());
+                let mut probe = base.clone();
+                probe.pop();
+                if modules.contains_key(&probe) && !probe.is_empty() {
+                    let mut alias = m.clone();
+                    alias.push(name.clone());
+                    if alias != base {
+                        out.insert(alias, base);
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+/// `path` with re-exported names replaced by the items they name (up to 8 hops).
+fn through_re_exports(mut path: Module, re: &BTreeMap<Module, Module>) -> Module {
+    for _ in 0..8 {
+        let hit = (1..=path.len())
+            .rev()
+            .find_map(|k| re.get(&path[..k]).map(|t| (k, t)));
+        match hit {
+            Some((k, target)) => {
+                let mut p = target.clone();
+                p.extend(path[k..].iter().cloned());
+                path = p;
+            }
+            None => break,
+        }
+    }
+    path
+}
+
 fn import_graph(src: &Path) -> BTreeMap<Module, BTreeSet<Module>> {
     let mut files = vec![];
     rust_files(src, &mut files);
@@ -112,6 +175,7 @@ fn import_graph(src: &Path) -> BTreeMap<Module, BTreeSet<Module>> {
         .iter()
         .map(|f| (module_of(src, f), f.clone()))
         .collect();
+    let re = re_exports(&modules);
     let mut graph = BTreeMap::new();
     for (m, f) in &modules {
         let mut deps = BTreeSet::new();
@@ -131,6 +195,7 @@ fn import_graph(src: &Path) -> BTreeMap<Module, BTreeSet<Module>> {
             } else {
                 segs
             };
+            full = through_re_exports(full, &re);
             while !full.is_empty() && !modules.contains_key(&full) {
                 full.pop();
             }
@@ -341,6 +406,27 @@ fn planted(files: &[(&str, &str)]) -> tempfile::TempDir {
         std::fs::write(p, text).unwrap();
     }
     dir
+}
+
+#[test]
+fn a_cycle_through_a_crate_root_re_export_is_caught() {
+    // `a.rs` names `b.rs`'s item through the crate root's re-export, `b.rs` names `a.rs`.
+    let tree = [
+        ("lib.rs", "pub mod a;\npub mod b;\npub use b::{Other, Y};\n"),
+        ("a.rs", "pub struct X;\nfn f() -> crate::Y { crate::Y }\n"),
+        (
+            "b.rs",
+            "pub struct Y;\npub struct Other;\nuse crate::a::X;\n",
+        ),
+    ];
+    let dir = planted(&tree);
+    let cycle = cycle_in(dir.path()).expect("the cycle through the re-export is found");
+    assert!(cycle.contains('a') && cycle.contains('b'), "{cycle}");
+    // Naming the crate root's own item is no dependency on `b`.
+    let mut acyclic = tree;
+    acyclic[1] = ("a.rs", "pub struct X;\nfn f() -> crate::Z { crate::Z }\n");
+    acyclic[0] = ("lib.rs", "pub mod a;\npub mod b;\npub struct Z;\n");
+    assert_eq!(cycle_in(planted(&acyclic).path()), None);
 }
 
 #[test]

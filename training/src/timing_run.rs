@@ -180,6 +180,28 @@ impl TimingRunConfig {
         self.validate()
     }
 
+    /// The README's table of timing-model settings: every key, with the training defaults on
+    /// fixed interval; the agent's parameters default per model (`zoo show MODEL`).
+    pub fn settings_markdown() -> String {
+        let mut rows: Vec<settings::Setting> = Vec::new();
+        for model in ["ddm", "sbf", "timecells-ms"] {
+            let cfg = TimingRunConfig::new("FixedInterval-v0", model, 0);
+            for mut s in settings::listing(TIMING_SETTINGS, &cfg) {
+                let spec = settings::find(TIMING_SETTINGS, &s.key).expect("listed keys have specs");
+                if spec.path.first() == Some(&"agent") {
+                    s.value = "per model".into();
+                }
+                if let Some(families) = spec.only_with {
+                    s.doc = format!("{} ({families})", s.doc);
+                }
+                if !rows.iter().any(|r| r.key == s.key) {
+                    rows.push(s);
+                }
+            }
+        }
+        settings::markdown_table(&rows)
+    }
+
     /// Whether this model's settings have `key` (its family's timer keys included).
     pub fn has_setting(&self, key: &str) -> bool {
         settings::has(TIMING_SETTINGS, self, key)

@@ -332,8 +332,8 @@ fn readme_table(readme: &str, name: &str) -> String {
 fn the_readme_settings_tables_are_generated_from_the_settings() {
     let readme =
         std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../README.md")).unwrap();
-    let ppo = chronocooked_training::settings::ppo::markdown();
-    let timing = chronocooked_training::settings::timing::markdown();
+    let ppo = chronocooked_training::TrainConfig::settings_markdown();
+    let timing = chronocooked_training::TimingRunConfig::settings_markdown();
     for key in ["gamma", "curriculum_window", "never_ready_ramp", "engine"] {
         assert!(ppo.contains(&format!("| `{key}` |")), "{key}");
     }

@@ -470,6 +470,25 @@ impl TrainConfig {
         settings::set_field(self, spec, key, value)
     }
 
+    /// The README's table of PPO settings: every key with its default before any preset (a
+    /// curriculum's parameters with that curriculum's defaults).
+    pub fn settings_markdown() -> String {
+        let mut rows: Vec<settings::Setting> = Vec::new();
+        for name in settings::ppo::CURRICULA {
+            let model = "cnn-mlp".parse().expect("cnn-mlp is a model");
+            let mut cfg = TrainConfig::base("FixedInterval-v0", model);
+            cfg.curriculum = Curriculum::named(name).expect("a curriculum name");
+            for s in cfg.listing() {
+                if !rows.iter().any(|r| r.key == s.key) {
+                    rows.push(s);
+                }
+            }
+        }
+        let order = |key: &str| PPO_SETTINGS.iter().position(|s| s.key == key);
+        rows.sort_by_key(|r| order(&r.key));
+        settings::markdown_table(&rows)
+    }
+
     /// Applies `key=value` strings (from `--set`).
     pub fn apply_overrides<S: AsRef<str>>(&mut self, sets: &[S]) -> Result<(), TrainError> {
         for s in sets {

@@ -330,22 +330,3 @@ pub const PPO_SETTINGS: &[Spec] = &[
         ),
     ),
 ];
-
-/// The README's table of PPO settings: every key with its default before any preset (a
-/// curriculum's parameters with that curriculum's defaults).
-pub fn markdown() -> String {
-    let mut rows: Vec<super::Setting> = Vec::new();
-    for name in CURRICULA {
-        let model = "cnn-mlp".parse().expect("cnn-mlp is a model");
-        let mut cfg = crate::TrainConfig::base("FixedInterval-v0", model);
-        cfg.curriculum = crate::Curriculum::named(name).expect("a curriculum name");
-        for s in cfg.listing() {
-            if !rows.iter().any(|r| r.key == s.key) {
-                rows.push(s);
-            }
-        }
-    }
-    let order = |key: &str| PPO_SETTINGS.iter().position(|s| s.key == key);
-    rows.sort_by_key(|r| order(&r.key));
-    super::markdown_table(&rows)
-}

@@ -451,25 +451,3 @@ pub const TIMING_SETTINGS: &[Spec] = &[
         "SD of the log of a per-trial clock-speed factor (0 = nominal)",
     ),
 ];
-
-/// The README's table of timing-model settings: every key, with the training defaults on
-/// fixed interval; the agent's parameters default per model (`zoo show MODEL`).
-pub fn markdown() -> String {
-    let mut rows: Vec<super::Setting> = Vec::new();
-    for model in ["ddm", "sbf", "timecells-ms"] {
-        let cfg = crate::TimingRunConfig::new("FixedInterval-v0", model, 0);
-        for mut s in super::listing(TIMING_SETTINGS, &cfg) {
-            let spec = super::find(TIMING_SETTINGS, &s.key).expect("listed keys have specs");
-            if spec.path.first() == Some(&"agent") {
-                s.value = "per model".into();
-            }
-            if let Some(families) = spec.only_with {
-                s.doc = format!("{} ({families})", s.doc);
-            }
-            if !rows.iter().any(|r| r.key == s.key) {
-                rows.push(s);
-            }
-        }
-    }
-    super::markdown_table(&rows)
-}
