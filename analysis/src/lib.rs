@@ -19,8 +19,11 @@
 //!   summaries (regression slope, BIAS, √VAR, RMSE, Weber fraction);
 //! * [`evaluation`] — the evaluation protocol (`protocol`: conditions per task, the runner
 //!   for any agent) and the evaluation folder it writes (`folder`);
+//! * [`figures`] — the drawing kit every report uses: SVG/PNG charts, heat maps and the
+//!   standard figures of evaluations, recordings and runs, and the HTML page kit
+//!   (`markup`);
 //! * [`report`] — the leaderboard (HTML with inline SVG, Markdown, CSV; `leaderboard`) and
-//!   the SVG/PNG figures (`figures`);
+//!   the mechanism cards;
 //! * [`export`] — NPZ (numpy) + CSV + JSON-metadata export of activity and evaluation
 //!   records (`npz`: the NPZ format);
 //! * [`mechanisms`] — mechanism fingerprints: each model's behavioural and neural
@@ -33,6 +36,7 @@
 pub mod behaviour;
 pub mod evaluation;
 pub mod export;
+pub mod figures;
 pub mod fingerprint;
 pub mod job_folder;
 pub mod mechanisms;

@@ -155,7 +155,7 @@ fn a_unit_constant_on_the_training_trials_does_not_break_the_ridge_read_out() {
 
 #[test]
 fn heat_map_and_chart_figures_are_written_and_non_empty() {
-    use chronocooked_analysis::report::figures::{Chart, Series, write_chart, write_heatmap};
+    use chronocooked_analysis::figures::{Chart, Series, write_chart, write_heatmap};
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
         .join(format!("cc-figs-{}", std::process::id()));
     let c = cube(1, 12, 12, |_, t, i| if t == i { 1.0 } else { 0.0 });

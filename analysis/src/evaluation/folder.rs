@@ -72,7 +72,7 @@ pub fn write_metrics(
     let metrics = compute_metrics(&info.model, records, info.seed);
     let mut json = serde_json::to_string_pretty(&metrics).map_err(|e| e.to_string())?;
     json.push('\n');
-    let figures = crate::report::figures::eval_figures(&out.join("figures"), &metrics, records)
+    let figures = crate::figures::eval_figures(&out.join("figures"), &metrics, records)
         .map_err(|e| e.to_string())?;
     write_recorded(&out.join(METRICS), json.as_bytes()).map_err(|e| e.to_string())?;
     Ok((metrics, figures))

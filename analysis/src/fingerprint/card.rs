@@ -4,10 +4,10 @@
 
 use super::place::{Placement, REFERENCE_SOURCE};
 use super::play::PROTOCOL;
+use crate::figures::markup::{figure_file, page};
+use crate::figures::{Chart, Series, write_chart_sized, write_panels};
 use crate::job_folder;
 use crate::mechanisms::{FEATURES, MechanismError};
-use crate::report::figures::{Chart, Series, write_chart_sized, write_panels};
-use crate::report::markup::{figure_file, page};
 use maud::html;
 use std::path::{Path, PathBuf};
 

@@ -213,7 +213,7 @@ pub fn identification_markdown(id: &super::Identification) -> String {
 /// feature, each cell the feature's value in SDs from its mean over all signatures
 /// (diverging colours, full at ±2 SD, the value printed); SVG and PNG at `stem`.
 pub fn fingerprint_figure(sigs: &[Signature], stem: &Path) -> Result<Vec<PathBuf>, MechanismError> {
-    use crate::report::figures::{LabelledMatrix, write_matrix};
+    use crate::figures::{LabelledMatrix, write_matrix};
     let sds = feature_sds(sigs.iter());
     let all: Vec<&Signature> = sigs.iter().collect();
     let centre = mean_features(&all);

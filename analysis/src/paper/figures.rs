@@ -9,7 +9,7 @@ use super::fi::FiModel;
 use super::multitimer::LEVELS;
 use super::study::PaperStudy;
 use crate::behaviour::foc::linear_fit;
-use crate::report::figures::{Chart, FigureError, Series, write_chart, write_panels};
+use crate::figures::{Chart, FigureError, Series, write_chart, write_panels};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 

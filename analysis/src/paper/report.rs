@@ -6,9 +6,9 @@ use super::claims::{p_text, z_text};
 use super::collect::{CollectError, err};
 use super::compare::ComparisonRow;
 use super::study::PaperStudy;
+use crate::figures::markup::{figure, inline_svg, page};
 use crate::paper::agreement::Counts;
 use crate::paper::reference::APPENDIX_PREFIX;
-use crate::report::markup::{figure, inline_svg, page};
 use maud::{Markup, html};
 use std::path::{Path, PathBuf};
 

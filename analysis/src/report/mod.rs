@@ -7,16 +7,14 @@
 //! templates (maud escapes the text).
 
 pub mod baselines;
-pub mod figures;
 pub mod improvement;
 pub mod leaderboard;
-pub(crate) mod markup;
 pub mod mechanisms;
 
 use crate::behaviour::aggregate::Spread;
+use crate::figures::markup::{figure, figure_file, inline_svg};
 pub use crate::report::improvement::write_improvement;
 pub use crate::report::leaderboard::{Robust, Row, load_metrics, load_rows, load_rows_from_runs};
-use markup::{figure, figure_file, inline_svg};
 use maud::{Markup, html};
 use std::path::{Path, PathBuf};
 
@@ -462,9 +460,8 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
         .iter()
         .map(|r| (r.model.clone(), r.bisection.clone()))
         .collect();
-    let grid =
-        crate::report::figures::psychometric_grid(&out.join("psychometric_grid"), &grid_rows)
-            .map_err(|e| e.to_string())?;
+    let grid = crate::figures::psychometric_grid(&out.join("psychometric_grid"), &grid_rows)
+        .map_err(|e| e.to_string())?;
     let grid_svg = match grid
         .iter()
         .find(|p| p.extension().is_some_and(|e| e == "svg"))
@@ -477,7 +474,7 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
         .filter(|r| r.baseline.is_none())
         .map(|r| Ok((r.model.as_str(), row_figures_html(r)?)))
         .collect::<Result<Vec<_>, String>>()?;
-    let html = markup::page(
+    let html = crate::figures::markup::page(
         "Chronocooked leaderboard",
         html! {
             (mech_html)

@@ -171,7 +171,7 @@ pub fn record(req: &RecordRequest) -> Result<RecordOutcome, PipelineError> {
         .map_err(|e| PipelineError::Analysis(e.to_string()))?;
     write(&req.out, &json_bytes(&dataset, false)?)?;
     if let Some(dir) = &req.figures {
-        chronocooked_analysis::report::figures::neural_figures(&dataset, dir)
+        chronocooked_analysis::figures::neural_figures(&dataset, dir)
             .map_err(|e| PipelineError::Analysis(e.to_string()))?;
     }
     if req.summary {

@@ -1,11 +1,11 @@
 //! A signature card as HTML: category bar and four figure panels.
 
 use super::card::{Card, examples, population_spectrum, varying_average};
+use crate::figures::markup::figure_file;
+use crate::figures::{Chart, Series, write_chart_sized, write_heatmap_sized};
 use crate::neural::categories::CATEGORIES;
 use crate::neural::geometry::{geometry_profile, geometry_scaling};
 use crate::neural::summary::{TdClassification, WINDOW_ORIGIN};
-use crate::report::figures::{Chart, Series, write_chart_sized, write_heatmap_sized};
-use crate::report::markup::figure_file;
 use maud::{Markup, html};
 use std::path::Path;
 

@@ -25,10 +25,10 @@ mod card_html;
 #[cfg(test)]
 mod tests;
 
+use crate::figures::markup::figure_file;
 use crate::mechanisms::{JobFiles, MECHANISMS, Signature, assemble, compare};
 use crate::records::{METRICS, read_eval_info};
 use crate::report::leaderboard::Row;
-use crate::report::markup::figure_file;
 use card::card_and_scaling;
 use card_html::{card_charts, card_html};
 use maud::{Markup, html};
@@ -141,7 +141,7 @@ fn nearest_tables(sigs: &[Signature]) -> Option<(Markup, String)> {
 }
 
 /// A card's line-chart panels: `(file name, chart, caption)`.
-pub type CardPanels = Vec<(&'static str, crate::report::figures::Chart, String)>;
+pub type CardPanels = Vec<(&'static str, crate::figures::Chart, String)>;
 
 /// The signature card of one agent from its fixed-interval evaluation folders `fi_evals`
 /// (each with the probe recording `activity.json` beside it, as in a study's job folders
