@@ -108,3 +108,54 @@ fn corrupt_sweep_files_are_errors() {
         assert!(e.is_err(), "{text:?} was accepted");
     }
 }
+
+/// A sweep that would name one job folder twice (a repeated seed, task, model or size, or
+/// two entries for one model) or whose name is not a plain folder name is refused, naming
+/// the field and the value.
+#[test]
+fn sweep_files_that_name_a_job_twice_are_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let head = "tasks = [\"FixedInterval-v0\"]\n";
+    for (i, (text, field, value)) in [
+        ("models = [\"ddm\"]\nseeds = [1, 2, 1]\n", "seeds", "1"),
+        (
+            "models = [\"ddm\", \"sbf\", \"ddm\"]\nseeds = [1]\n",
+            "models",
+            "ddm",
+        ),
+        (
+            "models = [\"lstm\"]\nsizes = [8, 8]\nseeds = [1]\n",
+            "sizes",
+            "8",
+        ),
+        (
+            "models = [\"lstm\", \"lstm125\"]\nsizes = [125]\nseeds = [1]\n",
+            "models",
+            "lstm125",
+        ),
+        (
+            "name = \"../elsewhere\"\nmodels = [\"ddm\"]\nseeds = [1]\n",
+            "name",
+            "../elsewhere",
+        ),
+    ]
+    .iter()
+    .enumerate()
+    {
+        let path = dir.path().join(format!("s{i}.toml"));
+        std::fs::write(&path, format!("{head}{text}")).unwrap();
+        let e = chronocooked_pipeline::sweep::SweepFile::load(&path)
+            .and_then(|s| s.jobs().map(|_| s))
+            .err()
+            .unwrap_or_else(|| panic!("{text:?} was accepted"))
+            .to_string();
+        assert!(e.contains(field) && e.contains(value), "{text:?}: {e}");
+    }
+    std::fs::write(
+        dir.path().join("ok.toml"),
+        format!("{head}models = [\"ddm\", \"lstm\"]\nsizes = [8, 125]\nseeds = [1, 2]\n"),
+    )
+    .unwrap();
+    let ok = chronocooked_pipeline::sweep::SweepFile::load(&dir.path().join("ok.toml")).unwrap();
+    assert_eq!(ok.jobs().unwrap().len(), 6);
+}

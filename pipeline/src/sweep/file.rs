@@ -104,6 +104,14 @@ pub struct Job {
     pub row: String,
 }
 
+/// The first job id that occurs twice in `jobs`.
+fn repeated_id(jobs: &[Job]) -> Option<&str> {
+    let mut seen = std::collections::HashSet::new();
+    jobs.iter()
+        .map(|j| j.id.as_str())
+        .find(|id| !seen.insert(*id))
+}
+
 fn bad(field: &str, value: impl ToString, allowed: &str) -> TrainError {
     TrainError::InvalidParam {
         field: field.into(),
@@ -167,6 +175,36 @@ impl SweepFile {
             if empty {
                 return Err(bad(field, "[]", "a non-empty list"));
             }
+        }
+        // A value listed twice would give two jobs with one folder (two writers).
+        fn repeated<T: PartialEq + ToString>(list: &[T]) -> Option<String> {
+            list.iter()
+                .enumerate()
+                .find(|(i, v)| list[..*i].contains(v))
+                .map(|(_, v)| v.to_string())
+        }
+        for (field, twice) in [
+            ("tasks", repeated(&self.tasks)),
+            ("models", repeated(&self.models)),
+            ("sizes", repeated(&self.sizes)),
+            ("seeds", repeated(&self.seeds)),
+        ] {
+            if let Some(v) = twice {
+                return Err(bad(field, v, "each value once (this one is listed twice)"));
+            }
+        }
+        // The name is the default output folder's last part (`lab-out/<name>`).
+        let plain = !self.name.is_empty()
+            && self.name != "."
+            && self.name != ".."
+            && !self.name.contains(['/', '\\'])
+            && !self.name.chars().any(char::is_control);
+        if !plain {
+            return Err(bad(
+                "name",
+                &self.name,
+                "a plain folder name (no path separators, not . or ..)",
+            ));
         }
         let tasks: Vec<&str> = chronocooked_env::all_tasks().iter().map(|t| t.id).collect();
         for t in &self.tasks {
@@ -348,6 +386,15 @@ impl SweepFile {
                     }
                 }
             }
+        }
+        // Two entries that name one model (`lstm` with size 125 and `lstm125`) give one job
+        // folder twice.
+        if let Some(twice) = repeated_id(&jobs) {
+            return Err(bad(
+                "models",
+                twice,
+                "each job once (two entries of the sweep name this job)",
+            ));
         }
         Ok(jobs)
     }
