@@ -21,7 +21,7 @@
 use crate::error::TrainError;
 use crate::ppo::config::Curriculum;
 use crate::ppo::run::{Silent, run_training};
-use crate::run_dir::RunDir;
+use crate::ppo::run_dir::RunDir;
 use crate::timing_run::{is_timing_run, load_timing_agent};
 use chronocooked_env::fs::write_atomic;
 use chronocooked_env::make_config;

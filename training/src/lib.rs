@@ -18,20 +18,22 @@ pub mod agent_zoo;
 pub mod error;
 pub mod evaluate;
 pub mod ppo;
-pub mod run_dir;
+pub mod run_config;
 pub mod settings;
 pub mod timing_check;
 pub mod timing_run;
 pub mod zoo;
 
 pub use error::TrainError;
-pub use evaluate::{EvalEpisode, eval_tds, evaluate_policy, success_rate};
+pub use evaluate::eval_tds;
 pub use ppo::agent::PpoAgent;
 pub use ppo::config::{Curriculum, Engine, LrSchedule, ObsEncoding, PpoConfig, TrainConfig};
+pub use ppo::evaluate::{EvalEpisode, evaluate_policy, success_rate};
 pub use ppo::presets::{PRESETS, preset_settings, resolve};
 pub use ppo::run::{Progress, Silent, resume_trainer, run_training};
+pub use ppo::run_dir;
+pub use ppo::run_dir::{RunDir, RunSummary, load_policy};
 pub use ppo::trainer::{Trainer, TrainerState, UpdateLog};
-pub use run_dir::{RunDir, RunSummary, load_policy};
 pub use timing_run::{
     TimingRunConfig, TimingRunSummary, is_timing_run, is_timing_run_config, load_timing_agent,
     load_timing_config, run_timing_training,

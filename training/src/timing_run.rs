@@ -10,7 +10,7 @@
 use crate::error::TrainError;
 use crate::evaluate::eval_tds;
 use crate::ppo::config::ENV_KEY;
-use crate::run_dir::RunHeader;
+use crate::run_config::RunHeader;
 use crate::settings::{
     self, timing::TIMING_SETTINGS, timing::TimerSettings, timing::TimingAgentSettings,
 };
@@ -291,9 +291,9 @@ pub fn run_timing_training(
     }
     let start = std::time::Instant::now();
     std::fs::create_dir_all(dir).map_err(|e| TrainError::io(dir, e))?;
-    crate::run_dir::write_config(dir, &json(cfg))?;
+    crate::run_config::write_config(dir, &json(cfg))?;
     // Every session of the folder is kept (`--resume` reruns an unfinished run).
-    crate::run_dir::append_line(&dir.join(run_folder::COMMAND), &format!("{command}\n"))?;
+    crate::run_config::append_line(&dir.join(run_folder::COMMAND), &format!("{command}\n"))?;
     let _ = chronocooked_env::fs::remove_temp_files(dir);
     let task = make_config(&cfg.task, &cfg.env)?;
     let mut agent = cfg.build_agent()?;
@@ -371,7 +371,7 @@ fn bad_file(dir: &Path, name: &str, e: serde_json::Error) -> TrainError {
 /// `--set`, and errors name the file and the field.
 pub fn load_timing_config(dir: &Path) -> Result<TimingRunConfig, TrainError> {
     let p = dir.join(run_folder::CONFIG);
-    let text = crate::run_dir::read_config_text(dir)?;
+    let text = crate::run_config::read_config_text(dir)?;
     let cfg: TimingRunConfig =
         serde_json::from_str(&text).map_err(|e| bad_file(dir, run_folder::CONFIG, e))?;
     cfg.validate().map_err(|e| TrainError::ConfigFile {

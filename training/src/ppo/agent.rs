@@ -56,7 +56,7 @@ impl PpoAgent {
     /// Loads the agent of a run folder (its final model or newest checkpoint) for `config`
     /// (the task to play; defaults to the run's own when `None`).
     pub fn load(dir: &Path, config: Option<&TaskConfig>) -> Result<Self, TrainError> {
-        let (policy, pcfg, cfg) = crate::run_dir::load_policy(dir)?;
+        let (policy, pcfg, cfg) = crate::ppo::run_dir::load_policy(dir)?;
         let task = match config {
             Some(c) => c.clone(),
             None => chronocooked_env::make_config(&cfg.task, &cfg.env)?,
@@ -67,7 +67,7 @@ impl PpoAgent {
     /// The policy the run folder `dir` kept as it left multi-timer curriculum level `level`
     /// (`levels/level-<level>.bpk`), acting in `config`.
     pub fn load_level(dir: &Path, level: usize, config: &TaskConfig) -> Result<Self, TrainError> {
-        let (policy, pcfg, cfg) = crate::run_dir::load_level_policy(dir, level)?;
+        let (policy, pcfg, cfg) = crate::ppo::run_dir::load_level_policy(dir, level)?;
         Self::new(&pcfg.arch.name(), policy, config, cfg.obs)
     }
 }

@@ -7,11 +7,12 @@
 //! `curves.csv` back to the checkpoint.
 
 use crate::error::TrainError;
-use crate::evaluate::{eval_tds, evaluate_policy, success_rate};
+use crate::evaluate::eval_tds;
 use crate::ppo::config::TrainConfig;
+use crate::ppo::evaluate::{evaluate_policy, success_rate};
+use crate::ppo::run_dir::{RunDir, RunSummary, curve_header, expected_policy, read_policy_config};
 use crate::ppo::state::UpdateLog;
 use crate::ppo::trainer::Trainer;
-use crate::run_dir::{RunDir, RunSummary, curve_header, expected_policy, read_policy_config};
 use chronocooked_env::fs::write_atomic;
 use chronocooked_env::{integrity, make_config};
 use chronocooked_models::run_folder;
@@ -54,7 +55,7 @@ pub fn run_training(
             }
             let trainer = Trainer::new(cfg.clone())?;
             let json = serde_json::to_string_pretty(&cfg).unwrap_or_default();
-            crate::run_dir::write_config(&run.path, json.as_bytes())?;
+            crate::run_config::write_config(&run.path, json.as_bytes())?;
             let pj = serde_json::to_string_pretty(trainer.policy_config()).unwrap_or_default();
             integrity::write_recorded(&run.path.join(run_folder::POLICY), pj.as_bytes())?;
             write_atomic(

@@ -93,7 +93,7 @@ impl Trainer {
         let mut model = policy_cfg.init(cfg.seed, &device);
         let spec = chronocooked_models::deep::spec::param_spec(&policy_cfg);
         if let Some(dir) = &cfg.init_from {
-            let (source, ..) = crate::run_dir::load_policy(std::path::Path::new(dir))?;
+            let (source, ..) = crate::ppo::run_dir::load_policy(std::path::Path::new(dir))?;
             check_shapes(&spec, &param_shapes(&source)).map_err(|why| {
                 TrainError::InvalidParam {
                     field: "init_from".into(),

@@ -1,4 +1,4 @@
-//! Run folders: resolved config, command, learning curve CSV, atomic checkpoints, final model.
+//! PPO run folders: resolved config, command, learning curve CSV, atomic checkpoints, final model.
 //!
 //! ```text
 //! RUN_DIR/config.json        resolved TrainConfig
@@ -20,6 +20,7 @@
 use crate::error::TrainError;
 use crate::ppo::config::TrainConfig;
 use crate::ppo::state::{TrainerState, UpdateLog};
+use crate::run_config::{append_line, read_config_text, write_config};
 use burn::module::Module;
 use chronocooked_env::fs::write_atomic;
 use chronocooked_env::integrity;
@@ -113,65 +114,6 @@ pub struct RunSummary {
     pub solved_at: Option<u64>,
     /// Final training success rate (stats window).
     pub train_success: f64,
-}
-
-/// The text of the run folder `dir`'s `config.json` (PPO or timing model), checked against
-/// its SHA-256 record when the folder has one (runs written since records were kept): a
-/// hand-edited config is refused naming the file. A folder without the file is "not a run
-/// folder".
-pub fn read_config_text(dir: &Path) -> Result<String, TrainError> {
-    let p = dir.join(run_folder::CONFIG);
-    if !p.is_file() {
-        return Err(TrainError::NotARun {
-            path: dir.display().to_string(),
-        });
-    }
-    let bytes = integrity::read_checked(&p)?;
-    String::from_utf8(bytes).map_err(|_| TrainError::ConfigFile {
-        file: p.display().to_string(),
-        message: "not UTF-8 text".into(),
-    })
-}
-
-/// The fields every run folder's `config.json` shares, PPO or timing model: what a reader
-/// needs before it knows which kind of run it has (the full configurations are
-/// [`TrainConfig`] and [`crate::TimingRunConfig`]).
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-pub struct RunHeader {
-    /// `"timing"` for a timing-model run; absent in PPO runs.
-    #[serde(default)]
-    pub kind: Option<String>,
-    /// Task id (runs written before the field existed trained on `FixedInterval-v0`).
-    #[serde(default = "first_task")]
-    pub task: String,
-    /// Task overrides (`key=value`).
-    #[serde(default)]
-    pub env: Vec<String>,
-    /// Training seed.
-    #[serde(default)]
-    pub seed: Option<u64>,
-}
-
-fn first_task() -> String {
-    "FixedInterval-v0".into()
-}
-
-impl RunHeader {
-    /// The header of `dir`'s `config.json` ([`read_config_text`]: checked against its
-    /// SHA-256 record); errors name the file.
-    pub fn read(dir: &Path) -> Result<Self, TrainError> {
-        let text = read_config_text(dir)?;
-        serde_json::from_str(&text).map_err(|e| TrainError::Resume {
-            path: dir.join(run_folder::CONFIG).display().to_string(),
-            reason: e.to_string(),
-        })
-    }
-}
-
-/// Writes a run's `config.json` with its SHA-256 record (so later edits are seen).
-pub fn write_config(dir: &Path, json: &[u8]) -> Result<(), TrainError> {
-    integrity::write_recorded(&dir.join(run_folder::CONFIG), json)?;
-    Ok(())
 }
 
 /// A run folder on disk.
@@ -429,11 +371,6 @@ impl RunDir {
         v.sort_unstable();
         v
     }
-}
-
-/// Appends `line` to `path` (created with the process umask if missing).
-pub(crate) fn append_line(path: &Path, line: &str) -> Result<(), TrainError> {
-    chronocooked_env::fs::append(path, line).map_err(|e| TrainError::io(path, e))
 }
 
 /// The policy description a run of `cfg` trains (what its `policy.json` must hold).
