@@ -413,10 +413,26 @@ fn play_conditions(
     Ok(out)
 }
 
-/// Fraction of successful episodes (0 for none).
-pub fn success_rate(records: &[EpisodeRecord]) -> f64 {
-    if records.is_empty() {
-        return 0.0;
+/// Fraction of successes among episodes (`records.iter().map(|r| r.success)`, or a PPO
+/// evaluation's episodes); `None` without any episode — the rate of nothing is undefined,
+/// and each caller says what it writes then. The one success rate of the lab.
+pub fn success_rate(successes: impl IntoIterator<Item = bool>) -> Option<f64> {
+    let (mut n, mut k) = (0usize, 0usize);
+    for s in successes {
+        n += 1;
+        k += usize::from(s);
     }
-    records.iter().filter(|r| r.success).count() as f64 / records.len() as f64
+    (n > 0).then(|| k as f64 / n as f64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::success_rate;
+
+    #[test]
+    fn the_success_rate_of_no_episode_is_undefined() {
+        assert_eq!(success_rate([true, false, true, true]), Some(0.75));
+        assert_eq!(success_rate([false; 3]), Some(0.0));
+        assert_eq!(success_rate(std::iter::empty()), None);
+    }
 }

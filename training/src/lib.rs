@@ -28,7 +28,7 @@ pub use error::TrainError;
 pub use evaluate::eval_tds;
 pub use ppo::agent::PpoAgent;
 pub use ppo::config::{Curriculum, Engine, LrSchedule, ObsEncoding, PpoConfig, TrainConfig};
-pub use ppo::evaluate::{EvalEpisode, evaluate_policy, success_rate};
+pub use ppo::evaluate::{EvalEpisode, evaluate_policy};
 pub use ppo::presets::{PRESETS, preset_settings, resolve};
 pub use ppo::run::{Progress, Silent, resume_trainer, run_training};
 pub use ppo::run_dir;

@@ -176,18 +176,19 @@ pub fn train_timing_agent(
                 if levels.len() > 1 {
                     agent.transfer_to(&env);
                 }
-                let rate = success_rate(&records);
+                // No evaluation episode (a task without evaluated TDs): no rate, no stop.
+                let rate = success_rate(records.iter().map(|r| r.success));
                 let n = window.len().max(1) as f64;
                 let point = TimingCurvePoint {
                     episode: done,
                     steps,
                     train_success: window.iter().filter(|w| w.0).count() as f64 / n,
                     train_reward: window.iter().map(|w| f64::from(w.1)).sum::<f64>() / n,
-                    eval_success: Some(rate),
+                    eval_success: rate,
                 };
                 progress(&point);
                 curve.push(point);
-                if train.stop_at_success.is_some_and(|s| rate >= s) {
+                if train.stop_at_success.zip(rate).is_some_and(|(s, r)| r >= s) {
                     break 'levels;
                 }
             }

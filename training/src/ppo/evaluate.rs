@@ -96,11 +96,3 @@ pub fn evaluate_policy(
     }
     Ok(out)
 }
-
-/// Fraction of successful episodes.
-pub fn success_rate(eps: &[EvalEpisode]) -> f64 {
-    if eps.is_empty() {
-        return f64::NAN;
-    }
-    eps.iter().filter(|e| e.success).count() as f64 / eps.len() as f64
-}
