@@ -111,7 +111,8 @@ fn median(mut values: Vec<f64>) -> f64 {
 /// measures elapsed time by its decoded estimate `f(t)` (centre of mass of the active
 /// cells' preferred times), which is not linear in `t` over the population's range, so
 /// the boundary is `f⁻¹(c)`, with `c` the median criterion of the decoded memories and `f`
-/// the median estimate over noisy trials (the 50% point of "estimate ≥ c"). Drift-diffusion: the rule's mean of the anchors.
+/// the median estimate over noisy trials (the 50% point of "estimate ≥ c").
+/// Drift-diffusion: the rule's mean of the anchors.
 fn predicted_boundary(
     timer: &mut Timer,
     rule: DecisionRule,
