@@ -29,12 +29,9 @@ pub fn read_config_text(dir: &Path) -> Result<String, TrainError> {
 
 /// The fields every run folder's `config.json` shares, PPO or timing model: what a reader
 /// needs before it knows which kind of run it has (the full configurations are
-/// [`TrainConfig`] and [`crate::TimingRunConfig`]).
+/// [`crate::TrainConfig`] and [`crate::TimingRunConfig`]).
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 pub struct RunHeader {
-    /// `"timing"` for a timing-model run; absent in PPO runs.
-    #[serde(default)]
-    pub kind: Option<String>,
     /// Task id (runs written before the field existed trained on `FixedInterval-v0`).
     #[serde(default = "first_task")]
     pub task: String,
