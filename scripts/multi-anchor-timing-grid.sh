@@ -5,14 +5,17 @@
 # fit (BP [95% CI], the pair's GM and AM, WF). Resumable: a run whose line exists is skipped.
 #
 #   bash scripts/multi-anchor-timing-grid.sh BIN OUT_DIR
-#   (lines in OUT_DIR/lines.txt; runs in OUT_DIR/runs/)
+#   (lines in OUT_DIR/lines.txt; runs in OUT_DIR/runs/; table:
+#   python3 scripts/multi-anchor-timing-table.py OUT_DIR/lines.txt)
+#
+# Other anchor sets or seeds: ANCHOR_SETS="5,9,16,28 4,7,12" SEEDS="1 2 3 4 5 6 7 8" bash …
 set -uo pipefail
 bin=$1 out=$2
 mkdir -p "$out/runs"
 touch "$out/lines.txt"
-for set in 4,8,16 5,9,16 4,8,14,24 3,10,20,25 4,12,18,25; do
+for set in ${ANCHOR_SETS:-4,8,16 5,9,16 4,8,14,24 3,10,20,25 4,12,18,25}; do
   for m in ddm sbf timecells-csc timecells-ms timecells-laplace; do
-    for s in 1 2 3 4; do
+    for s in ${SEEDS:-1 2 3 4}; do
       grep -q "^$set $m $s " "$out/lines.txt" && continue
       d="$out/runs/$set-$m-$s"
       rm -rf "$d" "$d-eval"

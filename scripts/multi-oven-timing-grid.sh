@@ -6,7 +6,8 @@
 # the one-oven curve (ΔWF, ΔBP). Resumable: a run whose line exists is skipped.
 #
 #   bash scripts/multi-oven-timing-grid.sh BIN OUT_DIR
-#   (lines in OUT_DIR/lines.txt; runs in OUT_DIR/runs/)
+#   (lines in OUT_DIR/lines.txt; runs in OUT_DIR/runs/; table:
+#   python3 scripts/multi-oven-timing-table.py OUT_DIR/lines.txt)
 set -uo pipefail
 bin=$1 out=$2
 mkdir -p "$out/runs"

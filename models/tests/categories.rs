@@ -98,13 +98,13 @@ fn median(mut values: Vec<f64>) -> f64 {
 }
 
 /// The boundary the rule predicts between anchors `lo` and `hi` (steps) from what the
-/// model remembers of them. A model that keeps the last 20 stored times per anchor (SBF,
-/// the time cells) judges each trial against the rule's mean of one draw from each of the
-/// two memories, so its boundary is the median of that criterion over the memories' pairs —
-/// not the rule's mean of the nominal anchors: 20 stored times whose noise is
-/// clock (0.15) and memory (0.15) put the mean of a memory ≈ 5% (one SD) from its anchor,
-/// and a boundary ≈ 3.3% (measured 2026-11-28: SBF's memories 5% low gave boundaries
-/// 13.4 and 27.0 for 10|20 and 20|40, measured 13.6 and 27.4; this was the "unexplained"
+/// model remembers of them. A model that keeps the last stored times per anchor (SBF,
+/// the time cells; `CATEGORY_MEMORY` of them) judges each trial against the rule's mean of
+/// one draw from each of the two memories, so its boundary is the median of that criterion
+/// over the memories' pairs — not the rule's mean of the nominal anchors: stored times
+/// whose noise is clock (0.15) and memory (0.15) put the mean of a memory ≈ 0.21/√N from
+/// its anchor (measured 2026-11-28 with N = 20: SBF's memories 5% low gave boundaries 13.4
+/// and 27.0 for 10|20 and 20|40, measured 13.6 and 27.4; this was the "unexplained"
 /// +4 / −5% of earlier tests). SBF measures time linearly (its stored pattern at `T`
 /// matches at `T / k`, `k` the trial's clock-speed factor, median 1): the median of the
 /// criterion over every pair of memories and the speed's draws. A time-cell population

@@ -45,8 +45,19 @@
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
-/// Rewarded durations kept per category.
-pub const CATEGORY_MEMORY: usize = 20;
+/// Rewarded durations kept per category (per anchor): the time cells' and SBF's reference
+/// memory of the anchors. In scalar expectancy theory the reference memory is the
+/// distribution of all reinforced durations, sampled anew on every trial (Gibbon, Church &
+/// Meck 1984); a finite store only bounds its size, and it must be large enough that the
+/// store's own mean does not wander from run to run. Each stored duration carries the
+/// clock's and the memory's noise (log SD ≈ 0.21 at 0.15 each), so the store's mean sits
+/// ≈ 0.21/√N from the anchor: 4.7% at N = 20 (the value until 2026-11-28), which moved one
+/// run's category boundaries 3.5–3.9% (SD over runs), and 1.5% at N = 200, which moved
+/// them 1.5–2.0% (SBF and the three time cells, anchor sets 5,9,16,28 and 4,7,12, seeds
+/// 1–8 each; the nominal geometric mean inside the fit's 95% interval in 67 of 155
+/// boundaries at 20, 117 of 156 at 200; RESULTS "Anchor memory size"). The trial-to-trial
+/// sample, the memory's share of each judgment's variance, is the same at either size.
+pub const CATEGORY_MEMORY: usize = 200;
 
 /// Choice slot of the short anchor (short counter).
 pub const SHORT: u8 = 0;

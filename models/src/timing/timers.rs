@@ -141,7 +141,8 @@ pub struct SbfTimer {
     pub threshold: f64,
     /// Stored times (s) per context.
     pub memories: BTreeMap<u8, Vec<f64>>,
-    /// Stored times (s) per rewarded choice slot (bisection: short / long counter).
+    /// Stored times (s) per rewarded choice slot (bisection: short / long counter; the
+    /// last [`crate::timing::judgment::CATEGORY_MEMORY`] each).
     pub choice_memories: BTreeMap<u8, Vec<f64>>,
     /// Stop responding `stop × (start time)` after starting (`None`: never).
     pub stop: Option<f64>,
@@ -194,12 +195,14 @@ struct SbfRuntime {
     criterion_passed: Vec<bool>,
 }
 
-/// Stored times kept per SBF memory.
+/// Stored times kept per SBF context memory (the interval of each fixed-interval context);
+/// the anchors of choices keep [`crate::timing::judgment::CATEGORY_MEMORY`].
 pub const SBF_MEMORY: usize = 20;
 
 impl SbfTimer {
-    fn store(memory: &mut Vec<f64>, t: f64) {
-        if memory.len() == SBF_MEMORY {
+    /// Appends `t` to `memory`, dropping the oldest beyond `capacity` times.
+    fn store(memory: &mut Vec<f64>, t: f64, capacity: usize) {
+        if memory.len() >= capacity {
             memory.remove(0);
         }
         memory.push(t);
@@ -685,7 +688,7 @@ impl Timer {
                 // The pattern stored is the oscillators' phases at reinforcement, i.e. the
                 // interval as this trial's clock measured it (its speed factor included).
                 let stored = s.model.stored_time(s.subjective(interval), rng);
-                SbfTimer::store(s.memories.entry(ctx).or_default(), stored);
+                SbfTimer::store(s.memories.entry(ctx).or_default(), stored, SBF_MEMORY);
             }
             Timer::TimeCells(_) => {}
         }

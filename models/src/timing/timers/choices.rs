@@ -4,9 +4,9 @@
 //! model's populations. The clock itself (onset, ticks, features, the response gate,
 //! reinforcement of the ready time) is in the parent module.
 
-use super::{SbfTimer, Timer, memory_sample};
+use super::{SBF_MEMORY, SbfTimer, Timer, memory_sample};
 use crate::activity::StepRecorder;
-use crate::timing::judgment::{Categories, Decision, LONG, SHORT, can_judge};
+use crate::timing::judgment::{CATEGORY_MEMORY, Categories, Decision, LONG, SHORT, can_judge};
 use crate::timing::{DriftDiffusion, Representation};
 use rand::Rng;
 
@@ -66,7 +66,11 @@ impl Timer {
                 // The pattern stored is the oscillators' phases at reinforcement, i.e. the
                 // interval as this trial's clock measured it (its speed factor included).
                 let stored = s.model.stored_time(measured, rng);
-                SbfTimer::store(s.choice_memories.entry(slot).or_default(), stored);
+                SbfTimer::store(
+                    s.choice_memories.entry(slot).or_default(),
+                    stored,
+                    CATEGORY_MEMORY,
+                );
             }
             Timer::TimeCells(tc) => {
                 let stored = measured * memory_sample(tc.memory_noise, rng);
@@ -88,7 +92,7 @@ impl Timer {
             }
             (Timer::Sbf(s), Timer::Sbf(t)) => {
                 if let Some(&newest) = t.memories.get(&ctx).and_then(|m| m.last()) {
-                    SbfTimer::store(s.memories.entry(ctx).or_default(), newest);
+                    SbfTimer::store(s.memories.entry(ctx).or_default(), newest, SBF_MEMORY);
                 }
             }
             _ => {}
