@@ -260,7 +260,9 @@ fn recorded_play_goes_through_the_same_metrics() {
             ..Default::default()
         };
         let info = env.reset(Some(seed), &opts).unwrap();
-        text += &TraceLine::reset(&env, info).to_json();
+        text += &TraceLine::reset(&env, info)
+            .with_reset_key(Some(seed), opts)
+            .to_json();
         text.push('\n');
         loop {
             let a = oracle.act(&env.state());
@@ -288,6 +290,81 @@ fn recorded_play_goes_through_the_same_metrics() {
         )
         .is_err()
     );
+}
+
+/// Two episodes recorded as `env play` records them: the first reset seeded, the next
+/// continuing the generator (start cells drawn), every reset line with its key.
+fn play_recording() -> Vec<String> {
+    use chronocooked_env::trace::TraceLine;
+    use chronocooked_env::{Oracle, ResetOptions};
+    let mut env = ChronoEnv::from_id("FixedInterval-v0", &["td=5"]).unwrap();
+    let oracle = Oracle::new(&env);
+    let opts = ResetOptions::default();
+    let mut lines = Vec::new();
+    for seed in [Some(11), None] {
+        let info = env.reset(seed, &opts).unwrap();
+        lines.push(
+            TraceLine::reset(&env, info)
+                .with_reset_key(seed, opts)
+                .to_json(),
+        );
+        loop {
+            let a = oracle.act(&env.state());
+            let t = env.step(a).unwrap();
+            lines.push(TraceLine::step(&env, a, &t).to_json());
+            if t.done() {
+                break;
+            }
+        }
+    }
+    lines
+}
+
+#[test]
+fn an_edited_play_recording_is_refused_naming_the_line_and_the_field() {
+    use chronocooked_analysis::behaviour::human::records_from_trace;
+    let lines = play_recording();
+    let recs = records_from_trace(&lines.join("\n")).unwrap();
+    assert_eq!(recs.len(), 2);
+    assert!(recs.iter().all(|r| r.episode.success));
+    let first_end = lines
+        .iter()
+        .position(|l| l.contains("\"terminated\":true"))
+        .unwrap();
+    let edit = |k: usize, from: &str, to: &str| {
+        let mut edited = lines.clone();
+        assert!(edited[k].contains(from), "{from} in line {}", k + 1);
+        edited[k] = edited[k].replacen(from, to, 1);
+        records_from_trace(&edited.join("\n")).unwrap_err()
+    };
+    // The paid delivery made unpaid: the replay pays it.
+    let e = edit(first_end, "\"reward\":1.0", "\"reward\":0.0");
+    assert!(
+        e.contains(&format!("line {}", first_end + 1)) && e.contains("`reward`"),
+        "{e}"
+    );
+    // Another TD in one step's info.
+    let e = edit(2, "\"td\":5", "\"td\":7");
+    assert!(e.contains("line 3") && e.contains("`info.td`"), "{e}");
+    // The second episode's start cell moved: its reset is not the generator's.
+    let second = first_end + 1;
+    let e = edit(second, "\"agent\":[", "\"agent\":[1");
+    assert!(e.contains(&format!("line {}", second + 1)), "{e}");
+    // A step appended after the last episode ended.
+    let mut extra = lines.clone();
+    extra.push(lines[lines.len() - 1].clone());
+    let e = records_from_trace(&extra.join("\n")).unwrap_err();
+    assert!(e.contains("after the episode ended"), "{e}");
+    // Recordings made before reset lines carried their key are read unchecked.
+    let unkeyed: Vec<String> = lines
+        .iter()
+        .map(|l| {
+            let mut v: serde_json::Value = serde_json::from_str(l).unwrap();
+            v.as_object_mut().unwrap().remove("reset");
+            v.to_string()
+        })
+        .collect();
+    assert_eq!(records_from_trace(&unkeyed.join("\n")).unwrap().len(), 2);
 }
 
 #[test]

@@ -42,16 +42,25 @@ fn condition_of(config: &TaskConfig, td: u32) -> Condition {
 }
 
 /// Parses a trace file (one or more episodes, each starting with its reset line) into
-/// records. Errors name the line that could not be read.
+/// records. A recording whose reset lines carry their seed and options (`env play`) is
+/// first replayed and checked line by line against the task
+/// ([`chronocooked_env::trace::verify_recording`]), so an edited reward, observation or
+/// info field is refused rather than scored. Errors name the line (and the field).
 pub fn records_from_trace(text: &str) -> Result<Vec<EvalRecord>, String> {
-    let mut out: Vec<EvalRecord> = Vec::new();
-    for (i, line) in text
+    let lines: Vec<(usize, TraceLine)> = text
         .lines()
         .enumerate()
         .filter(|(_, l)| !l.trim().is_empty())
-    {
-        let t: TraceLine =
-            serde_json::from_str(line).map_err(|e| format!("line {}: {e}", i + 1))?;
+        .map(|(i, line)| {
+            serde_json::from_str(line)
+                .map(|t| (i + 1, t))
+                .map_err(|e| format!("line {}: {e}", i + 1))
+        })
+        .collect::<Result<_, _>>()?;
+    chronocooked_env::trace::verify_recording(&lines)?;
+    let mut out: Vec<EvalRecord> = Vec::new();
+    for (n, t) in lines {
+        let i = n - 1;
         match t.action {
             None => {
                 let config: TaskConfig = t

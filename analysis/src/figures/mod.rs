@@ -566,7 +566,7 @@ pub fn learning_curve(run_dir: &Path) -> Result<Vec<PathBuf>, FigureError> {
             .join(chronocooked_models::run_folder::FIGURES)
             .join("learning_curve"),
         &Chart {
-            title: format!("learning curve: {}", run_dir.display()),
+            title: format!("learning curve: {}", run_label(run_dir)),
             x_label: "env steps".into(),
             y_label: "success rate".into(),
             series,
@@ -574,4 +574,60 @@ pub fn learning_curve(run_dir: &Path) -> Result<Vec<PathBuf>, FigureError> {
             ..Chart::default()
         },
     )
+}
+
+/// Longest [`run_label`] in characters: a title that fits the chart's width at any size.
+const RUN_LABEL_CHARS: usize = 48;
+
+/// A run folder's name for a chart title: its last three path components (a sweep job's
+/// `<task>/<model~variant>/seed<N>` when the folder is the job's `run/`), shortened from the
+/// left with `…` to at most [`RUN_LABEL_CHARS`] characters. The full path made titles wider
+/// than the chart and clipped them in the report.
+pub fn run_label(run_dir: &Path) -> String {
+    let mut parts: Vec<String> = run_dir
+        .components()
+        .filter_map(|c| match c {
+            std::path::Component::Normal(s) => Some(s.to_string_lossy().into_owned()),
+            _ => None,
+        })
+        .collect();
+    if parts.len() > 1 && parts.last().is_some_and(|p| p == crate::job_folder::RUN) {
+        parts.pop();
+    }
+    let label = parts[parts.len().saturating_sub(3)..].join("/");
+    let chars: Vec<char> = label.chars().collect();
+    if chars.len() <= RUN_LABEL_CHARS {
+        label
+    } else {
+        let tail: String = chars[chars.len() - (RUN_LABEL_CHARS - 1)..]
+            .iter()
+            .collect();
+        format!("…{tail}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::run_label;
+    use std::path::Path;
+
+    #[test]
+    fn run_labels_keep_the_jobs_name_and_fit_a_title() {
+        assert_eq!(
+            run_label(Path::new(
+                "/home/u/lab-out/ext/MultiAnchor-v0/lstm125~env.anchors-3_10/seed1/run"
+            )),
+            "MultiAnchor-v0/lstm125~env.anchors-3_10/seed1"
+        );
+        assert_eq!(run_label(Path::new("runs/demo")), "runs/demo");
+        assert_eq!(run_label(Path::new("run")), "run");
+        let long = run_label(Path::new(
+            "x/MultiOven-v0/ctrnn-reservoir125~env.ovens-3_env.short-4_env.long-12_env.asynchronous-true/seed4",
+        ));
+        assert_eq!(long.chars().count(), 48, "{long}");
+        assert!(
+            long.starts_with('…') && long.ends_with("asynchronous-true/seed4"),
+            "{long}"
+        );
+    }
 }

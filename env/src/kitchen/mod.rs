@@ -29,7 +29,9 @@ pub use reproduction::RsgState;
 pub use snapshot::KitchenSnapshot;
 
 /// Options of [`Kitchen::reset`]: fix what the task would otherwise draw at random.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+/// Serialised (in `env play` recordings) with every field optional.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct ResetOptions {
     /// Start cell `(row, col)`; must be free. Drawn uniformly when `None`.
     pub start: Option<(usize, usize)>,
@@ -49,8 +51,9 @@ pub struct ResetOptions {
     pub gain: Option<u8>,
 }
 
-/// Up to three values, one per oven (durations or on-times, in steps).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+/// Up to three values, one per oven (durations or on-times, in steps); serialised as a list.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(into = "Vec<u32>", try_from = "Vec<u32>")]
 pub struct PerOven {
     len: u8,
     values: [u32; 3],
@@ -77,6 +80,20 @@ impl PerOven {
     /// The values.
     pub fn as_slice(&self) -> &[u32] {
         &self.values[..self.len as usize]
+    }
+}
+
+impl From<PerOven> for Vec<u32> {
+    fn from(v: PerOven) -> Self {
+        v.as_slice().to_vec()
+    }
+}
+
+impl TryFrom<Vec<u32>> for PerOven {
+    type Error = EnvError;
+
+    fn try_from(items: Vec<u32>) -> Result<Self, EnvError> {
+        PerOven::new("per-oven values", &items)
     }
 }
 

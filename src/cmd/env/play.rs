@@ -123,7 +123,8 @@ pub fn run(args: &TaskArgs, record: &Path, episodes: u32) -> Result<()> {
     'episodes: while episodes == 0 || episode < episodes {
         let seed = if episode == 0 { Some(args.seed) } else { None };
         let info = env.reset(seed, &options)?;
-        writeln!(out, "{}", TraceLine::reset(&env, info).to_json())?;
+        let line = TraceLine::reset(&env, info).with_reset_key(seed, options);
+        writeln!(out, "{}", line.to_json())?;
         out.flush()?;
         let (mut steps, mut total) = (0u32, 0.0f64);
         show(&env, episode + 1, steps, total, "", tty);
