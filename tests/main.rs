@@ -11,6 +11,8 @@ mod corruption_props;
 mod faults;
 mod mechanisms;
 mod reliability;
+mod signals;
 mod structure;
 mod sweep;
+mod walks_and_bounds;
 mod zoo_agents;

@@ -23,6 +23,7 @@ mod production_speed;
 mod reproduction_agent;
 mod reproduction_known_answers;
 mod reproduction_protocol;
+mod reproduction_recovery;
 mod robust_statistics;
 mod speed_known_answers;
 mod speed_timing_models;
