@@ -4,7 +4,7 @@
 
 use chronocooked_analysis::paper::collect::{LEVELS_CSV, read_level_episodes};
 use chronocooked_pipeline::stages::levels::evaluate_levels;
-use chronocooked_training::{Silent, resolve, run_training};
+use chronocooked_training::{Check, Silent, resolve, run_training};
 use std::collections::BTreeMap;
 
 #[test]
@@ -32,7 +32,7 @@ fn every_kept_level_is_evaluated_on_its_own_tds_then_the_untrained_ones_from_eve
     )
     .unwrap();
     let run = dir.join("run");
-    run_training(Some(cfg), &run, "test", &mut Silent).unwrap();
+    run_training(Some(cfg.check().unwrap()), &run, "test", &mut Silent).unwrap();
     let out = dir.join("eval");
     assert_eq!(evaluate_levels(&run, &out, 7).unwrap(), Some(4));
     let rows = read_level_episodes(&out.join(LEVELS_CSV)).unwrap();
@@ -150,7 +150,7 @@ fn each_growth_level_plays_its_own_task_with_its_protocol() {
         all.extend(&sets);
         let cfg = resolve(task, "lstm8".parse().unwrap(), "reference", 3, &all).unwrap();
         let run = dir.join(task).join("run");
-        run_training(Some(cfg), &run, "test", &mut Silent).unwrap();
+        run_training(Some(cfg.check().unwrap()), &run, "test", &mut Silent).unwrap();
         let out = dir.join(task).join("eval");
         assert_eq!(
             evaluate_levels(&run, &out, 7).unwrap(),

@@ -108,7 +108,8 @@ pub fn bench_train(
         cfg.total_steps = u64::MAX;
         let batch = (cfg.ppo.n_envs * cfg.ppo.n_steps) as f64;
         let engine = format!("{:?}", cfg.ppo.engine).to_ascii_lowercase();
-        let mut trainer = chronocooked_training::Trainer::new(cfg)?;
+        let mut trainer =
+            chronocooked_training::Trainer::new(chronocooked_training::Check::check(cfg)?)?;
         trainer.update()?;
         let (mut secs, mut roll, mut opt) = (0.0, 0.0, 0.0);
         for _ in 0..updates.max(1) {

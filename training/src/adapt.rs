@@ -18,6 +18,7 @@
 //! are fine-tuned from their final weights (`init_from`) with the run's hyperparameters, and
 //! their rolling success over the last `window` episodes is read from the training curve.
 
+use crate::checked::Check;
 use crate::error::TrainError;
 use crate::ppo::config::Curriculum;
 use crate::ppo::run::{Silent, run_training};
@@ -248,7 +249,7 @@ pub fn run_adaptation(
         (rc.model, rc.task, curve, outcomes.len())
     } else {
         let source = RunDir::open(run)?.config()?;
-        let mut tc = source.clone();
+        let mut tc = source.clone().into_inner();
         tc.task = cfg.task.clone();
         tc.env = cfg.env.clone();
         tc.seed = cfg.seed;
@@ -267,7 +268,7 @@ pub fn run_adaptation(
         let summary = if dir.join(run_folder::CONFIG).is_file() {
             run_training(None, &dir, "adapt (resumed)", &mut Silent)?
         } else {
-            run_training(Some(tc), &dir, "adapt", &mut Silent)?
+            run_training(Some(tc.check()?), &dir, "adapt", &mut Silent)?
         };
         let p = match &task.params {
             chronocooked_env::TaskParams::Uncertainty {
@@ -277,7 +278,7 @@ pub fn run_adaptation(
         };
         let curve = curve_success(&summary.dir.join(run_folder::CURVES), p)?;
         let episodes = curve.last().map_or(0, |c| c.0);
-        (source.model.name(), source.task, curve, episodes)
+        (source.model.name(), source.task.clone(), curve, episodes)
     };
     let full: Vec<&(usize, f64, f64)> = curve.iter().filter(|c| c.0 >= cfg.window).collect();
     let result = AdaptResult {

@@ -15,6 +15,7 @@
 
 pub mod adapt;
 pub mod agent_zoo;
+pub mod checked;
 pub mod error;
 pub mod evaluate;
 pub mod ppo;
@@ -24,6 +25,7 @@ pub mod timing_check;
 pub mod timing_run;
 pub mod zoo;
 
+pub use checked::{Check, Checked};
 pub use error::TrainError;
 pub use evaluate::eval_tds;
 pub use ppo::agent::PpoAgent;

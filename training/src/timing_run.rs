@@ -433,3 +433,12 @@ pub fn load_agent(
     }
     Ok(Box::new(crate::ppo::agent::PpoAgent::load(dir, task)?))
 }
+
+impl crate::checked::Check for TimingRunConfig {
+    type Error = TrainError;
+
+    /// [`TimingRunConfig::validate`].
+    fn validate(&self) -> Result<(), TrainError> {
+        TimingRunConfig::validate(self)
+    }
+}

@@ -8,7 +8,7 @@ use chronocooked_training::adapt::{
     AdaptConfig, episodes_to_adapt, rolling_success, run_adaptation,
 };
 use chronocooked_training::ppo::params::flat_params;
-use chronocooked_training::{TimingRunConfig, Trainer, load_policy, resolve, run_training};
+use chronocooked_training::{Check, TimingRunConfig, Trainer, load_policy, resolve, run_training};
 
 fn temp_dir(name: &str) -> std::path::PathBuf {
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
@@ -154,11 +154,17 @@ fn ppo_fine_tuning_starts_from_the_source_run_weights() {
     )
     .unwrap();
     let run = dir.join("run");
-    run_training(Some(cfg), &run, "test", &mut chronocooked_training::Silent).unwrap();
+    run_training(
+        Some(cfg.check().unwrap()),
+        &run,
+        "test",
+        &mut chronocooked_training::Silent,
+    )
+    .unwrap();
     let (source, ..) = load_policy(&run).unwrap();
     let mut tuned = resolve("Uncertainty-v0", arch, "fast", 1, &["env.td=6"]).unwrap();
     tuned.init_from = Some(run.display().to_string());
-    let trainer = Trainer::new(tuned.clone()).unwrap();
+    let trainer = Trainer::new(tuned.clone().check().unwrap()).unwrap();
     assert_eq!(flat_params(&trainer.policy()), flat_params(&source));
     // A different architecture is refused with a message naming the field.
     let mut wrong = resolve(
@@ -170,7 +176,12 @@ fn ppo_fine_tuning_starts_from_the_source_run_weights() {
     )
     .unwrap();
     wrong.init_from = tuned.init_from.clone();
-    let err = Trainer::new(wrong).err().unwrap().to_string();
+    let err = wrong
+        .check()
+        .and_then(Trainer::new)
+        .err()
+        .unwrap()
+        .to_string();
     assert!(err.contains("init_from"), "{err}");
     // The protocol end to end: fine-tuning run, curve, result.
     let r = run_adaptation(

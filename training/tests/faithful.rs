@@ -6,7 +6,7 @@ use chronocooked_models::deep::native::{Cache, NativePolicy, SeqBatch};
 use chronocooked_models::{Architecture, CoreKind, PolicyConfig};
 use chronocooked_training::ppo::params::flat_params;
 use chronocooked_training::ppo::rollout::{Chunk, sequence_batches};
-use chronocooked_training::{Trainer, resolve};
+use chronocooked_training::{Check, Trainer, resolve};
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 
@@ -153,7 +153,7 @@ fn small(model: &str, extra: &[&str]) -> Trainer {
         &sets,
     )
     .unwrap();
-    Trainer::new(cfg).unwrap()
+    Trainer::new(cfg.check().unwrap()).unwrap()
 }
 
 #[test]

@@ -253,7 +253,7 @@ fn native_and_burn_engines_train_alike() {
     // from logits that agree to ~1e-6 with the same RNG) and the same losses and parameters
     // up to float rounding (Adam normalises steps, so rounding noise in near-zero gradients
     // can move a parameter by up to ~lr per step: the bound below is a few such steps).
-    use chronocooked_training::{Trainer, resolve};
+    use chronocooked_training::{Check, Trainer, resolve};
     // The reference preset (sequence minibatches, detached critic, reservoir gradients in
     // the clip) and the lab's chunked, trained-through variant.
     let lab = [
@@ -287,8 +287,8 @@ fn native_and_burn_engines_train_alike() {
             )
             .unwrap()
         };
-        let mut native = Trainer::new(cfg("native")).unwrap();
-        let mut burn = Trainer::new(cfg("burn")).unwrap();
+        let mut native = Trainer::new(cfg("native").check().unwrap()).unwrap();
+        let mut burn = Trainer::new(cfg("burn").check().unwrap()).unwrap();
         for update in 0..2 {
             let a = native.update().unwrap();
             let b = burn.update().unwrap();

@@ -4,7 +4,7 @@
 //! it cannot apply.
 
 use chronocooked_env::{TaskConfig, TaskParams};
-use chronocooked_training::{Trainer, resolve};
+use chronocooked_training::{Check, Trainer, resolve};
 
 fn cfg(sets: &[&str], steps: u64) -> chronocooked_training::TrainConfig {
     let mut all: Vec<String> = vec![
@@ -56,7 +56,7 @@ const NARROWING: [&str; 7] = [
 fn the_window_narrows_level_by_level_to_the_task_s_own_and_stays_there() {
     let mut sets = NARROWING.to_vec();
     sets.extend(["curriculum_thresholds=0", "curriculum_fallback=0"]);
-    let mut t = Trainer::new(cfg(&sets, 6000)).unwrap();
+    let mut t = Trainer::new(cfg(&sets, 6000).check().unwrap()).unwrap();
     assert!(close(window(t.task()), HAND[0]), "{:?}", window(t.task()));
     let mut seen = vec![0];
     while !t.finished() {
@@ -93,7 +93,7 @@ fn a_level_is_kept_until_its_share_of_in_window_deliveries_is_reached() {
     // An untrained policy delivers inside the window on far fewer than all of 3 episodes
     // in a row at every check of a 4,000-step run.
     sets.push("curriculum_thresholds=1");
-    let mut t = Trainer::new(cfg(&sets, 4000)).unwrap();
+    let mut t = Trainer::new(cfg(&sets, 4000).check().unwrap()).unwrap();
     while !t.finished() {
         t.update().unwrap();
         let recent = &t.state().recent;
@@ -126,7 +126,7 @@ fn each_check_follows_the_share_of_the_last_window_of_episodes() {
         "env.tolerance=0.3",
         "env.tolerance_steps=1",
     ];
-    let mut t = Trainer::new(cfg(&sets, 20000)).unwrap();
+    let mut t = Trainer::new(cfg(&sets, 20000).check().unwrap()).unwrap();
     let (mut ups, mut downs, mut due) = (0, 0, 0);
     while !t.finished() {
         let level = t.state().curriculum_level;
@@ -166,7 +166,7 @@ fn each_check_follows_the_share_of_the_last_window_of_episodes() {
 fn a_level_steps_back_when_its_share_falls_below_the_fallback() {
     let mut sets = NARROWING.to_vec();
     sets.extend(["curriculum_thresholds=0", "curriculum_fallback=1"]);
-    let mut t = Trainer::new(cfg(&sets, 8000)).unwrap();
+    let mut t = Trainer::new(cfg(&sets, 8000).check().unwrap()).unwrap();
     let (mut climbed, mut backs) = (false, 0);
     while !t.finished() {
         let before = t.state().curriculum_level;
@@ -207,17 +207,20 @@ fn a_resumed_run_plays_its_level_s_window() {
     let mut sets = NARROWING.to_vec();
     sets.extend(["curriculum_thresholds=0", "curriculum_fallback=0"]);
     let c = cfg(&sets, 3000);
-    let mut t = Trainer::new(c.clone()).unwrap();
+    let mut t = Trainer::new(c.clone().check().unwrap()).unwrap();
     while t.state().curriculum_level < 2 {
         t.update().unwrap();
     }
     let state = t.state().clone();
     let level = state.curriculum_level;
-    let resumed = Trainer::restore(c.clone(), state.clone()).unwrap();
+    let resumed = Trainer::restore(c.clone().check().unwrap(), state.clone()).unwrap();
     assert!(close(window(resumed.task()), HAND[level]));
     let mut bad = state;
     bad.curriculum_level = 4;
-    let err = Trainer::restore(c, bad).err().unwrap().to_string();
+    let err = Trainer::restore(c.check().unwrap(), bad)
+        .err()
+        .unwrap()
+        .to_string();
     assert!(
         err.contains("curriculum_level") && err.contains("0..=3"),
         "{err}"

@@ -11,7 +11,7 @@ use chronocooked_training::ppo::loss::{
     LossBatch, LossCoefs, OutputBatch, ppo_loss, ppo_output_grads,
 };
 use chronocooked_training::ppo::params::{flat_grads, param_offset};
-use chronocooked_training::{Silent, Trainer, load_policy, resolve, run_training};
+use chronocooked_training::{Check, Silent, Trainer, load_policy, resolve, run_training};
 
 fn close(a: f64, b: f64, tol: f64) -> bool {
     (a - b).abs() <= tol * (1.0 + b.abs())
@@ -318,8 +318,8 @@ fn same_seed_gives_identical_learning_curves_and_resume_is_exact() {
                 })
                 .collect()
         };
-        let mut a = Trainer::new(tiny_cfg(model, 1000, 4)).unwrap();
-        let mut b = Trainer::new(tiny_cfg(model, 1000, 4)).unwrap();
+        let mut a = Trainer::new(tiny_cfg(model, 1000, 4).check().unwrap()).unwrap();
+        let mut b = Trainer::new(tiny_cfg(model, 1000, 4).check().unwrap()).unwrap();
         while !a.finished() {
             a.update().unwrap();
             b.update().unwrap();
@@ -328,9 +328,21 @@ fn same_seed_gives_identical_learning_curves_and_resume_is_exact() {
         assert_eq!(a.state().theta, b.state().theta);
         // Uninterrupted run folder vs a run stopped after its 400-step checkpoint and resumed.
         let full = dir.join(format!("{model}-full"));
-        run_training(Some(tiny_cfg(model, 1000, 4)), &full, "test", &mut Silent).unwrap();
+        run_training(
+            Some(tiny_cfg(model, 1000, 4).check().unwrap()),
+            &full,
+            "test",
+            &mut Silent,
+        )
+        .unwrap();
         let cut = dir.join(format!("{model}-cut"));
-        run_training(Some(tiny_cfg(model, 400, 4)), &cut, "test", &mut Silent).unwrap();
+        run_training(
+            Some(tiny_cfg(model, 400, 4).check().unwrap()),
+            &cut,
+            "test",
+            &mut Silent,
+        )
+        .unwrap();
         // Extend the budget as a user would after an interruption (`train --resume --steps`).
         let open = chronocooked_training::RunDir::open(&cut).unwrap();
         assert!(open.extend_budget(300).is_err(), "a budget cannot shrink");
@@ -368,7 +380,7 @@ fn same_seed_gives_identical_learning_curves_and_resume_is_exact() {
         let (p1, _, c1) = load_policy(&full).unwrap();
         let task = chronocooked_env::make_config(&c1.task, &c1.env).unwrap();
         let e1 = chronocooked_training::evaluate_policy(&p1, &task, c1.obs, &[4]).unwrap();
-        let mut t2 = Trainer::new(tiny_cfg(model, 1000, 4)).unwrap();
+        let mut t2 = Trainer::new(tiny_cfg(model, 1000, 4).check().unwrap()).unwrap();
         while !t2.finished() {
             t2.update().unwrap();
         }
@@ -403,7 +415,13 @@ fn cnn_mlp_and_lstm_learn_fixed_interval_td4() {
             ],
         )
         .unwrap();
-        let s = run_training(Some(cfg), &dir.join(model), "test", &mut Silent).unwrap();
+        let s = run_training(
+            Some(cfg.check().unwrap()),
+            &dir.join(model),
+            "test",
+            &mut Silent,
+        )
+        .unwrap();
         assert!(
             s.eval_success >= 0.9,
             "{model}: deterministic success {:.2} after {} steps",
@@ -477,7 +495,7 @@ fn curriculum_cfg(steps: u64) -> chronocooked_training::TrainConfig {
 
 #[test]
 fn a_curriculum_level_keeps_the_policy_whose_rollout_passed_it() {
-    let mut t = Trainer::new(curriculum_cfg(10000)).unwrap();
+    let mut t = Trainer::new(curriculum_cfg(10000).check().unwrap()).unwrap();
     let mut left = Vec::new();
     while !t.finished() {
         let before = t.state().theta.clone();
@@ -516,7 +534,13 @@ fn a_curriculum_run_folder_keeps_every_level_and_the_last_is_the_final_policy() 
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
         .join(format!("cc-levels-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
-    run_training(Some(curriculum_cfg(10000)), &dir, "test", &mut Silent).unwrap();
+    run_training(
+        Some(curriculum_cfg(10000).check().unwrap()),
+        &dir,
+        "test",
+        &mut Silent,
+    )
+    .unwrap();
     let run = chronocooked_training::RunDir::open(&dir).unwrap();
     assert_eq!(run.saved_levels(), [0, 1, 2, 3]);
     let (final_policy, _, _) = load_policy(&dir).unwrap();
@@ -574,7 +598,7 @@ fn growth_curricula_add_counters_and_ovens_and_resume_at_their_level() {
         ),
     ] {
         let cfg = growth_cfg(task, sets, 6000);
-        let mut t = Trainer::new(cfg.clone()).unwrap();
+        let mut t = Trainer::new(cfg.clone().check().unwrap()).unwrap();
         assert_eq!(
             t.state().curriculum_level,
             0,
@@ -610,7 +634,7 @@ fn growth_curricula_add_counters_and_ovens_and_resume_at_their_level() {
             );
         }
         // Resume from a mid-run state equals the uninterrupted run.
-        let mut a = Trainer::new(cfg.clone()).unwrap();
+        let mut a = Trainer::new(cfg.clone().check().unwrap()).unwrap();
         for _ in 0..10 {
             a.update().unwrap();
         }
@@ -619,7 +643,7 @@ fn growth_curricula_add_counters_and_ovens_and_resume_at_their_level() {
             saved.curriculum_level >= 1,
             "{task}: mid-run after a change"
         );
-        let mut b = Trainer::restore(cfg.clone(), saved).unwrap();
+        let mut b = Trainer::restore(cfg.clone().check().unwrap(), saved).unwrap();
         while !a.finished() {
             a.update().unwrap();
             b.update().unwrap();
@@ -628,7 +652,10 @@ fn growth_curricula_add_counters_and_ovens_and_resume_at_their_level() {
         // A state at a level this curriculum does not have is refused, naming the field.
         let mut bad = a.state().clone();
         bad.curriculum_level = 9;
-        let err = Trainer::restore(cfg, bad).err().unwrap().to_string();
+        let err = Trainer::restore(cfg.check().unwrap(), bad)
+            .err()
+            .unwrap()
+            .to_string();
         assert!(err.contains("curriculum_level"), "{err}");
     }
 }
@@ -636,6 +663,11 @@ fn growth_curricula_add_counters_and_ovens_and_resume_at_their_level() {
 #[test]
 fn a_growth_curriculum_on_another_task_is_refused() {
     let cfg = growth_cfg("Bisection-v0", &["curriculum=multi_oven"], 1000);
-    let err = Trainer::new(cfg).err().unwrap().to_string();
+    let err = cfg
+        .check()
+        .and_then(Trainer::new)
+        .err()
+        .unwrap()
+        .to_string();
     assert!(err.contains("curriculum") && err.contains("ovens"), "{err}");
 }

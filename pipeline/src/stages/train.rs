@@ -4,8 +4,8 @@ use crate::PipelineError;
 use chronocooked_env::fs::FolderLock;
 use chronocooked_models::{Architecture, TimingCurvePoint};
 use chronocooked_training::{
-    Progress, RunSummary, TimingRunConfig, TimingRunSummary, UpdateLog, is_timing_run_config,
-    load_timing_config, resolve, run_timing_training, run_training,
+    Check, Progress, RunSummary, TimingRunConfig, TimingRunSummary, UpdateLog,
+    is_timing_run_config, load_timing_config, resolve, run_timing_training, run_training,
 };
 use serde::Serialize;
 use std::path::PathBuf;
@@ -137,7 +137,7 @@ fn train_ppo(
         .unwrap_or_else(|| default_dir(&cfg.task, &model.name(), req.seed));
     let lock = FolderLock::acquire(&dir)?;
     Ok((
-        run_training(Some(cfg), &dir, &req.command, &mut progress)?,
+        run_training(Some(cfg.check()?), &dir, &req.command, &mut progress)?,
         lock,
     ))
 }

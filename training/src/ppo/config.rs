@@ -614,3 +614,12 @@ impl TrainConfig {
         Ok(())
     }
 }
+
+impl crate::checked::Check for TrainConfig {
+    type Error = TrainError;
+
+    /// [`TrainConfig::validate`].
+    fn validate(&self) -> Result<(), TrainError> {
+        TrainConfig::validate(self)
+    }
+}

@@ -6,6 +6,7 @@
 //! files when none is usable, removes a killed writer's temporary files and cuts
 //! `curves.csv` back to the checkpoint.
 
+use crate::checked::Checked;
 use crate::error::TrainError;
 use crate::evaluate::eval_tds;
 use crate::ppo::config::TrainConfig;
@@ -30,7 +31,7 @@ impl Progress for Silent {}
 
 /// Trains `cfg` into a new run folder `dir`, or continues it when `resume` is set.
 pub fn run_training(
-    cfg: Option<TrainConfig>,
+    cfg: Option<Checked<TrainConfig>>,
     dir: &Path,
     command: &str,
     progress: &mut dyn Progress,
@@ -188,7 +189,10 @@ pub fn run_training(
 /// `Ok(None)` when there is no checkpoint at all. A corrupt or unusable checkpoint is
 /// skipped with a warning on stderr naming it; when checkpoints exist but none is
 /// usable, the error names each one and how to start over.
-pub fn resume_trainer(run: &RunDir, cfg: &TrainConfig) -> Result<Option<Trainer>, TrainError> {
+pub fn resume_trainer(
+    run: &RunDir,
+    cfg: &Checked<TrainConfig>,
+) -> Result<Option<Trainer>, TrainError> {
     let all = run.checkpoints();
     let mut skipped = Vec::new();
     for p in all.iter().rev() {

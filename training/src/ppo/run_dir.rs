@@ -17,6 +17,7 @@
 //! The file names are [`chronocooked_models::run_folder`]'s constants (shared with the
 //! crates that read run folders); this module reads and writes the files with their types.
 
+use crate::checked::{Check, Checked};
 use crate::error::TrainError;
 use crate::ppo::config::TrainConfig;
 use crate::ppo::state::{TrainerState, UpdateLog};
@@ -147,7 +148,7 @@ impl RunDir {
 
     /// Reads the resolved config and checks it like any other ([`TrainConfig::validate`]:
     /// a hand-edited `config.json` gets the same range checks as `--set`).
-    pub fn config(&self) -> Result<TrainConfig, TrainError> {
+    pub fn config(&self) -> Result<Checked<TrainConfig>, TrainError> {
         let p = self.path.join(run_folder::CONFIG);
         let text = read_config_text(&self.path)?;
         let bad = |message: String| TrainError::ConfigFile {
@@ -155,8 +156,7 @@ impl RunDir {
             message,
         };
         let cfg: TrainConfig = serde_json::from_str(&text).map_err(|e| bad(e.to_string()))?;
-        cfg.validate().map_err(|e| bad(e.to_string()))?;
-        Ok(cfg)
+        cfg.check().map_err(|e| bad(e.to_string()))
     }
 
     /// Checkpoint files (`checkpoints/step-*.json`), oldest first.
@@ -220,8 +220,8 @@ impl RunDir {
     /// Raises the run's env-step budget to `total_steps` (what `train --resume DIR --steps N`
     /// does before continuing): `config.json` is rewritten with its new SHA-256 record, so a
     /// budget is changed this way, never by a hand edit (which a resume refuses).
-    pub fn extend_budget(&self, total_steps: u64) -> Result<TrainConfig, TrainError> {
-        let mut cfg = self.config()?;
+    pub fn extend_budget(&self, total_steps: u64) -> Result<Checked<TrainConfig>, TrainError> {
+        let mut cfg = self.config()?.into_inner();
         if total_steps < cfg.total_steps {
             return Err(TrainError::param(
                 "steps",
@@ -233,7 +233,7 @@ impl RunDir {
             ));
         }
         cfg.total_steps = total_steps;
-        cfg.validate()?;
+        let cfg = cfg.check()?;
         let json = serde_json::to_string_pretty(&cfg).unwrap_or_default();
         write_config(&self.path, json.as_bytes())?;
         Ok(cfg)
@@ -470,7 +470,7 @@ fn load_policy_from(
             .try_load_record(record)
             .map_err(|e| corrupt(format!("does not fit policy.json: {e:?}")))?;
         finite_params(file, &crate::ppo::params::flat_params(&m))?;
-        return Ok((m, pcfg, cfg));
+        return Ok((m, pcfg, cfg.into_inner()));
     }
     let all = run.checkpoints();
     let mut skipped = Vec::new();
@@ -495,7 +495,7 @@ fn load_policy_from(
             eprintln!("warning: skipped checkpoint {s}");
         }
         let m = crate::ppo::params::write_params(model, &state.theta);
-        return Ok((m, pcfg, cfg));
+        return Ok((m, pcfg, cfg.into_inner()));
     }
     Err(TrainError::Resume {
         path: dir.display().to_string(),

@@ -5,6 +5,7 @@
 //! (native or burn). Around it: [`collect`] (the rollout), [`batches`] (minibatch orders),
 //! [`curriculum`] (curricula), [`log`] (the learning-curve row).
 
+use crate::checked::Checked;
 use crate::error::TrainError;
 use crate::ppo::adam::{Adam, AdamParams, clip_global_norm};
 use crate::ppo::config::{Curriculum, LrSchedule, TrainConfig};
@@ -75,9 +76,10 @@ pub struct Trainer {
 }
 
 impl Trainer {
-    /// Builds a fresh trainer (weights, envs and RNG from `cfg.seed`).
-    pub fn new(cfg: TrainConfig) -> Result<Self, TrainError> {
-        cfg.validate()?;
+    /// Builds a fresh trainer (weights, envs and RNG from `cfg.seed`) from a checked
+    /// configuration ([`crate::checked::Check::check`]).
+    pub fn new(cfg: Checked<TrainConfig>) -> Result<Self, TrainError> {
+        let cfg = cfg.into_inner();
         let task = make_config(&cfg.task, &cfg.env)?;
         let p = &cfg.ppo;
         let mut envs = VecEnv::new(&task, p.n_envs, Autoreset::SameStep)?;
@@ -192,7 +194,7 @@ impl Trainer {
     /// Rebuilds a trainer from a configuration and a checkpointed state. The state is
     /// checked first ([`TrainerState::validate`], then the env snapshot): a state that does
     /// not fit the configuration is an error naming the field, never a panic later.
-    pub fn restore(cfg: TrainConfig, state: TrainerState) -> Result<Self, TrainError> {
+    pub fn restore(cfg: Checked<TrainConfig>, state: TrainerState) -> Result<Self, TrainError> {
         let mut t = Trainer::new(cfg)?;
         let arch = t.cfg.model;
         let batch = (t.cfg.ppo.n_envs * t.cfg.ppo.n_steps) as u64;
