@@ -1,6 +1,11 @@
 //! Every integration test of `chronocooked-lab`, compiled into one test binary: one link instead of
 //! one per file, and the tests of all files share the test threads. Each file below is
 //! one topic; `cargo test --release -p chronocooked-lab <file>` runs one of them.
+//!
+//! These are the lab's cross-crate behaviour tests: through the binary (CLI, faults,
+//! sweeps), and through the libraries where a behaviour needs several crates at once
+//! (`timing_*`: a timing model trained by `chronocooked-training` and scored by the
+//! evaluation protocol of `chronocooked-analysis`). Tests of one crate live with it.
 
 mod common;
 
@@ -14,5 +19,8 @@ mod reliability;
 mod signals;
 mod structure;
 mod sweep;
+mod timing_agents;
+mod timing_defaults;
+mod timing_tasks;
 mod walks_and_bounds;
 mod zoo_agents;

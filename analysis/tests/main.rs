@@ -5,6 +5,7 @@
 mod common;
 mod synthetic;
 
+mod behaviour_metrics;
 mod eval_protocol;
 mod extension_metrics;
 mod fingerprint_reference;

@@ -4,10 +4,6 @@
 
 mod corrupt_files;
 mod curriculum_levels;
-mod metrics;
 mod neural_categories_range;
 mod neural_model_signatures;
 mod run_job;
-mod timing_agents;
-mod timing_defaults;
-mod timing_tasks;

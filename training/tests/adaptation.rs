@@ -205,3 +205,13 @@ fn ppo_fine_tuning_starts_from_the_source_run_weights() {
         chronocooked_training::timing_run::load_agent(&dir.join("adapt/run"), None).unwrap();
     assert_eq!(agent.name(), "lstm8");
 }
+
+#[test]
+fn episodes_to_adapt_has_known_answers() {
+    use chronocooked_training::adapt::episodes_to_adapt;
+    // 10 failures then successes: a window of 4 at 75% is reached at episode 13.
+    let mut v = vec![false; 10];
+    v.extend(vec![true; 10]);
+    assert_eq!(episodes_to_adapt(&v, 4, 0.75), Some(13));
+    assert_eq!(episodes_to_adapt(&[false; 30], 5, 0.5), None);
+}

@@ -362,16 +362,10 @@ fn itpc_of_frequency_jittered_oscillators_decays_as_predicted() {
 }
 
 #[test]
-fn aggregation_and_adaptation_have_known_answers() {
+fn aggregation_has_known_answers() {
     use chronocooked_analysis::behaviour::aggregate::Spread;
-    use chronocooked_training::adapt::episodes_to_adapt;
     let s = Spread::of([1.0, 2.0, 3.0, f64::NAN]);
     assert_eq!((s.mean, s.n), (2.0, 3));
     assert!((s.sd - 1.0).abs() < 1e-12);
     assert!(Spread::of([]).mean.is_nan());
-    // 10 failures then successes: a window of 4 at 75% is reached at episode 13.
-    let mut v = vec![false; 10];
-    v.extend(vec![true; 10]);
-    assert_eq!(episodes_to_adapt(&v, 4, 0.75), Some(13));
-    assert_eq!(episodes_to_adapt(&[false; 30], 5, 0.5), None);
 }
