@@ -296,6 +296,34 @@ fn bench_env_runs_briefly() {
 }
 
 #[test]
+fn bench_train_measures_its_updates() {
+    // One warm-up and one measured update of the smallest model: a rate and its parts.
+    let out = run_ok(&[
+        "bench",
+        "train",
+        "--models",
+        "cnn-mlp",
+        "--updates",
+        "1",
+        "--preset",
+        "fast",
+    ]);
+    let line = out
+        .lines()
+        .find(|l| l.contains("cnn-mlp"))
+        .unwrap_or_else(|| panic!("no cnn-mlp line in {out}"));
+    let rate: f64 = line
+        .split_whitespace()
+        .nth(4)
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("no rate in {line}"));
+    assert!(
+        rate > 0.0 && line.contains("env-steps/s") && line.contains("1 updates"),
+        "{line}"
+    );
+}
+
+#[test]
 fn env_replay_accepts_reference_parameter_names_for_multi_timer() {
     let out = run_ok(&[
         "env",

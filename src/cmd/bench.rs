@@ -105,8 +105,11 @@ pub fn bench_train(
     for name in models.split(',').map(str::trim).filter(|m| !m.is_empty()) {
         let arch: Architecture = name.parse().map_err(anyhow::Error::msg)?;
         let mut cfg = resolve(task, arch, preset, 0, sets)?;
-        cfg.total_steps = u64::MAX;
-        let batch = (cfg.ppo.n_envs * cfg.ppo.n_steps) as f64;
+        // The budget the bench plays: a warm-up update and `updates` measured ones (a
+        // budget beyond them would be refused by the settings' bounds, not used).
+        let batch_steps = (cfg.ppo.n_envs * cfg.ppo.n_steps) as u64;
+        cfg.total_steps = batch_steps.saturating_mul(updates.max(1) + 1);
+        let batch = batch_steps as f64;
         let engine = format!("{:?}", cfg.ppo.engine).to_ascii_lowercase();
         let mut trainer =
             chronocooked_training::Trainer::new(chronocooked_training::Check::check(cfg)?)?;
