@@ -580,9 +580,10 @@ pub fn learning_curve(run_dir: &Path) -> Result<Vec<PathBuf>, FigureError> {
 const RUN_LABEL_CHARS: usize = 48;
 
 /// A run folder's name for a chart title: its last three path components (a sweep job's
-/// `<task>/<model~variant>/seed<N>` when the folder is the job's `run/`), shortened from the
-/// left with `…` to at most [`RUN_LABEL_CHARS`] characters. The full path made titles wider
-/// than the chart and clipped them in the report.
+/// `<task>/<model~variant>/seed<N>` when the folder is the job's `run/`), at most
+/// [`RUN_LABEL_CHARS`] characters: a sweep variant (after `~`) is cut short with `…` first,
+/// so the task, the model and the seed stay; anything still too long is cut from the left.
+/// The full path made titles wider than the chart and clipped them in the report.
 pub fn run_label(run_dir: &Path) -> String {
     let mut parts: Vec<String> = run_dir
         .components()
@@ -594,10 +595,22 @@ pub fn run_label(run_dir: &Path) -> String {
     if parts.len() > 1 && parts.last().is_some_and(|p| p == crate::job_folder::RUN) {
         parts.pop();
     }
-    let label = parts[parts.len().saturating_sub(3)..].join("/");
-    let chars: Vec<char> = label.chars().collect();
+    let mut parts = parts.split_off(parts.len().saturating_sub(3));
+    let width = |parts: &[String]| parts.join("/").chars().count();
+    for k in 0..parts.len() {
+        let excess = width(&parts).saturating_sub(RUN_LABEL_CHARS);
+        if excess == 0 {
+            break;
+        }
+        if let Some((model, variant)) = parts[k].split_once('~') {
+            let keep = variant.chars().count().saturating_sub(excess + 1);
+            let short: String = variant.chars().take(keep).collect();
+            parts[k] = format!("{model}~{short}…");
+        }
+    }
+    let chars: Vec<char> = parts.join("/").chars().collect();
     if chars.len() <= RUN_LABEL_CHARS {
-        label
+        chars.into_iter().collect()
     } else {
         let tail: String = chars[chars.len() - (RUN_LABEL_CHARS - 1)..]
             .iter()
@@ -626,8 +639,17 @@ mod tests {
         ));
         assert_eq!(long.chars().count(), 48, "{long}");
         assert!(
-            long.starts_with('…') && long.ends_with("asynchronous-true/seed4"),
+            long.starts_with("MultiOven-v0/ctrnn-reservoir125~env.") && long.ends_with("…/seed4"),
             "{long}"
+        );
+        // No variant to shorten: cut from the left.
+        let plain = run_label(Path::new(
+            "a/some-very-long-folder-name-without-a-variant-at-all/and-another-long-one/seed1",
+        ));
+        assert_eq!(plain.chars().count(), 48, "{plain}");
+        assert!(
+            plain.starts_with('…') && plain.ends_with("/seed1"),
+            "{plain}"
         );
     }
 }
