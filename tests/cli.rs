@@ -247,7 +247,23 @@ fn env_play_records_keyboard_steps_in_the_replay_shape() {
         &actions.join(","),
     ]);
     let replayed = json_lines(&replay);
-    assert_eq!(replayed, lines);
+    // The play's reset line also carries how to replay it (seed and reset options); the
+    // rest is the replay's shape, line for line.
+    let mut played = lines.clone();
+    let key = played[0].as_object_mut().unwrap().remove("reset").unwrap();
+    assert_eq!(key["options"]["start"], serde_json::json!([1, 0]), "{key}");
+    assert!(key["seed"].is_u64(), "{key}");
+    assert_eq!(replayed, played);
+    // The recording is scored as human play, checked against the task first.
+    let eval = dir.join("eval");
+    run_ok(&[
+        "eval",
+        "--human",
+        record.to_str().unwrap(),
+        "--out",
+        eval.to_str().unwrap(),
+    ]);
+    assert!(eval.join("metrics.json").is_file());
 }
 
 #[test]
