@@ -45,3 +45,77 @@ pub const AGENT: &str = "agent.json";
 pub const FIGURES: &str = "figures";
 /// The run's summary (JSON), written last: its presence marks a finished run.
 pub const SUMMARY: &str = "summary.json";
+
+/// A run folder's learning curve ([`CURVES`]) read back, the one reader of that file: its
+/// header and every complete row (a row cut short by a killed writer — fewer fields than
+/// the header — is left out). A field that is not a number (an empty evaluation column)
+/// reads as NaN. Written by the trainers with `format!`, so that curves stay byte-identical
+/// across builds; read with the `csv` crate.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Curves {
+    /// Column names.
+    pub header: Vec<String>,
+    /// Complete rows, `[rows, columns]`.
+    pub rows: Vec<Vec<f64>>,
+}
+
+impl Curves {
+    /// Reads `path`; the error names the file.
+    pub fn read(path: &std::path::Path) -> Result<Curves, String> {
+        let fail = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+        let mut rd = csv::ReaderBuilder::new()
+            .flexible(true)
+            .from_path(path)
+            .map_err(|e| fail(&e))?;
+        let header: Vec<String> = rd
+            .headers()
+            .map_err(|e| fail(&e))?
+            .iter()
+            .map(str::to_string)
+            .collect();
+        let mut rows = Vec::new();
+        for rec in rd.records() {
+            let rec = rec.map_err(|e| fail(&e))?;
+            if rec.len() == header.len() {
+                rows.push(rec.iter().map(|v| v.parse().unwrap_or(f64::NAN)).collect());
+            }
+        }
+        Ok(Curves { header, rows })
+    }
+
+    /// The index of column `name`.
+    pub fn index(&self, name: &str) -> Option<usize> {
+        self.header.iter().position(|h| h == name)
+    }
+
+    /// Column `name`, one value per row (`None` without that column).
+    pub fn column(&self, name: &str) -> Option<Vec<f64>> {
+        let i = self.index(name)?;
+        Some(self.rows.iter().map(|r| r[i]).collect())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Curves;
+
+    #[test]
+    fn a_curve_reads_complete_rows_and_names_its_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("curves.csv");
+        // A header, two rows (one with an empty evaluation field), a row cut by a kill.
+        std::fs::write(
+            &path,
+            "update,env_steps,eval_success\n1,1000,\n2,2000,0.5\n3,30",
+        )
+        .unwrap();
+        let c = Curves::read(&path).unwrap();
+        assert_eq!(c.rows.len(), 2);
+        assert_eq!(c.column("env_steps").unwrap(), vec![1000.0, 2000.0]);
+        let eval = c.column("eval_success").unwrap();
+        assert!(eval[0].is_nan() && eval[1] == 0.5);
+        assert!(c.column("nope").is_none());
+        let e = Curves::read(&dir.path().join("missing.csv")).unwrap_err();
+        assert!(e.contains("missing.csv"), "{e}");
+    }
+}

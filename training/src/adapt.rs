@@ -165,35 +165,33 @@ pub fn adaptation_curve(outcomes: &[(bool, bool)], window: usize) -> Vec<(usize,
 /// `curves.csv`; the normal-oven success is recovered from the overall rate and the
 /// never-ready probability `p`: `(overall − p·never_ready) / (1 − p)`.
 fn curve_success(path: &Path, p: f64) -> Result<Vec<(usize, f64, f64)>, TrainError> {
-    let text = std::fs::read_to_string(path).map_err(|e| TrainError::io(path, e))?;
-    let mut lines = text.lines();
-    let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
+    let curves = run_folder::Curves::read(path).map_err(|reason| TrainError::Resume {
+        path: path.display().to_string(),
+        reason,
+    })?;
     let col = |name: &str| {
-        header
-            .iter()
-            .position(|h| *h == name)
-            .ok_or_else(|| TrainError::Resume {
-                path: path.display().to_string(),
-                reason: format!("no `{name}` column"),
-            })
+        curves.index(name).ok_or_else(|| TrainError::Resume {
+            path: path.display().to_string(),
+            reason: format!("no `{name}` column"),
+        })
     };
     let (e, s, nr) = (
         col("episodes")?,
         col("success_rate")?,
         col("never_ready_success")?,
     );
-    let num = |f: &[&str], i: usize| f.get(i).and_then(|v| v.parse::<f64>().ok());
-    Ok(lines
-        .filter_map(|l| {
-            let f: Vec<&str> = l.split(',').collect();
-            let all = num(&f, s)?;
-            let never = num(&f, nr).unwrap_or(f64::NAN);
+    Ok(curves
+        .rows
+        .iter()
+        .filter(|r| r[s].is_finite() && r[e].is_finite())
+        .map(|r| {
+            let (all, never) = (r[s], r[nr]);
             let normal = if never.is_finite() && p < 1.0 {
                 ((all - p * never) / (1.0 - p)).clamp(0.0, 1.0)
             } else {
                 all
             };
-            Some((num(&f, e)? as usize, never, normal))
+            (r[e] as usize, never, normal)
         })
         .collect())
 }

@@ -518,31 +518,15 @@ pub fn unit_by_td(
 /// success vs env steps; timing agents: the same vs env steps).
 pub fn learning_curve(run_dir: &Path) -> Result<Vec<PathBuf>, FigureError> {
     let path = run_dir.join(run_folder::CURVES);
-    let text = std::fs::read_to_string(&path).map_err(err(&path))?;
-    let mut lines = text.lines();
-    let header: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
-    let col = |name: &str| header.iter().position(|h| *h == name);
-    let x = col("env_steps");
-    let train = col("success_rate").or_else(|| col("train_success"));
-    let eval = col("eval_success");
-    let rows: Vec<Vec<f64>> = lines
-        .map(|l| {
-            l.split(',')
-                .map(|v| v.parse().unwrap_or(f64::NAN))
-                .collect()
-        })
-        .collect();
+    let curves = run_folder::Curves::read(&path).map_err(err(&path))?;
+    let x = curves.index("env_steps");
+    let train = curves
+        .index("success_rate")
+        .or_else(|| curves.index("train_success"));
+    let eval = curves.index("eval_success");
     let pick = |c: Option<usize>| -> Vec<(f64, f64)> {
         match (x, c) {
-            (Some(x), Some(c)) => rows
-                .iter()
-                .map(|r| {
-                    (
-                        r.get(x).copied().unwrap_or(f64::NAN),
-                        r.get(c).copied().unwrap_or(f64::NAN),
-                    )
-                })
-                .collect(),
+            (Some(x), Some(c)) => curves.rows.iter().map(|r| (r[x], r[c])).collect(),
             _ => Vec::new(),
         }
     };

@@ -280,14 +280,14 @@ impl RunDir {
 
     /// The env step of the last complete row of `curves.csv` (`None` without rows).
     fn last_curve_step(&self) -> Option<u64> {
-        let text = fs::read_to_string(self.path.join(run_folder::CURVES)).ok()?;
-        let mut lines = text.lines();
-        let col = lines.next()?.split(',').position(|h| h == "env_steps")?;
-        // A row cut by a kill has fewer fields (or none to parse) and is skipped.
-        lines
-            .filter(|l| l.split(',').count() == CURVE_COLUMNS.len())
-            .filter_map(|l| l.split(',').nth(col)?.parse().ok())
-            .next_back()
+        let curves = run_folder::Curves::read(&self.path.join(run_folder::CURVES)).ok()?;
+        // A row cut by a kill has fewer fields and is not read.
+        curves
+            .column("env_steps")?
+            .into_iter()
+            .rev()
+            .find(|v| v.is_finite() && *v >= 0.0)
+            .map(|v| v as u64)
     }
 
     /// Removes what a killed writer left in the run folder, `checkpoints/` and `figures/`
