@@ -51,8 +51,12 @@ fn timing_agents_solve_fi12_and_bisection_4_12() {
 }
 
 /// Trains the timing run `cfg` through the project's training path (in a temporary run
-/// folder named after `label`) and loads the saved agent.
-fn trained_agent(cfg: &TimingRunConfig, label: &str) -> Box<dyn chronocooked_models::Agent> {
+/// folder named after `label`; unique across the `timing_*` tests) and loads the saved
+/// agent.
+pub(crate) fn trained_agent(
+    cfg: &TimingRunConfig,
+    label: &str,
+) -> Box<dyn chronocooked_models::Agent> {
     let dir = temp_dir(label);
     run_timing_training(cfg, &dir, "test", |_| {}).unwrap();
     let agent = load_agent(&dir, None).unwrap();

@@ -2,8 +2,8 @@
 //! task's time-out category, the opportunity cost of time, and the dual task's one-step
 //! window (split from `timing_agents.rs`).
 
+use crate::timing_agents::trained_agent;
 use chronocooked_analysis::{Mode, reference_conditions, run_protocol};
-use chronocooked_training::timing_run::load_agent;
 use chronocooked_training::{TimingRunConfig, run_timing_training};
 
 fn temp_dir(name: &str) -> std::path::PathBuf {
@@ -11,16 +11,6 @@ fn temp_dir(name: &str) -> std::path::PathBuf {
         .join(format!("cc-timing-tasks-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
     d
-}
-
-/// Trains the timing run `cfg` through the project's training path (in a temporary run
-/// folder named after `label`) and loads the saved agent.
-fn trained_agent(cfg: &TimingRunConfig, label: &str) -> Box<dyn chronocooked_models::Agent> {
-    let dir = temp_dir(label);
-    run_timing_training(cfg, &dir, "test", |_| {}).unwrap();
-    let agent = load_agent(&dir, None).unwrap();
-    let _ = std::fs::remove_dir_all(&dir);
-    agent
 }
 
 /// (normal, never-ready) success of a trained uncertainty agent in the reference evaluation.

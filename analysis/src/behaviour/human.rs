@@ -60,19 +60,18 @@ pub fn records_from_trace(text: &str) -> Result<Vec<EvalRecord>, String> {
     chronocooked_env::trace::verify_recording(&lines)?;
     let mut out: Vec<EvalRecord> = Vec::new();
     for (n, t) in lines {
-        let i = n - 1;
         match t.action {
             None => {
                 let config: TaskConfig = t
                     .config
                     .clone()
-                    .ok_or_else(|| format!("line {}: reset line without config", i + 1))
+                    .ok_or_else(|| format!("line {n}: reset line without config"))
                     .and_then(|c| {
-                        serde_json::from_value(c).map_err(|e| format!("line {}: {e}", i + 1))
+                        serde_json::from_value(c).map_err(|e| format!("line {n}: {e}"))
                     })?;
                 config
                     .validate()
-                    .map_err(|e| format!("line {}: config: {e}", i + 1))?;
+                    .map_err(|e| format!("line {n}: config: {e}"))?;
                 let condition = condition_of(&config, t.info.td);
                 let never = t.info.never_ready;
                 out.push(EvalRecord {
@@ -95,7 +94,7 @@ pub fn records_from_trace(text: &str) -> Result<Vec<EvalRecord>, String> {
             Some(a) => {
                 let rec = out
                     .last_mut()
-                    .ok_or_else(|| format!("line {}: step before any reset line", i + 1))?;
+                    .ok_or_else(|| format!("line {n}: step before any reset line"))?;
                 rec.episode.actions.push(a);
                 rec.episode.infos.push(t.info);
                 rec.episode.reward += t.reward;

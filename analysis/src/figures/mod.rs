@@ -612,7 +612,7 @@ mod tests {
     fn run_labels_keep_the_jobs_name_and_fit_a_title() {
         assert_eq!(
             run_label(Path::new(
-                "/home/u/lab-out/ext/MultiAnchor-v0/lstm125~env.anchors-3_10/seed1/run"
+                "lab-out/ext/MultiAnchor-v0/lstm125~env.anchors-3_10/seed1/run"
             )),
             "MultiAnchor-v0/lstm125~env.anchors-3_10/seed1"
         );
