@@ -258,7 +258,8 @@ fn every_model_records_into_the_same_dataset_type() {
             assert_eq!(trial.success, r.success);
             // Markers match the env's events step by step.
             for e in &trial.events {
-                let expected = Marker::of_step(&r.infos[e.step as usize], 0.0);
+                let step = e.step as usize;
+                let expected = Marker::of_step(&r.infos[step], r.ovens.get(step), 0.0);
                 assert!(
                     expected.contains(&e.marker) || e.marker == Marker::Reward,
                     "{name}: {e:?}"

@@ -118,12 +118,32 @@ pub struct EvalRecord {
     pub episode: EpisodeRecord,
 }
 
+impl EvalRecord {
+    /// Checks the episode ([`EpisodeRecord::validate`]) and that a multi-oven episode
+    /// carries every oven's state at every step (records written before the ovens' state
+    /// moved out of the step info lack it; their metrics would silently miss every oven).
+    pub fn validate(&self) -> Result<(), String> {
+        self.episode.validate()?;
+        if self.condition.kind == ConditionKind::MultiOven
+            && self.episode.ovens.len() != self.episode.actions.len()
+        {
+            return Err(format!(
+                "field `ovens`: {} entries for {} actions (a multi-oven episode records every \
+                 oven's state at every step; evaluate the run again to rewrite older records)",
+                self.episode.ovens.len(),
+                self.episode.actions.len()
+            ));
+        }
+        Ok(())
+    }
+}
+
 /// File name of an evaluation folder's per-episode records (JSON lines of [`EvalRecord`];
 /// the folder's other files are named in `evaluation/folder.rs`).
 pub const RECORDS: &str = "records.jsonl";
 
 /// Reads the per-episode records (`records.jsonl`) of an `eval` output folder, each checked
-/// ([`EpisodeRecord::validate`](chronocooked_models::EpisodeRecord::validate)); errors name
+/// ([`EvalRecord::validate`]); errors name
 /// the file (and the line and field of a malformed record). A file without any record is an
 /// error ("no episodes"), never an empty evaluation.
 pub fn read_records(folder: &std::path::Path) -> Result<Vec<EvalRecord>, String> {
@@ -141,7 +161,7 @@ pub fn read_records(folder: &std::path::Path) -> Result<Vec<EvalRecord>, String>
         .map(|(i, l)| {
             let at = || format!("{} line {}", path.display(), i + 1);
             let r: EvalRecord = serde_json::from_str(l).map_err(|e| format!("{}: {e}", at()))?;
-            r.episode.validate().map_err(|e| format!("{}: {e}", at()))?;
+            r.validate().map_err(|e| format!("{}: {e}", at()))?;
             Ok(r)
         })
         .collect::<Result<_, String>>()?;

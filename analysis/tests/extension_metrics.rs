@@ -36,6 +36,7 @@ fn record(
             success: false,
             actions: vec![5; infos.len()],
             infos,
+            ovens: Vec::new(),
         },
     }
 }
@@ -211,16 +212,17 @@ fn category_error_rates_match_a_table_counted_by_hand() {
     assert_eq!(m.anchor_accuracy, 0.0);
 }
 
-/// One multi-oven episode's infos: every oven at duration `t`, oven `o` judged long with
+/// One multi-oven episode's record: every oven at duration `t`, oven `o` judged long with
 /// the given choices, delivered in `order`, oven 0 started at the put on step `put`.
-fn oven_episode(
+fn oven_record(
+    env: &[String],
     t: u32,
     n: usize,
     choices: &[u8],
     order: &[usize],
     on_time: [i32; 3],
     put: u32,
-) -> Vec<Info> {
+) -> EvalRecord {
     let mut ovens = OvenSet {
         n: n as u8,
         td: [t; 3],
@@ -233,9 +235,9 @@ fn oven_episode(
     let mut infos = vec![Info {
         timestep: put,
         events: Events(Events::ONION_IN),
-        ovens,
         ..Info::default()
     }];
+    let mut states = vec![ovens];
     for (k, &o) in order.iter().enumerate() {
         ovens.delivered[o] = choices[o];
         infos.push(Info {
@@ -246,11 +248,14 @@ fn oven_episode(
             } else {
                 Counter::Short
             }),
-            ovens,
             ..Info::default()
         });
+        states.push(ovens);
     }
-    infos
+    let mut r = record(ConditionKind::MultiOven, "MultiOven-v0", env, t, infos);
+    r.episode.ovens = states;
+    r.validate().expect("a consistent multi-oven record");
+    r
 }
 
 #[test]
@@ -278,21 +283,9 @@ fn multi_oven_curves_interference_offsets_and_orders_match_the_generator() {
             let choices = [judge(t, sig[0]), judge(t, sig[1]), judge(t, sig[2])];
             // Orders alternate 0-1-2 / 2-0-1; on-times 3 and 9, the put on step 5.
             let order: &[usize] = if e % 2 == 0 { &[0, 1, 2] } else { &[2, 0, 1] };
-            recs.push(record(
-                ConditionKind::MultiOven,
-                "MultiOven-v0",
-                &three,
-                t,
-                oven_episode(t, 3, &choices, order, [-1, 3, 9], 5),
-            ));
+            recs.push(oven_record(&three, t, 3, &choices, order, [-1, 3, 9], 5));
             let c = [judge(t, 0.1), 0, 0];
-            recs.push(record(
-                ConditionKind::MultiOven,
-                "MultiOven-v0",
-                &one,
-                t,
-                oven_episode(t, 1, &c, &[0], [-1, -1, -1], 5),
-            ));
+            recs.push(oven_record(&one, t, 1, &c, &[0], [-1, -1, -1], 5));
         }
     }
     let m = multi_oven_metrics(&recs, 1).expect("multi-oven metrics");
@@ -346,5 +339,10 @@ fn multi_oven_curves_interference_offsets_and_orders_match_the_generator() {
         vec![("0-1-2".to_string(), 2500), ("2-0-1".to_string(), 2500)]
     );
     // Records alternate three-oven and one-oven episodes: the second three-oven one (e = 1).
-    assert_eq!(delivery_order(&recs[2].episode.infos), vec![2, 0, 1]);
+    assert_eq!(delivery_order(&recs[2].episode.ovens), vec![2, 0, 1]);
+    // A multi-oven record without the ovens' states is refused, not scored without them.
+    let mut bare = recs[2].clone();
+    bare.episode.ovens.clear();
+    let err = bare.validate().unwrap_err();
+    assert!(err.contains("`ovens`"), "{err}");
 }

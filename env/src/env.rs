@@ -15,7 +15,7 @@
 
 use crate::action::Action;
 use crate::error::EnvError;
-use crate::info::Info;
+use crate::info::{Info, OvenSet};
 use crate::kitchen::{CODE_CHANNELS, Kitchen, KitchenState, ResetOptions, Spec, Transition};
 use crate::layout::Layout;
 use crate::obs::{BoxSpace, Discrete, OneHotEncoder, codes_high, codes_to_nested};
@@ -134,6 +134,12 @@ impl ChronoEnv {
     /// Hidden state snapshot (oracles, tests; never given to agents as observation).
     pub fn state(&self) -> KitchenState {
         self.kitchen.state()
+    }
+
+    /// Multi-oven task: every oven's state after the last step or reset (`None` for the
+    /// other tasks; it is not part of [`Info`]).
+    pub fn ovens(&self) -> Option<OvenSet> {
+        self.kitchen.ovens()
     }
 
     /// Whether the episode has ended.

@@ -42,7 +42,9 @@ impl Counter {
     }
 }
 
-/// Per-oven state of a multi-oven episode (`n == 0` in every other task).
+/// Per-oven state of a multi-oven step (`n == 0` in every other task). It is kept out of
+/// [`Info`], which every task's step returns: read it with `ChronoEnv::ovens` after a step,
+/// from an episode record's `ovens`, or from a trace line's `ovens`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 pub struct OvenSet {
     /// Number of ovens of the task (0: not a multi-oven task).
@@ -100,9 +102,12 @@ impl Events {
     pub const CUE: u16 = 1 << 9;
     /// Reproduction: the delivered soup was produced inside the reward window.
     pub const IN_WINDOW: u16 = 1 << 10;
+    /// Multi-oven: this delivery completed the episode with every oven's soup at the
+    /// counter of its duration (each paid 1/n).
+    pub const ALL_PAID: u16 = 1 << 11;
 
     /// Names of the flags, in bit order.
-    pub const NAMES: [(u16, &'static str); 11] = [
+    pub const NAMES: [(u16, &'static str); 12] = [
         (Self::ONION_TAKEN, "onion_taken"),
         (Self::ONION_IN, "onion_in"),
         (Self::OVEN_CHECK, "oven_check"),
@@ -114,6 +119,7 @@ impl Events {
         (Self::NO_EFFECT, "no_effect"),
         (Self::CUE, "cue"),
         (Self::IN_WINDOW, "in_window"),
+        (Self::ALL_PAID, "all_paid"),
     ];
 
     /// Whether `flag` is set.
@@ -157,6 +163,10 @@ impl<'de> Deserialize<'de> for Events {
 }
 
 /// Step information (gymnasium's `info`). Timers are in steps; −1 means "off / never".
+///
+/// The multi-oven task's per-oven state is not part of it ([`OvenSet`]): every step of
+/// every task copies an `Info`, and that state would more than double its size (44 → 100
+/// bytes, measured as 13% of the vector env's step time; BENCHMARKS.md).
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct Info {
     /// Steps taken in this episode (0 after reset).
@@ -189,9 +199,6 @@ pub struct Info {
     pub sink_count: u32,
     /// Dual task: timer at the last paid sink interaction (−1 if none).
     pub last_sink_timer: i32,
-    /// Multi-oven task: every oven's state (absent from the serialised form elsewhere).
-    #[serde(default, skip_serializing_if = "OvenSet::is_empty")]
-    pub ovens: OvenSet,
 }
 
 /// Keys every serialised `info` object carries (checked by the conformance tests).

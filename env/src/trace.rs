@@ -3,14 +3,15 @@
 //! Line 0 is the reset: `{"step":0,"action":null,"obs":…,"reward":0.0,
 //! "terminated":false,"truncated":false,"info":{…},"task":…,"config":{…}}`.
 //! Every later line is one step with the same keys (without task/config);
-//! `obs` is the codes observation as nested `[row][col][channel]` integers.
+//! `obs` is the codes observation as nested `[row][col][channel]` integers. Multi-oven
+//! lines add `"ovens":{…}`, every oven's state ([`OvenSet`]).
 //! `env play` adds `"reset":{"seed":…,"options":{…}}` to its reset lines ([`ResetKey`]), so
 //! a recording can be replayed and checked line by line ([`verify_recording`]).
 
 use crate::action::Action;
 use crate::env::ChronoEnv;
 use crate::error::EnvError;
-use crate::info::Info;
+use crate::info::{Info, OvenSet};
 use crate::kitchen::{ResetOptions, Transition};
 use crate::task::TaskConfig;
 use serde::{Deserialize, Serialize};
@@ -44,6 +45,9 @@ pub struct TraceLine {
     pub truncated: bool,
     /// Step info.
     pub info: Info,
+    /// Multi-oven task: every oven's state after the step (absent for the other tasks).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ovens: Option<OvenSet>,
     /// Task id (reset line only).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub task: Option<String>,
@@ -66,6 +70,7 @@ impl TraceLine {
             terminated: false,
             truncated: false,
             info,
+            ovens: env.ovens(),
             task: Some(env.config().id.clone()),
             config: serde_json::to_value(env.config()).ok(),
             reset: None,
@@ -89,6 +94,7 @@ impl TraceLine {
             terminated: t.terminated,
             truncated: t.truncated,
             info: t.info,
+            ovens: env.ovens(),
             task: None,
             config: None,
             reset: None,

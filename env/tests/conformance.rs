@@ -84,10 +84,13 @@ fn every_obs_is_in_its_space_and_info_has_every_key() {
                 .map(String::as_str)
                 .collect();
             let mut documented = INFO_KEYS.to_vec();
-            if spec.family == TaskFamily::MultiOven {
-                // Every oven's state, documented as `Info::ovens`.
-                documented.push("ovens");
-            }
+            // Every oven's state is beside the info, only in the multi-oven task.
+            assert_eq!(
+                env.ovens().is_some(),
+                spec.family == TaskFamily::MultiOven,
+                "{}",
+                spec.id
+            );
             keys.sort_unstable();
             documented.sort_unstable();
             assert_eq!(keys, documented, "{}", spec.id);

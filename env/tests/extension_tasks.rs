@@ -4,7 +4,7 @@
 //! for bad values.
 
 use chronocooked_env::{
-    Action, ChronoEnv, EnvError, Oracle, PerOven, ResetOptions, make_config, optimal_return,
+    Action, ChronoEnv, EnvError, Events, Oracle, PerOven, ResetOptions, make_config, optimal_return,
 };
 
 fn starts(env: &ChronoEnv) -> Vec<(usize, usize)> {
@@ -15,8 +15,18 @@ fn run_oracle(env: &mut ChronoEnv, options: &ResetOptions) -> f64 {
     let oracle = Oracle::new(env);
     env.reset(Some(3), options).unwrap();
     let mut total = 0.0;
+    let mut last = Events::default();
     while !env.is_done() {
-        total += env.step(oracle.act(&env.state())).unwrap().reward as f64;
+        let t = env.step(oracle.act(&env.state())).unwrap();
+        total += t.reward as f64;
+        last = t.info.events;
+    }
+    if env.ovens().is_some() {
+        assert_eq!(
+            last.has(Events::ALL_PAID),
+            (total - 1.0).abs() < 1e-5,
+            "the last delivery is flagged all_paid exactly when every soup paid ({total})"
+        );
     }
     total
 }
@@ -259,7 +269,11 @@ fn multi_oven_soup_carries_its_oven_code_and_pays_one_nth() {
         let t = env.step(a).unwrap();
         if a == Action::Interact {
             assert_eq!(t.reward, 0.0);
-            assert_eq!(t.info.ovens.delivered, [1, 0, 2]);
+            assert_eq!(env.ovens().unwrap().delivered, [1, 0, 2]);
+            assert!(
+                !t.info.events.has(Events::ALL_PAID),
+                "oven 3's soup did not pay"
+            );
         }
     }
 }
@@ -454,8 +468,8 @@ fn drawn_episodes_use_only_active_anchors_and_the_reference_on_time_range() {
     let mut env = ChronoEnv::from_id("MultiOven-v0", &["ovens=3", "asynchronous=true"]).unwrap();
     let mut max_on = 0;
     for seed in 0..300 {
-        let info = env.reset(Some(seed), &ResetOptions::default()).unwrap();
-        let o = info.ovens;
+        env.reset(Some(seed), &ResetOptions::default()).unwrap();
+        let o = env.ovens().expect("a multi-oven env has ovens");
         assert_eq!(o.on_time[0], -1);
         assert_ne!(o.on_time[1], o.on_time[2], "without replacement");
         let limit = 6 + o.td[0] as i32 / 2;

@@ -52,9 +52,14 @@ pub enum Marker {
 }
 
 impl Marker {
-    /// Markers of one step from its info (event flags, and each multi-oven oven that turned
-    /// on during the step) and reward.
-    pub fn of_step(info: &chronocooked_env::Info, reward: f32) -> Vec<Marker> {
+    /// Markers of one step from its info (event flags), the multi-oven task's oven states
+    /// after the step (`ovens`: each oven that turned on during the step; `None` in the
+    /// other tasks) and its reward.
+    pub fn of_step(
+        info: &chronocooked_env::Info,
+        ovens: Option<&chronocooked_env::OvenSet>,
+        reward: f32,
+    ) -> Vec<Marker> {
         use chronocooked_env::Events as E;
         let mut out = Vec::new();
         for (flag, m) in [
@@ -82,10 +87,11 @@ impl Marker {
         // An oven's timer reads 1 at the end of the step on which it started (it is set to
         // 0 and counts the step), and never again: it only counts up, and once emptied it
         // stays off.
-        let ovens = &info.ovens;
-        for oven in 2..=(ovens.n as usize).min(3) {
-            if ovens.timer[oven - 1] == 1 {
-                out.push(Marker::oven_on(oven));
+        if let Some(ovens) = ovens {
+            for oven in 2..=(ovens.n as usize).min(3) {
+                if ovens.timer[oven - 1] == 1 {
+                    out.push(Marker::oven_on(oven));
+                }
             }
         }
         if reward != 0.0 {

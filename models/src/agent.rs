@@ -6,8 +6,8 @@
 
 use crate::activity::{Marker, StepRecorder, TrialRecorder};
 use chronocooked_env::{
-    Action, CODE_CHANNELS, ChronoEnv, EnvError, Events, Info, Layout, ObjectKind, ResetOptions,
-    TaskConfig, derive_seed,
+    Action, CODE_CHANNELS, ChronoEnv, EnvError, Events, Info, Layout, ObjectKind, OvenSet,
+    ResetOptions, TaskConfig, derive_seed,
 };
 use serde::{Deserialize, Serialize};
 
@@ -195,6 +195,10 @@ pub struct EpisodeRecord {
     pub actions: Vec<u8>,
     /// `info` after every step.
     pub infos: Vec<Info>,
+    /// Multi-oven task: every oven's state after every step (one per action; empty in the
+    /// other tasks).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub ovens: Vec<OvenSet>,
 }
 
 impl EpisodeRecord {
@@ -209,6 +213,14 @@ impl EpisodeRecord {
             return Err(format!(
                 "field `infos`: {} entries for {} actions (one per step)",
                 self.infos.len(),
+                self.actions.len()
+            ));
+        }
+        if !self.ovens.is_empty() && self.ovens.len() != self.actions.len() {
+            return Err(format!(
+                "field `ovens`: {} entries for {} actions (one per step, or none outside the \
+                 multi-oven task)",
+                self.ovens.len(),
                 self.actions.len()
             ));
         }
@@ -231,12 +243,10 @@ impl EpisodeRecord {
 /// delivery that completes the episode with every soup at the counter of its duration; in
 /// the reproduction task, a delivery produced inside the reward window.
 pub fn is_success(info: &Info, reward: f32) -> bool {
-    if !info.ovens.is_empty() {
-        return info.events.has(Events::DELIVERY) && info.ovens.all_paid();
-    }
     info.events.has(Events::DELIVERY)
         && (reward >= 0.999
             || info.events.has(Events::IN_WINDOW)
+            || info.events.has(Events::ALL_PAID)
             || (info.never_ready && info.manual_stop_time >= 0 && reward > 0.0))
 }
 
@@ -264,6 +274,7 @@ pub fn run_episode(
         success: false,
         actions: Vec::new(),
         infos: Vec::new(),
+        ovens: Vec::new(),
     };
     loop {
         agent.observe_state(&env.state());
@@ -274,12 +285,17 @@ pub fn run_episode(
         let t = env.step(action)?;
         rec.actions.push(action.code());
         rec.infos.push(t.info);
+        let ovens = env.ovens();
+        rec.ovens.extend(ovens);
         rec.reward += t.reward;
         if is_success(&t.info, t.reward) {
             rec.success = true;
         }
         if let Some(r) = recorder.as_deref_mut() {
-            r.end_step(&Marker::of_step(&t.info, t.reward), t.reward);
+            r.end_step(
+                &Marker::of_step(&t.info, ovens.as_ref(), t.reward),
+                t.reward,
+            );
         }
         agent.observe(t.reward, env.obs_codes(), t.terminated, t.truncated);
         if t.done() {

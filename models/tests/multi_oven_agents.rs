@@ -42,7 +42,7 @@ fn each_soup_goes_to_the_counter_of_its_own_ovens_duration() {
                         let ep_seed = 1000 + (k * 100 + j * 10) as u64 + u64::from(on_time);
                         let rec =
                             run_episode(&mut env, &mut agent, ep_seed, &options, None).unwrap();
-                        let ovens = rec.infos.last().unwrap().ovens;
+                        let ovens = *rec.ovens.last().unwrap();
                         for (i, &td) in tds.iter().enumerate() {
                             let want = if td == 5 { 1 } else { 2 };
                             right += usize::from(ovens.delivered[i] == want);

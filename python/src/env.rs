@@ -110,7 +110,10 @@ impl Env {
             (prior, gain),
         )?;
         let info = self.env.reset(seed, &options).map_err(env_err)?;
-        Ok((self.obs(py)?, info_dict(py, &info)?))
+        Ok((
+            self.obs(py)?,
+            info_dict(py, &info, self.env.ovens().as_ref())?,
+        ))
     }
 
     /// One step: `(obs, reward, terminated, truncated, info)`; `action` in `0..=5`.
@@ -126,7 +129,7 @@ impl Env {
             f64::from(t.reward),
             t.terminated,
             t.truncated,
-            info_dict(py, &t.info)?,
+            info_dict(py, &t.info, self.env.ovens().as_ref())?,
         ))
     }
 

@@ -6,7 +6,7 @@
 //! 0 nothing, 1 onion, 2 soup; `events` the event bit set (`EVENT_FLAGS`); `agent` `[N, 2]`
 //! (row, col).
 
-use chronocooked_env::{Carry, Counter, Events, Info};
+use chronocooked_env::{Carry, Counter, Events, Info, OvenSet};
 use numpy::{IntoPyArray, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -65,8 +65,14 @@ pub fn event_flags(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     Ok(d)
 }
 
-/// The info of one step as a dict of plain Python values (timers in steps, −1 = off).
-pub fn info_dict<'py>(py: Python<'py>, i: &Info) -> PyResult<Bound<'py, PyDict>> {
+/// The info of one step as a dict of plain Python values (timers in steps, −1 = off); in
+/// the multi-oven task with `ovens`, every oven's state (`td`, `timer`, `on_time`,
+/// `off_time`, `delivered`: lists of one value per oven).
+pub fn info_dict<'py>(
+    py: Python<'py>,
+    i: &Info,
+    ovens: Option<&OvenSet>,
+) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("timestep", i.timestep)?;
     d.set_item("td", i.td)?;
@@ -83,14 +89,14 @@ pub fn info_dict<'py>(py: Python<'py>, i: &Info) -> PyResult<Bound<'py, PyDict>>
     d.set_item("manual_stop_time", i.manual_stop_time)?;
     d.set_item("sink_count", i.sink_count)?;
     d.set_item("last_sink_timer", i.last_sink_timer)?;
-    if !i.ovens.is_empty() {
-        let n = i.ovens.n as usize;
+    if let Some(ovens) = ovens {
+        let n = ovens.n as usize;
         let o = PyDict::new(py);
-        o.set_item("td", i.ovens.td[..n].to_vec())?;
-        o.set_item("timer", i.ovens.timer[..n].to_vec())?;
-        o.set_item("on_time", i.ovens.on_time[..n].to_vec())?;
-        o.set_item("off_time", i.ovens.off_time[..n].to_vec())?;
-        o.set_item("delivered", i.ovens.delivered[..n].to_vec())?;
+        o.set_item("td", ovens.td[..n].to_vec())?;
+        o.set_item("timer", ovens.timer[..n].to_vec())?;
+        o.set_item("on_time", ovens.on_time[..n].to_vec())?;
+        o.set_item("off_time", ovens.off_time[..n].to_vec())?;
+        o.set_item("delivered", ovens.delivered[..n].to_vec())?;
         d.set_item("ovens", o)?;
     }
     Ok(d)

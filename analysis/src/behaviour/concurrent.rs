@@ -14,7 +14,7 @@
 
 use super::psychometric::{LogisticFit, ProbeCounts, bp_relative, check_transition, fit_with_ci};
 use crate::records::{ConditionKind, EvalRecord};
-use chronocooked_env::{Events, Info, TaskParams, make_config};
+use chronocooked_env::{Events, Info, OvenSet, TaskParams, make_config};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -85,45 +85,47 @@ pub struct MultiOvenMetrics {
 }
 
 /// The last step's per-oven state of an episode.
-fn last(r: &EvalRecord) -> Option<&Info> {
-    r.episode.infos.last()
+fn last(r: &EvalRecord) -> Option<&OvenSet> {
+    r.episode.ovens.last()
 }
 
-/// The ovens in the order their soups were delivered.
-pub fn delivery_order(infos: &[Info]) -> Vec<usize> {
+/// The ovens in the order their soups were delivered, from every step's oven states
+/// (`ovens`, one per step).
+pub fn delivery_order(ovens: &[OvenSet]) -> Vec<usize> {
     let mut order = Vec::new();
     let mut before = [0u8; 3];
-    for i in infos {
-        if i.events.has(Events::DELIVERY) {
-            let n = i.ovens.n as usize;
-            order.extend(
-                before[..n]
-                    .iter()
-                    .zip(&i.ovens.delivered[..n])
-                    .enumerate()
-                    .filter(|(_, (b, d))| **b == 0 && **d != 0)
-                    .map(|(o, _)| o),
-            );
-        }
-        before = i.ovens.delivered;
+    for o in ovens {
+        let n = o.n as usize;
+        order.extend(
+            before[..n]
+                .iter()
+                .zip(&o.delivered[..n])
+                .enumerate()
+                .filter(|(_, (b, d))| **b == 0 && **d != 0)
+                .map(|(i, _)| i),
+        );
+        before = o.delivered;
     }
     order
 }
 
 /// Onset of every oven (step at whose end it started; −1 never): the first at the put, the
 /// others at the put (synchronous) or at their on-times (asynchronous; 0 = at reset).
-pub fn onsets(infos: &[Info], asynchronous: bool) -> [i32; 3] {
+/// `infos` and `ovens` are one episode's steps.
+pub fn onsets(infos: &[Info], ovens: &[OvenSet], asynchronous: bool) -> [i32; 3] {
     let put = infos
         .iter()
         .find(|i| i.events.has(Events::ONION_IN))
         .map_or(-1, |i| i.timestep as i32);
     let mut out = [-1; 3];
-    let n = infos.first().map_or(0, |i| i.ovens.n as usize);
-    for (o, slot) in out.iter_mut().enumerate().take(n) {
+    let Some(first) = ovens.first() else {
+        return out;
+    };
+    for (o, slot) in out.iter_mut().enumerate().take(first.n as usize) {
         *slot = if o == 0 || !asynchronous {
             put
         } else {
-            infos[0].ovens.on_time[o]
+            first.on_time[o]
         };
     }
     out
@@ -133,15 +135,15 @@ fn curve(recs: &[&EvalRecord], oven: usize, short: u32, long: u32, seed: u64) ->
     let mut by: BTreeMap<u32, ProbeCounts> = BTreeMap::new();
     let (mut right, mut total) = (0u32, 0u32);
     for r in recs {
-        let Some(info) = last(r) else { continue };
-        let td = info.ovens.td[oven];
+        let Some(end) = last(r) else { continue };
+        let td = end.td[oven];
         let c = by.entry(td).or_insert(ProbeCounts {
             t: f64::from(td),
             valid: 0,
             long: 0,
             failed: 0,
         });
-        match info.ovens.delivered[oven] {
+        match end.delivered[oven] {
             0 => c.failed += 1,
             d => {
                 c.valid += 1;
@@ -232,9 +234,9 @@ pub fn multi_oven_metrics(records: &[EvalRecord], seed: u64) -> Option<MultiOven
     let mut offsets: BTreeMap<i32, (usize, usize)> = BTreeMap::new();
     let mut orders: BTreeMap<String, usize> = BTreeMap::new();
     for r in recs {
-        let infos = &r.episode.infos;
-        let Some(end) = infos.last() else { continue };
-        let order: Vec<String> = delivery_order(infos)
+        let ovens_at = &r.episode.ovens;
+        let Some(end) = ovens_at.last() else { continue };
+        let order: Vec<String> = delivery_order(ovens_at)
             .iter()
             .map(|o| o.to_string())
             .collect();
@@ -242,13 +244,13 @@ pub fn multi_oven_metrics(records: &[EvalRecord], seed: u64) -> Option<MultiOven
         if !asynchronous {
             continue;
         }
-        let on = onsets(infos, asynchronous);
+        let on = onsets(&r.episode.infos, ovens_at, asynchronous);
         if on[0] < 0 {
             continue;
         }
         for o in 1..ovens {
-            let td = end.ovens.td[o];
-            let d = end.ovens.delivered[o];
+            let td = end.td[o];
+            let d = end.delivered[o];
             if (td == short || td == long) && d != 0 && on[o] >= 0 {
                 let e = offsets.entry(on[o] - on[0]).or_default();
                 e.0 += 1;

@@ -88,6 +88,7 @@ pub fn records_from_trace(text: &str) -> Result<Vec<EvalRecord>, String> {
                         success: false,
                         actions: Vec::new(),
                         infos: Vec::new(),
+                        ovens: Vec::new(),
                     },
                 });
             }
@@ -97,6 +98,7 @@ pub fn records_from_trace(text: &str) -> Result<Vec<EvalRecord>, String> {
                     .ok_or_else(|| format!("line {n}: step before any reset line"))?;
                 rec.episode.actions.push(a);
                 rec.episode.infos.push(t.info);
+                rec.episode.ovens.extend(t.ovens);
                 rec.episode.reward += t.reward;
                 if is_success(&t.info, t.reward) {
                     rec.episode.success = true;
@@ -105,8 +107,7 @@ pub fn records_from_trace(text: &str) -> Result<Vec<EvalRecord>, String> {
         }
     }
     for (k, r) in out.iter().enumerate() {
-        r.episode
-            .validate()
+        r.validate()
             .map_err(|e| format!("episode {}: {e}", k + 1))?;
     }
     Ok(out)

@@ -12,7 +12,7 @@
 
 use crate::action::Action;
 use crate::error::EnvError;
-use crate::info::{Carry, Counter, Events, Info, OvenSet};
+use crate::info::{Carry, Counter, Events, Info};
 use crate::layout::ObjectKind;
 pub use crate::spec::{CODE_CHANNELS, derive_seed};
 pub(crate) use crate::spec::{Rules, Spec};
@@ -625,11 +625,6 @@ impl Kitchen {
             manual_stop_time: self.manual_stop_time,
             sink_count: self.sink_count,
             last_sink_timer: self.last_sink_timer,
-            ovens: if self.is_multi_oven() {
-                self.mo.info(self.spec.rules)
-            } else {
-                OvenSet::default()
-            },
         }
     }
 

@@ -300,6 +300,9 @@ impl Kitchen {
                 *events |= Events::DELIVERY;
                 if self.mo.td[from] == anchor {
                     self.mo.paid |= 1 << from;
+                    if self.mo.paid == (1u8 << n) - 1 {
+                        *events |= Events::ALL_PAID;
+                    }
                     return 1.0 / n as f32;
                 }
             }
@@ -345,5 +348,10 @@ impl Kitchen {
     /// The multi-oven state (`None` for the other tasks).
     pub fn multi_oven(&self) -> Option<&MultiOvenState> {
         self.is_multi_oven().then_some(&self.mo)
+    }
+
+    /// Every oven's state after the last step or reset (`None` for the other tasks).
+    pub fn ovens(&self) -> Option<OvenSet> {
+        self.is_multi_oven().then(|| self.mo.info(self.spec.rules))
     }
 }
