@@ -255,7 +255,7 @@ fn cases() -> Vec<Case> {
             resume: None,
             compare: &["jobs"],
             passes_for_complete: |out| {
-                chronocooked_analysis::paper::collect::read_compact(out)
+                chronocooked_analysis::collect::read_compact(out)
                     .is_ok_and(|jobs| !jobs.is_empty())
                     .then(|| "a half-collected folder is readable".into())
             },
@@ -492,7 +492,7 @@ fn collect_takes_only_finished_jobs_and_readers_refuse_an_unfinished_collect() {
     );
     drop(busy);
     // A collect that did not finish leaves its marker; every reader refuses the folder.
-    let marker = out.join(chronocooked_analysis::paper::collect::UNFINISHED_MARKER);
+    let marker = out.join(chronocooked_analysis::collect::UNFINISHED_MARKER);
     std::fs::write(&marker, "{}").unwrap();
     for args in [
         vec![

@@ -58,7 +58,7 @@ fn symlink_loops_are_not_followed_and_each_folder_counts_once() {
     std::os::unix::fs::symlink(&sweep, sweep.join("FixedInterval-v0").join("loop")).unwrap();
     std::os::unix::fs::symlink(&job, sweep.join("alias")).unwrap();
     assert_eq!(
-        chronocooked_analysis::paper::collect::job_folders(&sweep),
+        chronocooked_analysis::collect::job_folders(&sweep),
         vec![job]
     );
 }

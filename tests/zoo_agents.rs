@@ -5,7 +5,7 @@
 
 use crate::common;
 
-use chronocooked_analysis::paper::collect::EpisodeRow;
+use chronocooked_analysis::collect::EpisodeRow;
 use common::{bin, run_err, run_ok, temp_dir};
 use serde_json::Value;
 use std::path::Path;

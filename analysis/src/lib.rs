@@ -1,5 +1,6 @@
 //! Chronocooked Lab analysis: behavioural and neural metrics of recorded episodes and
-//! activity, the evaluation protocol, reports, exports and the paper's study.
+//! activity, the evaluation protocol, reports, exports and the compact results folder of a
+//! study (the paper's own analyses are the `chronocooked-paper` crate above this one).
 //!
 //! * [`stats`] — small statistics shared by the analyses (`Spread`: mean, SD, n across runs);
 //! * [`behaviour`] — behavioural metrics: first oven check and the scalar property (`foc`),
@@ -28,12 +29,14 @@
 //!   records (`npz`: the NPZ format);
 //! * [`mechanisms`] — mechanism fingerprints: each model's behavioural and neural
 //!   signatures, and which timing mechanism each trained agent is nearest to;
-//! * [`paper`] — the paper's study: compact sweep results, the paper's analyses beside the
-//!   lab's, and the comparison with the paper's numbers.
+//! * [`collect`] — a study's compact results: a sweep's output folder → per job a summary,
+//!   one line per evaluation episode, a thinned learning curve and the metrics, which a
+//!   repository can keep (`paper collect`).
 
 #![warn(missing_docs)]
 
 pub mod behaviour;
+pub mod collect;
 pub mod evaluation;
 pub mod export;
 pub mod figures;
@@ -41,7 +44,6 @@ pub mod fingerprint;
 pub mod job_folder;
 pub mod mechanisms;
 pub mod neural;
-pub mod paper;
 pub mod records;
 pub mod report;
 pub mod reproduction;

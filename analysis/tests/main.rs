@@ -2,7 +2,6 @@
 //! one per file, and the tests of all files share the test threads. Each file below is
 //! one topic; `cargo test --release -p chronocooked-analysis <file>` runs one of them.
 
-mod common;
 mod synthetic;
 
 mod behaviour_metrics;
@@ -14,12 +13,6 @@ mod neural_categories;
 mod neural_categories_edges;
 mod neural_known_answers;
 mod neural_metrics;
-mod paper_analysis;
-mod paper_claims;
-mod paper_claims_multitimer;
-mod paper_heldout;
-mod paper_levels_spreads;
-mod paper_power;
 mod production_speed;
 mod reproduction_agent;
 mod reproduction_known_answers;

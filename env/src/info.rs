@@ -219,3 +219,20 @@ pub const INFO_KEYS: [&str; 15] = [
     "sink_count",
     "last_sink_timer",
 ];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every step of every task builds an `Info` and the vector env copies it twice, so its
+    /// size is env speed: the per-oven state inside it (100 bytes) cost 13% of the vector
+    /// env's step time (BENCHMARKS.md). Task-specific state goes beside it, as `OvenSet`.
+    #[test]
+    fn the_step_info_stays_small() {
+        assert!(
+            std::mem::size_of::<Info>() <= 48,
+            "Info is {} bytes",
+            std::mem::size_of::<Info>()
+        );
+    }
+}

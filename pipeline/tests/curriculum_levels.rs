@@ -2,7 +2,7 @@
 //! each level's policy on the TDs trained at that level, from every start cell, then (past
 //! the warm-up) on every untrained TD from 1 to one past the level's longest.
 
-use chronocooked_analysis::paper::collect::{LEVELS_CSV, read_level_episodes};
+use chronocooked_analysis::collect::{LEVELS_CSV, read_level_episodes};
 use chronocooked_pipeline::stages::levels::evaluate_levels;
 use chronocooked_training::{Check, Silent, resolve, run_training};
 use std::collections::BTreeMap;

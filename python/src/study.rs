@@ -12,7 +12,7 @@ use std::path::PathBuf;
 /// --baselines`, `paper analyse` and `mechanisms` read); returns `(written, unfinished)`.
 #[pyfunction]
 pub fn collect(sweep_out: PathBuf, out: PathBuf) -> PyResult<(usize, usize)> {
-    chronocooked_analysis::paper::collect::collect(&sweep_out, &out)
+    chronocooked_analysis::collect::collect(&sweep_out, &out)
         .map_err(|e| PyOSError::new_err(e.to_string()))
 }
 
@@ -20,7 +20,7 @@ pub fn collect(sweep_out: PathBuf, out: PathBuf) -> PyResult<(usize, usize)> {
 /// written into that folder; returns the study as a dict plus `report` and `figures`.
 #[pyfunction]
 pub fn analyse<'py>(py: Python<'py>, results: PathBuf) -> PyResult<Bound<'py, PyAny>> {
-    let a = chronocooked_analysis::paper::analyse::analyse_folder(&results)
+    let a = chronocooked_paper::analyse::analyse_folder(&results)
         .map_err(|e| PyOSError::new_err(e.to_string()))?;
     let d = to_py(py, &a.study)?;
     d.set_item("report", a.report)?;

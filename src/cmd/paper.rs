@@ -2,7 +2,8 @@
 //! the repository, the paper's analyses beside the lab's, and the comparison table.
 
 use anyhow::{Context, Result};
-use chronocooked_analysis::paper::{collect, heldout};
+use chronocooked_analysis::collect;
+use chronocooked_paper::heldout;
 use clap::{Args, Subcommand};
 use std::path::PathBuf;
 
@@ -77,13 +78,13 @@ pub fn run(cmd: PaperCommand) -> Result<()> {
             Ok(())
         }
         PaperCommand::Analyse(a) => {
-            let analysed = chronocooked_analysis::paper::analyse::analyse_folder(&a.results)
+            let analysed = chronocooked_paper::analyse::analyse_folder(&a.results)
                 .with_context(|| format!("analysing {}", a.results.display()))?;
             let (s, report, figures) = (&analysed.study, &analysed.report, &analysed.figures);
             // The main text's numbers; the appendix's sizes are counted on their own.
             let (appendix, main): (Vec<_>, Vec<_>) = s.comparison.iter().partition(|r| {
                 r.table
-                    .starts_with(chronocooked_analysis::paper::reference::APPENDIX_PREFIX)
+                    .starts_with(chronocooked_paper::reference::APPENDIX_PREFIX)
             });
             let means: Vec<_> = appendix
                 .iter()

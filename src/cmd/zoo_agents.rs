@@ -115,7 +115,7 @@ fn evaluation(metrics: &Metrics) -> ZooEvaluation {
 /// job's `episodes.csv` (`None` when there is no such file): the same behaviour, episode
 /// for episode, whatever the metrics code computed from them then and now.
 fn same_episodes(eval: &Path, committed: &Path) -> Result<Option<bool>> {
-    use chronocooked_analysis::paper::collect::EpisodeRow;
+    use chronocooked_analysis::collect::EpisodeRow;
     if !committed.is_file() {
         return Ok(None);
     }

@@ -7,11 +7,11 @@ use std::path::Path;
 
 /// The reports' style sheet: compact tables that fit a 1366 px window, figures as small
 /// multiples two to a row (`figure.wide`: full width).
-pub(crate) const STYLE: &str = "body{font-family:sans-serif;margin:1.5em;max-width:1600px}table{border-collapse:collapse;margin-bottom:1em}td,th{border:1px solid #bbb;padding:3px 7px;text-align:right;white-space:nowrap;font-size:14px}th{background:#eee}td:first-child{text-align:left}h2.group{font-size:1.1em;margin:0.8em 0 0.3em}figure{display:inline-block;margin:0.5em;width:46%}figure.wide{width:96%}figure.panel{width:23.5%;margin:0.3em}figure.half{width:60%}figure svg,figure img{width:100%;height:auto}.card{border:1px solid #ccc;border-radius:4px;padding:0.3em 0.6em;margin:0.6em 0}.card h3{font-size:1em;margin:0.3em 0}.catbar{display:flex;width:100%;height:1.4em;font-size:12px;line-height:1.4em;color:#fff;overflow:hidden}.catbar span{white-space:nowrap;overflow:hidden;padding-left:3px;box-sizing:border-box}figcaption{font-size:13px}table.text td,table.text th{text-align:left;white-space:normal;max-width:26em}";
+pub const STYLE: &str = "body{font-family:sans-serif;margin:1.5em;max-width:1600px}table{border-collapse:collapse;margin-bottom:1em}td,th{border:1px solid #bbb;padding:3px 7px;text-align:right;white-space:nowrap;font-size:14px}th{background:#eee}td:first-child{text-align:left}h2.group{font-size:1.1em;margin:0.8em 0 0.3em}figure{display:inline-block;margin:0.5em;width:46%}figure.wide{width:96%}figure.panel{width:23.5%;margin:0.3em}figure.half{width:60%}figure svg,figure img{width:100%;height:auto}.card{border:1px solid #ccc;border-radius:4px;padding:0.3em 0.6em;margin:0.6em 0}.card h3{font-size:1em;margin:0.3em 0}.catbar{display:flex;width:100%;height:1.4em;font-size:12px;line-height:1.4em;color:#fff;overflow:hidden}.catbar span{white-space:nowrap;overflow:hidden;padding-left:3px;box-sizing:border-box}figcaption{font-size:13px}table.text td,table.text th{text-align:left;white-space:normal;max-width:26em}";
 
 /// A whole self-contained page: `<title>` and `<h1>` both `title`, then `body`; the
 /// returned text ends with a newline.
-pub(crate) fn page(title: &str, body: Markup) -> String {
+pub fn page(title: &str, body: Markup) -> String {
     let page = html! {
         (DOCTYPE)
         html lang="en" {
@@ -31,7 +31,7 @@ pub(crate) fn page(title: &str, body: Markup) -> String {
 
 /// An SVG file as inline markup: the XML prolog and namespace URIs dropped (inline SVG in
 /// HTML needs neither, and the page then holds no URL at all).
-pub(crate) fn inline_svg(svg: &Path) -> Result<Markup, String> {
+pub fn inline_svg(svg: &Path) -> Result<Markup, String> {
     let text = std::fs::read_to_string(svg).map_err(|e| format!("{}: {e}", svg.display()))?;
     let body = text.find("<svg").map_or(text.as_str(), |i| &text[i..]);
     Ok(PreEscaped(
@@ -42,7 +42,7 @@ pub(crate) fn inline_svg(svg: &Path) -> Result<Markup, String> {
 
 /// A `<figure>` of `body` with `caption`; `class` (e.g. `wide`, `panel`, `half`) sets its
 /// width in [`STYLE`].
-pub(crate) fn figure(body: Markup, caption: &str, class: Option<&str>) -> Markup {
+pub fn figure(body: Markup, caption: &str, class: Option<&str>) -> Markup {
     html! {
         figure class=[class] { (body) figcaption { (caption) } }
     }
@@ -51,11 +51,7 @@ pub(crate) fn figure(body: Markup, caption: &str, class: Option<&str>) -> Markup
 /// A figure file as a `<figure>`: the SVG inline, or its PNG sibling (`stem.png`) as a
 /// base64 data URI when that is smaller (heat maps: thousands of SVG rectangles, a few kB
 /// of PNG).
-pub(crate) fn figure_file(
-    svg: &Path,
-    caption: &str,
-    class: Option<&str>,
-) -> Result<Markup, String> {
+pub fn figure_file(svg: &Path, caption: &str, class: Option<&str>) -> Result<Markup, String> {
     use base64::Engine as _;
     let png = svg.with_extension("png");
     let svg_len = std::fs::metadata(svg)

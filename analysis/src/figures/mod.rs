@@ -2,13 +2,13 @@
 //! so no system fonts are needed): the standard figures of an evaluation, of a recorded
 //! population and of a run, and the leaderboard's psychometric grid ([`grid`]). Drawing
 //! primitives (charts, heat maps) live in [`draw`], the HTML page kit of the reports and
-//! cards in `markup`. The drawing kit of every report (leaderboard, paper study,
+//! cards in [`markup`]. The drawing kit of every report (leaderboard, paper study,
 //! mechanism and fingerprint cards): it names metrics, never a report.
 
 mod draw;
 pub mod extensions;
 pub mod grid;
-pub(crate) mod markup;
+pub mod markup;
 mod matrix;
 pub mod reproduction;
 

@@ -12,9 +12,9 @@
 //! its own row, and [`Row::baseline`] names the study.
 
 use crate::behaviour::metrics::Metrics;
+use crate::collect::{JobSummary, job_folders};
 use crate::job_folder;
 use crate::neural::summary::NeuralSummary;
-use crate::paper::collect::{JobSummary, job_folders};
 use crate::report::leaderboard::{Row, RunResult, group_rows};
 use std::path::{Path, PathBuf};
 

@@ -27,9 +27,7 @@
 //! Written as `levels.csv` ([`LevelEpisode`] rows) in the evaluation folder.
 
 use crate::PipelineError;
-use chronocooked_analysis::paper::collect::{
-    LEVELS_CSV, LevelEpisode, read_curve, write_level_episodes,
-};
+use chronocooked_analysis::collect::{LEVELS_CSV, LevelEpisode, read_curve, write_level_episodes};
 use chronocooked_analysis::{Condition, ConditionKind, Mode, reference_conditions, run_protocol};
 use chronocooked_env::{CueMode, RewardMode, TaskParams, make_config};
 use chronocooked_models::run_folder;

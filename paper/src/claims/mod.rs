@@ -29,7 +29,7 @@
 //! `multitimer.rs`; here the row, the verdict rules and the shared tests.
 
 use super::reference::lab_model;
-use crate::behaviour::aggregate::Spread;
+use chronocooked_analysis::behaviour::aggregate::Spread;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 

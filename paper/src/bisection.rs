@@ -4,11 +4,11 @@
 //! WF / DL tables (mean ± SD), and WF against log2(L/S). Beside it the lab's binomial
 //! maximum-likelihood fit of the pooled counts.
 
-use super::collect::CompactJob;
 use super::lsq::{LsqFit, fit_paper};
-use crate::behaviour::aggregate::Spread;
-use crate::behaviour::psychometric::{LogisticFit, ProbeCounts, fit_logistic};
-use crate::records::ConditionKind;
+use chronocooked_analysis::behaviour::aggregate::Spread;
+use chronocooked_analysis::behaviour::psychometric::{LogisticFit, ProbeCounts, fit_logistic};
+use chronocooked_analysis::collect::CompactJob;
+use chronocooked_analysis::records::ConditionKind;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -101,7 +101,7 @@ pub fn pearson(x: &[f64], y: &[f64]) -> Option<WfRegression> {
         return None;
     }
     let r = (sxy / (sxx * syy).sqrt()).clamp(-1.0, 1.0);
-    let p = crate::neural::correlation_p(r, n);
+    let p = chronocooked_analysis::neural::correlation_p(r, n);
     Some(WfRegression {
         r,
         p,

@@ -1,6 +1,6 @@
 //! Constructed compact jobs shared by the paper-analysis tests.
 
-use chronocooked_analysis::paper::collect::{EpisodeRow, JobSummary};
+use chronocooked_analysis::collect::{EpisodeRow, JobSummary};
 
 /// A constructed `job` for the tests.
 pub fn job(task: &str, model: &str, seed: u64, env: &[&str], ep_len: f64) -> JobSummary {
@@ -54,8 +54,8 @@ pub fn mt_ep(td: u32, reward: f32, off: i32) -> EpisodeRow {
 }
 
 /// A constructed `curve_at` for the tests.
-pub fn curve_at(level: usize, ret: f64) -> chronocooked_analysis::paper::collect::CurveRow {
-    chronocooked_analysis::paper::collect::CurveRow {
+pub fn curve_at(level: usize, ret: f64) -> chronocooked_analysis::collect::CurveRow {
+    chronocooked_analysis::collect::CurveRow {
         env_steps: 1000,
         wall_s: 1.0,
         ep_return_mean: ret,
@@ -70,8 +70,8 @@ pub fn lstm_fi_job(
     seed: u64,
     td: u32,
     episodes: Vec<EpisodeRow>,
-) -> chronocooked_analysis::paper::collect::CompactJob {
-    chronocooked_analysis::paper::collect::CompactJob {
+) -> chronocooked_analysis::collect::CompactJob {
+    chronocooked_analysis::collect::CompactJob {
         job: job(
             "FixedInterval-v0",
             "lstm125",
@@ -87,11 +87,11 @@ pub fn lstm_fi_job(
 
 /// The `claims.csv` row of `claim` in `setting` whose test mentions `test`.
 pub fn find_claim<'a>(
-    rows: &'a [chronocooked_analysis::paper::claims::ClaimRow],
+    rows: &'a [chronocooked_paper::claims::ClaimRow],
     claim: &str,
     setting: &str,
     test: &str,
-) -> &'a chronocooked_analysis::paper::claims::ClaimRow {
+) -> &'a chronocooked_paper::claims::ClaimRow {
     rows.iter()
         .find(|r| r.claim == claim && r.setting == setting && r.test.contains(test))
         .unwrap_or_else(|| panic!("no {claim} / {setting} / {test} in {rows:#?}"))

@@ -4,11 +4,11 @@
 
 use crate::common;
 
-use chronocooked_analysis::paper::bisection::{analyse_bisection, pearson};
-use chronocooked_analysis::paper::collect::{CompactJob, EpisodeRow, JobSummary};
-use chronocooked_analysis::paper::compare::{agree_mean, agree_sd};
-use chronocooked_analysis::paper::fi::analyse_fi;
-use chronocooked_analysis::paper::lsq::{LsqHow, fit_paper};
+use chronocooked_analysis::collect::{CompactJob, EpisodeRow, JobSummary};
+use chronocooked_paper::bisection::{analyse_bisection, pearson};
+use chronocooked_paper::compare::{agree_mean, agree_sd};
+use chronocooked_paper::fi::analyse_fi;
+use chronocooked_paper::lsq::{LsqHow, fit_paper};
 use common::{curve_at, ep, job, lstm_fi_job, mt_ep};
 
 fn logistic(d: f64, x0: f64, k: f64) -> f64 {
@@ -208,11 +208,11 @@ fn pearson_and_agreement_rules_have_known_answers() {
 
 #[test]
 fn study_figures_and_comparison_come_out_of_constructed_jobs() {
-    use chronocooked_analysis::paper::agreement::agreement;
-    use chronocooked_analysis::paper::compare::compare;
-    use chronocooked_analysis::paper::figures::write_figures;
-    use chronocooked_analysis::paper::multitimer::analyse_multitimer;
-    use chronocooked_analysis::paper::study::{PaperStudy, job_costs, write_study};
+    use chronocooked_paper::agreement::agreement;
+    use chronocooked_paper::compare::compare;
+    use chronocooked_paper::figures::write_figures;
+    use chronocooked_paper::multitimer::analyse_multitimer;
+    use chronocooked_paper::study::{PaperStudy, job_costs, write_study};
     let mut jobs = Vec::new();
     for seed in 1..=3u64 {
         for td in [4u32, 12] {
@@ -321,10 +321,10 @@ fn study_figures_and_comparison_come_out_of_constructed_jobs() {
 
 #[test]
 fn multitimer_analysis_reads_levels_rewards_and_oven_off_times() {
-    use chronocooked_analysis::paper::figures::{multitimer_panels, write_figures};
-    use chronocooked_analysis::paper::multitimer::analyse_multitimer;
-    use chronocooked_analysis::paper::report::write_paper_report;
-    use chronocooked_analysis::paper::study::{PaperStudy, tables_markdown};
+    use chronocooked_paper::figures::{multitimer_panels, write_figures};
+    use chronocooked_paper::multitimer::analyse_multitimer;
+    use chronocooked_paper::report::write_paper_report;
+    use chronocooked_paper::study::{PaperStudy, tables_markdown};
     let cat = ["mode=exact", "under_buffer=3"];
     // Run A reaches all five timers; TD 4 is evaluated but not trained (out of distribution).
     let mut a = job("MultiTimer-v0", "m", 1, &cat, 20.0);

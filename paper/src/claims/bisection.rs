@@ -1,8 +1,8 @@
 //! The bisection statements.
 
 use super::*;
-use crate::paper::collect::CompactJob;
-use crate::paper::spreads::{ConditionStat, condition_stats};
+use crate::spreads::{ConditionStat, condition_stats};
+use chronocooked_analysis::collect::CompactJob;
 
 /// The bisection statements (the paper's Results, "Bisection task"): "LSTM125 performs
 /// better than its biologically plausible recurrent counterpart CTRNN125" and "for a higher

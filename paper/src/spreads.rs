@@ -7,9 +7,9 @@
 //! runs than the first four seeds.
 
 use super::bisection::analyse_bisection;
-use super::collect::CompactJob;
 use super::fi::analyse_fi;
-use crate::stats::Spread;
+use chronocooked_analysis::collect::CompactJob;
+use chronocooked_analysis::stats::Spread;
 use serde::{Deserialize, Serialize};
 
 /// The seeds of the paper-core study's first repeats (the paper's logs 1–4).

@@ -4,11 +4,11 @@
 
 use crate::common;
 
-use chronocooked_analysis::paper::claims::{
+use chronocooked_analysis::collect::{CompactJob, EpisodeRow};
+use chronocooked_paper::claims::{
     ClaimRow, bisection_claims, exact_timer_claims, exact_timer_run_means, fi_claims, fi_run_stat,
     general,
 };
-use chronocooked_analysis::paper::collect::{CompactJob, EpisodeRow};
 use common::{ep, find_claim as find, job, mt_ep};
 
 /// An exact-timer run of `model` at `td` whose buffer-0 episodes earn `r0` and buffer-50%
@@ -295,7 +295,7 @@ fn general_statements_need_a_majority_of_at_least_three_settings_and_no_contradi
 #[test]
 fn tests_on_runs_are_welch_t_or_exact_without_variance() {
     use chronocooked_analysis::behaviour::aggregate::Spread;
-    use chronocooked_analysis::paper::claims::MeanTest;
+    use chronocooked_paper::claims::MeanTest;
     // Welch: the FI example below (ratios 1, 0.875, 1.125, 1 against 0.25, 0.375, 0.25,
     // 0.125): t 10.3923 on 6 df, p 4.649e-5, half-width 0.17659 (scipy).
     let a = Spread::of([1.0, 0.875, 1.125, 1.0]);

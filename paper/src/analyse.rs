@@ -1,8 +1,8 @@
 //! `paper analyse` as one library call: the whole analysis of a results folder written
 //! beside it (tables, figures, report), for the CLI and the Python package alike.
 
-use super::collect::{CollectError, err};
 use super::study::{PaperStudy, analyse, write_study};
+use chronocooked_analysis::collect::{CollectError, err};
 use std::path::{Path, PathBuf};
 
 /// What [`analyse_folder`] wrote.

@@ -7,9 +7,9 @@
 //! test setting (`levels.csv`, the notebooks' per-level evaluation). Runs trained on one TD
 //! are the exact timer ([`analyse_exact_timer`]): reward against the test buffer.
 
-use super::collect::{CompactJob, LevelEpisode};
-use crate::behaviour::aggregate::Spread;
-use crate::records::ConditionKind;
+use chronocooked_analysis::behaviour::aggregate::Spread;
+use chronocooked_analysis::collect::{CompactJob, LevelEpisode};
+use chronocooked_analysis::records::ConditionKind;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 

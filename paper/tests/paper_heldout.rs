@@ -4,8 +4,8 @@
 
 use crate::common;
 
-use chronocooked_analysis::paper::collect::CompactJob;
-use chronocooked_analysis::paper::heldout::{HeldOutError, HeldOutVerdict, check_held_out};
+use chronocooked_analysis::collect::CompactJob;
+use chronocooked_paper::heldout::{HeldOutError, HeldOutVerdict, check_held_out};
 use common::{ep, job, lstm_fi_job};
 
 /// An LSTM125 FI run at `td` whose two start cells both check first at `foc`.

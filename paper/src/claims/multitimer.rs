@@ -1,7 +1,7 @@
 //! The multi-timer's statements.
 
 use super::*;
-use crate::paper::multitimer::{LEVELS, MtCell};
+use crate::multitimer::{LEVELS, MtCell};
 use std::collections::BTreeMap;
 
 /// The five-timer curricula among `cells` (exact and categorical: the paper's figures do not
@@ -150,7 +150,7 @@ pub fn multitimer_claims(cells: &[MtCell]) -> Vec<ClaimRow> {
 
 /// "CTRNN125 generally shows more shifts than LSTM125" (the multi-timer's oven-off curves,
 /// each level's policy on every TD 1 … its longest + 1): per curriculum and five-TD list, the
-/// timers each level's policy stores ([`timers_stored`](crate::paper::multitimer::timers_stored)),
+/// timers each level's policy stores ([`timers_stored`](crate::multitimer::timers_stored)),
 /// CTRNN − LSTM per level 1 … 5 with the runs that kept that level, then over the levels.
 /// The paper's figures do not say which curriculum they show, so both are tested.
 pub fn shift_claims(cells: &[MtCell]) -> Vec<ClaimRow> {

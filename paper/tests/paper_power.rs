@@ -3,12 +3,10 @@
 //! counting, the paper/notebook source of each number, and the uniformity test of
 //! post-TD response rates (a flat curve against a peaked one).
 
-use chronocooked_analysis::paper::agreement::{Counts, control_counts, table_counts};
-use chronocooked_analysis::paper::compare::{ComparisonRow, agree_z, z_score, z_score_sd};
-use chronocooked_analysis::paper::pi::{PiEntry, pi_row, pi_verdicts, slope, uniformity};
-use chronocooked_analysis::paper::reference::{
-    Source, appendix_numbers, lab_model, numbers, size8_numbers,
-};
+use chronocooked_paper::agreement::{Counts, control_counts, table_counts};
+use chronocooked_paper::compare::{ComparisonRow, agree_z, z_score, z_score_sd};
+use chronocooked_paper::pi::{PiEntry, pi_row, pi_verdicts, slope, uniformity};
+use chronocooked_paper::reference::{Source, appendix_numbers, lab_model, numbers, size8_numbers};
 
 fn close(a: f64, b: f64) -> bool {
     (a - b).abs() < 1e-9
@@ -32,7 +30,7 @@ fn z_scores_have_by_hand_values() {
     assert!(close(z, 3.0));
     assert_eq!(agree_z(0.7, 1.0, z), "no");
     assert_eq!(
-        chronocooked_analysis::paper::compare::agree_mean(0.7, 1.0, 0.2, 4),
+        chronocooked_paper::compare::agree_mean(0.7, 1.0, 0.2, 4),
         "yes"
     );
     // Negative differences give negative z.

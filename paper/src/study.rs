@@ -9,7 +9,6 @@ use super::claims::{
     ClaimRow, bisection_claims, capacity_claims, claims_markdown, exact_timer_claims, fi_claims,
     multitimer_claims, shift_claims,
 };
-use super::collect::{CollectError, CompactJob, err, read_compact, write_csv};
 use super::compare::{ComparisonRow, compare};
 use super::fi::{FiModel, analyse_fi};
 use super::multitimer::{
@@ -18,7 +17,8 @@ use super::multitimer::{
 use super::pi::{PiRow, PiVerdict, analyse_pi, pi_verdicts};
 use super::reference::HUMAN_WF_VS_RATIO;
 use super::spreads::{NewRunRange, SpreadChange, new_run_ranges, spread_changes};
-use crate::behaviour::aggregate::Spread;
+use chronocooked_analysis::behaviour::aggregate::Spread;
+use chronocooked_analysis::collect::{CollectError, CompactJob, err, read_compact, write_csv};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;

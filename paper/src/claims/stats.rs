@@ -7,7 +7,7 @@
 //! A normal z with threshold 2 is too lenient at these run counts: with 4 runs a side
 //! Welch's df is about 3–6, whose two-sided 5% cut-off is 2.4–3.2, not 1.96.
 
-use crate::behaviour::aggregate::Spread;
+use chronocooked_analysis::behaviour::aggregate::Spread;
 use statrs::distribution::{ContinuousCDF, StudentsT};
 
 /// Two-sided significance level of every test (`p < SIGNIFICANCE`: a difference).

@@ -226,7 +226,7 @@ pub enum CollectError {
 }
 
 /// A [`CollectError::File`] for `path`.
-pub(crate) fn err(path: &Path, e: impl std::fmt::Display) -> CollectError {
+pub fn err(path: &Path, e: impl std::fmt::Display) -> CollectError {
     CollectError::File {
         path: path.display().to_string(),
         message: e.to_string(),
@@ -380,7 +380,7 @@ pub fn summarise_job(dir: &Path) -> Result<Option<CompactJob>, CollectError> {
 }
 
 /// Writes `rows` as CSV (a header from the first row's fields) to `path`, atomically.
-pub(crate) fn write_csv<T: Serialize>(path: &Path, rows: &[T]) -> Result<(), CollectError> {
+pub fn write_csv<T: Serialize>(path: &Path, rows: &[T]) -> Result<(), CollectError> {
     let mut w = csv::Writer::from_writer(Vec::new());
     for r in rows {
         w.serialize(r).map_err(|e| err(path, e))?;

@@ -6,8 +6,8 @@
 //! notebook's exclusion rule and fit failures included), so its value of each statistic is
 //! the one a study run with that seed would have contributed.
 
-use super::collect::CompactJob;
 use super::spreads::{condition_stats, prediction_interval};
+use chronocooked_analysis::collect::CompactJob;
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use thiserror::Error;
@@ -188,8 +188,8 @@ pub fn check_held_out(
 pub fn write_held_out_csv(
     path: &std::path::Path,
     checks: &[HeldOutCheck],
-) -> Result<(), super::collect::CollectError> {
-    super::collect::write_csv(path, checks)
+) -> Result<(), chronocooked_analysis::collect::CollectError> {
+    chronocooked_analysis::collect::write_csv(path, checks)
 }
 
 fn num(x: f64) -> String {

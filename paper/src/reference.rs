@@ -315,7 +315,7 @@ pub fn multitimer_2_10_numbers() -> Vec<PaperNumber> {
         ("categorical level 5", [0.92, 0.00, 0.84, 0.89]),
     ];
     for (column, logs) in per_log {
-        let s = crate::stats::Spread::of(logs);
+        let s = chronocooked_analysis::stats::Spread::of(logs);
         v.extend(rows(
             Notebook,
             "multitimer_2_10_level_reward",

@@ -1,7 +1,8 @@
-//! The paper's study: compact results of a sweep and the paper's analyses beside the lab's.
+//! The paper's study: the paper's analyses of a results folder beside the lab's. The
+//! results folder itself — a sweep's output folder made compact (summary, one line per
+//! evaluation episode, thinned learning curve, metrics) — is the generic
+//! [`chronocooked_analysis::collect`]; this crate reads it.
 //!
-//! * [`collect`] — a sweep's output folder → compact per-job results (summary, one line per
-//!   evaluation episode, thinned learning curve, metrics) that a repository can keep;
 //! * [`lsq`] — the paper's least-squares psychometric fit (and its failure rules);
 //! * [`fi`] — FOC pooled over runs × start cells per TD, CV, scalar-property R²;
 //! * [`bisection`] — per-run P(long), run exclusion, averaged curve, per-run BP/DL/WF,
@@ -23,11 +24,12 @@
 //! * [`report`] — the study's `report.html`: agreement per table, figures, every row;
 //! * [`analyse`] — all of it for one results folder (`paper analyse`).
 
+#![warn(missing_docs)]
+
 pub mod agreement;
 pub mod analyse;
 pub mod bisection;
 pub mod claims;
-pub mod collect;
 pub mod compare;
 pub mod fi;
 pub mod figures;

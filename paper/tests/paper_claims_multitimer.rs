@@ -3,9 +3,9 @@
 
 use crate::common;
 
-use chronocooked_analysis::paper::claims::{capacity_claims, multitimer_claims, shift_claims};
-use chronocooked_analysis::paper::collect::{CompactJob, LevelEpisode};
-use chronocooked_analysis::paper::multitimer::{LevelTd, analyse_multitimer, timers_stored};
+use chronocooked_analysis::collect::{CompactJob, LevelEpisode};
+use chronocooked_paper::claims::{capacity_claims, multitimer_claims, shift_claims};
+use chronocooked_paper::multitimer::{LevelTd, analyse_multitimer, timers_stored};
 use common::{find_claim as find, job, mt_ep};
 
 /// An exact multi-timer run on the notebook's list that reached `level`, its final policy
@@ -255,8 +255,8 @@ fn more_shifts_is_tested_level_by_level() {
 
 #[test]
 fn the_papers_level_figure_has_a_reward_and_an_off_time_panel_per_reached_level() {
-    use chronocooked_analysis::paper::figures::level_panels;
-    use chronocooked_analysis::paper::study::PaperStudy;
+    use chronocooked_paper::figures::level_panels;
+    use chronocooked_paper::study::PaperStudy;
     let jobs: Vec<CompactJob> = (1..=2)
         .map(|s| shifting_run("lstm125", s, 2, |_, td| td as i32))
         .collect();

@@ -1,8 +1,8 @@
 //! The exact timer's statements.
 
 use super::*;
-use crate::paper::collect::CompactJob;
-use crate::paper::multitimer::{buffer_rewards, exact_timer_groups};
+use crate::multitimer::{buffer_rewards, exact_timer_groups};
+use chronocooked_analysis::collect::CompactJob;
 use std::collections::BTreeMap;
 
 /// Per exact-timer (model, TD): each run's reward averaged over its test buffers.

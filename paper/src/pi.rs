@@ -15,9 +15,9 @@
 //! time, which makes bins more alike than independent samples would be, so the test errs
 //! towards `uniform`).
 
-use super::collect::{CollectError, CompactJob, err};
-use crate::records::ConditionKind;
-use crate::records::METRICS;
+use chronocooked_analysis::collect::{CollectError, CompactJob, err};
+use chronocooked_analysis::records::ConditionKind;
+use chronocooked_analysis::records::METRICS;
 use serde::{Deserialize, Serialize};
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 use std::path::Path;

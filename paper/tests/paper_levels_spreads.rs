@@ -4,15 +4,11 @@
 
 use crate::common;
 
-use chronocooked_analysis::paper::collect::{CompactJob, EpisodeRow};
+use chronocooked_analysis::collect::{CompactJob, EpisodeRow};
 use common::{curve_at, ep, job, mt_ep};
 
-fn level_ep(
-    level: usize,
-    td: u32,
-    reward: f32,
-) -> chronocooked_analysis::paper::collect::LevelEpisode {
-    chronocooked_analysis::paper::collect::LevelEpisode {
+fn level_ep(level: usize, td: u32, reward: f32) -> chronocooked_analysis::collect::LevelEpisode {
+    chronocooked_analysis::collect::LevelEpisode {
         level,
         td,
         row: 0,
@@ -27,8 +23,8 @@ fn level_ep(
 
 #[test]
 fn each_levels_policy_is_scored_and_compared_on_its_own_td_list() {
-    use chronocooked_analysis::paper::compare::compare;
-    use chronocooked_analysis::paper::multitimer::analyse_multitimer;
+    use chronocooked_paper::compare::compare;
+    use chronocooked_paper::multitimer::analyse_multitimer;
     let cat = ["tds=2,4,6,8,10", "mode=exact", "under_buffer=3"];
     // Four categorical LSTM125 runs on the notebook's list, each with 20 level-2 episodes
     // (TDs 2 and 4) of which 10 + hits earn 1 and the rest 0.5 (means 0.825, 0.85, 0.875,
@@ -97,7 +93,7 @@ fn each_levels_policy_is_scored_and_compared_on_its_own_td_list() {
 
 #[test]
 fn the_exact_timer_scores_each_test_buffer_per_run() {
-    use chronocooked_analysis::paper::multitimer::{analyse_exact_timer, analyse_multitimer};
+    use chronocooked_paper::multitimer::{analyse_exact_timer, analyse_multitimer};
     let buf = |td: u32, f: f64, reward: f32| EpisodeRow {
         factor: Some(f),
         reward,
@@ -147,7 +143,7 @@ fn the_exact_timer_scores_each_test_buffer_per_run() {
 
 #[test]
 fn spreads_compare_the_first_four_seeds_with_every_run_by_hand() {
-    use chronocooked_analysis::paper::spreads::spread_changes;
+    use chronocooked_paper::spreads::spread_changes;
     let fi_run = |seed: u64, foc: i32| {
         common::lstm_fi_job(
             seed,
@@ -180,8 +176,8 @@ fn spreads_compare_the_first_four_seeds_with_every_run_by_hand() {
 
 #[test]
 fn a_new_runs_range_is_the_95_percent_prediction_interval() {
-    use chronocooked_analysis::paper::spreads::prediction_interval;
     use chronocooked_analysis::stats::Spread;
+    use chronocooked_paper::spreads::prediction_interval;
     // Runs 4, 4, 5, 5: mean 4.5, SD 0.57735; t(0.975, 3) = 3.18245; half-width
     // 3.18245 · 0.57735 · √(1.25) = 2.05422.
     let (lo, hi) = prediction_interval(&Spread::of([4.0, 4.0, 5.0, 5.0]));
@@ -194,8 +190,8 @@ fn a_new_runs_range_is_the_95_percent_prediction_interval() {
 
 #[test]
 fn a_row_the_old_rule_cannot_judge_has_no_z_verdict_either() {
-    use chronocooked_analysis::paper::compare::compare;
-    use chronocooked_analysis::paper::fi::analyse_fi;
+    use chronocooked_paper::compare::compare;
+    use chronocooked_paper::fi::analyse_fi;
     // LSTM125 at one TD only: its R² rows (mean vs TD, SD vs mean) need three TDs.
     let jobs: Vec<CompactJob> = (1..=4)
         .map(|seed| CompactJob {

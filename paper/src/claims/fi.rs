@@ -1,8 +1,8 @@
 //! The fixed-interval statements.
 
 use super::*;
-use crate::paper::collect::CompactJob;
-use crate::paper::fi::{fi_runs, run_focs};
+use crate::fi::{fi_runs, run_focs};
+use chronocooked_analysis::collect::CompactJob;
 
 /// One FI run's statistics over its episodes with an oven check.
 #[derive(Debug, Clone, Copy, PartialEq)]

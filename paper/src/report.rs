@@ -3,12 +3,12 @@
 //! comparison row, and the study's figures in the paper's form.
 
 use super::claims::{p_text, z_text};
-use super::collect::{CollectError, err};
 use super::compare::ComparisonRow;
 use super::study::PaperStudy;
-use crate::figures::markup::{figure, inline_svg, page};
-use crate::paper::agreement::Counts;
-use crate::paper::reference::APPENDIX_PREFIX;
+use crate::agreement::Counts;
+use crate::reference::APPENDIX_PREFIX;
+use chronocooked_analysis::collect::{CollectError, err};
+use chronocooked_analysis::figures::markup::{figure, inline_svg, page};
 use maud::{Markup, html};
 use std::path::{Path, PathBuf};
 

@@ -2,10 +2,10 @@
 //! cells per (model, TD) — mean, SD, CV — and the scalar-property regressions across TDs;
 //! beside them the lab's per-run statistics (mean ± SD over runs).
 
-use super::collect::{CompactJob, EpisodeRow};
-use crate::behaviour::aggregate::Spread;
-use crate::behaviour::foc::{FocStats, ScalarProperty, foc_stats, scalar_property};
-use crate::records::ConditionKind;
+use chronocooked_analysis::behaviour::aggregate::Spread;
+use chronocooked_analysis::behaviour::foc::{FocStats, ScalarProperty, foc_stats, scalar_property};
+use chronocooked_analysis::collect::{CompactJob, EpisodeRow};
+use chronocooked_analysis::records::ConditionKind;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 

@@ -8,8 +8,8 @@ use super::bisection::BisectionModel;
 use super::fi::FiModel;
 use super::multitimer::LEVELS;
 use super::study::PaperStudy;
-use crate::behaviour::foc::linear_fit;
-use crate::figures::{Chart, FigureError, Series, write_chart, write_panels};
+use chronocooked_analysis::behaviour::foc::linear_fit;
+use chronocooked_analysis::figures::{Chart, FigureError, Series, write_chart, write_panels};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
