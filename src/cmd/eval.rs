@@ -89,7 +89,10 @@ pub fn run(args: EvalArgs) -> Result<()> {
             }
         };
         let seed = args.seed.unwrap_or_else(|| match &subject {
-            EvalSubject::Run(dir) => stages::run_seed(dir).unwrap_or(0),
+            EvalSubject::Run(dir) => chronocooked_training::RunFolder::open(dir)
+                .ok()
+                .and_then(|r| r.seed)
+                .unwrap_or(0),
             EvalSubject::Reference(_) => 0,
         });
         stages::evaluate(&EvalRequest {

@@ -145,14 +145,18 @@ pub fn add(args: ZooAddArgs) -> Result<()> {
     let run = args.job.join(job_folder::RUN);
     let eval = args.job.join(job_folder::EVAL);
     // The model must load intact before it is copied.
-    chronocooked_training::load_policy(&run)?;
+    let (_, _, cfg) = chronocooked_training::load_policy(&run)?;
     let metrics_path = eval.join(chronocooked_analysis::evaluation::folder::METRICS);
     let metrics_text = std::fs::read_to_string(&metrics_path)
         .with_context(|| metrics_path.display().to_string())?;
     let metrics: Metrics = chronocooked_analysis::stats::nan_json::from_str_nan(&metrics_text)
         .with_context(|| format!("{}: not a metrics file", metrics_path.display()))?;
-    let cfg = read_json(&run.join(run_folder::CONFIG))?;
-    let summary = read_json(&run.join(run_folder::SUMMARY))?;
+    let summary_path = run.join(run_folder::SUMMARY);
+    let summary: chronocooked_training::RunSummary = serde_json::from_str(
+        &std::fs::read_to_string(&summary_path)
+            .with_context(|| summary_path.display().to_string())?,
+    )
+    .with_context(|| format!("{}: not a run summary", summary_path.display()))?;
     let name = format!("{model}/{task}");
     let (study_job, reproduces) = match &args.study {
         Some(study) => {
@@ -166,17 +170,10 @@ pub fn add(args: ZooAddArgs) -> Result<()> {
         name: name.clone(),
         model: model.clone(),
         task: task.clone(),
-        env: cfg["env"]
-            .as_array()
-            .map(|a| {
-                a.iter()
-                    .filter_map(|v| v.as_str().map(str::to_string))
-                    .collect()
-            })
-            .unwrap_or_default(),
-        seed: cfg["seed"].as_u64().unwrap_or_default(),
-        preset: cfg["preset"].as_str().unwrap_or_default().to_string(),
-        env_steps: summary["env_steps"].as_u64().unwrap_or_default(),
+        env: cfg.env.clone(),
+        seed: cfg.seed,
+        preset: cfg.preset.clone(),
+        env_steps: summary.env_steps,
         sweep: args.sweep.display().to_string(),
         job: id.clone(),
         command: format!(
@@ -185,7 +182,7 @@ pub fn add(args: ZooAddArgs) -> Result<()> {
             args.sweep_out.display()
         ),
         commit: args.commit.clone(),
-        train_wall_s: summary["wall_s"].as_f64().unwrap_or(f64::NAN),
+        train_wall_s: summary.wall_s,
         evaluation: evaluation(&metrics),
         study_job,
         reproduces_study_job: reproduces,

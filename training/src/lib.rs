@@ -36,7 +36,8 @@ pub use ppo::run::{Progress, Silent, resume_trainer, run_training};
 pub use ppo::run_dir;
 pub use ppo::run_dir::{RunDir, RunSummary, load_policy};
 pub use ppo::trainer::{Trainer, TrainerState, UpdateLog};
+pub use run_config::{RunFolder, RunKind};
 pub use timing_run::{
-    TimingRunConfig, TimingRunSummary, is_timing_run, is_timing_run_config, load_timing_agent,
-    load_timing_config, run_timing_training,
+    TimingRunConfig, TimingRunSummary, is_timing_run, load_timing_agent, load_timing_config,
+    run_timing_training,
 };

@@ -1,13 +1,14 @@
 //! What every run folder shares, PPO or timing model: its `config.json` — written with its
 //! SHA-256 record, read back checked, and the fields every kind of run has
-//! ([`RunHeader`]) — and the `command.txt` lines. The PPO run folder is
+//! ([`RunFolder`]) — and the `command.txt` lines. The PPO run folder is
 //! [`crate::ppo::run_dir`], the timing run's [`crate::timing_run`].
 
 use crate::error::TrainError;
 use chronocooked_env::integrity;
+use chronocooked_env::{TaskConfig, make_config};
 use chronocooked_models::run_folder;
 use serde::Deserialize;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// The text of the run folder `dir`'s `config.json` (PPO or timing model), checked against
 /// its SHA-256 record when the folder has one (runs written since records were kept): a
@@ -27,36 +28,114 @@ pub fn read_config_text(dir: &Path) -> Result<String, TrainError> {
     })
 }
 
-/// The fields every run folder's `config.json` shares, PPO or timing model: what a reader
-/// needs before it knows which kind of run it has (the full configurations are
-/// [`crate::TrainConfig`] and [`crate::TimingRunConfig`]).
+/// Which kind of agent a run folder holds (its `config.json`'s `kind`: `"timing"` for a
+/// timing model, absent for PPO).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RunKind {
+    /// A PPO policy ([`crate::TrainConfig`], [`crate::ppo::run_dir`]).
+    Ppo,
+    /// A timing model's agent ([`crate::TimingRunConfig`], [`crate::timing_run`]).
+    Timing,
+}
+
+/// The fields every `config.json` shares, PPO or timing model, in one serde schema (the
+/// full configurations are [`crate::TrainConfig`] and [`crate::TimingRunConfig`]).
 #[derive(Debug, Clone, PartialEq, Deserialize)]
-pub struct RunHeader {
+struct SharedConfig {
+    /// `"timing"` for a timing-model run; absent for PPO runs.
+    #[serde(default)]
+    kind: Option<String>,
     /// Task id (runs written before the field existed trained on `FixedInterval-v0`).
     #[serde(default = "first_task")]
-    pub task: String,
+    task: String,
     /// Task overrides (`key=value`).
     #[serde(default)]
-    pub env: Vec<String>,
+    env: Vec<String>,
     /// Training seed.
     #[serde(default)]
-    pub seed: Option<u64>,
+    seed: Option<u64>,
 }
 
 fn first_task() -> String {
     "FixedInterval-v0".into()
 }
 
-impl RunHeader {
-    /// The header of `dir`'s `config.json` ([`read_config_text`]: checked against its
-    /// SHA-256 record); errors name the file.
-    pub fn read(dir: &Path) -> Result<Self, TrainError> {
+/// A run folder opened for reading, PPO or timing model: what a reader needs before it
+/// knows which kind of run it has — the kind, the task (id, overrides and the validated
+/// [`TaskConfig`]), the seed and whether the run finished — read from `config.json`
+/// ([`read_config_text`]: checked against its SHA-256 record). The one reader of what every
+/// run's `config.json` shares; the kinds' own loaders ([`crate::ppo::run_dir`],
+/// [`crate::timing_run::load_timing_config`]) read the rest.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunFolder {
+    /// The folder.
+    pub path: PathBuf,
+    /// PPO or timing model.
+    pub kind: RunKind,
+    /// Task id.
+    pub task: String,
+    /// Task overrides (`key=value`).
+    pub env: Vec<String>,
+    /// Training seed (`None` in folders written before it was stored).
+    pub seed: Option<u64>,
+}
+
+impl RunFolder {
+    /// Opens `dir`: "not a run folder" without `config.json`; errors name the file.
+    pub fn open(dir: &Path) -> Result<Self, TrainError> {
         let text = read_config_text(dir)?;
-        serde_json::from_str(&text).map_err(|e| TrainError::Resume {
-            path: dir.join(run_folder::CONFIG).display().to_string(),
+        let file = || dir.join(run_folder::CONFIG).display().to_string();
+        let shared: SharedConfig = serde_json::from_str(&text).map_err(|e| TrainError::Resume {
+            path: file(),
             reason: e.to_string(),
+        })?;
+        let kind = match shared.kind.as_deref() {
+            None => RunKind::Ppo,
+            Some("timing") => RunKind::Timing,
+            Some(other) => {
+                return Err(TrainError::ConfigFile {
+                    file: file(),
+                    message: format!("`kind`: {other:?} (allowed: \"timing\", or absent for PPO)"),
+                });
+            }
+        };
+        Ok(RunFolder {
+            path: dir.to_path_buf(),
+            kind,
+            task: shared.task,
+            env: shared.env,
+            seed: shared.seed,
         })
     }
+
+    /// The task the run trained on, validated (its id and overrides through the task's
+    /// parameter table); errors name `config.json`.
+    pub fn task_config(&self) -> Result<TaskConfig, TrainError> {
+        make_config(&self.task, &self.env).map_err(|e| TrainError::ConfigFile {
+            file: self.path.join(run_folder::CONFIG).display().to_string(),
+            message: e.to_string(),
+        })
+    }
+
+    /// Whether the run finished (its `summary.json`, written last, exists).
+    pub fn finished(&self) -> bool {
+        self.path.join(run_folder::SUMMARY).is_file()
+    }
+}
+
+/// Whether `dir`'s `config.json` says it is a timing-model run, read without the integrity
+/// check or any other field: a damaged timing config is still recognised as one, so
+/// loading it reports what is wrong rather than a PPO config error.
+pub fn says_timing(dir: &Path) -> bool {
+    #[derive(Deserialize)]
+    struct KindOnly {
+        #[serde(default)]
+        kind: Option<String>,
+    }
+    std::fs::read_to_string(dir.join(run_folder::CONFIG))
+        .ok()
+        .and_then(|t| serde_json::from_str::<KindOnly>(&t).ok())
+        .is_some_and(|k| k.kind.as_deref() == Some("timing"))
 }
 
 /// Writes a run's `config.json` with its SHA-256 record (so later edits are seen).

@@ -10,7 +10,6 @@
 use crate::error::TrainError;
 use crate::evaluate::eval_tds;
 use crate::ppo::config::ENV_KEY;
-use crate::run_config::RunHeader;
 use crate::settings::{
     self, timing::TIMING_SETTINGS, timing::TimerSettings, timing::TimingAgentSettings,
 };
@@ -328,35 +327,12 @@ pub fn run_timing_training(
     Ok(summary)
 }
 
-/// Task id and task overrides of any run folder (PPO or timing agent), from its
-/// `config.json`.
-pub fn run_task(dir: &Path) -> Result<(String, Vec<String>), TrainError> {
-    let header = RunHeader::read(dir)?;
-    Ok((header.task, header.env))
-}
-
-/// The training seed of any run folder (PPO or timing agent: both keep it at the top level
-/// of `config.json`); `None` when the file or the field is missing or unreadable (loading
-/// the run then reports the problem).
-pub fn run_seed(dir: &Path) -> Option<u64> {
-    RunHeader::read(dir).ok()?.seed
-}
-
-/// Whether `dir`'s `config.json` describes a timing-agent run (finished or not). Only
-/// `kind` is read, without the integrity check, so a damaged timing config is still
-/// recognised as one and loading it reports what is wrong.
-pub fn is_timing_run_config(dir: &Path) -> bool {
-    std::fs::read_to_string(dir.join(run_folder::CONFIG))
-        .ok()
-        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
-        .is_some_and(|v| v["kind"] == "timing")
-}
-
 /// Whether `dir` holds a timing-agent run (its `agent.json`, or a timing run's
 /// `config.json`: an unfinished or damaged run is still a timing run, so a missing agent
 /// is reported as such rather than as a PPO config error).
 pub fn is_timing_run(dir: &Path) -> bool {
-    std::fs::symlink_metadata(dir.join(run_folder::AGENT)).is_ok() || is_timing_run_config(dir)
+    std::fs::symlink_metadata(dir.join(run_folder::AGENT)).is_ok()
+        || crate::run_config::says_timing(dir)
 }
 
 fn bad_file(dir: &Path, name: &str, e: serde_json::Error) -> TrainError {

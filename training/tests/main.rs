@@ -6,6 +6,7 @@ mod adaptation;
 mod faithful;
 mod native_engine;
 mod reproduction_agents;
+mod run_folder;
 mod settings;
 mod tolerance_curriculum;
 mod training;

@@ -2,8 +2,8 @@
 //! `Uncertainty-v0`) and the episodes it needs to adapt are counted (`adapt/`).
 
 use crate::PipelineError;
+use chronocooked_training::RunFolder;
 use chronocooked_training::adapt::{AdaptConfig, AdaptResult, run_adaptation};
-use chronocooked_training::timing_run::run_task;
 use std::path::{Path, PathBuf};
 
 /// What to adapt (the arguments of `chronocooked adapt`).
@@ -21,7 +21,11 @@ pub struct AdaptRequest {
 /// The task overrides an adaptation uses when none are given: the run's own task settings
 /// without `never_ready_prob` when it was trained on the task adapted to, else its `td`.
 pub fn adapt_env(run: &Path, task: &str) -> Result<Vec<String>, PipelineError> {
-    let (own_task, own) = run_task(run)?;
+    let RunFolder {
+        task: own_task,
+        env: own,
+        ..
+    } = RunFolder::open(run)?;
     Ok(own
         .into_iter()
         .filter(|s| {

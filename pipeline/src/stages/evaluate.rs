@@ -12,8 +12,8 @@ use chronocooked_env::ChronoEnv;
 use chronocooked_models::Agent;
 use chronocooked_models::activity::{ActivityMeta, TrialRecorder};
 use chronocooked_models::agent::{OracleAgent, RandomAgent};
-pub use chronocooked_training::timing_run::run_seed;
-use chronocooked_training::timing_run::{load_agent, run_task};
+use chronocooked_training::RunFolder;
+use chronocooked_training::timing_run::load_agent;
 use std::path::{Path, PathBuf};
 
 /// Who plays the protocol.
@@ -146,7 +146,10 @@ pub fn evaluate(req: &EvalRequest) -> Result<EvalOutcome, PipelineError> {
     }
     let (task, env) = match (&req.task, &req.subject) {
         (Some(t), _) => (t.clone(), req.env.clone()),
-        (None, EvalSubject::Run(run)) => run_task(run)?,
+        (None, EvalSubject::Run(run)) => {
+            let r = RunFolder::open(run)?;
+            (r.task, r.env)
+        }
         (None, EvalSubject::Reference(_)) => ("FixedInterval-v0".to_string(), req.env.clone()),
     };
     let unfinished_at_step = match &req.subject {

@@ -9,7 +9,8 @@ use chronocooked_analysis::fingerprint::{
     PROTOCOL, Placement, ProtocolCondition, play_condition, write_and_place,
 };
 use chronocooked_env::{TaskParams, make_config};
-use chronocooked_training::timing_run::{load_agent, run_task};
+use chronocooked_training::RunFolder;
+use chronocooked_training::timing_run::load_agent;
 use std::path::{Path, PathBuf};
 
 /// What to fingerprint (the arguments of `chronocooked fingerprint`).
@@ -50,8 +51,9 @@ fn anchors(p: &TaskParams) -> Option<(u32, u32)> {
 /// The condition a run was trained for: same task, same settings as far as the condition
 /// sets them (TD, anchors).
 fn condition_of(run: &Path) -> Result<&'static ProtocolCondition, PipelineError> {
-    let (task, env) = run_task(run)?;
-    let config = make_config(&task, &env)?;
+    let folder = RunFolder::open(run)?;
+    let config = folder.task_config()?;
+    let task = folder.task.as_str();
     PROTOCOL
         .iter()
         .find(|c| {
@@ -65,7 +67,7 @@ fn condition_of(run: &Path) -> Result<&'static ProtocolCondition, PipelineError>
             PipelineError::Invalid(format!(
                 "{}: trained on {task} {} — no condition of the fingerprint protocol ({})",
                 run.display(),
-                env.join(" "),
+                folder.env.join(" "),
                 PROTOCOL
                     .iter()
                     .map(|c| format!("{} {}", c.task, c.env.join(" ")))

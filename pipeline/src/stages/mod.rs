@@ -22,7 +22,7 @@ pub mod train;
 
 pub use adapt::{AdaptRequest, adapt};
 pub use evaluate::{
-    EvalOutcome, EvalRequest, EvalSubject, evaluate, evaluate_human, rescore_eval_folder, run_seed,
+    EvalOutcome, EvalRequest, EvalSubject, evaluate, evaluate_human, rescore_eval_folder,
 };
 pub use export::export;
 pub use fingerprint::{FingerprintOutcome, FingerprintRequest, fingerprint};

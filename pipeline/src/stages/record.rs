@@ -13,8 +13,9 @@ use chronocooked_analysis::neural::probe::{PROBE_TASK, population_summaries, pro
 use chronocooked_env::make_config;
 use chronocooked_models::ActivityDataset;
 use chronocooked_models::agent::record_dataset;
+use chronocooked_training::RunFolder;
 use chronocooked_training::eval_tds;
-use chronocooked_training::timing_run::{is_timing_run, load_agent, load_timing_config, run_task};
+use chronocooked_training::timing_run::{is_timing_run, load_agent, load_timing_config};
 use std::path::{Path, PathBuf};
 
 /// What to record (the arguments of `chronocooked record`).
@@ -77,7 +78,10 @@ fn record_run(
 ) -> Result<(String, Vec<String>, ActivityDataset), PipelineError> {
     let (task, env) = match &req.task {
         Some(t) => (t.clone(), req.env.clone()),
-        None => run_task(run)?,
+        None => {
+            let r = RunFolder::open(run)?;
+            (r.task, r.env)
+        }
     };
     let own = make_config(&task, &env)?;
     let tds = if !req.tds.is_empty() {

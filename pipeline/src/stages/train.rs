@@ -4,8 +4,8 @@ use crate::PipelineError;
 use chronocooked_env::fs::FolderLock;
 use chronocooked_models::{Architecture, TimingCurvePoint};
 use chronocooked_training::{
-    Check, Progress, RunSummary, TimingRunConfig, TimingRunSummary, UpdateLog,
-    is_timing_run_config, load_timing_config, resolve, run_timing_training, run_training,
+    Check, Progress, RunSummary, TimingRunConfig, TimingRunSummary, UpdateLog, load_timing_config,
+    resolve, run_timing_training, run_training,
 };
 use serde::Serialize;
 use std::path::PathBuf;
@@ -81,7 +81,10 @@ pub fn train(
     req: &TrainRequest,
     observer: &mut dyn TrainObserver,
 ) -> Result<(TrainOutcome, Option<String>), PipelineError> {
-    let timing_resume = req.resume.as_deref().is_some_and(is_timing_run_config);
+    let timing_resume = req
+        .resume
+        .as_deref()
+        .is_some_and(chronocooked_training::run_config::says_timing);
     let timing = timing_resume || chronocooked_models::timing::zoo::is_timing_model(&req.model);
     // The run folder's lock is held over training and the figure (training takes it again:
     // a no-op inside this process); each trainer takes it once the folder is known.
