@@ -22,7 +22,7 @@ fn rates(c: &Cube, seed: u64) -> [f64; 6] {
         seed,
         ..CategoryConfig::default()
     };
-    let tests = classify_units(c, c.time, &cfg).unwrap();
+    let tests = classify_units(c, c.time(), &cfg).unwrap();
     let n = tests.len() as f64;
     let frac = |cat| tests.iter().filter(|u| u.category == cat).count() as f64 / n;
     [
@@ -99,7 +99,7 @@ fn clean_shapes_land_in_exactly_their_category() {
     let c = cube(16, w, 6, |_, t, i| {
         shapes(t as f64, i) + 0.05 * gauss(&mut rng)
     });
-    let tests = classify_units(&c, c.time, &CategoryConfig::default()).unwrap();
+    let tests = classify_units(&c, c.time(), &CategoryConfig::default()).unwrap();
     let want = [
         Category::Ramp,
         Category::Ramp,
@@ -130,12 +130,12 @@ fn wilson_intervals_match_their_formula() {
 fn too_few_trials_or_too_short_windows_leave_the_tests_undefined() {
     let one = cube(1, 24, 2, |_, t, _| t as f64);
     assert!(matches!(
-        classify_units(&one, one.time, &CategoryConfig::default()),
+        classify_units(&one, one.time(), &CategoryConfig::default()),
         Err(CategoryError::TooFewTrials { trials: 1, .. })
     ));
     let short = cube(10, 6, 2, |_, t, _| t as f64);
     assert!(matches!(
-        classify_units(&short, short.time, &CategoryConfig::default()),
+        classify_units(&short, short.time(), &CategoryConfig::default()),
         Err(CategoryError::WindowTooShort { window: 6, .. })
     ));
 }

@@ -27,12 +27,7 @@ fn cube(
             }
         }
     }
-    Cube {
-        trials,
-        time,
-        units,
-        data,
-    }
+    Cube::new(trials, time, units, data).expect("trials × time × units values")
 }
 
 #[test]

@@ -260,7 +260,7 @@ pub fn population_figures(
     cube: &crate::neural::Cube,
 ) -> Result<Vec<PathBuf>, FigureError> {
     use crate::neural::decode::{Decoder, decode_time};
-    let u = cube.units;
+    let u = cube.units();
     let avg = cube.average();
     let mut out = Vec::new();
     let mut ramps = crate::neural::classify_ramps(&avg, u, 0.9, 0.05);
@@ -271,7 +271,7 @@ pub fn population_figures(
         .enumerate()
         .map(|(k, r)| Series {
             label: format!("unit {} (r = {:.2})", r.unit, r.r),
-            points: (0..cube.time)
+            points: (0..cube.time())
                 .map(|t| (t as f64, avg[t * u + r.unit]))
                 .collect(),
             line: true,
@@ -288,18 +288,18 @@ pub fn population_figures(
             ..Chart::default()
         },
     )?);
-    if cube.time >= 8 {
+    if cube.time() >= 8 {
         let mut mean_power: Vec<f64> = Vec::new();
         let mut freqs = Vec::new();
         for i in 0..u {
-            let x: Vec<f64> = (0..cube.time)
+            let x: Vec<f64> = (0..cube.time())
                 .map(|t| avg[t * u + i])
                 .filter(|v| v.is_finite())
                 .collect();
             if x.len() < 8 {
                 continue;
             }
-            let s = crate::neural::oscillation::welch(&x, x.len().min(cube.time), 1.0);
+            let s = crate::neural::oscillation::welch(&x, x.len().min(cube.time()), 1.0);
             if mean_power.is_empty() {
                 mean_power = vec![0.0; s.power.len()];
                 freqs = s.freqs.clone();
@@ -412,18 +412,7 @@ pub fn neural_figures(
             dataset.meta.model, p.name
         );
         write_heatmap(&dir.join(&p.name), &title, &sub, p.size)?;
-        let mut data = Vec::with_capacity(cube.trials * window * p.size);
-        for k in 0..cube.trials {
-            for t in 0..window {
-                data.extend(r.clone().map(|i| cube.at(k, t, i)));
-            }
-        }
-        let pop = Cube {
-            trials: cube.trials,
-            time: window,
-            units: p.size,
-            data,
-        };
+        let pop = cube.select(window, &r.clone().collect::<Vec<_>>());
         let title = format!("{} {}", dataset.meta.model, p.name);
         population_figures(&dir.join(&p.name), &title, &pop)?;
     }

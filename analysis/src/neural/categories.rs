@@ -228,9 +228,9 @@ pub struct UnitTests {
 
 /// One unit's recorded steps per trial (finite prefix: NaN marks the end of a trial).
 fn unit_trials(cube: &Cube, i: usize) -> Vec<Vec<f64>> {
-    (0..cube.trials)
+    (0..cube.trials())
         .map(|k| {
-            (0..cube.time)
+            (0..cube.time())
                 .map(|t| cube.at(k, t, i))
                 .take_while(|v| v.is_finite())
                 .collect()
@@ -408,7 +408,7 @@ pub fn classify_units(
     window: usize,
     cfg: &CategoryConfig,
 ) -> Result<Vec<UnitTests>, CategoryError> {
-    let window = window.min(cube.time);
+    let window = window.min(cube.time());
     if window < cfg.min_window {
         return Err(CategoryError::WindowTooShort {
             window,
@@ -417,8 +417,8 @@ pub fn classify_units(
     }
     let min_k = cfg.min_trials.max(2);
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(cfg.seed);
-    let mut out = Vec::with_capacity(cube.units);
-    for i in 0..cube.units {
+    let mut out = Vec::with_capacity(cube.units());
+    for i in 0..cube.units() {
         let recorded: Vec<Vec<f64>> = unit_trials(cube, i)
             .into_iter()
             .filter(|x| !x.is_empty())

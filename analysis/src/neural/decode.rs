@@ -36,8 +36,8 @@ fn samples(cube: &Cube, trials: &[usize]) -> (Vec<Vec<f64>>, Vec<usize>) {
     let mut x = Vec::new();
     let mut y = Vec::new();
     for &k in trials {
-        for t in 0..cube.time {
-            let v: Vec<f64> = (0..cube.units).map(|i| cube.at(k, t, i)).collect();
+        for t in 0..cube.time() {
+            let v: Vec<f64> = (0..cube.units()).map(|i| cube.at(k, t, i)).collect();
             if v.iter().all(|a| a.is_finite()) {
                 x.push(v);
                 y.push(t);
@@ -188,12 +188,12 @@ type Predictor<'a> = Box<dyn Fn(&[f64]) -> f64 + 'a>;
 /// Cross-validated decoding of elapsed time (bins of `cube`) with `folds` folds.
 /// `lambda` is the ridge penalty (ignored by the Bayesian decoder).
 pub fn decode_time(cube: &Cube, decoder: Decoder, folds: usize, lambda: f64) -> DecodeResult {
-    let folds = folds.clamp(2, cube.trials.max(2));
-    let mut err = vec![0.0; cube.time];
-    let mut cnt = vec![0.0; cube.time];
+    let folds = folds.clamp(2, cube.trials().max(2));
+    let mut err = vec![0.0; cube.time()];
+    let mut cnt = vec![0.0; cube.time()];
     for f in 0..folds {
-        let train: Vec<usize> = (0..cube.trials).filter(|k| k % folds != f).collect();
-        let test: Vec<usize> = (0..cube.trials).filter(|k| k % folds == f).collect();
+        let train: Vec<usize> = (0..cube.trials()).filter(|k| k % folds != f).collect();
+        let test: Vec<usize> = (0..cube.trials()).filter(|k| k % folds == f).collect();
         let (xtr, ytr) = samples(cube, &train);
         let (xte, yte) = samples(cube, &test);
         if xtr.is_empty() || xte.is_empty() {
@@ -204,14 +204,14 @@ pub fn decode_time(cube: &Cube, decoder: Decoder, folds: usize, lambda: f64) -> 
                 Some(p) => Box::new(p),
                 None => continue,
             },
-            Decoder::Bayes => match fit_bayes(&xtr, &ytr, cube.time) {
+            Decoder::Bayes => match fit_bayes(&xtr, &ytr, cube.time()) {
                 Some(p) => Box::new(p),
                 None => continue,
             },
         };
         // The decoded elapsed time lies in the window: a linear read-out beyond it is
         // clipped to its ends.
-        let last = cube.time.saturating_sub(1) as f64;
+        let last = cube.time().saturating_sub(1) as f64;
         for (v, &t) in xte.iter().zip(&yte) {
             err[t] += (predict(v).clamp(0.0, last) - t as f64).abs();
             cnt[t] += 1.0;

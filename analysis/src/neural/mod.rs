@@ -25,44 +25,86 @@ pub mod speed;
 pub mod summary;
 
 use crate::behaviour::foc::linear_fit;
+use ndarray::Array3;
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use serde::{Deserialize, Serialize};
 
-/// Activity `[trials, time, units]` row-major; NaN = missing.
+/// Activity `[trials, time, units]` (an `ndarray` array in standard, row-major layout);
+/// NaN = missing.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Cube {
-    /// Trials.
-    pub trials: usize,
-    /// Time bins (steps).
-    pub time: usize,
-    /// Units.
-    pub units: usize,
-    /// Values.
-    pub data: Vec<f64>,
+    data: Array3<f64>,
 }
 
 impl Cube {
-    /// From an aligned `f32` buffer.
+    /// From row-major values `[trials, time, units]`; `None` when `data` does not hold
+    /// `trials × time × units` values.
+    pub fn new(trials: usize, time: usize, units: usize, data: Vec<f64>) -> Option<Self> {
+        Array3::from_shape_vec((trials, time, units), data)
+            .ok()
+            .map(|data| Cube { data })
+    }
+
+    /// From an aligned `f32` buffer `[trials, time, units]` (as the activity datasets
+    /// align trials; its length must be `trials × time × units`).
     pub fn from_f32(data: &[f32], trials: usize, time: usize, units: usize) -> Self {
+        let values = data.iter().map(|&v| f64::from(v)).collect();
+        Cube::new(trials, time, units, values)
+            .expect("an aligned buffer holds trials × time × units values")
+    }
+
+    /// Number of trials.
+    pub fn trials(&self) -> usize {
+        self.data.dim().0
+    }
+
+    /// Number of time bins (steps).
+    pub fn time(&self) -> usize {
+        self.data.dim().1
+    }
+
+    /// Number of units.
+    pub fn units(&self) -> usize {
+        self.data.dim().2
+    }
+
+    /// The values `[trials, time, units]`.
+    pub fn array(&self) -> &Array3<f64> {
+        &self.data
+    }
+
+    /// The values, row-major `[trials, time, units]` flattened.
+    pub fn values(&self) -> &[f64] {
+        self.data
+            .as_slice()
+            .expect("a cube is built in standard layout")
+    }
+
+    /// The first `time` bins of the units `units` (indices along the unit axis), every
+    /// trial: a new cube `[trials, time, units.len()]`.
+    pub fn select(&self, time: usize, units: &[usize]) -> Cube {
+        let sub = self
+            .data
+            .slice(ndarray::s![.., ..time, ..])
+            .select(ndarray::Axis(2), units);
         Cube {
-            trials,
-            time,
-            units,
-            data: data.iter().map(|&v| f64::from(v)).collect(),
+            data: sub.as_standard_layout().into_owned(),
         }
     }
 
     /// Value at (trial, t, unit).
     pub fn at(&self, k: usize, t: usize, i: usize) -> f64 {
-        self.data[(k * self.time + t) * self.units + i]
+        self.data[[k, t, i]]
     }
 
-    /// Trial average `[time, units]` over `trials` (NaN ignored; NaN where no trial has data).
+    /// Trial average `[time, units]` (row-major) over `trials` (NaN ignored; NaN where no
+    /// trial has data).
     pub fn average_over(&self, trials: impl Iterator<Item = usize> + Clone) -> Vec<f64> {
-        let mut out = vec![f64::NAN; self.time * self.units];
-        for t in 0..self.time {
-            for i in 0..self.units {
+        let (time, units) = (self.time(), self.units());
+        let mut out = vec![f64::NAN; time * units];
+        for t in 0..time {
+            for i in 0..units {
                 let (mut s, mut n) = (0.0, 0);
                 for k in trials.clone() {
                     let v = self.at(k, t, i);
@@ -72,7 +114,7 @@ impl Cube {
                     }
                 }
                 if n > 0 {
-                    out[t * self.units + i] = s / n as f64;
+                    out[t * units + i] = s / n as f64;
                 }
             }
         }
@@ -81,7 +123,7 @@ impl Cube {
 
     /// Trial average over all trials `[time, units]`.
     pub fn average(&self) -> Vec<f64> {
-        self.average_over(0..self.trials)
+        self.average_over(0..self.trials())
     }
 }
 
@@ -282,8 +324,8 @@ fn ridge_ratio(col: &[f64], half_width: usize) -> (usize, f64) {
 /// (seeded), plus odd/even reliability. Missing (NaN) values count as 0 after normalisation.
 pub fn time_cells(cube: &Cube, half_width: usize, shuffles: usize, seed: u64) -> Vec<TimeCellUnit> {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
-    let nt = cube.time;
-    (0..cube.units)
+    let nt = cube.time();
+    (0..cube.units())
         .map(|i| {
             let series = |k: usize| -> Vec<f64> {
                 (0..nt)
@@ -291,7 +333,7 @@ pub fn time_cells(cube: &Cube, half_width: usize, shuffles: usize, seed: u64) ->
                     .map(|v| if v.is_finite() { v } else { 0.0 })
                     .collect()
             };
-            let trials: Vec<Vec<f64>> = (0..cube.trials).map(series).collect();
+            let trials: Vec<Vec<f64>> = (0..cube.trials()).map(series).collect();
             let (lo, hi) = finite_range(trials.iter().flatten().copied());
             let span = (hi - lo).max(1e-12);
             let norm: Vec<Vec<f64>> = trials

@@ -327,18 +327,8 @@ pub fn classify_td(
     let full = Cube::from_f32(&aligned, used.len(), span, n);
     let size = cols.len();
     let pick = |units: &[usize], time: usize| {
-        let mut data = Vec::with_capacity(full.trials * time * units.len());
-        for k in 0..full.trials {
-            for t in 0..time {
-                data.extend(units.iter().map(|&j| full.at(k, t, cols.start + j)));
-            }
-        }
-        Cube {
-            trials: full.trials,
-            time,
-            units: units.len(),
-            data,
-        }
+        let columns: Vec<usize> = units.iter().map(|&j| cols.start + j).collect();
+        full.select(time, &columns)
     };
     let all: Vec<usize> = (0..size).collect();
     let average_all = pick(&all, window).average();
@@ -346,7 +336,7 @@ pub fn classify_td(
         .into_iter()
         .filter(|&j| {
             let (lo, hi) = crate::neural::finite_range(
-                (0..full.trials)
+                (0..full.trials())
                     .flat_map(|k| (0..window).map(move |t| (k, t)))
                     .map(|(k, t)| full.at(k, t, cols.start + j)),
             );
@@ -391,7 +381,7 @@ pub fn trajectory_speed(avg: &[f64], units: usize) -> Option<f64> {
 }
 
 fn td_summary(c: &TdClassification) -> TdSummary {
-    let u = c.cube.units;
+    let u = c.cube.units();
     let avg = c.cube.average();
     let (categories, undefined) = match &c.tests {
         Ok(t) => (Some(CategorySummary::of(t)), None),
@@ -405,7 +395,7 @@ fn td_summary(c: &TdClassification) -> TdSummary {
     TdSummary {
         td: c.td,
         window: c.window,
-        trials: c.cube.trials,
+        trials: c.cube.trials(),
         units: u,
         constant_units: c.size - u,
         categories,

@@ -25,10 +25,5 @@ pub fn cube(
             }
         }
     }
-    Cube {
-        trials,
-        time,
-        units,
-        data,
-    }
+    Cube::new(trials, time, units, data).expect("trials × time × units values")
 }

@@ -126,13 +126,13 @@ pub(super) fn population_spectrum(c: &TdClassification) -> Vec<(f64, f64)> {
     let mut sum: Vec<f64> = Vec::new();
     let mut freqs: Vec<f64> = Vec::new();
     let mut count = 0.0;
-    for i in 0..cube.units {
-        for k in 0..cube.trials {
-            let x: Vec<f64> = (0..cube.time)
+    for i in 0..cube.units() {
+        for k in 0..cube.trials() {
+            let x: Vec<f64> = (0..cube.time())
                 .map(|t| cube.at(k, t, i))
                 .take_while(|v| v.is_finite())
                 .collect();
-            if x.len() < cube.time.max(4) {
+            if x.len() < cube.time().max(4) {
                 continue;
             }
             let s = welch(&x, x.len(), 1.0);

@@ -54,7 +54,7 @@ pub(crate) fn card_charts(card: &Card) -> Vec<(&'static str, Chart, String)> {
     let mut out = Vec::new();
     // Example units.
     let avg = long.cube.average();
-    let units = long.cube.units;
+    let units = long.cube.units();
     let series: Vec<Series> = match &long.tests {
         Ok(tests) => examples(tests)
             .into_iter()
