@@ -355,3 +355,38 @@ fn the_readme_settings_tables_are_generated_from_the_settings() {
         );
     }
 }
+
+/// Every count, size and duration setting has a documented bound sized from what the lab
+/// can do, never the integer type's maximum (a typo or a corrupted file must be refused at
+/// validation, not start a run that cannot end or fill the disk). Seeds are the exception:
+/// every `u64` is a seed.
+#[test]
+fn every_count_setting_is_bounded_below_the_types_maximum() {
+    for s in PPO_SETTINGS.iter().chain(TIMING_SETTINGS) {
+        let mut rule = s.rule;
+        while let Rule::Optional(inner) = rule {
+            rule = *inner;
+        }
+        if let Rule::Int { hi, .. } = rule {
+            if s.key == "seed" {
+                continue;
+            }
+            assert!(hi < u64::MAX / 2, "{}: no upper bound", s.key);
+            assert!(
+                s.rule.allowed().contains(&hi.to_string()),
+                "{}: the bound {hi} is not in its documented range {}",
+                s.key,
+                s.rule.allowed()
+            );
+        }
+    }
+    let mut cfg = ppo_config("cnn-mlp");
+    let err = cfg
+        .set("stats_window", "18446744073709551615")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("stats_window") && err.contains("1000000"),
+        "{err}"
+    );
+}

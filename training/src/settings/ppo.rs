@@ -1,13 +1,32 @@
 //! The settings of a deep-RL (PPO) run: every `--set` key of [`crate::TrainConfig`] and
 //! of its [`crate::PpoConfig`] and [`crate::Curriculum`], with its accepted values.
 
-use super::{COUNT, NON_NEGATIVE, POSITIVE, POSITIVE_COUNT, Rule, Spec, UNIT, spec};
+use super::{COUNT, NON_NEGATIVE, POSITIVE, Rule, Spec, UNIT, spec};
 
 /// Largest PPO budget (env steps): about 1,000 × the reference protocol's largest (1.76M,
 /// the multi-anchor and multi-oven curricula) — days on the lab's CPUs, so a larger value is
 /// a typo or a corrupted file, not a plan (a run folder's `total_steps = i64::MAX` trained on
 /// without end before this bound).
 pub const MAX_TOTAL_STEPS: u64 = 2_000_000_000;
+
+/// Largest count of episodes a PPO setting averages over (the success-rate and curriculum
+/// windows): 10,000 × the reference's 100-episode window.
+pub const MAX_WINDOW_EPISODES: u64 = 1_000_000;
+
+/// Largest number of checkpoints kept: a checkpoint is 0.1–10 MB, so 1,000 of the largest
+/// fill 10 GB, more than the lab's disk budget for one run.
+pub const MAX_KEEP_CHECKPOINTS: u64 = 1_000;
+
+/// An interval in env steps: 0 (off) up to the largest budget.
+const STEP_INTERVAL: Rule = Rule::Int {
+    lo: 0,
+    hi: MAX_TOTAL_STEPS,
+};
+/// A window of episodes.
+const EPISODE_WINDOW: Rule = Rule::Int {
+    lo: 1,
+    hi: MAX_WINDOW_EPISODES,
+};
 
 /// `spec`, a setting only the configurations `when` names have (e.g.
 /// `curriculum=tolerance`).
@@ -62,25 +81,28 @@ pub const PPO_SETTINGS: &[Spec] = &[
     spec(
         "checkpoint_every",
         &["checkpoint_every"],
-        COUNT,
+        STEP_INTERVAL,
         "env steps between checkpoints, rounded up to whole updates (0 = only at the end)",
     ),
     spec(
         "keep_checkpoints",
         &["keep_checkpoints"],
-        POSITIVE_COUNT,
+        Rule::Int {
+            lo: 1,
+            hi: MAX_KEEP_CHECKPOINTS,
+        },
         "newest checkpoints kept in checkpoints/",
     ),
     spec(
         "eval_every",
         &["eval_every"],
-        COUNT,
+        STEP_INTERVAL,
         "env steps between deterministic evaluations from every start cell (0 = only at the end)",
     ),
     spec(
         "stats_window",
         &["stats_window"],
-        POSITIVE_COUNT,
+        EPISODE_WINDOW,
         "episodes in the training success-rate window",
     ),
     spec(
@@ -134,7 +156,10 @@ pub const PPO_SETTINGS: &[Spec] = &[
     spec(
         "bptt_len",
         &["ppo", "bptt_len"],
-        COUNT,
+        Rule::Int {
+            lo: 0,
+            hi: 1_000_000,
+        },
         "recurrent: BPTT chunk length in steps (0 = whole rollout sequences)",
     ),
     spec(
@@ -241,7 +266,7 @@ pub const PPO_SETTINGS: &[Spec] = &[
         spec(
             "curriculum_window",
             &["curriculum", "window"],
-            POSITIVE_COUNT,
+            EPISODE_WINDOW,
             "episodes averaged for the thresholds (and the tolerance curriculum's fallback)",
         ),
     ),

@@ -7,7 +7,7 @@
 //! [`TimingAgentSettings::apply`] writes the overrides into one — the only code that knows
 //! where each parameter lives inside a timing agent.
 
-use super::{COUNT, NON_NEGATIVE, Rule, Spec, UNIT, non_negative, spec};
+use super::{NON_NEGATIVE, Rule, Spec, UNIT, non_negative, spec};
 use crate::error::TrainError;
 use chronocooked_models::timing::agent::TimingAgent;
 use chronocooked_models::timing::judgment::DecisionRule;
@@ -329,7 +329,10 @@ pub const TIMING_SETTINGS: &[Spec] = &[
     spec(
         "eval_every",
         &["train", "eval_every"],
-        COUNT,
+        Rule::Int {
+            lo: 0,
+            hi: MAX_EPISODES as u64,
+        },
         "episodes between deterministic evaluations (0 = only at the end)",
     ),
     spec(
