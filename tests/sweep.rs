@@ -121,6 +121,14 @@ fn sweep_file_errors_name_the_field_and_allowed_values() {
             "[task_variants]\n\"Bisection-v0\" = [[\"env.short=4\"]]\n",
             "task_variants",
         ),
+        // One key twice in one list: the later value would silently win.
+        ("set = [\"env.td=6\", \"env.td=9\"]\n", "set twice"),
+        ("variants = [[\"episodes=10\", \"episodes=20\"]]\n", "set twice"),
+        // One variant twice.
+        (
+            "variants = [[\"episodes=10\"], [\"episodes=10\"]]\n",
+            "each variant once",
+        ),
     ] {
         let err = SweepFile::parse(&format!("{base}{extra}"), "f.toml")
             .unwrap_err()

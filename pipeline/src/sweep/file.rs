@@ -272,6 +272,47 @@ impl SweepFile {
                 return Err(TrainError::BadOverride(s.clone()));
             }
         }
+        // One key twice in one list: the later value would silently replace the earlier.
+        fn key_twice(list: &[String]) -> Option<&str> {
+            let key = |s: &str| s.split_once('=').map_or("", |(k, _)| k.trim()).to_string();
+            list.iter()
+                .enumerate()
+                .find(|(i, s)| list[..*i].iter().any(|t| key(t) == key(s)))
+                .map(|(_, s)| s.as_str())
+        }
+        let lists = std::iter::once(("set", &self.set))
+            .chain(self.variants.iter().map(|v| ("variants", v)))
+            .chain(
+                self.task_variants
+                    .values()
+                    .flatten()
+                    .map(|v| ("task_variants", v)),
+            );
+        for (field, list) in lists {
+            if let Some(s) = key_twice(list) {
+                return Err(bad(
+                    field,
+                    s,
+                    "each key once per list (this key is set twice; the later value would replace the earlier)",
+                ));
+            }
+        }
+        // The same variant twice would run its jobs once under two entries.
+        for (field, variants) in std::iter::once(("variants", &self.variants))
+            .chain(self.task_variants.values().map(|v| ("task_variants", v)))
+        {
+            let twice = variants
+                .iter()
+                .enumerate()
+                .find(|(i, v)| variants[..*i].contains(v));
+            if let Some((_, v)) = twice {
+                return Err(bad(
+                    field,
+                    format!("[{}]", v.join(", ")),
+                    "each variant once (this one is listed twice)",
+                ));
+            }
+        }
         // Every variant setting must apply to some model of the sweep.
         let models = self.expanded_models();
         for task in &self.tasks {
