@@ -43,6 +43,11 @@ fn train_and_zoo_commands_work_and_reject_bad_input() {
             vec!["zoo", "show", "ddm", "--preset", "fast"],
             "deep-RL models only",
         ),
+        // Also the default preset's name: given, it would be silently ignored.
+        (
+            vec!["zoo", "show", "random", "--preset", "reference"],
+            "deep-RL models only",
+        ),
         (
             vec!["train", "--resume", "/nonexistent/run"],
             "not a run folder",

@@ -26,9 +26,9 @@ pub enum ZooCommand {
         /// Task id (deep RL presets are keyed by task).
         #[arg(long, default_value = "FixedInterval-v0")]
         task: String,
-        /// Preset (deep RL).
-        #[arg(long, default_value = "reference")]
-        preset: String,
+        /// Preset (deep RL; `reference` when not given). Refused for other models.
+        #[arg(long)]
+        preset: Option<String>,
         /// Print JSON.
         #[arg(long)]
         json: bool,
@@ -80,12 +80,15 @@ pub fn run_zoo(cmd: ZooCommand) -> Result<()> {
             // Every argument is checked, also those this model does not use: a typo never
             // passes unnoticed.
             chronocooked_env::find_task(&task)?;
-            if entry.family != Family::DeepRl && preset != "reference" {
+            if entry.family != Family::DeepRl
+                && let Some(preset) = &preset
+            {
                 anyhow::bail!(
                     "--preset `{preset}`: presets configure deep-RL models only; {model} is a {} (drop --preset)",
                     entry.family.label()
                 );
             }
+            let preset = preset.unwrap_or_else(|| "reference".to_string());
             let settings = if entry.family == Family::DeepRl {
                 let arch: Architecture = model.parse().map_err(anyhow::Error::msg)?;
                 let pairs = preset_settings(&task, arch, &preset)?;
