@@ -123,7 +123,10 @@ fn sweep_file_errors_name_the_field_and_allowed_values() {
         ),
         // One key twice in one list: the later value would silently win.
         ("set = [\"env.td=6\", \"env.td=9\"]\n", "set twice"),
-        ("variants = [[\"episodes=10\", \"episodes=20\"]]\n", "set twice"),
+        (
+            "variants = [[\"episodes=10\", \"episodes=20\"]]\n",
+            "set twice",
+        ),
         // One variant twice.
         (
             "variants = [[\"episodes=10\"], [\"episodes=10\"]]\n",
@@ -646,4 +649,47 @@ fn paper_study_files_list_the_paper_grid_with_its_cost() {
     let ids: Vec<String> = f.jobs().unwrap().into_iter().map(|j| j.id).collect();
     assert!(ids.iter().any(|i| i.contains("ctrnn-reservoir125")));
     let _ = std::fs::remove_dir_all(&out);
+}
+
+/// A sweep whose report cannot be written (here: `report` is a file) while a job also
+/// failed names both: the report's failure never hides the failed jobs (a full disk often
+/// fails both).
+#[test]
+fn a_failed_report_does_not_hide_the_failed_jobs() {
+    let dir = temp_dir("report-and-jobs");
+    let file = dir.join("s.toml");
+    std::fs::write(
+        &file,
+        "name = \"both\"\ntasks = [\"FixedInterval-v0\"]\nmodels = [\"oracle\", \"random\"]\n",
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let ids: Vec<String> = SweepFile::load(&file)
+        .unwrap()
+        .jobs()
+        .unwrap()
+        .into_iter()
+        .map(|j| j.id)
+        .collect();
+    std::fs::create_dir_all(&out).unwrap();
+    std::fs::write(out.join("report"), "not a folder").unwrap();
+    // The second job's folder is a file: that job fails.
+    let blocked = out.join(&ids[1]);
+    std::fs::create_dir_all(blocked.parent().unwrap()).unwrap();
+    std::fs::write(&blocked, "not a folder").unwrap();
+    let o = bin()
+        .args([
+            "sweep",
+            file.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert!(
+        err.contains("1 of 2 jobs failed") && err.contains(&ids[1]) && err.contains("report"),
+        "{err}"
+    );
 }

@@ -217,27 +217,17 @@ pub fn run_sweep(
         }
         while !stopping && running.len() < workers {
             let Some(job) = queue.next() else { break };
-            let dir = job_dir(out, &job.id);
-            std::fs::create_dir_all(&dir)?;
-            let log = std::fs::OpenOptions::new()
-                .create(true)
-                .append(true)
-                .open(dir.join("log.txt"))?;
-            let mut command = Command::new(&exe);
-            stop_with_parent(&mut command);
-            let child = command
-                .arg("sweep-job")
-                .arg(file)
-                .arg("--out")
-                .arg(out)
-                .arg("--id")
-                .arg(&job.id)
-                .env("RAYON_NUM_THREADS", "1")
-                .stdin(Stdio::null())
-                .stdout(log.try_clone()?)
-                .stderr(log)
-                .spawn()
-                .with_context(|| format!("starting a worker for {}", job.id))?;
+            // A job whose folder or log cannot be made fails alone, naming the path; the
+            // other jobs still run.
+            let child = match start_worker(&exe, file, out, &job.id) {
+                Ok(child) => child,
+                Err(e) => {
+                    failed.push(format!("{} ({e:#})", job.id));
+                    total.set_message(format!("{} failed", failed.len()));
+                    total.inc(1);
+                    continue;
+                }
+            };
             let bar = multi.add(ProgressBar::new_spinner());
             bar.set_style(spinner.clone());
             bar.set_message(job.id.clone());
@@ -280,27 +270,72 @@ pub fn run_sweep(
             failed.len() + queue.len()
         );
     }
-    if report {
-        let report_dir = out.join("report");
-        let rows = chronocooked_analysis::report::load_rows_from_runs(&[out.to_path_buf()])
-            .map_err(anyhow::Error::msg)?;
-        if rows.is_empty() {
-            eprintln!("no finished evaluation to report");
-        } else {
-            for f in chronocooked_analysis::report::write_report(&rows, &report_dir)
-                .map_err(anyhow::Error::msg)?
-            {
-                println!("{}", f.display());
-            }
-        }
-    }
-    if !failed.is_empty() {
-        bail!(
+    // The report's failure never hides the jobs' (a full disk often fails both).
+    let report_error = if report {
+        write_sweep_report(out).err()
+    } else {
+        None
+    };
+    let jobs_failed = (!failed.is_empty()).then(|| {
+        format!(
             "{} of {} jobs failed (rerun the sweep to retry them):\n  {}",
             failed.len(),
             jobs.len(),
             failed.join("\n  ")
-        );
+        )
+    });
+    match (jobs_failed, report_error) {
+        (None, None) => Ok(()),
+        (Some(jobs), None) => bail!("{jobs}"),
+        (None, Some(report)) => bail!("the report: {report}"),
+        (Some(jobs), Some(report)) => bail!("{jobs}\nand the report: {report}"),
+    }
+}
+
+/// Starts the worker process of job `id` (`sweep-job`), its output appended to the job's
+/// `log.txt`; errors name the folder or file that could not be made.
+fn start_worker(exe: &Path, file: &Path, out: &Path, id: &str) -> Result<Child> {
+    let dir = job_dir(out, id);
+    std::fs::create_dir_all(&dir).with_context(|| format!("{}: job folder", dir.display()))?;
+    let log_path = dir.join("log.txt");
+    let log = std::fs::OpenOptions::new()
+        .create(true)
+        .append(true)
+        .open(&log_path)
+        .with_context(|| log_path.display().to_string())?;
+    let mut command = Command::new(exe);
+    stop_with_parent(&mut command);
+    command
+        .arg("sweep-job")
+        .arg(file)
+        .arg("--out")
+        .arg(out)
+        .arg("--id")
+        .arg(id)
+        .env("RAYON_NUM_THREADS", "1")
+        .stdin(Stdio::null())
+        .stdout(
+            log.try_clone()
+                .with_context(|| log_path.display().to_string())?,
+        )
+        .stderr(log)
+        .spawn()
+        .with_context(|| format!("starting a worker for {id}"))
+}
+
+/// Writes the sweep's leaderboard to `out/report` from its finished evaluations.
+fn write_sweep_report(out: &Path) -> Result<()> {
+    let report_dir = out.join("report");
+    let rows = chronocooked_analysis::report::load_rows_from_runs(&[out.to_path_buf()])
+        .map_err(anyhow::Error::msg)?;
+    if rows.is_empty() {
+        eprintln!("no finished evaluation to report");
+        return Ok(());
+    }
+    for f in chronocooked_analysis::report::write_report(&rows, &report_dir)
+        .map_err(anyhow::Error::msg)?
+    {
+        println!("{}", f.display());
     }
     Ok(())
 }
