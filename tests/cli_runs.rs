@@ -565,3 +565,36 @@ fn a_reproduction_recording_draws_the_speed_figure() {
     assert!(!dir.join("figures/value/speed.svg").exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A finished timing run resumed from another working directory than the one it was made
+/// in (its summary names the folder relatively) draws its learning-curve figure in the
+/// folder given now.
+#[test]
+fn a_finished_timing_run_redraws_its_figure_from_any_working_directory() {
+    let dir = temp_dir("resume-cwd");
+    let made_in = dir.join("a");
+    let other = dir.join("b");
+    std::fs::create_dir_all(&made_in).unwrap();
+    std::fs::create_dir_all(&other).unwrap();
+    let o = bin()
+        .current_dir(&made_in)
+        .args(["train", "--model", "ddm", "--set", "episodes=30", "--quiet"])
+        .args(["--out", "run"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let run = made_in.join("run");
+    let figures = run.join("figures");
+    std::fs::remove_dir_all(&figures).unwrap();
+    let o = bin()
+        .current_dir(&other)
+        .args(["train", "--resume", run.to_str().unwrap(), "--quiet"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        std::fs::read_dir(&figures).is_ok_and(|mut d| d.next().is_some()),
+        "the figure is drawn again in {}",
+        figures.display()
+    );
+}

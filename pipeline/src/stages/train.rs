@@ -161,11 +161,15 @@ fn train_timing(
             let lock = FolderLock::acquire(dir)?;
             let path = dir.join(chronocooked_models::run_folder::SUMMARY);
             let text = std::fs::read(&path).map_err(|e| PipelineError::read(&path, e))?;
-            let summary = serde_json::from_slice(&text).map_err(|e| PipelineError::NotA {
-                path,
-                what: "a timing run's summary",
-                message: e.to_string(),
-            })?;
+            let mut summary: TimingRunSummary =
+                serde_json::from_slice(&text).map_err(|e| PipelineError::NotA {
+                    path,
+                    what: "a timing run's summary",
+                    message: e.to_string(),
+                })?;
+            // The folder as given now, not as it was named when the run was made (a
+            // relative path from another working directory, or a moved folder).
+            summary.dir = dir.clone();
             return Ok((summary, lock));
         }
         Some(dir) => (load_timing_config(dir)?, dir.clone()),
