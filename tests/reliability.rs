@@ -206,6 +206,26 @@ fn no_valid_checkpoint_is_an_error_naming_them_and_how_to_start_over() {
 }
 
 #[test]
+fn a_run_whose_checkpoints_folder_was_deleted_is_not_restarted_from_step_0() {
+    let reference = reference_run();
+    let dir = temp_dir("rel-no-checkpoints").join("run");
+    copy_tree(reference, &dir);
+    // The whole folder, with the manifest that would have named the missing files.
+    std::fs::remove_dir_all(dir.join("checkpoints")).unwrap();
+    let curves_before = std::fs::read(dir.join("curves.csv")).unwrap();
+    let err = run_err(&["train", "--resume", s(&dir), "--quiet"]);
+    assert!(
+        err.contains("no checkpoint") && err.contains("start over on purpose"),
+        "{err}"
+    );
+    assert_eq!(
+        std::fs::read(dir.join("curves.csv")).unwrap(),
+        curves_before,
+        "nothing was rewritten from step 0"
+    );
+}
+
+#[test]
 fn a_checkpoint_of_another_model_is_named() {
     let reference = reference_run();
     let root = temp_dir("rel-other-model");

@@ -90,6 +90,26 @@ pub fn run_training(
                 });
             }
             if run.checkpoints().is_empty() {
+                // A finished run without any checkpoint: they were deleted (their folder with
+                // its SHA256SUMS), and resuming would silently start again. (Curve rows alone
+                // say nothing: updates before the first checkpoint write them too.)
+                let learned: Vec<&str> = [run_folder::SUMMARY, run_folder::MODEL]
+                    .into_iter()
+                    .filter(|f| run.path.join(f).exists())
+                    .collect();
+                if !learned.is_empty() {
+                    return Err(TrainError::Resume {
+                        path: dir.display().to_string(),
+                        reason: format!(
+                            "no checkpoint in {}/, but the run finished ({}): its \
+                             checkpoints were deleted or lost, and resuming would silently \
+                             start from step 0. Restore them, or start over on purpose: remove \
+                             the run folder and train again",
+                            run_folder::CHECKPOINTS,
+                            learned.join(", ")
+                        ),
+                    });
+                }
                 // Nothing learned yet (killed before the first checkpoint, perhaps while the
                 // folder was being set up): the policy description follows from the config.
                 let pj = serde_json::to_string_pretty(&expected_policy(&cfg)?).unwrap_or_default();
