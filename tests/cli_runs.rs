@@ -598,3 +598,47 @@ fn a_finished_timing_run_redraws_its_figure_from_any_working_directory() {
         figures.display()
     );
 }
+
+/// A second evaluation into a folder that holds an earlier one leaves nothing of the
+/// earlier: its figures of conditions the new one lacks are gone (a rerun equals a clean
+/// evaluation into an empty folder).
+#[test]
+fn a_second_evaluation_into_one_folder_leaves_nothing_of_the_first() {
+    let dir = temp_dir("eval-twice");
+    let (twice, clean) = (dir.join("twice"), dir.join("clean"));
+    run_ok(&[
+        "eval",
+        "--agent",
+        "oracle",
+        "--out",
+        twice.to_str().unwrap(),
+    ]);
+    assert!(twice.join("figures/foc.svg").is_file());
+    let second = [
+        "eval",
+        "--agent",
+        "random",
+        "--task",
+        "Bisection-v0",
+        "--out",
+    ];
+    run_ok(&[&second[..], &[twice.to_str().unwrap()]].concat());
+    run_ok(&[&second[..], &[clean.to_str().unwrap()]].concat());
+    let names = |d: &std::path::Path| {
+        let mut v: Vec<String> = std::fs::read_dir(d.join("figures"))
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        v
+    };
+    assert_eq!(names(&twice), names(&clean));
+    assert!(!twice.join("figures/foc.svg").exists());
+    for f in ["metrics.json", "records.jsonl", "eval.json", "SHA256SUMS"] {
+        assert_eq!(
+            std::fs::read(twice.join(f)).unwrap(),
+            std::fs::read(clean.join(f)).unwrap(),
+            "{f}"
+        );
+    }
+}

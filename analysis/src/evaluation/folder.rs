@@ -42,6 +42,12 @@ pub fn write_eval_folder(
 ) -> Result<(Metrics, Vec<PathBuf>), String> {
     check_out(out)?;
     start_writing(out)?;
+    // A new evaluation into a folder that holds an earlier one: what only the earlier one
+    // wrote (its activity, figures of other conditions) must not stay beside the new.
+    for file in [job_folder::ACTIVITY, job_folder::ACTIVITY_SUMMARY] {
+        chronocooked_env::integrity::remove_recorded(&out.join(file)).map_err(|e| e.to_string())?;
+    }
+    remove_folder(&out.join("activity"))?;
     let mut lines = String::new();
     for r in records {
         lines += &serde_json::to_string(r).map_err(|e| e.to_string())?;
@@ -72,10 +78,25 @@ pub fn write_metrics(
     let metrics = compute_metrics(&info.model, records, info.seed);
     let mut json = serde_json::to_string_pretty(&metrics).map_err(|e| e.to_string())?;
     json.push('\n');
+    // The figures are drawn afresh: one of an earlier evaluation's conditions that this one
+    // lacks would otherwise stay beside them.
+    remove_folder(&out.join("figures"))?;
     let figures = crate::figures::eval_figures(&out.join("figures"), &metrics, records)
         .map_err(|e| e.to_string())?;
     write_recorded(&out.join(METRICS), json.as_bytes()).map_err(|e| e.to_string())?;
     Ok((metrics, figures))
+}
+
+/// Removes the folder `dir` and everything in it (nothing when it does not exist); the
+/// error names it.
+fn remove_folder(dir: &Path) -> Result<(), String> {
+    match std::fs::remove_dir_all(dir) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(format!(
+            "{}: cannot remove the earlier contents: {e}",
+            dir.display()
+        )),
+        _ => Ok(()),
+    }
 }
 
 /// Writes the activity recorded during an evaluation next to it: `activity.json` (the
