@@ -262,11 +262,25 @@ fn hold(dir: PathBuf) {
     }
 }
 
+/// The holder a held lock file names. A holder writes its name right after it takes the
+/// lock, so a file found empty is read again for up to 0.5 s before the holder is reported
+/// unknown (two processes that start together would otherwise see each other unnamed).
 fn read_holder(file: &mut File) -> Option<Holder> {
-    let mut text = String::new();
-    file.rewind().ok()?;
-    file.take(64 * 1024).read_to_string(&mut text).ok()?;
-    serde_json::from_str(&text).ok()
+    let start = Instant::now();
+    loop {
+        let mut text = String::new();
+        let read = file
+            .rewind()
+            .ok()
+            .and_then(|()| (&*file).take(64 * 1024).read_to_string(&mut text).ok());
+        if let Some(holder) = read.and_then(|_| serde_json::from_str(&text).ok()) {
+            return Some(holder);
+        }
+        if start.elapsed() >= Duration::from_millis(500) {
+            return None;
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    }
 }
 
 #[cfg(unix)]
@@ -286,6 +300,30 @@ fn same_file(_file: &File, path: &Path) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Two processes that start together: the second finds the lock taken but not yet
+    /// named, and waits for the name instead of reporting an unknown holder.
+    #[test]
+    fn a_holder_that_names_itself_just_after_locking_is_still_named() {
+        let tmp = tempfile::tempdir().unwrap();
+        let path = tmp.path().join(LOCK_FILE);
+        let mut holding = File::create(&path).unwrap();
+        holding.try_lock().unwrap();
+        let writer = std::thread::spawn(move || {
+            std::thread::sleep(Duration::from_millis(100));
+            let name = serde_json::to_vec(&Holder::this_process()).unwrap();
+            holding.write_all(&name).unwrap();
+            holding
+        });
+        let mut other = File::open(&path).unwrap();
+        assert!(matches!(
+            other.try_lock(),
+            Err(std::fs::TryLockError::WouldBlock)
+        ));
+        let holder = read_holder(&mut other);
+        assert_eq!(holder.map(|h| h.pid), Some(std::process::id()));
+        drop(writer.join().unwrap());
+    }
 
     #[test]
     fn a_second_open_of_a_held_folder_is_busy_and_names_this_process() {
