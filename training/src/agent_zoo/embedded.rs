@@ -9,6 +9,7 @@
 use super::{AGENT_FILES, INDEX, ZooError, io};
 use chronocooked_env::integrity::{MANIFEST, sha256_hex};
 use std::path::{Path, PathBuf};
+use std::time::Duration;
 
 /// The files of one agent: (file name, content), [`AGENT_FILES`] then `SHA256SUMS`.
 pub type AgentFiles = [(&'static str, &'static [u8]); 6];
@@ -76,7 +77,10 @@ pub fn content_key() -> String {
 }
 
 /// Unpacks the compiled-in zoo into `cache/zoo-<content key>/` (once: a complete copy has
-/// its `index.json`, written last) and returns that folder.
+/// its `index.json`, written last) and returns that folder. Unpacking holds the cache
+/// folder's lock, so two processes never write one copy; a copy left incomplete by a killed
+/// process (no index) is removed and written again, and temporary files a killed write
+/// left in a complete copy are removed, so a kill at any point never breaks the cache.
 pub fn unpack(cache: &Path) -> Result<PathBuf, ZooError> {
     debug_assert!(
         AGENTS
@@ -84,8 +88,22 @@ pub fn unpack(cache: &Path) -> Result<PathBuf, ZooError> {
             .all(|(_, f)| f[..5].iter().map(|x| x.0).eq(AGENT_FILES))
     );
     let dir = cache.join(format!("zoo-{}", content_key()));
-    if dir.join(INDEX).is_file() {
+    let complete = |dir: &Path| dir.join(INDEX).is_file() && stray_temps(dir).is_empty();
+    if complete(&dir) {
         return Ok(dir);
+    }
+    let _lock = chronocooked_env::fs::FolderLock::acquire_waiting(cache, Duration::from_secs(120))
+        .map_err(|e| io(cache, e))?;
+    if dir.join(INDEX).is_file() {
+        // Complete, but a killed write (of an older version) left temporary files in it.
+        for p in stray_temps(&dir) {
+            std::fs::remove_file(&p).map_err(|e| io(&p, e))?;
+        }
+        return Ok(dir);
+    }
+    match std::fs::remove_dir_all(&dir) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => return Err(io(&dir, e)),
+        _ => {}
     }
     for (name, files) in AGENTS {
         let agent = dir.join(name);
@@ -95,10 +113,24 @@ pub fn unpack(cache: &Path) -> Result<PathBuf, ZooError> {
             chronocooked_env::fs::write_atomic(&p, bytes).map_err(|e| io(&p, e.error))?;
         }
     }
-    std::fs::create_dir_all(&dir).map_err(|e| io(&dir, e))?;
     let p = dir.join(INDEX);
     chronocooked_env::fs::write_atomic(&p, INDEX_JSON).map_err(|e| io(&p, e.error))?;
     Ok(dir)
+}
+
+/// Temporary files of interrupted writes in the agents' folders of the unpacked copy `dir`.
+fn stray_temps(dir: &Path) -> Vec<PathBuf> {
+    AGENTS
+        .iter()
+        .filter_map(|(name, _)| std::fs::read_dir(dir.join(name)).ok())
+        .flatten()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| {
+            p.file_name()
+                .is_some_and(|n| chronocooked_env::fs::is_temp_name(&n.to_string_lossy()))
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -124,5 +156,28 @@ mod tests {
                 assert_eq!(*bytes, disk.as_slice(), "{name}/{file}");
             }
         }
+    }
+
+    /// What a kill -9 during unpacking leaves — a copy without its index, temporary files of
+    /// interrupted writes, with or without the index — is repaired by the next unpack, and
+    /// every agent then verifies.
+    #[test]
+    fn an_unpack_killed_at_any_point_is_repaired_by_the_next() {
+        let cache = tempfile::tempdir().unwrap();
+        let dir = unpack(cache.path()).unwrap();
+        let (first, _) = AGENTS[0];
+        let stray = dir.join(first).join(".tmp-model.bpk.AbC123");
+        // Killed before the index: a partial copy with a temporary file.
+        std::fs::remove_file(dir.join(INDEX)).unwrap();
+        std::fs::write(&stray, b"half").unwrap();
+        std::fs::remove_file(dir.join(first).join("model.bpk")).unwrap();
+        assert_eq!(unpack(cache.path()).unwrap(), dir);
+        // Complete, with a temporary file a killed write left.
+        std::fs::write(&stray, b"half").unwrap();
+        assert_eq!(unpack(cache.path()).unwrap(), dir);
+        for (name, _) in AGENTS {
+            super::super::verify_agent(&dir.join(name)).unwrap();
+        }
+        assert!(!stray.exists());
     }
 }
