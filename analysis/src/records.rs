@@ -148,9 +148,9 @@ pub const RECORDS: &str = "records.jsonl";
 /// error ("no episodes"), never an empty evaluation.
 pub fn read_records(folder: &std::path::Path) -> Result<Vec<EvalRecord>, String> {
     let path = folder.join(RECORDS);
-    // Checked against the folder's SHA-256 record when it has one: an edited record is
-    // refused, never scored.
-    let text = chronocooked_env::integrity::read_checked(&path)
+    // Checked against the folder's SHA-256 record, which every evaluation writes: an edited
+    // record is refused, never scored, and so is one whose record was removed.
+    let text = chronocooked_env::integrity::read_verified(&path)
         .map_err(|e| e.to_string())
         .and_then(|b| {
             String::from_utf8(b).map_err(|_| format!("{}: not UTF-8 text", path.display()))
@@ -169,6 +169,18 @@ pub fn read_records(folder: &std::path::Path) -> Result<Vec<EvalRecord>, String>
         return Err(format!(
             "{}: no episodes (an evaluation has at least one record)",
             path.display()
+        ));
+    }
+    if folder.join(EVAL_INFO).is_file()
+        && let Some(n) = read_eval_info(folder)?.episodes
+        && n != records.len()
+    {
+        return Err(format!(
+            "{}: {} episodes, but {} says field `episodes`: {n} (a record line was deleted or \
+             repeated)",
+            path.display(),
+            records.len(),
+            folder.join(EVAL_INFO).display()
         ));
     }
     Ok(records)
@@ -208,6 +220,11 @@ pub struct EvalInfo {
     /// step (PPO) of the checkpoint that was evaluated, 0 when it had none to name.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub unfinished_at_step: Option<u64>,
+    /// Number of evaluated episodes, the lines of `records.jsonl` (written by every
+    /// evaluation; `None` in folders written before it was kept): a deleted or repeated
+    /// record line is refused when the records are read.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub episodes: Option<usize>,
 }
 
 /// Reads `eval.json` of an evaluation folder; errors name the file.
@@ -220,7 +237,7 @@ pub fn read_eval_info(dir: &Path) -> Result<EvalInfo, String> {
             dir.display()
         ));
     }
-    let text = chronocooked_env::integrity::read_checked(&path)
+    let text = chronocooked_env::integrity::read_verified(&path)
         .map_err(|e| e.to_string())
         .and_then(|b| {
             String::from_utf8(b).map_err(|_| format!("{}: not UTF-8 text", path.display()))

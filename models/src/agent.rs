@@ -230,8 +230,71 @@ impl EpisodeRecord {
         if !self.reward.is_finite() {
             return Err("field `reward`: not a finite number".into());
         }
+        // Every task pays 0..=1 per step (delivery, sink, window), never less than 0.
+        let steps = self.actions.len() as f32;
+        if !(-1e-4..=steps + 1e-4).contains(&self.reward) {
+            return Err(format!(
+                "field `reward`: {} (allowed: 0..={steps}, at most 1 per step of the episode)",
+                self.reward
+            ));
+        }
         if self.td == 0 {
             return Err("field `td`: 0 (allowed: a positive number of steps)".into());
+        }
+        self.validate_steps()
+    }
+
+    /// The steps are one episode's, in order: `info.timestep` counts 1, 2, …, the episode's
+    /// TD is every step's, the agent moves at most one cell per step (from `start` on the
+    /// first), and `success` agrees with the return and the last step.
+    fn validate_steps(&self) -> Result<(), String> {
+        let mut at = (self.start.0 as i64, self.start.1 as i64);
+        for (k, info) in self.infos.iter().enumerate() {
+            if info.timestep as usize != k + 1 {
+                return Err(format!(
+                    "field `infos`: step {} has timestep {} (the steps of one episode count \
+                     1, 2, …)",
+                    k + 1,
+                    info.timestep
+                ));
+            }
+            if info.td != self.td {
+                return Err(format!(
+                    "field `infos`: step {} has td {}, the episode {}",
+                    k + 1,
+                    info.td,
+                    self.td
+                ));
+            }
+            let next = (i64::from(info.agent.0), i64::from(info.agent.1));
+            if (next.0 - at.0).abs() + (next.1 - at.1).abs() > 1 {
+                return Err(format!(
+                    "field `infos`: step {} moves the agent from {at:?} to {next:?} (at most \
+                     one cell per step; the first from `start`)",
+                    k + 1
+                ));
+            }
+            at = next;
+        }
+        // Outside the dual task every reward is a delivery's, so the episode's return and its
+        // last step decide its success (multi-oven: the return is 1 exactly when every soup
+        // paid); in the dual task the return mixes sink rewards, and only a delivery ends an
+        // episode with success.
+        if let Some(last) = self.infos.last() {
+            let agrees = if last.sink_count > 0 {
+                !self.success || last.events.has(Events::DELIVERY)
+            } else {
+                self.success == is_success(last, self.reward)
+            };
+            if !agrees {
+                return Err(format!(
+                    "field `success`: {} does not agree with the return {} and the last step \
+                     (events {:?})",
+                    self.success,
+                    self.reward,
+                    last.events.names()
+                ));
+            }
         }
         Ok(())
     }

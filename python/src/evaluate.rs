@@ -71,6 +71,7 @@ pub fn evaluate<'py>(
         mode,
         seed,
         unfinished_at_step: None,
+        episodes: None,
     };
     // One writer per folder; the activity first and `metrics.json` last, so a folder with
     // metrics is a complete one.

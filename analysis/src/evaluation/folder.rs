@@ -54,9 +54,13 @@ pub fn write_eval_folder(
         lines.push('\n');
     }
     write_recorded(&out.join(RECORDS), lines.as_bytes()).map_err(|e| e.to_string())?;
-    let json = serde_json::to_string_pretty(info).map_err(|e| e.to_string())?;
+    let info = EvalInfo {
+        episodes: Some(records.len()),
+        ..info.clone()
+    };
+    let json = serde_json::to_string_pretty(&info).map_err(|e| e.to_string())?;
     write_recorded(&out.join(EVAL_INFO), json.as_bytes()).map_err(|e| e.to_string())?;
-    write_metrics(out, info, records)
+    write_metrics(out, &info, records)
 }
 
 /// Marks the evaluation folder `out` unfinished before anything in it is rewritten, by

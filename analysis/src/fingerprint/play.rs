@@ -119,6 +119,7 @@ pub fn write_condition(
         mode: Mode::Reference,
         seed,
         unfinished_at_step: None,
+        episodes: None,
     };
     write_eval_folder(&eval, &info, &play.records).map_err(|e| MechanismError::at(&eval, e))?;
     let activity = folder.join(job_folder::ACTIVITY);

@@ -201,6 +201,7 @@ pub fn evaluate(req: &EvalRequest) -> Result<EvalOutcome, PipelineError> {
         mode: req.mode,
         seed: req.seed,
         unfinished_at_step,
+        episodes: None,
     };
     // A multi-timer run's per-level policies, each in its level's test setting — before
     // `metrics.json`, so that an evaluation folder with metrics is a finished one.
@@ -266,6 +267,7 @@ pub fn evaluate_human(file: &Path, seed: u64, out: &Path) -> Result<EvalOutcome,
         },
         seed,
         unfinished_at_step: None,
+        episodes: None,
     };
     let _lock = chronocooked_env::fs::FolderLock::acquire(out)?;
     let (metrics, figures) =

@@ -78,6 +78,7 @@ fn row(root: &Path, model: &str, sets: Vec<ActivityDataset>) -> Row {
             mode: crate::records::Mode::Reference,
             seed: 0,
             unfinished_at_step: None,
+            episodes: None,
         };
         std::fs::write(
             job.join("eval/eval.json"),
