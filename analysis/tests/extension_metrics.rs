@@ -232,23 +232,26 @@ fn oven_record(
         delivered: [0; 3],
         paid: 0,
     };
-    let mut infos = vec![Info {
-        timestep: put,
-        events: Events(Events::ONION_IN),
+    // A whole episode: steps 1 … put−1 at the oven, the put, one delivery per step.
+    let at = |timestep: u32, events: u16| Info {
+        timestep,
+        td: t,
+        agent: (1, 1),
+        events: Events(events),
         ..Info::default()
-    }];
-    let mut states = vec![ovens];
+    };
+    let mut infos: Vec<Info> = (1..put).map(|k| at(k, 0)).collect();
+    infos.push(at(put, Events::ONION_IN));
+    let mut states = vec![ovens; infos.len()];
     for (k, &o) in order.iter().enumerate() {
         ovens.delivered[o] = choices[o];
         infos.push(Info {
-            timestep: put + 1 + k as u32,
-            events: Events(Events::DELIVERY),
             counter: Some(if choices[o] == 2 {
                 Counter::Long
             } else {
                 Counter::Short
             }),
-            ..Info::default()
+            ..at(put + 1 + k as u32, Events::DELIVERY)
         });
         states.push(ovens);
     }

@@ -217,6 +217,33 @@ pub struct Trial {
 }
 
 impl Trial {
+    /// What a recorded trial's outcome must be: a positive TD, markers in step order, a
+    /// return of 0..=1 per step (every task pays at most 1 per step), a reward marker
+    /// exactly when the trial was paid, and success only in a paid trial. The error names
+    /// the field.
+    fn validate_outcome(&self) -> Result<(), String> {
+        if self.td == 0 {
+            return Err("td: 0 (allowed: a positive number of steps)".into());
+        }
+        if self.events.windows(2).any(|w| w[1].step < w[0].step) {
+            return Err("events: markers out of step order".into());
+        }
+        let steps = self.steps as f32;
+        if !(self.reward.is_finite() && (-1e-4..=steps + 1e-4).contains(&self.reward)) {
+            return Err(format!(
+                "reward: {} (allowed: 0..={steps}, at most 1 per step of the trial)",
+                self.reward
+            ));
+        }
+        let rewarded = self.events.iter().any(|e| e.marker == Marker::Reward);
+        if rewarded != (self.reward > 0.0) || (self.success && !rewarded) {
+            return Err(format!(
+                "reward: {} and success {} do not agree with the trial's reward markers",
+                self.reward, self.success
+            ));
+        }
+        Ok(())
+    }
     /// The duration of oven `oven` (1 …): `td` for oven 1 and for single-oven tasks,
     /// `None` for an oven the trial does not have.
     pub fn oven_td(&self, oven: usize) -> Option<u32> {
@@ -343,6 +370,8 @@ impl ActivityDataset {
                     e.step, t.steps
                 ));
             }
+            t.validate_outcome()
+                .map_err(|e| format!("trials[{i}].{e}"))?;
         }
         Ok(())
     }

@@ -79,13 +79,22 @@ fn a_shape_that_does_not_fit_its_data_is_an_error() {
 
 #[test]
 fn corrupt_eval_records_name_the_file_and_line() {
+    use chronocooked_env::integrity::write_recorded;
     let dir = tempfile::tempdir().unwrap();
+    // Without its SHA-256 record a records file is not read at all.
     std::fs::write(dir.path().join("records.jsonl"), "{\"condition\": 3}\n").unwrap();
     let e = chronocooked_analysis::evaluation::protocol::read_records(dir.path()).unwrap_err();
-    assert!(e.contains("records.jsonl") && e.contains('1'), "{e}");
+    assert!(
+        e.contains("records.jsonl") && e.contains("SHA256SUMS"),
+        "{e}"
+    );
+    // Recorded but malformed: the error names the file and the line.
+    write_recorded(&dir.path().join("records.jsonl"), b"{\"condition\": 3}\n").unwrap();
+    let e = chronocooked_analysis::evaluation::protocol::read_records(dir.path()).unwrap_err();
+    assert!(e.contains("records.jsonl") && e.contains("line 1"), "{e}");
     let e = chronocooked_analysis::evaluation::folder::read_eval_info(dir.path()).unwrap_err();
     assert!(e.contains("eval.json"), "{e}");
-    std::fs::write(dir.path().join("eval.json"), "{\"model\": ").unwrap();
+    write_recorded(&dir.path().join("eval.json"), b"{\"model\": ").unwrap();
     let e = chronocooked_analysis::evaluation::folder::read_eval_info(dir.path()).unwrap_err();
     assert!(e.contains("eval.json"), "{e}");
 }

@@ -80,9 +80,9 @@ fn row(root: &Path, model: &str, sets: Vec<ActivityDataset>) -> Row {
             unfinished_at_step: None,
             episodes: None,
         };
-        std::fs::write(
-            job.join("eval/eval.json"),
-            serde_json::to_vec(&info).unwrap(),
+        chronocooked_env::integrity::write_recorded(
+            &job.join("eval/eval.json"),
+            &serde_json::to_vec(&info).unwrap(),
         )
         .unwrap();
         std::fs::write(job.join("eval/metrics.json"), "{}").unwrap();
