@@ -77,7 +77,7 @@ pub fn evaluate<'py>(
     // metrics is a complete one.
     let _lock = chronocooked_env::fs::FolderLock::acquire(&out)
         .map_err(|e| pyo3::exceptions::PyOSError::new_err(e.to_string()))?;
-    chronocooked_analysis::evaluation::folder::start_writing(&out).map_err(runtime_err)?;
+    chronocooked_analysis::evaluation::folder::begin_evaluation(&out).map_err(runtime_err)?;
     let summary = PyDict::new(py);
     let dataset = recorder.finish();
     if dataset.meta.n_units() > 0 {

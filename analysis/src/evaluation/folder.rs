@@ -33,8 +33,8 @@ fn check_out(out: &Path) -> Result<(), String> {
     }
 }
 
-/// Writes `records.jsonl`, `eval.json`, `metrics.json` and the figures into `out`;
-/// returns the metrics and the figure files.
+/// Writes `records.jsonl`, `eval.json`, `metrics.json` and the figures into `out` (after
+/// [`begin_evaluation`] and the activity, if any); returns the metrics and the figure files.
 pub fn write_eval_folder(
     out: &Path,
     info: &EvalInfo,
@@ -42,12 +42,6 @@ pub fn write_eval_folder(
 ) -> Result<(Metrics, Vec<PathBuf>), String> {
     check_out(out)?;
     start_writing(out)?;
-    // A new evaluation into a folder that holds an earlier one: what only the earlier one
-    // wrote (its activity, figures of other conditions) must not stay beside the new.
-    for file in [job_folder::ACTIVITY, job_folder::ACTIVITY_SUMMARY] {
-        chronocooked_env::integrity::remove_recorded(&out.join(file)).map_err(|e| e.to_string())?;
-    }
-    remove_folder(&out.join("activity"))?;
     let mut lines = String::new();
     for r in records {
         lines += &serde_json::to_string(r).map_err(|e| e.to_string())?;
@@ -61,6 +55,25 @@ pub fn write_eval_folder(
     let json = serde_json::to_string_pretty(&info).map_err(|e| e.to_string())?;
     write_recorded(&out.join(EVAL_INFO), json.as_bytes()).map_err(|e| e.to_string())?;
     write_metrics(out, &info, records)
+}
+
+/// Starts a new evaluation in `out`, before anything of it is written (its activity
+/// included): marks the folder unfinished ([`start_writing`]) and removes what only an
+/// earlier evaluation there wrote — its activity and its export, its per-level episodes,
+/// its figures — so that
+/// nothing of it stays beside the new one (a rerun equals a clean evaluation).
+pub fn begin_evaluation(out: &Path) -> Result<(), String> {
+    check_out(out)?;
+    start_writing(out)?;
+    for file in [
+        job_folder::ACTIVITY,
+        job_folder::ACTIVITY_SUMMARY,
+        crate::collect::LEVELS_CSV,
+    ] {
+        chronocooked_env::integrity::remove_recorded(&out.join(file)).map_err(|e| e.to_string())?;
+    }
+    remove_folder(&out.join("activity"))?;
+    remove_folder(&out.join("figures"))
 }
 
 /// Marks the evaluation folder `out` unfinished before anything in it is rewritten, by

@@ -1,7 +1,7 @@
 //! The fingerprint protocol: the conditions an agent plays, the folders they leave, and the
 //! agent's signature read back from them.
 
-use crate::evaluation::folder::{EvalInfo, write_eval_folder};
+use crate::evaluation::folder::{EvalInfo, begin_evaluation, write_eval_folder};
 use crate::evaluation::protocol::{EvalRecord, reference_conditions, run_protocol};
 use crate::job_folder;
 use crate::mechanisms::{JobFiles, MechanismError, Signature, assemble, scaling_index_of_summary};
@@ -121,6 +121,7 @@ pub fn write_condition(
         unfinished_at_step: None,
         episodes: None,
     };
+    begin_evaluation(&eval).map_err(|e| MechanismError::at(&eval, e))?;
     write_eval_folder(&eval, &info, &play.records).map_err(|e| MechanismError::at(&eval, e))?;
     let activity = folder.join(job_folder::ACTIVITY);
     let summary = folder.join(job_folder::ACTIVITY_SUMMARY);

@@ -184,7 +184,8 @@ pub fn evaluate(req: &EvalRequest) -> Result<EvalOutcome, PipelineError> {
     let conditions = reference_conditions(&task, &env)?;
     // One writer per evaluation folder, taken before the protocol is played.
     let _lock = chronocooked_env::fs::FolderLock::acquire(&req.out)?;
-    eval_folder::start_writing(&req.out).map_err(analysis)?;
+    // Nothing of an earlier evaluation in the folder stays beside this one.
+    eval_folder::begin_evaluation(&req.out).map_err(analysis)?;
     let meta = ActivityMeta::new(&agent.name(), &task, &env, req.seed);
     let mut recorder = TrialRecorder::new(meta);
     let records = run_protocol_recorded(
@@ -270,6 +271,7 @@ pub fn evaluate_human(file: &Path, seed: u64, out: &Path) -> Result<EvalOutcome,
         episodes: None,
     };
     let _lock = chronocooked_env::fs::FolderLock::acquire(out)?;
+    eval_folder::begin_evaluation(out).map_err(analysis)?;
     let (metrics, figures) =
         eval_folder::write_eval_folder(out, &info, &records).map_err(analysis)?;
     Ok(EvalOutcome {
