@@ -266,6 +266,62 @@ fn env_play_records_keyboard_steps_in_the_replay_shape() {
     assert!(eval.join("metrics.json").is_file());
 }
 
+/// A recording with steps cut out of an episode before the session's next one (the
+/// generator continued, so the episode must have ended) is refused naming the line.
+#[test]
+fn a_recording_with_an_episode_cut_short_is_refused() {
+    let dir = temp_dir("play-cut");
+    let record = dir.join("human.jsonl");
+    let mut child = bin()
+        .args([
+            "env",
+            "play",
+            "FixedInterval-v0",
+            "--set",
+            "td=2",
+            "--start",
+            "1,0",
+        ])
+        .args(["--episodes", "2", "--record", record.to_str().unwrap()])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(b"wese.eddewese.eddeq")
+        .unwrap();
+    assert!(child.wait_with_output().unwrap().status.success());
+    let text = std::fs::read_to_string(&record).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 20, "two episodes of a reset and 9 steps");
+    let whole = dir.join("whole");
+    run_ok(&[
+        "eval",
+        "--human",
+        record.to_str().unwrap(),
+        "--out",
+        whole.to_str().unwrap(),
+    ]);
+    // Episode 1's delivery (line 10) removed.
+    let cut: Vec<&str> = lines[..9].iter().chain(&lines[10..]).copied().collect();
+    let edited = dir.join("cut.jsonl");
+    std::fs::write(&edited, cut.join("\n") + "\n").unwrap();
+    let err = run_err(&[
+        "eval",
+        "--human",
+        edited.to_str().unwrap(),
+        "--out",
+        dir.join("e").to_str().unwrap(),
+    ]);
+    assert!(
+        err.contains("line 10") && err.contains("did not end"),
+        "{err}"
+    );
+}
+
 #[test]
 fn demo_runs_every_task_and_writes_gifs() {
     let dir = temp_dir("demo");

@@ -139,7 +139,8 @@ pub fn replay(
 /// episode whose reset line carries its [`ResetKey`] is replayed — the env rebuilt from the
 /// line's config where the reset has a seed, the generator continued where it has none —
 /// and every recorded line must equal the replay's. An edited reward, observation or info
-/// field, or a step after the episode ended, is an error naming the line and the field.
+/// field, a step after the episode ended, or an episode cut short before the session's next
+/// one, is an error naming the line (and the field).
 /// Episodes without a key (recordings made before keys were written) are not checked.
 pub fn verify_recording(lines: &[(usize, TraceLine)]) -> Result<(), String> {
     let mut env: Option<ChronoEnv> = None;
@@ -149,6 +150,14 @@ pub fn verify_recording(lines: &[(usize, TraceLine)]) -> Result<(), String> {
         match (line.action, line.reset) {
             (None, None) => replaying = false,
             (None, Some(key)) => {
+                // `env play` continues its generator (no seed) only after an episode ended: a
+                // continued reset after an unfinished episode means steps were cut out.
+                if key.seed.is_none() && replaying && env.as_ref().is_some_and(|e| !e.is_done()) {
+                    return Err(format!(
+                        "line {n}: a new episode continues the session, but the episode before \
+                         it did not end (its last steps are missing)"
+                    ));
+                }
                 let config: TaskConfig = line
                     .config
                     .clone()
