@@ -199,10 +199,8 @@ fn env_render_writes_a_gif_and_png_frames() {
     assert_eq!(&png[1..4], b"PNG");
 }
 
-#[test]
-fn env_play_records_keyboard_steps_in_the_replay_shape() {
-    let dir = temp_dir("play");
-    let record = dir.join("human.jsonl");
+/// `env play` of FI at TD 2 from cell (1, 0), recorded into `record`, with `keys` typed.
+fn play_fi_td2(record: &std::path::Path, extra: &[&str], keys: &[u8]) {
     let mut child = bin()
         .args([
             "env",
@@ -212,22 +210,23 @@ fn env_play_records_keyboard_steps_in_the_replay_shape() {
             "td=2",
             "--start",
             "1,0",
-            "--record",
-            record.to_str().unwrap(),
         ])
+        .args(extra)
+        .args(["--record", record.to_str().unwrap()])
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())
         .spawn()
         .unwrap();
+    child.stdin.take().unwrap().write_all(keys).unwrap();
+    assert!(child.wait_with_output().unwrap().status.success());
+}
+
+#[test]
+fn env_play_records_keyboard_steps_in_the_replay_shape() {
+    let dir = temp_dir("play");
+    let record = dir.join("human.jsonl");
     // up, interact, down, interact, wait, interact (pickup), right, right, interact.
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(b"wese.eddeq")
-        .unwrap();
-    let out = child.wait_with_output().unwrap();
-    assert!(out.status.success());
+    play_fi_td2(&record, &[], b"wese.eddeq");
     let lines = json_lines(&std::fs::read_to_string(&record).unwrap());
     assert_eq!(lines.len(), 10, "reset + 9 steps");
     assert_eq!(lines[0]["task"], "FixedInterval-v0");
@@ -272,28 +271,7 @@ fn env_play_records_keyboard_steps_in_the_replay_shape() {
 fn a_recording_with_an_episode_cut_short_is_refused() {
     let dir = temp_dir("play-cut");
     let record = dir.join("human.jsonl");
-    let mut child = bin()
-        .args([
-            "env",
-            "play",
-            "FixedInterval-v0",
-            "--set",
-            "td=2",
-            "--start",
-            "1,0",
-        ])
-        .args(["--episodes", "2", "--record", record.to_str().unwrap()])
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .spawn()
-        .unwrap();
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(b"wese.eddewese.eddeq")
-        .unwrap();
-    assert!(child.wait_with_output().unwrap().status.success());
+    play_fi_td2(&record, &["--episodes", "2"], b"wese.eddewese.eddeq");
     let text = std::fs::read_to_string(&record).unwrap();
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(lines.len(), 20, "two episodes of a reset and 9 steps");
