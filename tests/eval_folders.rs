@@ -51,8 +51,9 @@ fn a_second_evaluation_into_one_folder_leaves_nothing_of_the_first() {
 }
 
 /// Records edited with their SHA-256 record updated too (or the record removed) are still
-/// refused where the edit breaks what an episode is: off-grid starts and jumps, a return
-/// no task pays, a success the last step does not show, a deleted or repeated line.
+/// refused where the edit breaks what an episode is: moves its actions do not make, another
+/// condition's duration, a return no task pays, a success the last step does not show, a
+/// deleted or repeated line.
 #[test]
 fn edited_evaluation_records_are_refused_even_when_re_recorded() {
     use chronocooked_env::integrity::{remove_recorded, write_recorded};
@@ -75,6 +76,19 @@ fn edited_evaluation_records_are_refused_even_when_re_recorded() {
         out.join("\n") + "\n"
     };
     let cases: Vec<(&str, String, &str)> = vec![
+        (
+            "actions",
+            edit(&|v| {
+                let n = v["episode"]["actions"].as_array().unwrap().len();
+                v["episode"]["actions"] = serde_json::json!(vec![0; n]);
+            }),
+            "its action",
+        ),
+        (
+            "condition td",
+            edit(&|v| v["condition"]["td"] = serde_json::json!(99)),
+            "`condition.td`",
+        ),
         (
             "start",
             edit(&|v| v["episode"]["start"] = serde_json::json!([9, 9])),

@@ -223,6 +223,19 @@ fn a_run_whose_checkpoints_folder_was_deleted_is_not_restarted_from_step_0() {
         curves_before,
         "nothing was rewritten from step 0"
     );
+    // Also without the final model and summary: the curve's rows past the first checkpoint
+    // say a checkpoint existed.
+    std::fs::remove_file(dir.join("model.bpk")).unwrap();
+    std::fs::remove_file(dir.join("summary.json")).unwrap();
+    let err = run_err(&["train", "--resume", s(&dir), "--quiet"]);
+    assert!(
+        err.contains("no checkpoint") && err.contains("curves.csv"),
+        "{err}"
+    );
+    assert_eq!(
+        std::fs::read(dir.join("curves.csv")).unwrap(),
+        curves_before
+    );
 }
 
 #[test]

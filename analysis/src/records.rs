@@ -119,11 +119,19 @@ pub struct EvalRecord {
 }
 
 impl EvalRecord {
-    /// Checks the episode ([`EpisodeRecord::validate`]) and that a multi-oven episode
+    /// Checks the episode ([`EpisodeRecord::validate`]), that it is of its condition's
+    /// duration, and that a multi-oven episode
     /// carries every oven's state at every step (records written before the ovens' state
     /// moved out of the step info lack it; their metrics would silently miss every oven).
     pub fn validate(&self) -> Result<(), String> {
         self.episode.validate()?;
+        if self.condition.td != self.episode.td {
+            return Err(format!(
+                "field `condition.td`: {}, but the episode's td is {} (every condition plays \
+                 episodes of its own duration)",
+                self.condition.td, self.episode.td
+            ));
+        }
         if self.condition.kind == ConditionKind::MultiOven
             && self.episode.ovens.len() != self.episode.actions.len()
         {

@@ -219,9 +219,10 @@ pub struct Trial {
 impl Trial {
     /// What a recorded trial's outcome must be: a positive TD, markers in step order, a
     /// return of 0..=1 per step (every task pays at most 1 per step), a reward marker
-    /// exactly when the trial was paid, and success only in a paid trial. The error names
-    /// the field.
-    fn validate_outcome(&self) -> Result<(), String> {
+    /// exactly when the trial was paid, success only in a paid trial and, where only
+    /// deliveries pay (`only_deliveries_pay`), a full return only with success. The error
+    /// names the field.
+    fn validate_outcome(&self, only_deliveries_pay: bool) -> Result<(), String> {
         if self.td == 0 {
             return Err("td: 0 (allowed: a positive number of steps)".into());
         }
@@ -236,7 +237,8 @@ impl Trial {
             ));
         }
         let rewarded = self.events.iter().any(|e| e.marker == Marker::Reward);
-        if rewarded != (self.reward > 0.0) || (self.success && !rewarded) {
+        let full_without_success = only_deliveries_pay && self.reward >= 0.999 && !self.success;
+        if rewarded != (self.reward > 0.0) || (self.success && !rewarded) || full_without_success {
             return Err(format!(
                 "reward: {} and success {} do not agree with the trial's reward markers",
                 self.reward, self.success
@@ -355,6 +357,10 @@ impl ActivityDataset {
                 self.meta.dt
             ));
         }
+        // Outside the dual task (whose sink pays during the interval) every reward is a
+        // delivery's: a full return is a success. Unknown for a task this build lacks.
+        let only_deliveries_pay = chronocooked_env::make_config(&self.meta.task, &self.meta.env)
+            .is_ok_and(|c| c.family() != chronocooked_env::TaskFamily::Dual);
         for (i, t) in self.trials.iter().enumerate() {
             let want = t.steps.checked_mul(units);
             if want != Some(t.activity.len()) {
@@ -370,7 +376,7 @@ impl ActivityDataset {
                     e.step, t.steps
                 ));
             }
-            t.validate_outcome()
+            t.validate_outcome(only_deliveries_pay)
                 .map_err(|e| format!("trials[{i}].{e}"))?;
         }
         Ok(())
@@ -500,5 +506,48 @@ impl TrialRecorder {
             meta: self.meta,
             trials: self.trials,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One trial of `task` that was paid `reward` at its last step, marked `success`.
+    fn paid(task: &str, reward: f32, success: bool) -> ActivityDataset {
+        let mut ds = ActivityDataset {
+            meta: ActivityMeta::new("m", task, &[], 0),
+            trials: Vec::new(),
+        };
+        ds.meta.populations.clear();
+        ds.trials.push(Trial {
+            td: 6,
+            start: (1, 0),
+            steps: 10,
+            activity: Vec::new(),
+            events: vec![Event {
+                step: 9,
+                marker: Marker::Reward,
+            }],
+            reward,
+            success,
+            oven_tds: Vec::new(),
+            reproduction: None,
+        });
+        ds
+    }
+
+    #[test]
+    fn a_trial_outcome_must_agree_with_its_reward_markers_and_its_task() {
+        paid("FixedInterval-v0", 1.0, true).validate().unwrap();
+        // A full return without success: only the dual task's sink pays without a delivery.
+        let err = paid("FixedInterval-v0", 1.0, false).validate().unwrap_err();
+        assert!(err.contains("trials[0].reward"), "{err}");
+        paid("DualTask-v0", 1.0, false).validate().unwrap();
+        // More than 1 per step, or a reward without its marker.
+        assert!(paid("FixedInterval-v0", 11.0, true).validate().is_err());
+        let mut unmarked = paid("FixedInterval-v0", 1.0, true);
+        unmarked.trials[0].events.clear();
+        assert!(unmarked.validate().is_err());
     }
 }

@@ -245,7 +245,7 @@ impl EpisodeRecord {
     }
 
     /// The steps are one episode's, in order: `info.timestep` counts 1, 2, …, the episode's
-    /// TD is every step's, the agent moves at most one cell per step (from `start` on the
+    /// TD is every step's, the agent moves only by its step's action (from `start` on the
     /// first), and `success` agrees with the return and the last step.
     fn validate_steps(&self) -> Result<(), String> {
         let mut at = (self.start.0 as i64, self.start.1 as i64);
@@ -267,11 +267,16 @@ impl EpisodeRecord {
                 ));
             }
             let next = (i64::from(info.agent.0), i64::from(info.agent.1));
-            if (next.0 - at.0).abs() + (next.1 - at.1).abs() > 1 {
+            let moved = (next.0 - at.0, next.1 - at.1);
+            // A move is the step's action (a blocked move, a wait or an interact: none).
+            let action = Action::ALL[usize::from(self.actions[k]) % Action::COUNT];
+            let (dr, dc) = action.delta();
+            if moved != (0, 0) && moved != (i64::from(dr), i64::from(dc)) {
                 return Err(format!(
-                    "field `infos`: step {} moves the agent from {at:?} to {next:?} (at most \
-                     one cell per step; the first from `start`)",
-                    k + 1
+                    "field `infos`: step {} moves the agent from {at:?} to {next:?}, which its \
+                     action `{}` does not (the first step from `start`)",
+                    k + 1,
+                    action.name()
                 ));
             }
             at = next;

@@ -93,15 +93,20 @@ pub fn run_training(
                 // A finished run without any checkpoint: they were deleted (their folder with
                 // its SHA256SUMS), and resuming would silently start again. (Curve rows alone
                 // say nothing: updates before the first checkpoint write them too.)
-                let learned: Vec<&str> = [run_folder::SUMMARY, run_folder::MODEL]
+                let mut learned: Vec<&str> = [run_folder::SUMMARY, run_folder::MODEL]
                     .into_iter()
                     .filter(|f| run.path.join(f).exists())
                     .collect();
+                // A curve row at or past the first checkpoint's update: that checkpoint was
+                // written before the row, so it was lost.
+                if curve_passed_a_checkpoint(&run.path, &cfg) {
+                    learned.push(run_folder::CURVES);
+                }
                 if !learned.is_empty() {
                     return Err(TrainError::Resume {
                         path: dir.display().to_string(),
                         reason: format!(
-                            "no checkpoint in {}/, but the run finished ({}): its \
+                            "no checkpoint in {}/, but the run got past one ({}): its \
                              checkpoints were deleted or lost, and resuming would silently \
                              start from step 0. Restore them, or start over on purpose: remove \
                              the run folder and train again",
@@ -243,4 +248,24 @@ pub fn resume_trainer(
 /// least one TD from every start cell, so only an empty layout gives none).
 fn eval_success(eps: &[EvalEpisode]) -> f64 {
     chronocooked_models::agent::success_rate(eps.iter().map(|e| e.success)).unwrap_or(f64::NAN)
+}
+
+/// Whether the learning curve of the run in `dir` has a row at or past the env step of the
+/// run's first checkpoint (every `checkpoint_every` steps rounded up to whole updates, and
+/// at the end of the budget): checkpoints are written before their update's row, so such a
+/// row means a checkpoint existed.
+fn curve_passed_a_checkpoint(dir: &Path, cfg: &TrainConfig) -> bool {
+    let Ok(curves) = run_folder::Curves::read(&dir.join(run_folder::CURVES)) else {
+        return false;
+    };
+    let Some(steps) = curves.column("env_steps") else {
+        return false;
+    };
+    let last = steps.iter().copied().fold(0.0, f64::max) as u64;
+    let batch = (cfg.ppo.n_envs * cfg.ppo.n_steps).max(1) as u64;
+    let first = match cfg.checkpoint_every {
+        0 => u64::MAX,
+        k => k.div_ceil(batch).max(1).saturating_mul(batch),
+    };
+    last >= first.min(cfg.total_steps)
 }
