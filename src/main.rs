@@ -85,6 +85,26 @@ fn restore_default_sigpipe() {
     }
 }
 
+/// A full disk (or a closed file) under stdout or stderr makes `println!` / `eprintln!`
+/// panic; such a process ends with the error status 2 and without the panic's message and
+/// backtrace, which it could not write either (a sweep worker's log on a full disk). Every
+/// other panic keeps the default report.
+fn quiet_exit_when_output_fails() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let message = info
+            .payload()
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| info.payload().downcast_ref::<&str>().copied())
+            .unwrap_or_default();
+        if message.starts_with("failed printing to std") {
+            std::process::exit(2);
+        }
+        default(info);
+    }));
+}
+
 /// SIGINT / SIGTERM: recorded for a loop that can stop cleanly (training saves a checkpoint,
 /// a sweep stops its workers), the default action (the process ends) otherwise, and on a
 /// second signal (see `chronocooked_env::interrupt`).
@@ -116,6 +136,7 @@ fn install_stop_handlers() {
 
 fn main() -> ExitCode {
     restore_default_sigpipe();
+    quiet_exit_when_output_fails();
     install_stop_handlers();
     let cli = Cli::parse();
     let result = match cli.command {

@@ -300,6 +300,22 @@ fn a_recording_with_an_episode_cut_short_is_refused() {
     );
 }
 
+/// An error that cannot be written because stderr is on a full disk (`/dev/full`) ends the
+/// command with the error status 2, not with a panic (101) in `eprintln!`.
+#[test]
+fn a_full_disk_under_stderr_ends_with_the_error_status_not_a_panic() {
+    let full = std::fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .expect("Linux has /dev/full");
+    let status = bin()
+        .args(["train", "--set", "bogus=1"])
+        .stderr(Stdio::from(full))
+        .status()
+        .unwrap();
+    assert_eq!(status.code(), Some(2));
+}
+
 #[test]
 fn demo_runs_every_task_and_writes_gifs() {
     let dir = temp_dir("demo");
