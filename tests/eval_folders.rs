@@ -117,41 +117,40 @@ fn edited_evaluation_records_are_refused_even_when_re_recorded() {
         ),
     ];
     for (name, records, needle) in cases {
-        let d = dir.join(name.replace(' ', "-"));
-        let _ = std::fs::remove_dir_all(&d);
-        std::fs::create_dir_all(&d).unwrap();
-        for f in ["eval.json", "metrics.json", "SHA256SUMS"] {
-            std::fs::copy(clean.join(f), d.join(f)).unwrap();
-        }
+        let d = copy_of(&clean, &dir.join(name.replace(' ', "-")));
         write_recorded(&d.join("records.jsonl"), records.as_bytes()).unwrap();
-        let err = run_err(&[
-            "eval",
-            "--from",
-            d.to_str().unwrap(),
-            "--out",
-            d.join("re").to_str().unwrap(),
-        ]);
+        let err = rescore_err(&d);
         assert!(
             err.contains("records.jsonl") && err.contains(needle),
             "{name}: {err}"
         );
     }
     // The record removed: the file is no longer vouched for.
-    let d = dir.join("unrecorded");
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    for f in ["eval.json", "metrics.json", "SHA256SUMS", "records.jsonl"] {
-        std::fs::copy(clean.join(f), d.join(f)).unwrap();
-    }
+    let d = copy_of(&clean, &dir.join("unrecorded"));
     let kept = std::fs::read(d.join("records.jsonl")).unwrap();
     remove_recorded(&d.join("records.jsonl")).unwrap();
     std::fs::write(d.join("records.jsonl"), kept).unwrap();
-    let err = run_err(&[
+    let err = rescore_err(&d);
+    assert!(err.contains("records.jsonl"), "{err}");
+}
+
+/// A fresh copy of the evaluation folder `clean`'s files at `to`.
+fn copy_of(clean: &std::path::Path, to: &std::path::Path) -> std::path::PathBuf {
+    let _ = std::fs::remove_dir_all(to);
+    std::fs::create_dir_all(to).unwrap();
+    for f in ["eval.json", "metrics.json", "SHA256SUMS", "records.jsonl"] {
+        std::fs::copy(clean.join(f), to.join(f)).unwrap();
+    }
+    to.to_path_buf()
+}
+
+/// The error of `eval --from d` (rescoring the folder's records), which must fail.
+fn rescore_err(d: &std::path::Path) -> String {
+    run_err(&[
         "eval",
         "--from",
         d.to_str().unwrap(),
         "--out",
         d.join("re").to_str().unwrap(),
-    ]);
-    assert!(err.contains("records.jsonl"), "{err}");
+    ])
 }

@@ -244,6 +244,17 @@ fn slurm_emission_passes_bash_n_and_lists_every_job() {
 }
 
 /// Modification times of every finished job's `progress.json`.
+/// The job ids of the sweep file `file`, in order.
+fn job_ids(file: &Path) -> Vec<String> {
+    SweepFile::load(file)
+        .unwrap()
+        .jobs()
+        .unwrap()
+        .into_iter()
+        .map(|j| j.id)
+        .collect()
+}
+
 fn finished(out: &Path, ids: &[String]) -> Vec<(String, SystemTime)> {
     ids.iter()
         .filter(|id| job_done(&out.join(id)))
@@ -288,13 +299,7 @@ set = ["checkpoint_every=4000", "eval_every=0"]
     )
     .unwrap();
     let out = dir.join("out");
-    let ids: Vec<String> = SweepFile::load(&file)
-        .unwrap()
-        .jobs()
-        .unwrap()
-        .into_iter()
-        .map(|j| j.id)
-        .collect();
+    let ids = job_ids(&file);
     assert_eq!(ids.len(), 4);
     // One worker: oracle, ddm, then the LSTM run, which is killed mid-training with the
     // whole process group (as Ctrl-C or a scheduler would).
@@ -664,13 +669,7 @@ fn a_failed_report_does_not_hide_the_failed_jobs() {
     )
     .unwrap();
     let out = dir.join("out");
-    let ids: Vec<String> = SweepFile::load(&file)
-        .unwrap()
-        .jobs()
-        .unwrap()
-        .into_iter()
-        .map(|j| j.id)
-        .collect();
+    let ids = job_ids(&file);
     std::fs::create_dir_all(&out).unwrap();
     std::fs::write(out.join("report"), "not a folder").unwrap();
     // The second job's folder is a file: that job fails.

@@ -59,9 +59,9 @@ pub fn write_eval_folder(
 
 /// Starts a new evaluation in `out`, before anything of it is written (its activity
 /// included): marks the folder unfinished ([`start_writing`]) and removes what only an
-/// earlier evaluation there wrote — its activity and its export, its per-level episodes,
-/// its figures — so that
-/// nothing of it stays beside the new one (a rerun equals a clean evaluation).
+/// earlier evaluation there wrote — its activity and its export, its per-level episodes —
+/// so that nothing of it stays beside the new one (a rerun equals a clean evaluation; the
+/// figures are drawn afresh by [`write_metrics`]).
 pub fn begin_evaluation(out: &Path) -> Result<(), String> {
     check_out(out)?;
     start_writing(out)?;
@@ -72,8 +72,7 @@ pub fn begin_evaluation(out: &Path) -> Result<(), String> {
     ] {
         chronocooked_env::integrity::remove_recorded(&out.join(file)).map_err(|e| e.to_string())?;
     }
-    remove_folder(&out.join("activity"))?;
-    remove_folder(&out.join("figures"))
+    remove_folder(&out.join("activity"))
 }
 
 /// Marks the evaluation folder `out` unfinished before anything in it is rewritten, by

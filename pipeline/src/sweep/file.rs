@@ -274,7 +274,9 @@ impl SweepFile {
         }
         // One key twice in one list: the later value would silently replace the earlier.
         fn key_twice(list: &[String]) -> Option<&str> {
-            let key = |s: &str| s.split_once('=').map_or("", |(k, _)| k.trim()).to_string();
+            fn key(s: &str) -> &str {
+                s.split_once('=').map_or("", |(k, _)| k.trim())
+            }
             list.iter()
                 .enumerate()
                 .find(|(i, s)| list[..*i].iter().any(|t| key(t) == key(s)))

@@ -142,9 +142,7 @@ pub fn run_training(
     let cfg = trainer.config().clone();
     let task = make_config(&cfg.task, &cfg.env)?;
     let batch = (cfg.ppo.n_envs * cfg.ppo.n_steps) as u64;
-    let every = |k: u64, steps: u64| {
-        k > 0 && steps.is_multiple_of(k.div_ceil(batch).max(1).saturating_mul(batch))
-    };
+    let every = |k: u64, steps: u64| interval(k, batch).is_some_and(|n| steps.is_multiple_of(n));
     let mut solved_at = None;
     while !trainer.finished() {
         let row = trainer.update()?;
@@ -263,9 +261,12 @@ fn curve_passed_a_checkpoint(dir: &Path, cfg: &TrainConfig) -> bool {
     };
     let last = steps.iter().copied().fold(0.0, f64::max) as u64;
     let batch = (cfg.ppo.n_envs * cfg.ppo.n_steps).max(1) as u64;
-    let first = match cfg.checkpoint_every {
-        0 => u64::MAX,
-        k => k.div_ceil(batch).max(1).saturating_mul(batch),
-    };
+    let first = interval(cfg.checkpoint_every, batch).unwrap_or(u64::MAX);
     last >= first.min(cfg.total_steps)
+}
+
+/// The env steps between two events set every `k` steps (checkpoints, evaluations), `k`
+/// rounded up to whole updates of `batch` steps; `None` when `k` is 0 (only at the end).
+fn interval(k: u64, batch: u64) -> Option<u64> {
+    (k > 0).then(|| k.div_ceil(batch).max(1).saturating_mul(batch))
 }
