@@ -101,6 +101,15 @@ impl TraceLine {
         }
     }
 
+    /// The task configuration of a reset line (its `config`); the error names the field.
+    pub fn task_config(&self) -> Result<TaskConfig, String> {
+        let value = self
+            .config
+            .clone()
+            .ok_or_else(|| "reset line without `config`".to_string())?;
+        serde_json::from_value(value).map_err(|e| format!("`config`: {e}"))
+    }
+
     /// Serialises the line as compact JSON.
     pub fn to_json(&self) -> String {
         serde_json::to_string(self).unwrap_or_else(|e| format!("{{\"error\":\"{e}\"}}"))
@@ -158,13 +167,7 @@ pub fn verify_recording(lines: &[(usize, TraceLine)]) -> Result<(), String> {
                          it did not end (its last steps are missing)"
                     ));
                 }
-                let config: TaskConfig = line
-                    .config
-                    .clone()
-                    .ok_or_else(|| format!("line {n}: reset line without `config`"))
-                    .and_then(|c| {
-                        serde_json::from_value(c).map_err(|e| format!("line {n}: `config`: {e}"))
-                    })?;
+                let config = line.task_config().map_err(|e| format!("line {n}: {e}"))?;
                 let same_task = env.as_ref().is_some_and(|e| *e.config() == config);
                 if key.seed.is_some() || !same_task {
                     if key.seed.is_none() {

@@ -62,13 +62,7 @@ pub fn records_from_trace(text: &str) -> Result<Vec<EvalRecord>, String> {
     for (n, t) in lines {
         match t.action {
             None => {
-                let config: TaskConfig = t
-                    .config
-                    .clone()
-                    .ok_or_else(|| format!("line {n}: reset line without config"))
-                    .and_then(|c| {
-                        serde_json::from_value(c).map_err(|e| format!("line {n}: {e}"))
-                    })?;
+                let config = t.task_config().map_err(|e| format!("line {n}: {e}"))?;
                 config
                     .validate()
                     .map_err(|e| format!("line {n}: config: {e}"))?;
