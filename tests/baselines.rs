@@ -26,8 +26,7 @@ fn mean_sd(v: &[f64]) -> (f64, f64) {
 /// One compact job: its row label, task, settings and episode lines (header → value).
 struct Job {
     row: String,
-    task: String,
-    env: Vec<String>,
+    task: chronocooked_env::Task,
     episodes: Vec<BTreeMap<String, String>>,
 }
 
@@ -68,13 +67,7 @@ fn jobs(root: &Path) -> Vec<Job> {
                     .or(j["model"].as_str())
                     .unwrap()
                     .to_string(),
-                task: j["task"].as_str().unwrap().to_string(),
-                env: j["env"]
-                    .as_array()
-                    .unwrap()
-                    .iter()
-                    .map(|v| v.as_str().unwrap().to_string())
-                    .collect(),
+                task: serde::Deserialize::deserialize(&j).unwrap(),
                 episodes,
             }
         })
@@ -82,12 +75,7 @@ fn jobs(root: &Path) -> Vec<Job> {
 }
 
 fn setting(job: &Job, key: &str) -> f64 {
-    job.env
-        .iter()
-        .find_map(|kv| kv.strip_prefix(&format!("{key}=")))
-        .unwrap()
-        .parse()
-        .unwrap()
+    job.task.value_set(key).unwrap().as_f64().unwrap()
 }
 
 /// The three headline numbers (mean, SD over jobs) of one row, from the episode lines:
@@ -97,7 +85,7 @@ fn independent(all: &[Job], row: &str) -> BTreeMap<&'static str, (f64, f64)> {
     let mine: Vec<&Job> = all.iter().filter(|j| j.row == row).collect();
     let (mut success, mut accuracy, mut foc) = (vec![], vec![], vec![]);
     for j in &mine {
-        if j.task == "FixedInterval-v0" {
+        if j.task.id() == "FixedInterval-v0" {
             let fi: Vec<_> = j.episodes.iter().filter(|e| e["kind"] == "fi").collect();
             let ok = fi.iter().filter(|e| e["success"] == "true").count();
             success.push(ok as f64 / fi.len() as f64);
@@ -106,7 +94,7 @@ fn independent(all: &[Job], row: &str) -> BTreeMap<&'static str, (f64, f64)> {
                 foc.push(checks.iter().sum::<f64>() / checks.len() as f64 / setting(j, "td"));
             }
         }
-        if j.task == "Bisection-v0" {
+        if j.task.id() == "Bisection-v0" {
             let (s, l) = (setting(j, "short"), setting(j, "long"));
             let (mut right, mut total) = (0, 0);
             for e in j.episodes.iter().filter(|e| e["kind"] == "bisection") {

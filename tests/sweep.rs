@@ -54,7 +54,7 @@ fn sweep_file_expands_into_the_crossed_jobs() {
     // the task settings (2 TDs), the oracle one seed.
     let fi = |m: &str| {
         jobs.iter()
-            .filter(|j| j.task == "FixedInterval-v0" && j.model == m)
+            .filter(|j| j.task.id() == "FixedInterval-v0" && j.model == m)
             .count()
     };
     assert_eq!(fi("lstm8"), 8);
@@ -64,7 +64,7 @@ fn sweep_file_expands_into_the_crossed_jobs() {
     assert_eq!(fi("oracle"), 2);
     let bis = |m: &str| {
         jobs.iter()
-            .filter(|j| j.task == "Bisection-v0" && j.model == m)
+            .filter(|j| j.task.id() == "Bisection-v0" && j.model == m)
             .count()
     };
     assert_eq!(bis("lstm125"), 4);
@@ -81,14 +81,14 @@ fn sweep_file_expands_into_the_crossed_jobs() {
         j.sets,
         ["total_steps=5000", "env.td=6", "learning_rate=1e-3"]
     );
-    assert_eq!(j.env, ["td=6"]);
+    assert_eq!(j.task.overrides(), ["td=6"]);
     assert_eq!(
         j.row, "lstm8~learning_rate-1e-3",
         "TDs share a leaderboard row"
     );
     let d = jobs
         .iter()
-        .find(|j| j.model == "ddm" && j.task == "FixedInterval-v0")
+        .find(|j| j.model == "ddm" && j.task.id() == "FixedInterval-v0")
         .unwrap();
     assert!(
         !d.sets
@@ -601,10 +601,10 @@ adapt_steps = 2000
         assert_eq!(a["task"], "Uncertainty-v0");
         assert!(
             !a["env"]
-                .as_array()
+                .as_object()
                 .unwrap()
-                .iter()
-                .any(|e| e.as_str().unwrap().starts_with("never_ready")),
+                .keys()
+                .any(|k| k.starts_with("never_ready")),
             "adaptation runs with the task's own never-ready probability: {a}"
         );
         assert!(a["episodes"].as_u64().unwrap() > 0);

@@ -30,7 +30,7 @@ fn temp_dir(name: &str) -> std::path::PathBuf {
 fn timing_agents_solve_fi12_and_bisection_4_12() {
     for task in ["FixedInterval-v0", "Bisection-v0"] {
         for model in MODELS {
-            let cfg = TimingRunConfig::new(task, model, 0);
+            let cfg = TimingRunConfig::new(&chronocooked_env::Task::new(task).unwrap(), model, 0);
             let dir = temp_dir(&format!("{task}-{model}"));
             let summary = run_timing_training(&cfg, &dir, "test", |_| {}).unwrap();
             assert!(
@@ -39,7 +39,7 @@ fn timing_agents_solve_fi12_and_bisection_4_12() {
             );
             // The saved agent plays the same.
             let mut agent = load_agent(&dir, None).unwrap();
-            let config = make_config(task, &cfg.env).unwrap();
+            let config = cfg.task.config().unwrap();
             let tds = chronocooked_training::eval_tds(&config);
             let records = evaluate_agent(agent.as_mut(), &config, &tds, 1, None).unwrap();
             let rate = chronocooked_models::agent::success_rate(records.iter().map(|r| r.success))
@@ -72,7 +72,11 @@ fn judged_curve(
     seed: u64,
     sets: &[&str],
 ) -> (f64, f64, f64, Vec<f64>) {
-    let mut cfg = TimingRunConfig::new("Bisection-v0", model, seed);
+    let mut cfg = TimingRunConfig::new(
+        &chronocooked_env::Task::new("Bisection-v0").unwrap(),
+        model,
+        seed,
+    );
     for s in sets {
         cfg.set(s).unwrap();
     }
@@ -80,7 +84,7 @@ fn judged_curve(
     cfg.set(&format!("env.long={long}")).unwrap();
     let label = format!("judge-{model}-{short}-{long}-{seed}-{}", sets.len());
     let mut agent = trained_agent(&cfg, &label);
-    let conds = reference_conditions("Bisection-v0", &cfg.env).unwrap();
+    let conds = reference_conditions(&cfg.task).unwrap();
     let records = run_protocol(agent.as_mut(), &conds, Mode::Reference, 7).unwrap();
     let b = compute_metrics(model, &records, 0).bisection.unwrap();
     let valid: Vec<f64> = b.p_long.iter().copied().filter(|p| p.is_finite()).collect();
@@ -143,7 +147,11 @@ fn timing_models_judge_bisection_against_their_anchor_memories() {
 #[test]
 fn presence_representation_cannot_do_bisection() {
     // A control: without elapsed-time information the anchors cannot be told apart.
-    let cfg = TimingRunConfig::new("Bisection-v0", "timecells-presence", 0);
+    let cfg = TimingRunConfig::new(
+        &chronocooked_env::Task::new("Bisection-v0").unwrap(),
+        "timecells-presence",
+        0,
+    );
     let dir = temp_dir("presence");
     let summary = run_timing_training(&cfg, &dir, "test", |_| {}).unwrap();
     assert!(summary.eval_success <= 0.6, "{summary:?}");
@@ -156,11 +164,15 @@ fn first_oven_check_increases_with_td() {
     for model in MODELS {
         let mut means = Vec::new();
         for td in tds {
-            let mut cfg = TimingRunConfig::new("FixedInterval-v0", model, 0);
+            let mut cfg = TimingRunConfig::new(
+                &chronocooked_env::Task::new("FixedInterval-v0").unwrap(),
+                model,
+                0,
+            );
             cfg.set(&format!("env.td={td}")).unwrap();
             cfg.set("eval_every=0").unwrap();
             let mut agent = cfg.build_agent().unwrap();
-            let config = make_config("FixedInterval-v0", &cfg.env).unwrap();
+            let config = cfg.task.config().unwrap();
             chronocooked_models::train_timing_agent(
                 &mut agent,
                 &config,
@@ -201,8 +213,7 @@ fn every_model_records_into_the_same_dataset_type() {
     let config = make_config("FixedInterval-v0", &["td=6"]).unwrap();
     let meta = |model: &str| ActivityMeta {
         model: model.into(),
-        task: "FixedInterval-v0".into(),
-        env: vec!["td=6".into()],
+        task: chronocooked_env::Task::parse("FixedInterval-v0", &["td=6"]).unwrap(),
         seed: 0,
         dt: 1.0,
         populations: Vec::new(),
@@ -288,16 +299,19 @@ fn every_model_records_into_the_same_dataset_type() {
 fn ddm_activity_ramps_to_threshold_at_the_first_check() {
     // The accumulator is a ramping unit aligned to oven-on, and the first check (FOC)
     // comes when it reaches the threshold z = 1 (or one step after).
-    let mut cfg = TimingRunConfig::new("FixedInterval-v0", "ddm", 3);
+    let mut cfg = TimingRunConfig::new(
+        &chronocooked_env::Task::new("FixedInterval-v0").unwrap(),
+        "ddm",
+        3,
+    );
     cfg.set("env.td=12").unwrap();
     let dir = temp_dir("ddm-ramp");
     run_timing_training(&cfg, &dir, "test", |_| {}).unwrap();
     let mut agent = load_agent(&dir, None).unwrap();
-    let config = make_config("FixedInterval-v0", &cfg.env).unwrap();
+    let config = cfg.task.config().unwrap();
     let mut rec = TrialRecorder::new(ActivityMeta {
         model: "ddm".into(),
-        task: "FixedInterval-v0".into(),
-        env: cfg.env.clone(),
+        task: cfg.task.clone(),
         seed: 0,
         dt: 1.0,
         populations: Vec::new(),
@@ -369,17 +383,20 @@ fn neural_summaries_tell_ramps_sequences_and_oscillations_apart() {
     // Fixed-interval trials at TD 18 over the first 16 steps after oven-on (the full
     // probe-trial analysis, 2 x TD windows at two TDs, is pipeline/tests/neural_model_signatures.rs).
     let summarise = |model: &str, population: &str| {
-        let mut cfg = TimingRunConfig::new("FixedInterval-v0", model, 0);
+        let mut cfg = TimingRunConfig::new(
+            &chronocooked_env::Task::new("FixedInterval-v0").unwrap(),
+            model,
+            0,
+        );
         cfg.set("env.td=18").unwrap();
         cfg.set("episodes=2000").unwrap();
         let dir = temp_dir(&format!("summary-{model}"));
         run_timing_training(&cfg, &dir, "test", |_| {}).unwrap();
         let mut agent = load_agent(&dir, None).unwrap();
-        let config = make_config("FixedInterval-v0", &cfg.env).unwrap();
+        let config = cfg.task.config().unwrap();
         let mut rec = TrialRecorder::new(ActivityMeta {
             model: model.into(),
-            task: "FixedInterval-v0".into(),
-            env: cfg.env.clone(),
+            task: cfg.task.clone(),
             seed: 0,
             dt: 1.0,
             populations: Vec::new(),
@@ -436,8 +453,7 @@ fn exported_npz_matches_the_dataset_array_by_array() {
     chronocooked_models::train_timing_agent(&mut agent, &config, &train, &[6], 0, |_| {}).unwrap();
     let mut rec = TrialRecorder::new(ActivityMeta {
         model: "timecells-ms".into(),
-        task: "FixedInterval-v0".into(),
-        env: vec!["td=6".into()],
+        task: chronocooked_env::Task::parse("FixedInterval-v0", &["td=6"]).unwrap(),
         seed: 0,
         dt: 1.0,
         populations: Vec::new(),
@@ -546,11 +562,15 @@ fn zoo_says_which_tasks_each_mechanism_cannot_do() {
 /// interval at `td` (greedy episodes from every start cell, three seeds), aligned to oven on.
 fn trained_average(model: &str, td: u32, population: &str, window: usize) -> (Vec<f64>, usize) {
     use chronocooked_analysis::neural::Cube;
-    let mut cfg = TimingRunConfig::new("FixedInterval-v0", model, 0);
+    let mut cfg = TimingRunConfig::new(
+        &chronocooked_env::Task::new("FixedInterval-v0").unwrap(),
+        model,
+        0,
+    );
     cfg.set(&format!("env.td={td}")).unwrap();
     let mut agent = trained_agent(&cfg, &format!("signature-{model}-{td}"));
-    let config = make_config("FixedInterval-v0", &cfg.env).unwrap();
-    let mut rec = TrialRecorder::new(ActivityMeta::new(model, "FixedInterval-v0", &cfg.env, 0));
+    let config = cfg.task.config().unwrap();
+    let mut rec = TrialRecorder::new(ActivityMeta::new(model, &cfg.task, 0));
     for seed in 0..3 {
         evaluate_agent(agent.as_mut(), &config, &[td], seed, Some(&mut rec)).unwrap();
     }

@@ -21,7 +21,7 @@ fn trained_metrics(
     sets: &[&str],
     seed: u64,
 ) -> (chronocooked_analysis::Metrics, usize) {
-    let mut cfg = TimingRunConfig::new(task, model, seed);
+    let mut cfg = TimingRunConfig::new(&chronocooked_env::Task::new(task).unwrap(), model, seed);
     for s in sets {
         cfg.set(s).unwrap();
     }
@@ -29,7 +29,7 @@ fn trained_metrics(
     run_timing_training(&cfg, &dir, "test", |_| {}).unwrap();
     let mut agent = load_agent(&dir, None).unwrap();
     let _ = std::fs::remove_dir_all(&dir);
-    let conds = reference_conditions(task, &cfg.env).unwrap();
+    let conds = reference_conditions(&cfg.task).unwrap();
     let records = run_protocol(agent.as_mut(), &conds, Mode::Reference, seed).unwrap();
     (compute_metrics(model, &records, 0), records.len())
 }

@@ -15,7 +15,8 @@ fn temp_dir(name: &str) -> std::path::PathBuf {
 
 /// (normal, never-ready) success of a trained uncertainty agent in the reference evaluation.
 fn uncertainty_success(agent: &mut dyn chronocooked_models::Agent) -> (f64, f64) {
-    let conditions = reference_conditions("Uncertainty-v0", &[]).unwrap();
+    let conditions =
+        reference_conditions(&chronocooked_env::Task::new("Uncertainty-v0").unwrap()).unwrap();
     let records = run_protocol(agent, &conditions, Mode::Reference, 0).unwrap();
     let rate = |never: bool| {
         let kind: Vec<_> = records
@@ -43,7 +44,11 @@ fn the_time_out_category_lets_ramping_and_oscillator_clocks_learn_the_time_out()
     // learn the time-out, without it not both do.
     let mut without = Vec::new();
     for seed in [7, 14] {
-        let mut cfg = TimingRunConfig::new("Uncertainty-v0", "ddm", seed);
+        let mut cfg = TimingRunConfig::new(
+            &chronocooked_env::Task::new("Uncertainty-v0").unwrap(),
+            "ddm",
+            seed,
+        );
         cfg.set("noise=0.06").unwrap();
         cfg.set("memory_noise=0").unwrap();
         let (normal, never) =
@@ -70,7 +75,11 @@ fn the_time_out_category_lets_ramping_and_oscillator_clocks_learn_the_time_out()
     );
     // SBF (its remembered time) learns it too, at its default noise. (Drift-diffusion at
     // its default noise: RESULTS.md's task matrix.)
-    let cfg = TimingRunConfig::new("Uncertainty-v0", "sbf", 0);
+    let cfg = TimingRunConfig::new(
+        &chronocooked_env::Task::new("Uncertainty-v0").unwrap(),
+        "sbf",
+        0,
+    );
     let (normal, never) = uncertainty_success(trained_agent(&cfg, "unc-sbf-0").as_mut());
     assert!(normal >= 0.9 && never >= 0.9, "sbf: {normal} / {never}");
 }
@@ -78,7 +87,11 @@ fn the_time_out_category_lets_ramping_and_oscillator_clocks_learn_the_time_out()
 #[test]
 fn the_opportunity_cost_of_time_learns_the_reward_rate() {
     // The rate is learned only when asked for, and it is the reward per step.
-    let mut cfg = TimingRunConfig::new("FixedInterval-v0", "ddm", 0);
+    let mut cfg = TimingRunConfig::new(
+        &chronocooked_env::Task::new("FixedInterval-v0").unwrap(),
+        "ddm",
+        0,
+    );
     cfg.set("episodes=1500").unwrap();
     cfg.set("opportunity_cost=0.001").unwrap();
     let dir = temp_dir("fi-oc");
@@ -89,7 +102,11 @@ fn the_opportunity_cost_of_time_learns_the_reward_rate() {
     // FI TD 12: one soup (reward 1) per episode of ≥ 12 + walking steps.
     assert!(rho > 0.01 && rho < 1.0 / 12.0, "reward rate {rho}");
     let _ = std::fs::remove_dir_all(&dir);
-    let mut plain = TimingRunConfig::new("FixedInterval-v0", "ddm", 0);
+    let mut plain = TimingRunConfig::new(
+        &chronocooked_env::Task::new("FixedInterval-v0").unwrap(),
+        "ddm",
+        0,
+    );
     plain.set("episodes=300").unwrap();
     let dir = temp_dir("fi-no-oc");
     run_timing_training(&plain, &dir, "test", |_| {}).unwrap();
@@ -109,11 +126,16 @@ fn the_complete_serial_compound_learns_the_one_step_window_of_the_dual_task() {
     // As measured then: exact clock, internal check cost 0.01 (the time cells' default is
     // now 0.05, at which plain SARSA found the window on seed 0 too).
     for seed in [0, 1] {
-        let mut cfg = TimingRunConfig::new("DualTask-v0", "timecells-csc", seed);
+        let mut cfg = TimingRunConfig::new(
+            &chronocooked_env::Task::new("DualTask-v0").unwrap(),
+            "timecells-csc",
+            seed,
+        );
         cfg.set("clock_noise=0").unwrap();
         cfg.set("response_cost=0.01").unwrap();
         let mut agent = trained_agent(&cfg, &format!("dual-csc-{seed}"));
-        let conditions = reference_conditions("DualTask-v0", &[]).unwrap();
+        let conditions =
+            reference_conditions(&chronocooked_env::Task::new("DualTask-v0").unwrap()).unwrap();
         let records = run_protocol(agent.as_mut(), &conditions, Mode::Reference, 0).unwrap();
         let rate =
             records.iter().filter(|r| r.episode.success).count() as f64 / records.len() as f64;
@@ -134,7 +156,7 @@ fn the_complete_serial_compound_learns_the_one_step_window_of_the_dual_task() {
 fn interval_actions(cfg: &TimingRunConfig, label: &str) -> Vec<Vec<u8>> {
     use chronocooked_env::Events;
     let mut agent = trained_agent(cfg, label);
-    let conditions = reference_conditions("FixedInterval-v0", &cfg.env).unwrap();
+    let conditions = reference_conditions(&cfg.task).unwrap();
     let records = run_protocol(agent.as_mut(), &conditions, Mode::Reference, 0).unwrap();
     records
         .iter()
@@ -157,7 +179,11 @@ fn timing_agents_wait_at_the_oven_while_timing_unless_told_otherwise() {
     // wait (0) or check (5): its first check comes from its clock, not from a walking
     // route. Drift-diffusion seed 3 at TD 5 is the case measured walking a fixed route
     // (checks at exactly TD, CV 0.00) before the setting.
-    let mut cfg = TimingRunConfig::new("FixedInterval-v0", "ddm", 3);
+    let mut cfg = TimingRunConfig::new(
+        &chronocooked_env::Task::new("FixedInterval-v0").unwrap(),
+        "ddm",
+        3,
+    );
     cfg.set("env.td=5").unwrap();
     let eps = interval_actions(&cfg, "wait-on");
     assert!(eps.len() >= 40, "{} episodes with a pickup", eps.len());
@@ -192,7 +218,11 @@ fn timing_agents_respond_in_one_unbroken_run_from_the_first_check_to_the_pickup(
     // of the unbroken run of interacts that ends in the pickup) is the agent's first check.
     // The delay line, seed 1 at TD 20, is the case measured alternating checks and waits
     // (in 92% of trials) before the setting.
-    let mut cfg = TimingRunConfig::new("FixedInterval-v0", "timecells-csc", 1);
+    let mut cfg = TimingRunConfig::new(
+        &chronocooked_env::Task::new("FixedInterval-v0").unwrap(),
+        "timecells-csc",
+        1,
+    );
     cfg.set("env.td=20").unwrap();
     let eps = interval_actions(&cfg, "run-on");
     assert!(eps.len() >= 40, "{} episodes with a pickup", eps.len());

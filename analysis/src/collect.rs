@@ -8,7 +8,7 @@ use crate::behaviour::foc::{FocConvention, first_oven_check_with};
 use crate::job_folder;
 use crate::records::{ConditionKind, EvalRecord, read_records};
 use crate::records::{METRICS, RECORDS};
-use chronocooked_env::Counter;
+use chronocooked_env::{Counter, Task};
 use chronocooked_models::run_folder;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -18,8 +18,9 @@ use std::path::{Path, PathBuf};
 pub struct JobSummary {
     /// Sweep job id (`task/model~variant/seedN`), also its folder.
     pub id: String,
-    /// Task id.
-    pub task: String,
+    /// The task, with the job's parameters (serialised as `task` and `env`: `td=12`).
+    #[serde(flatten)]
+    pub task: Task,
     /// Zoo model name.
     pub model: String,
     /// The sweep's row label: the model plus its variant's non-task settings
@@ -29,8 +30,6 @@ pub struct JobSummary {
     pub row: Option<String>,
     /// Training seed.
     pub seed: u64,
-    /// Task settings of the job (`key=value`, e.g. `td=12`).
-    pub env: Vec<String>,
     /// Preset the run used.
     pub preset: String,
     /// Env-step budget.
@@ -109,7 +108,7 @@ impl EpisodeRow {
             kind: r.condition.kind,
             td: r.condition.td,
             factor: r.condition.factor,
-            env: r.condition.env.join(" "),
+            env: r.condition.task.overrides().join(" "),
             row: e.start.0,
             col: e.start.1,
             steps: e.actions.len(),
@@ -337,18 +336,10 @@ pub fn summarise_job(dir: &Path) -> Result<Option<CompactJob>, CollectError> {
     let last = curve.last();
     let summary = JobSummary {
         id: s(&job, "id"),
-        task: s(&job, "task"),
+        task: Task::deserialize(&job).map_err(|e| err(&dir.join(job_folder::JOB), e))?,
         model: s(&job, "model"),
         row: job["row"].as_str().map(String::from),
         seed: job["seed"].as_u64().unwrap_or(0),
-        env: job["env"]
-            .as_array()
-            .map(|a| {
-                a.iter()
-                    .filter_map(|x| x.as_str().map(String::from))
-                    .collect()
-            })
-            .unwrap_or_default(),
         preset: s(&cfg, "preset"),
         total_steps: cfg["total_steps"].as_u64().unwrap_or(0),
         steps_done: last.map_or(0, |r| r.env_steps),
@@ -500,14 +491,19 @@ pub struct CompactJob {
 }
 
 impl CompactJob {
-    /// The value of task setting `key` (e.g. `td`), if the job sets it.
-    pub fn env_value(&self, key: &str) -> Option<&str> {
-        self.job
-            .env
+    /// The integer value of task setting `key` (e.g. `td`, steps), if the job sets it.
+    pub fn env_int(&self, key: &str) -> Option<u32> {
+        let v = self.job.task.value_set(key)?.as_u64()?;
+        u32::try_from(v).ok()
+    }
+
+    /// The integer list of task setting `key` (e.g. `tds`), if the job sets it.
+    pub fn env_ints(&self, key: &str) -> Option<Vec<u32>> {
+        let items = self.job.task.value_set(key)?.as_array()?;
+        items
             .iter()
-            .filter_map(|kv| kv.split_once('='))
-            .find(|(k, _)| *k == key)
-            .map(|(_, v)| v)
+            .map(|x| x.as_u64().and_then(|v| u32::try_from(v).ok()))
+            .collect()
     }
 }
 

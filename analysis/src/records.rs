@@ -4,6 +4,7 @@
 //! ([`crate::evaluation::protocol`]) writes them; the behavioural metrics, the report,
 //! exports and the paper's analyses read them.
 
+use chronocooked_env::Task;
 use chronocooked_models::EpisodeRecord;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -93,10 +94,9 @@ impl std::str::FromStr for ConditionKind {
 pub struct Condition {
     /// What this condition measures.
     pub kind: ConditionKind,
-    /// Task id played.
-    pub task: String,
-    /// Task overrides.
-    pub env: Vec<String>,
+    /// Task played, with its parameters (serialised as `task` and `env`).
+    #[serde(flatten)]
+    pub task: Task,
     /// Target duration of the episodes (steps).
     pub td: u32,
     /// Uncertainty: force never-ready episodes (true) or normal ones (false).
@@ -216,10 +216,9 @@ pub const METRICS: &str = "metrics.json";
 pub struct EvalInfo {
     /// Name of the evaluated model (a leaderboard row).
     pub model: String,
-    /// Task id the protocol was built for.
-    pub task: String,
-    /// Task overrides `key=value`.
-    pub env: Vec<String>,
+    /// Task the protocol was built for, with its parameters (serialised as `task` and `env`).
+    #[serde(flatten)]
+    pub task: Task,
     /// Reference (greedy, every start cell) or stochastic protocol.
     pub mode: Mode,
     /// Seed of the evaluation.

@@ -10,8 +10,14 @@ use chronocooked_models::agent::{OracleAgent, RandomAgent};
 #[test]
 fn oracle_gives_the_ideal_bisection_and_fi_answers() {
     let env = ChronoEnv::from_id("Bisection-v0", &["short=4", "long=12"]).unwrap();
-    let conds =
-        reference_conditions("Bisection-v0", &["short=4".into(), "long=12".into()]).unwrap();
+    let conds = reference_conditions(
+        &chronocooked_env::Task::parse(
+            "Bisection-v0",
+            &["short=4".into(), "long=12".into()] as &[String],
+        )
+        .unwrap(),
+    )
+    .unwrap();
     assert_eq!(conds.len(), 16, "probes 1..L+4");
     let mut oracle = OracleAgent::new(&env);
     let recs = run_protocol(&mut oracle, &conds, Mode::Reference, 0).unwrap();
@@ -32,7 +38,10 @@ fn oracle_gives_the_ideal_bisection_and_fi_answers() {
 
     // FI: the oracle's first oven check is exactly the TD.
     let env = ChronoEnv::from_id("FixedInterval-v0", &["td=9"]).unwrap();
-    let conds = reference_conditions("FixedInterval-v0", &["td=9".into()]).unwrap();
+    let conds = reference_conditions(
+        &chronocooked_env::Task::parse("FixedInterval-v0", &["td=9".into()] as &[String]).unwrap(),
+    )
+    .unwrap();
     assert_eq!(
         conds.iter().filter(|c| c.kind == ConditionKind::Pi).count(),
         2
@@ -58,7 +67,8 @@ fn oracle_gives_the_ideal_bisection_and_fi_answers() {
 
 #[test]
 fn random_agent_gives_failed_fits_not_crashes_and_metrics_recompute_identically() {
-    let conds = reference_conditions("Bisection-v0", &[]).unwrap();
+    let conds =
+        reference_conditions(&chronocooked_env::Task::new("Bisection-v0").unwrap()).unwrap();
     let mut random = RandomAgent::default();
     let recs = run_protocol(&mut random, &conds, Mode::Stochastic { episodes: 5 }, 3).unwrap();
     assert_eq!(recs.len(), 16 * 5);
@@ -103,7 +113,7 @@ fn random_agent_gives_failed_fits_not_crashes_and_metrics_recompute_identically(
 fn every_task_has_reference_conditions_the_oracle_plays() {
     let mut paying = 0;
     for spec in chronocooked_env::all_tasks() {
-        let conds = reference_conditions(spec.id, &[]).unwrap();
+        let conds = reference_conditions(&chronocooked_env::Task::new(spec.id).unwrap()).unwrap();
         assert!(!conds.is_empty(), "{}", spec.id);
         let env = ChronoEnv::from_id(spec.id, &[] as &[&str]).unwrap();
         let mut oracle = OracleAgent::new(&env);
@@ -124,7 +134,7 @@ fn every_task_has_reference_conditions_the_oracle_plays() {
         }
         let mut k = 0;
         for c in &conds {
-            let cenv = ChronoEnv::from_id(&c.task, &c.env).unwrap();
+            let cenv = ChronoEnv::new(&c.task.config().unwrap()).unwrap();
             let layout = cenv.layout();
             for &cell in layout.free_cells() {
                 let r = &recs[k];
@@ -195,7 +205,9 @@ fn multi_timer_dual_and_uncertainty_metrics_on_the_oracle() {
         "num_timers=2".into(),
         "mode=lower_bounded".into(),
     ];
-    let conds = reference_conditions("MultiTimer-v0", &env).unwrap();
+    let conds =
+        reference_conditions(&chronocooked_env::Task::parse("MultiTimer-v0", &env).unwrap())
+            .unwrap();
     let mut oracle = OracleAgent::new(&ChronoEnv::from_id("MultiTimer-v0", &env).unwrap());
     let m = compute_metrics(
         "oracle",
@@ -211,7 +223,8 @@ fn multi_timer_dual_and_uncertainty_metrics_on_the_oracle() {
     assert_eq!(mt.by_buffer.len(), 8, "2 TDs x 4 buffers");
     assert!(mt.by_buffer.iter().all(|b| b.2 == 1.0));
 
-    let conds = reference_conditions("Uncertainty-v0", &[]).unwrap();
+    let conds =
+        reference_conditions(&chronocooked_env::Task::new("Uncertainty-v0").unwrap()).unwrap();
     let mut oracle =
         OracleAgent::new(&ChronoEnv::from_id("Uncertainty-v0", &[] as &[&str]).unwrap());
     let m = compute_metrics(
@@ -230,7 +243,7 @@ fn multi_timer_dual_and_uncertainty_metrics_on_the_oracle() {
         u.press_time
     );
 
-    let conds = reference_conditions("DualTask-v0", &[]).unwrap();
+    let conds = reference_conditions(&chronocooked_env::Task::new("DualTask-v0").unwrap()).unwrap();
     let mut oracle = OracleAgent::new(&ChronoEnv::from_id("DualTask-v0", &[] as &[&str]).unwrap());
     let m = compute_metrics(
         "oracle",
@@ -370,7 +383,9 @@ fn an_edited_play_recording_is_refused_naming_the_line_and_the_field() {
 #[test]
 fn reproduction_metrics_of_the_oracle_are_veridical_with_the_gain() {
     let env_sets = vec!["priors=short,9-17".to_string(), "gains=1,1.5".to_string()];
-    let conds = reference_conditions("Reproduction-v0", &env_sets).unwrap();
+    let conds =
+        reference_conditions(&chronocooked_env::Task::parse("Reproduction-v0", &env_sets).unwrap())
+            .unwrap();
     // 2 gains × (7 + 9) intervals of the two priors.
     assert_eq!(conds.len(), 2 * (7 + 9));
     let env = ChronoEnv::from_id("Reproduction-v0", &env_sets).unwrap();

@@ -21,8 +21,7 @@ fn record(
     EvalRecord {
         condition: Condition {
             kind,
-            task: task.into(),
-            env: env.to_vec(),
+            task: chronocooked_env::Task::parse(task, env).unwrap(),
             td,
             never_ready: None,
             factor: None,

@@ -177,8 +177,7 @@ fn ramp_dataset(td: u32, trials: usize, varying: usize, constant: usize) -> Acti
     ActivityDataset {
         meta: ActivityMeta {
             model: "synthetic".into(),
-            task: "PeakInterval-v0".into(),
-            env: vec![],
+            task: chronocooked_env::Task::parse("PeakInterval-v0", &[] as &[&str]).unwrap(),
             seed: 0,
             dt: 1.0,
             populations: vec![Population {

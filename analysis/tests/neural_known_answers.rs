@@ -49,8 +49,7 @@ fn size(p: usize) -> usize {
 fn meta(populations: Vec<Population>, seed: u64) -> ActivityMeta {
     ActivityMeta {
         model: "synthetic".into(),
-        task: "PeakInterval-v0".into(),
-        env: vec![],
+        task: chronocooked_env::Task::parse("PeakInterval-v0", &[] as &[&str]).unwrap(),
         seed,
         dt: 1.0,
         populations,

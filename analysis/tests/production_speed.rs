@@ -89,8 +89,7 @@ fn dataset(seed: u64) -> ActivityDataset {
     ActivityDataset {
         meta: ActivityMeta {
             model: "synthetic".into(),
-            task: "Reproduction-v0".into(),
-            env: vec![],
+            task: chronocooked_env::Task::parse("Reproduction-v0", &[] as &[&str]).unwrap(),
             seed,
             dt: 1.0,
             populations: vec![

@@ -15,7 +15,9 @@ fn an_observer_agent_reproduces_its_analytic_slope_and_bias_and_is_recovered() {
     let sets = vec!["priors=10-18,15-23".to_string()];
     let (wm, wp) = (0.13, 0.07);
     let env = ChronoEnv::from_id("Reproduction-v0", &sets).unwrap();
-    let conds = reference_conditions("Reproduction-v0", &sets).unwrap();
+    let conds =
+        reference_conditions(&chronocooked_env::Task::parse("Reproduction-v0", &sets).unwrap())
+            .unwrap();
     for observer in [Observer::Bls, Observer::Ml] {
         let mut agent = ObserverAgent::new(&env, observer, wm, wp).unwrap();
         let recs = run_protocol(&mut agent, &conds, Mode::Reference, 17).unwrap();

@@ -31,7 +31,9 @@ fn interleaved_sample_intervals_reveal_a_memory_averaging_clocks_regression() {
     };
     train_timing_agent(&mut agent, &config, &train, &[], 5, |_| {}).unwrap();
     agent.set_training(false);
-    let conds = reference_conditions("Reproduction-v0", &sets).unwrap();
+    let conds =
+        reference_conditions(&chronocooked_env::Task::parse("Reproduction-v0", &sets).unwrap())
+            .unwrap();
     let recs = run_protocol(&mut agent, &conds, Mode::Reference, 9).unwrap();
     // The order mixes the intervals: not one run per ts.
     let played: Vec<u32> = recs.iter().map(|r| r.condition.td).collect();
@@ -60,7 +62,9 @@ fn a_gain_contexts_bias_is_measured_against_its_target() {
     let sets = vec!["gains=1,1.5".to_string(), "priors=10-16".to_string()];
     let env = ChronoEnv::from_id("Reproduction-v0", &sets).unwrap();
     let mut oracle = OracleAgent::new(&env);
-    let conds = reference_conditions("Reproduction-v0", &sets).unwrap();
+    let conds =
+        reference_conditions(&chronocooked_env::Task::parse("Reproduction-v0", &sets).unwrap())
+            .unwrap();
     let recs = run_protocol(&mut oracle, &conds, Mode::Reference, 4).unwrap();
     let m = compute_metrics("oracle", &recs, 0).reproduction.unwrap();
     assert_eq!(m.contexts.len(), 2);

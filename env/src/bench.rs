@@ -7,7 +7,7 @@ use crate::action::Action;
 use crate::env::ChronoEnv;
 use crate::error::EnvError;
 use crate::kitchen::ResetOptions;
-use crate::registry::make_config;
+use crate::task::make_config;
 use crate::vec_env::{Autoreset, VecEnv};
 use rand::{RngCore, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;

@@ -19,7 +19,7 @@ use crate::info::{Info, OvenSet};
 use crate::kitchen::{CODE_CHANNELS, Kitchen, KitchenState, ResetOptions, Spec, Transition};
 use crate::layout::Layout;
 use crate::obs::{BoxSpace, Discrete, OneHotEncoder, codes_high, codes_to_nested};
-use crate::registry::make_config;
+use crate::task::make_config;
 use crate::task::{TaskConfig, TaskFamily};
 use std::sync::Arc;
 

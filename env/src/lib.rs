@@ -46,6 +46,6 @@ pub use kitchen::{
 pub use layout::{Layout, ObjectKind};
 pub use obs::{BoxSpace, Discrete, OneHotEncoder};
 pub use oracle::{Oracle, optimal_return};
-pub use registry::{TaskSpec, all_tasks, find_task, make_config, tasks_with_tag};
-pub use task::{CueMode, RewardMode, TaskConfig, TaskFamily, TaskParams};
+pub use registry::{TaskSpec, all_tasks, find_task, tasks_with_tag};
+pub use task::{CueMode, RewardMode, Task, TaskConfig, TaskFamily, TaskParams, make_config};
 pub use vec_env::{Autoreset, VecEnv, VecEnvSnapshot};

@@ -285,11 +285,3 @@ pub fn find_task(id: &str) -> Result<&'static TaskSpec, EnvError> {
             known: TASKS.iter().map(|t| t.id).collect::<Vec<_>>().join(", "),
         })
 }
-
-/// Default config of `id` with `key=value` overrides applied and validated.
-pub fn make_config<S: AsRef<str>>(id: &str, overrides: &[S]) -> Result<TaskConfig, EnvError> {
-    let mut cfg = find_task(id)?.default_config();
-    cfg.apply_overrides(overrides)?;
-    cfg.validate()?;
-    Ok(cfg)
-}

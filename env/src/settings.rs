@@ -361,6 +361,13 @@ pub fn check<T: Serialize>(specs: &[Spec], config: &T) -> Result<(), SettingErro
     Ok(())
 }
 
+/// The serialised value of every spec's field in `config`, in table order (`None` where
+/// the configuration lacks the field; an unset option is `Some(Null)`).
+pub fn values<T: Serialize>(specs: &[Spec], config: &T) -> Vec<Option<Value>> {
+    let v = value_of(specs, config);
+    specs.iter().map(|s| get(&v, s.path).cloned()).collect()
+}
+
 /// Every setting `config` has, in table order, with its current value.
 pub fn listing<T: Serialize>(specs: &[Spec], config: &T) -> Vec<Setting> {
     let v = value_of(specs, config);

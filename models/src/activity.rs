@@ -8,6 +8,7 @@
 //! Recording is opt-in: an agent's `record` method is only called when a recorder is
 //! attached, so switching it off costs nothing but a branch per step.
 
+use chronocooked_env::Task;
 use serde::{Deserialize, Serialize};
 
 /// Name and unit names of one population (e.g. `"accumulator"`, `"oscillators"`).
@@ -269,10 +270,9 @@ impl Trial {
 pub struct ActivityMeta {
     /// Model name (zoo name, e.g. `ddm`, `lstm125`).
     pub model: String,
-    /// Task id.
-    pub task: String,
-    /// Task parameter overrides (`key=value`).
-    pub env: Vec<String>,
+    /// The task and its parameters (serialised as `task` and `env`).
+    #[serde(flatten)]
+    pub task: Task,
     /// Seed of the recording.
     pub seed: u64,
     /// Duration of one step in the model's own time unit (1.0 = one env step).
@@ -283,13 +283,12 @@ pub struct ActivityMeta {
 }
 
 impl ActivityMeta {
-    /// Metadata of a recording of `model` on `task` with overrides `env` and `seed`, one env
-    /// step per unit of time (`dt` 1); populations are filled in by the first recorded step.
-    pub fn new(model: &str, task: &str, env: &[String], seed: u64) -> Self {
+    /// Metadata of a recording of `model` on `task` with `seed`, one env step per unit of
+    /// time (`dt` 1); populations are filled in by the first recorded step.
+    pub fn new(model: &str, task: &Task, seed: u64) -> Self {
         ActivityMeta {
             model: model.to_string(),
-            task: task.to_string(),
-            env: env.to_vec(),
+            task: task.clone(),
             seed,
             dt: 1.0,
             populations: Vec::new(),
@@ -358,9 +357,8 @@ impl ActivityDataset {
             ));
         }
         // Outside the dual task (whose sink pays during the interval) every reward is a
-        // delivery's: a full return is a success. Unknown for a task this build lacks.
-        let only_deliveries_pay = chronocooked_env::make_config(&self.meta.task, &self.meta.env)
-            .is_ok_and(|c| c.family() != chronocooked_env::TaskFamily::Dual);
+        // delivery's: a full return is a success.
+        let only_deliveries_pay = self.meta.task.family() != chronocooked_env::TaskFamily::Dual;
         for (i, t) in self.trials.iter().enumerate() {
             let want = t.steps.checked_mul(units);
             if want != Some(t.activity.len()) {
@@ -516,7 +514,7 @@ mod tests {
     /// One trial of `task` that was paid `reward` at its last step, marked `success`.
     fn paid(task: &str, reward: f32, success: bool) -> ActivityDataset {
         let mut ds = ActivityDataset {
-            meta: ActivityMeta::new("m", task, &[], 0),
+            meta: ActivityMeta::new("m", &Task::new(task).unwrap(), 0),
             trials: Vec::new(),
         };
         ds.meta.populations.clear();

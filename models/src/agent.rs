@@ -7,7 +7,7 @@
 use crate::activity::{Marker, StepRecorder, TrialRecorder};
 use chronocooked_env::{
     Action, CODE_CHANNELS, ChronoEnv, EnvError, Events, Info, Layout, ObjectKind, OvenSet,
-    ResetOptions, TaskConfig, derive_seed,
+    ResetOptions, Task, TaskConfig, derive_seed,
 };
 use serde::{Deserialize, Serialize};
 
@@ -377,20 +377,19 @@ pub fn run_episode(
 }
 
 /// Records `repeats` × (every start cell × `tds`) greedy episodes of `agent` on `config`
-/// into an activity dataset (`task` and `env` name the task in its metadata; repetition
+/// into an activity dataset (`task` names the task in its metadata; repetition
 /// `r` is seeded `seed + r`, so noisy models give different trials). On the reproduction
 /// task each `ts` is played in every context that can hold it: under each prior whose
 /// range contains it (drawn by the env when none does) and at each gain.
 pub fn record_dataset(
     agent: &mut dyn Agent,
     config: &TaskConfig,
-    task: &str,
-    env: &[String],
+    task: &Task,
     tds: &[u32],
     repeats: u64,
     seed: u64,
 ) -> Result<crate::ActivityDataset, EnvError> {
-    let meta = crate::activity::ActivityMeta::new(&agent.name(), task, env, seed);
+    let meta = crate::activity::ActivityMeta::new(&agent.name(), task, seed);
     let mut rec = TrialRecorder::new(meta);
     let conditions = recording_conditions(config, tds);
     for r in 0..repeats.max(1) {

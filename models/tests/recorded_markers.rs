@@ -31,8 +31,11 @@ fn recorded_trials_mark_each_ovens_onset_and_duration() {
         let config = make_config("MultiOven-v0", &sets).unwrap();
         let mut env = ChronoEnv::new(&config).unwrap();
         let mut agent = OracleAgent::new(&env);
-        let mut recorder =
-            TrialRecorder::new(ActivityMeta::new("oracle", "MultiOven-v0", &sets, 0));
+        let mut recorder = TrialRecorder::new(ActivityMeta::new(
+            "oracle",
+            &chronocooked_env::Task::parse("MultiOven-v0", &sets).unwrap(),
+            0,
+        ));
         let options = ResetOptions {
             oven_tds: Some(PerOven::new("oven_tds", &tds).unwrap()),
             on_times: (!on_times.is_empty()).then(|| PerOven::new("on_times", &on_times).unwrap()),
@@ -77,7 +80,11 @@ fn ready_and_set_are_marked_ts_steps_apart_and_the_oracle_produces_ts() {
     let config = make_config("Reproduction-v0", &sets).unwrap();
     let mut env = ChronoEnv::new(&config).unwrap();
     let mut agent = OracleAgent::new(&env);
-    let mut recorder = TrialRecorder::new(ActivityMeta::new("oracle", "Reproduction-v0", &sets, 0));
+    let mut recorder = TrialRecorder::new(ActivityMeta::new(
+        "oracle",
+        &chronocooked_env::Task::parse("Reproduction-v0", &sets).unwrap(),
+        0,
+    ));
     for ts in 6..=12u32 {
         let options = ResetOptions {
             td: Some(ts),
@@ -116,7 +123,15 @@ fn a_reproduction_recording_plays_every_ts_under_each_prior_holding_it_and_each_
     let cells = env.layout().free_cells().len();
     let mut agent = OracleAgent::new(&env);
     let tds: Vec<u32> = (8..=20).collect();
-    let ds = record_dataset(&mut agent, &config, "Reproduction-v0", &sets, &tds, 1, 3).unwrap();
+    let ds = record_dataset(
+        &mut agent,
+        &config,
+        &chronocooked_env::Task::parse("Reproduction-v0", &sets).unwrap(),
+        &tds,
+        1,
+        3,
+    )
+    .unwrap();
     // 13 ts, 14 of them under both priors, × 2 gains × every start cell.
     assert_eq!(ds.trials.len(), (13 + 1) * 2 * cells);
     let mut seen = std::collections::BTreeSet::new();

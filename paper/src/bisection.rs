@@ -164,8 +164,8 @@ fn run_of(job: &CompactJob, short: u32, long: u32) -> (BisectionRun, Vec<ProbeCo
 /// Bisection analysis of every model among `jobs`.
 pub fn analyse_bisection(jobs: &[CompactJob]) -> Vec<BisectionModel> {
     let mut by_model: BTreeMap<&str, BTreeMap<(u32, u32), Vec<&CompactJob>>> = BTreeMap::new();
-    for j in jobs.iter().filter(|j| j.job.task == "Bisection-v0") {
-        let get = |k: &str| j.env_value(k).and_then(|v| v.parse::<u32>().ok());
+    for j in jobs.iter().filter(|j| j.job.task.id() == "Bisection-v0") {
+        let get = |k: &str| j.env_int(k);
         let (Some(s), Some(l)) = (get("short"), get("long")) else {
             continue;
         };

@@ -85,8 +85,11 @@ fn run_focs_by(
 /// The FI jobs among `jobs` by model, then TD (steps).
 pub fn fi_runs(jobs: &[CompactJob]) -> BTreeMap<&str, BTreeMap<u32, Vec<&CompactJob>>> {
     let mut by_model: BTreeMap<&str, BTreeMap<u32, Vec<&CompactJob>>> = BTreeMap::new();
-    for j in jobs.iter().filter(|j| j.job.task == "FixedInterval-v0") {
-        let Some(td) = j.env_value("td").and_then(|v| v.parse().ok()) else {
+    for j in jobs
+        .iter()
+        .filter(|j| j.job.task.id() == "FixedInterval-v0")
+    {
+        let Some(td) = j.env_int("td") else {
             continue;
         };
         by_model

@@ -98,11 +98,7 @@ pub enum HeldOutError {
 }
 
 fn same_condition(a: &CompactJob, b: &CompactJob) -> bool {
-    let mut ea = a.job.env.clone();
-    let mut eb = b.job.env.clone();
-    ea.sort();
-    eb.sort();
-    a.job.task == b.job.task && a.job.label() == b.job.label() && ea == eb
+    a.job.task == b.job.task && a.job.label() == b.job.label()
 }
 
 /// Checks every FI and bisection statistic of each held-out job against the study's 95%

@@ -101,10 +101,7 @@ pub struct ExactTimerCell {
 
 /// `exact` (undercooking not tolerated) or `categorical` (an early buffer).
 pub fn curriculum_of(job: &CompactJob) -> &'static str {
-    match job
-        .env_value("under_buffer")
-        .and_then(|v| v.parse::<u32>().ok())
-    {
+    match job.env_int("under_buffer") {
         Some(b) if b > 0 => "categorical",
         _ => "exact",
     }
@@ -251,9 +248,7 @@ pub fn timers_stored(curve: &[LevelTd]) -> usize {
 
 /// The TD list a multi-timer job trained on (the task's default list when not set).
 pub fn trained_tds(job: &CompactJob) -> Vec<u32> {
-    job.env_value("tds")
-        .map(|v| v.split(',').filter_map(|x| x.trim().parse().ok()).collect())
-        .unwrap_or_else(|| vec![3, 6, 9, 12, 15])
+    job.env_ints("tds").unwrap_or_else(|| vec![3, 6, 9, 12, 15])
 }
 
 fn run_of(job: &CompactJob) -> MtRun {
@@ -315,7 +310,7 @@ fn spread_per_td(
 /// on one TD are the exact timer's, see [`analyse_exact_timer`]).
 pub fn analyse_multitimer(jobs: &[CompactJob]) -> Vec<MtCell> {
     let mut groups: BTreeMap<(&str, &str, Vec<u32>), Vec<&CompactJob>> = BTreeMap::new();
-    for j in jobs.iter().filter(|j| j.job.task == "MultiTimer-v0") {
+    for j in jobs.iter().filter(|j| j.job.task.id() == "MultiTimer-v0") {
         let tds = trained_tds(j);
         if tds.len() < 2 {
             continue;
@@ -418,7 +413,7 @@ pub fn analyse_exact_timer(jobs: &[CompactJob]) -> Vec<ExactTimerCell> {
 /// The exact-timer jobs (multi-timer jobs trained on a single TD) grouped by (model, TD).
 pub fn exact_timer_groups(jobs: &[CompactJob]) -> BTreeMap<(&str, u32), Vec<&CompactJob>> {
     let mut groups: BTreeMap<(&str, u32), Vec<&CompactJob>> = BTreeMap::new();
-    for j in jobs.iter().filter(|j| j.job.task == "MultiTimer-v0") {
+    for j in jobs.iter().filter(|j| j.job.task.id() == "MultiTimer-v0") {
         if let [td] = trained_tds(j)[..] {
             groups.entry((j.job.label(), td)).or_default().push(j);
         }

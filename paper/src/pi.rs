@@ -209,7 +209,7 @@ pub fn analyse_pi(root: &Path, jobs: &[CompactJob]) -> Result<Vec<PiRow>, Collec
     let mut out = Vec::new();
     for j in jobs
         .iter()
-        .filter(|j| j.job.task.starts_with("FixedInterval"))
+        .filter(|j| j.job.task.id().starts_with("FixedInterval"))
     {
         let p = root.join("jobs").join(&j.job.id).join(METRICS);
         if !p.is_file() {

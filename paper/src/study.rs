@@ -80,7 +80,9 @@ pub struct PaperStudy {
 pub fn job_costs(jobs: &[CompactJob]) -> Vec<JobCost> {
     let mut g: BTreeMap<(&str, &str), Vec<&CompactJob>> = BTreeMap::new();
     for j in jobs {
-        g.entry((&j.job.task, j.job.label())).or_default().push(j);
+        g.entry((j.job.task.id(), j.job.label()))
+            .or_default()
+            .push(j);
     }
     g.into_iter()
         .map(|((task, model), js)| JobCost {

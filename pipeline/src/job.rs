@@ -8,6 +8,7 @@ use crate::stages::{self, AdaptRequest, EvalRequest, EvalSubject, RecordRequest,
 use crate::sweep::{Job, Stage, SweepFile, finished_stages, job_dir, mark_stage};
 use chronocooked_analysis::Mode;
 use chronocooked_analysis::job_folder;
+use chronocooked_env::Task;
 use chronocooked_models::run_folder;
 use chronocooked_training::adapt::{self, AdaptConfig};
 use chronocooked_training::zoo::Family;
@@ -103,6 +104,18 @@ pub fn run_job(
     Ok(())
 }
 
+/// The task an uncertainty job adapts on: its own parameters but `never_ready_prob` (the
+/// protocol's default, never-ready ovens included).
+fn uncertainty_task(task: &Task) -> Result<Task, PipelineError> {
+    let mut out = Task::new("Uncertainty-v0")?;
+    for (key, value) in task.values_set() {
+        if key != "never_ready_prob" {
+            out.set_value(key, value.clone())?;
+        }
+    }
+    Ok(out)
+}
+
 /// Runs one stage of `job` in its folder `dir`; returns a one-line summary.
 fn run_stage(
     sweep: &SweepFile,
@@ -119,7 +132,7 @@ fn run_stage(
             }
             let resume = job.family == Family::DeepRl && run.join(run_folder::CONFIG).is_file();
             let req = TrainRequest {
-                task: job.task.clone(),
+                task: job.task.id().to_string(),
                 model: job.model.clone(),
                 preset: sweep.preset.clone(),
                 seed: job.seed,
@@ -149,7 +162,6 @@ fn run_stage(
                     EvalSubject::Reference(job.model.clone())
                 },
                 task: (!trained).then(|| job.task.clone()),
-                env: if trained { vec![] } else { job.env.clone() },
                 mode: match sweep.stochastic {
                     Some(n) => Mode::Stochastic { episodes: n },
                     None => Mode::Reference,
@@ -174,13 +186,7 @@ fn run_stage(
         }
         Stage::Adapt => {
             let config = AdaptConfig {
-                task: "Uncertainty-v0".into(),
-                env: job
-                    .env
-                    .iter()
-                    .filter(|e| !e.starts_with("never_ready_prob"))
-                    .cloned()
-                    .collect(),
+                task: uncertainty_task(&job.task)?,
                 episodes: sweep.adapt_episodes.unwrap_or(adapt::DEFAULT_EPISODES),
                 steps: sweep.adapt_steps.unwrap_or(adapt::DEFAULT_STEPS),
                 window: adapt::DEFAULT_WINDOW,
@@ -202,11 +208,10 @@ fn run_stage(
         }
         Stage::Record => {
             let r = stages::record(&RecordRequest {
-                probe: stages::record::can_probe(&job.task),
+                probe: stages::record::can_probe(job.task.id()),
                 run,
                 more_runs: vec![],
                 task: None,
-                env: vec![],
                 tds: vec![],
                 repeats: 1,
                 seed: job.seed,

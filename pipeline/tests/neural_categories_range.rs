@@ -43,7 +43,11 @@ fn recorded(model: &str, tds: &[u32], seed: u64) -> (ActivityDataset, Vec<Neural
     let runs: Vec<PathBuf> = tds
         .iter()
         .map(|td| {
-            let mut cfg = TimingRunConfig::new("FixedInterval-v0", model, seed);
+            let mut cfg = TimingRunConfig::new(
+                &chronocooked_env::Task::new("FixedInterval-v0").unwrap(),
+                model,
+                seed,
+            );
             cfg.set(&format!("env.td={td}")).unwrap();
             let dir = root.0.join(format!("td{td}"));
             run_timing_training(&cfg, &dir, "test", |_| {}).unwrap();
@@ -55,7 +59,6 @@ fn recorded(model: &str, tds: &[u32], seed: u64) -> (ActivityDataset, Vec<Neural
         run: runs[0].clone(),
         more_runs: runs[1..].to_vec(),
         task: None,
-        env: vec![],
         tds: vec![],
         probe: true,
         repeats: 1,

@@ -73,7 +73,11 @@ fn probe(model: &str, sets: &[&str]) -> Probe {
     let runs: Vec<PathBuf> = TDS
         .iter()
         .map(|td| {
-            let mut cfg = TimingRunConfig::new("FixedInterval-v0", model, 0);
+            let mut cfg = TimingRunConfig::new(
+                &chronocooked_env::Task::new("FixedInterval-v0").unwrap(),
+                model,
+                0,
+            );
             cfg.set(&format!("env.td={td}")).unwrap();
             for s in sets {
                 cfg.set(s).unwrap();
@@ -88,7 +92,6 @@ fn probe(model: &str, sets: &[&str]) -> Probe {
         run: runs[0].clone(),
         more_runs: runs[1..].to_vec(),
         task: None,
-        env: vec![],
         tds: vec![],
         probe: true,
         repeats: 3,

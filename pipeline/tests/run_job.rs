@@ -106,8 +106,7 @@ fn the_eval_stage_equals_a_rerun_of_itself_and_checks_its_request() {
     let tmp = tempfile::tempdir().unwrap();
     let req = |out: &str| EvalRequest {
         subject: EvalSubject::Reference("oracle".into()),
-        task: Some("FixedInterval-v0".into()),
-        env: vec![],
+        task: Some(chronocooked_env::Task::new("FixedInterval-v0").unwrap()),
         mode: chronocooked_analysis::Mode::Reference,
         seed: 0,
         out: tmp.path().join(out),

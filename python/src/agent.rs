@@ -7,7 +7,7 @@
 //! an LSTM's `hidden` and `cell` states).
 
 use crate::errors::{env_err, runtime_err, value_err};
-use chronocooked_env::{Action, ChronoEnv, OneHotEncoder};
+use chronocooked_env::{Action, ChronoEnv, OneHotEncoder, Task};
 use chronocooked_models::Agent;
 use chronocooked_models::activity::StepRecorder;
 use numpy::{IntoPyArray, PyArray1, PyArrayMethods, PyReadonlyArray1};
@@ -65,8 +65,7 @@ pub struct PyAgent<'py> {
 pub const UNITS: &str = "units";
 
 impl<'py> PyAgent<'py> {
-    /// An agent for `policy` on the tasks `tasks` (`(task id, overrides)`: every layout
-    /// it may meet), observations as one-hot arrays when `onehot` (a policy's own
+    /// An agent for `policy` on the tasks `tasks` (every layout it may meet), observations as one-hot arrays when `onehot` (a policy's own
     /// `obs_mode` attribute, when it has one, decides instead), `draws` episodes per start
     /// cell in the reference protocol.
     pub fn new(
@@ -74,7 +73,7 @@ impl<'py> PyAgent<'py> {
         policy: Bound<'py, PyAny>,
         name: &str,
         onehot: bool,
-        tasks: &[(String, Vec<String>)],
+        tasks: &[Task],
         draws: usize,
     ) -> PyResult<Self> {
         if !policy.is_callable() {
@@ -97,15 +96,16 @@ impl<'py> PyAgent<'py> {
             _ => onehot,
         };
         let mut geometries: Vec<Geometry> = Vec::new();
-        for (task, env) in tasks {
-            let env = ChronoEnv::from_id(task, env).map_err(env_err)?;
+        for task in tasks {
+            let env = ChronoEnv::new(&task.config().map_err(env_err)?).map_err(env_err)?;
             let shape = env.codes_space().shape;
             let shape = [shape[0], shape[1], shape[2]];
             let len = shape.iter().product();
             match geometries.iter().find(|g| g.len == len) {
                 Some(g) if g.shape != shape => {
                     return Err(runtime_err(format!(
-                        "the conditions of {task} mix layouts {:?} and {shape:?} of equal size",
+                        "the conditions of {} mix layouts {:?} and {shape:?} of equal size",
+                        task.id(),
                         g.shape
                     )));
                 }

@@ -3,8 +3,8 @@
 
 use crate::errors::{env_err, value_err};
 use crate::info::info_dict;
-use chronocooked_env::ChronoEnv;
 use chronocooked_env::render::{PALETTE, ascii, frame};
+use chronocooked_env::{ChronoEnv, Task};
 use numpy::{IntoPyArray, PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -54,8 +54,7 @@ pub fn onehot_array<'py>(py: Python<'py>, env: &ChronoEnv) -> PyResult<Bound<'py
 pub struct Env {
     env: ChronoEnv,
     mode: ObsMode,
-    task: String,
-    overrides: Vec<String>,
+    task: Task,
 }
 
 impl Env {
@@ -75,13 +74,9 @@ impl Env {
     #[pyo3(signature = (task, overrides = Vec::new(), obs_mode = "codes"))]
     fn new(task: &str, overrides: Vec<String>, obs_mode: &str) -> PyResult<Self> {
         let mode = ObsMode::parse(obs_mode)?;
-        let env = ChronoEnv::from_id(task, &overrides).map_err(env_err)?;
-        Ok(Env {
-            env,
-            mode,
-            task: task.to_string(),
-            overrides,
-        })
+        let task = Task::parse(task, &overrides).map_err(env_err)?;
+        let env = ChronoEnv::new(&task.config().map_err(env_err)?).map_err(env_err)?;
+        Ok(Env { env, mode, task })
     }
 
     /// Starts an episode: `(obs, info)`. `seed` reseeds the env's RNG (None continues it).
@@ -172,13 +167,14 @@ impl Env {
     /// Task id.
     #[getter]
     fn task(&self) -> &str {
-        &self.task
+        self.task.id()
     }
 
-    /// The `key=value` overrides the env was built with.
+    /// The task parameters the env was built with, as `key=value` (canonical keys, in the
+    /// task's table order).
     #[getter]
     fn overrides(&self) -> Vec<String> {
-        self.overrides.clone()
+        self.task.overrides()
     }
 
     /// The resolved task configuration as JSON text.

@@ -8,6 +8,7 @@ use crate::agent::PyAgent;
 use crate::errors::{env_err, runtime_err, value_err};
 use chronocooked_analysis::evaluation::folder::{EvalInfo, write_eval_folder};
 use chronocooked_analysis::{Mode, run_protocol_recorded};
+use chronocooked_env::Task;
 use chronocooked_models::activity::{ActivityMeta, TrialRecorder};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -47,17 +48,17 @@ pub fn evaluate<'py>(
         Some(n) => Mode::Stochastic { episodes: n },
         None => Mode::Reference,
     };
-    let conditions =
-        chronocooked_analysis::reference_conditions(task, &overrides).map_err(env_err)?;
-    let mut tasks: Vec<(String, Vec<String>)> = Vec::new();
+    let task = Task::parse(task, &overrides).map_err(env_err)?;
+    let conditions = chronocooked_analysis::reference_conditions(&task).map_err(env_err)?;
+    let mut tasks: Vec<Task> = Vec::new();
     for c in &conditions {
-        // One env per distinct (task, overrides): conditions mostly differ only in TD.
-        if !tasks.iter().any(|(t, e)| *t == c.task && *e == c.env) {
-            tasks.push((c.task.clone(), c.env.clone()));
+        // One env per distinct task: conditions mostly differ only in TD.
+        if !tasks.contains(&c.task) {
+            tasks.push(c.task.clone());
         }
     }
     let mut agent = PyAgent::new(py, policy, name, onehot, &tasks, 1)?;
-    let meta = ActivityMeta::new(name, task, &overrides, seed);
+    let meta = ActivityMeta::new(name, &task, seed);
     let mut recorder = TrialRecorder::new(meta);
     let records = run_protocol_recorded(&mut agent, &conditions, mode, seed, Some(&mut recorder))
         .map_err(env_err)?;
@@ -66,8 +67,7 @@ pub fn evaluate<'py>(
     }
     let info = EvalInfo {
         model: name.to_string(),
-        task: task.to_string(),
-        env: overrides,
+        task,
         mode,
         seed,
         unfinished_at_step: None,
@@ -109,7 +109,7 @@ pub(crate) fn policy_error(
         .checked_sub(1)
         .and_then(|i| records.get(i))
         .map(|r| &r.condition);
-    let (task, td) = condition.map_or((String::new(), 0), |c| (c.task.clone(), c.td));
+    let (task, td) = condition.map_or((String::new(), 0), |c| (c.task.id().to_string(), c.td));
     let err = crate::errors::PolicyError::new_err(format!(
         "the policy failed at episode {episode} ({task}, TD {td}), step {step}: {}",
         cause.value(py)
@@ -132,14 +132,14 @@ pub fn reference_conditions<'py>(
     task: &str,
     overrides: Vec<String>,
 ) -> PyResult<Bound<'py, PyList>> {
-    let conditions =
-        chronocooked_analysis::reference_conditions(task, &overrides).map_err(env_err)?;
+    let task = Task::parse(task, &overrides).map_err(env_err)?;
+    let conditions = chronocooked_analysis::reference_conditions(&task).map_err(env_err)?;
     let out = PyList::empty(py);
     for c in conditions {
         let d = PyDict::new(py);
         d.set_item("kind", c.kind.as_str())?;
-        d.set_item("task", c.task)?;
-        d.set_item("env", c.env)?;
+        d.set_item("task", c.task.id())?;
+        d.set_item("env", c.task.overrides())?;
         d.set_item("td", c.td)?;
         d.set_item("never_ready", c.never_ready)?;
         d.set_item("factor", c.factor)?;

@@ -7,7 +7,8 @@ use crate::errors::{env_err, runtime_err, value_err};
 use chronocooked_analysis::fingerprint::{
     ConditionPlay, PROTOCOL, ProtocolCondition, play_condition, write_and_place,
 };
-use chronocooked_analysis::neural::probe::{PROBE_TASK, probe_task};
+use chronocooked_analysis::neural::probe::probe_task;
+use chronocooked_env::Task;
 use chronocooked_models::timing::agent::NOISE_DRAWS;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyMapping};
@@ -16,14 +17,13 @@ use std::path::PathBuf;
 /// The condition's task parameters as a dict of integers (`{"td": 6}`).
 fn params<'py>(py: Python<'py>, c: &ProtocolCondition) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    for kv in c.env {
-        let (k, v) = kv
-            .split_once('=')
-            .expect("protocol parameters are key=value");
-        d.set_item(
-            k,
-            v.parse::<u32>().expect("protocol parameters are integers"),
-        )?;
+    for (key, value) in c.to_task().map_err(env_err)?.values_set() {
+        let Some(n) = value.as_u64() else {
+            return Err(runtime_err(format!(
+                "protocol parameter `{key}` is not an integer: {value}"
+            )));
+        };
+        d.set_item(key, n)?;
     }
     Ok(d)
 }
@@ -66,21 +66,18 @@ fn policy_for<'py>(
     )))
 }
 
-/// Every (task, overrides) the agent of condition `c` meets: its protocol's conditions and
-/// the probe trials.
-fn tasks_of(c: &ProtocolCondition) -> PyResult<Vec<(String, Vec<String>)>> {
-    let env = c.env_strings();
-    let mut out: Vec<(String, Vec<String>)> = Vec::new();
-    for cond in chronocooked_analysis::reference_conditions(c.task, &env).map_err(env_err)? {
-        if !out.iter().any(|(t, e)| *t == cond.task && *e == cond.env) {
-            out.push((cond.task, cond.env));
+/// Every task the agent of condition `c` meets: its protocol's conditions and the probe
+/// trials.
+fn tasks_of(c: &ProtocolCondition) -> PyResult<Vec<Task>> {
+    let task = c.to_task().map_err(env_err)?;
+    let mut out: Vec<Task> = Vec::new();
+    for cond in chronocooked_analysis::reference_conditions(&task).map_err(env_err)? {
+        if !out.contains(&cond.task) {
+            out.push(cond.task);
         }
     }
     if let Some(td) = c.probe_td {
-        out.push((
-            PROBE_TASK.to_string(),
-            probe_task(c.task, &env, &[td]).map_err(runtime_err)?,
-        ));
+        out.push(probe_task(&task, &[td]).map_err(runtime_err)?);
     }
     Ok(out)
 }

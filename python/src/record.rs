@@ -4,11 +4,9 @@
 
 use crate::agent::PyAgent;
 use crate::errors::{env_err, runtime_err, value_err};
-use chronocooked_analysis::neural::probe::{
-    PROBE_TASK, can_probe, population_summaries, probe_task,
-};
+use chronocooked_analysis::neural::probe::{can_probe, population_summaries, probe_task};
+use chronocooked_env::Task;
 use chronocooked_env::integrity::{remove_recorded, write_recorded};
-use chronocooked_env::make_config;
 use chronocooked_models::agent::record_dataset;
 use chronocooked_training::eval_tds;
 use pyo3::exceptions::PyOSError;
@@ -55,7 +53,8 @@ pub fn record<'py>(
              episodes)"
         )));
     }
-    let own = make_config(task, &overrides).map_err(env_err)?;
+    let chosen = Task::parse(task, &overrides).map_err(env_err)?;
+    let own = chosen.config().map_err(env_err)?;
     let tds = match tds {
         Some(t) if t.is_empty() => {
             return Err(value_err(
@@ -67,37 +66,27 @@ pub fn record<'py>(
         None if probe => vec![own.params.td().unwrap_or(12)],
         None => eval_tds(&own),
     };
-    let (play_task, env) = if probe {
-        (
-            PROBE_TASK.to_string(),
-            probe_task(task, &overrides, &tds).map_err(value_err)?,
-        )
+    let play = if probe {
+        probe_task(&chosen, &tds).map_err(value_err)?
     } else {
-        (task.to_string(), overrides.clone())
+        chosen
     };
-    let config = make_config(&play_task, &env).map_err(env_err)?;
-    let mut agent = PyAgent::new(
-        py,
-        policy,
-        name,
-        onehot,
-        &[(play_task.clone(), env.clone())],
-        1,
-    )?;
-    let played = record_dataset(&mut agent, &config, &play_task, &env, &tds, repeats, seed);
+    let config = play.config().map_err(env_err)?;
+    let mut agent = PyAgent::new(py, policy, name, onehot, std::slice::from_ref(&play), 1)?;
+    let played = record_dataset(&mut agent, &config, &play, &tds, repeats, seed);
     // A policy error first: it is why the protocol stopped, if it did.
     if let Some((episode, step, cause)) = agent.error.take() {
         let err = crate::errors::PolicyError::new_err(format!(
-            "the policy failed while recording {play_task} ({}) at episode {episode}, step \
-             {step}: {}",
-            env.join(" "),
+            "the policy failed while recording {} ({}) at episode {episode}, step {step}: {}",
+            play.id(),
+            play.overrides().join(" "),
             cause.value(py)
         ));
         let value = err.value(py);
         for (k, v) in [("episode", episode), ("step", step)] {
             let _ = value.setattr(k, v);
         }
-        let _ = value.setattr("task", &play_task);
+        let _ = value.setattr("task", play.id());
         err.set_cause(py, Some(cause));
         return Err(err);
     }
@@ -127,8 +116,8 @@ pub fn record<'py>(
         result.set_item("summary", crate::info::to_py(py, &summaries)?)?;
     }
     result.set_item("out", out)?;
-    result.set_item("task", play_task)?;
-    result.set_item("env", env)?;
+    result.set_item("task", play.id())?;
+    result.set_item("env", play.overrides())?;
     result.set_item("tds", tds)?;
     result.set_item("trials", dataset.trials.len())?;
     result.set_item("units", dataset.meta.n_units())?;

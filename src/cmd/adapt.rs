@@ -20,7 +20,7 @@ pub struct AdaptArgs {
     /// Task overrides `key=value` (default: the run's own task settings without
     /// `never_ready_prob` when it was trained on the task to adapt to, else its `td`).
     #[arg(long = "env", value_name = "KEY=VALUE")]
-    pub env: Vec<String>,
+    pub task_params: Vec<String>,
     /// Episodes played by a timing agent (1–10,000,000, the bound of timing-model training
     /// episodes: each episode's outcome is kept).
     #[arg(long, default_value_t = adapt::DEFAULT_EPISODES as u64,
@@ -50,8 +50,7 @@ pub struct AdaptArgs {
 /// Runs `adapt`.
 pub fn run(args: AdaptArgs) -> Result<()> {
     let config = AdaptConfig {
-        task: args.task.clone(),
-        env: args.env.clone(),
+        task: chronocooked_env::Task::parse(&args.task, &args.task_params)?,
         episodes: args.episodes as usize,
         steps: args.steps,
         window: args.window,

@@ -140,7 +140,8 @@ pub fn bench_timing(trials: usize) -> Result<()> {
     if trials == 0 {
         bail!("--trials must be positive");
     }
-    let config = make_config("FixedInterval-v0", &["td=12"])?;
+    let task = chronocooked_env::Task::parse("FixedInterval-v0", &["td=12"])?;
+    let config = task.config()?;
     let env = chronocooked_env::ChronoEnv::new(&config)?;
     for m in TIMING_MODELS {
         let mut agent = make_timing_agent(m.name, &env, 0).map_err(anyhow::Error::msg)?;
@@ -159,15 +160,7 @@ pub fn bench_timing(trials: usize) -> Result<()> {
             let mut n = 0;
             for r in 0..reps {
                 if recording {
-                    let ds = record_dataset(
-                        &mut agent,
-                        &config,
-                        "FixedInterval-v0",
-                        &[],
-                        &[12],
-                        1,
-                        r as u64,
-                    )?;
+                    let ds = record_dataset(&mut agent, &config, &task, &[12], 1, r as u64)?;
                     n += ds.trials.len();
                 } else {
                     n += evaluate_agent(&mut agent, &config, &[12], r as u64, None)?.len();

@@ -3,6 +3,7 @@
 
 use anyhow::{Result, bail};
 use chronocooked_analysis::Mode;
+use chronocooked_env::Task;
 use chronocooked_pipeline::stages::{self, EvalOutcome, EvalRequest, EvalSubject};
 use clap::Args;
 use std::path::{Path, PathBuf};
@@ -21,9 +22,10 @@ pub struct EvalArgs {
     /// Task the agent was trained on (default: the run's; FixedInterval-v0 for --agent).
     #[arg(long)]
     pub task: Option<String>,
-    /// Task overrides `key=value` (with --task).
+    /// Task parameters `key=value`: of --task, else of the run's own task (or of
+    /// FixedInterval-v0 for --agent).
     #[arg(long = "env", value_name = "KEY=VALUE")]
-    pub env: Vec<String>,
+    pub task_params: Vec<String>,
     /// Stochastic protocol: N episodes per condition (sampled actions) instead of greedy
     /// episodes from every start cell (1–10,000: the paper's protocol plays 100; every
     /// episode's steps are kept in memory for the metrics).
@@ -95,10 +97,21 @@ pub fn run(args: EvalArgs) -> Result<()> {
                 .unwrap_or(0),
             EvalSubject::Reference(_) => 0,
         });
+        let task = match (&args.task, &subject) {
+            (Some(id), _) => Some(Task::parse(id, &args.task_params)?),
+            (None, _) if args.task_params.is_empty() => None,
+            (None, EvalSubject::Run(dir)) => Some(
+                chronocooked_training::RunFolder::open(dir)?
+                    .task
+                    .with(&args.task_params)?,
+            ),
+            (None, EvalSubject::Reference(_)) => {
+                Some(Task::parse("FixedInterval-v0", &args.task_params)?)
+            }
+        };
         stages::evaluate(&EvalRequest {
             subject,
-            task: args.task.clone(),
-            env: args.env.clone(),
+            task,
             mode: match args.stochastic {
                 Some(n) => Mode::Stochastic {
                     episodes: n as usize,

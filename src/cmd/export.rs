@@ -105,7 +105,6 @@ pub fn run(mut args: ExportArgs) -> Result<()> {
         let outcome = evaluate(&EvalRequest {
             subject: EvalSubject::Run(crate::cmd::zoo_agents::resolve_run(run)?),
             task: None,
-            env: vec![],
             mode: chronocooked_analysis::Mode::Reference,
             seed: 0,
             out: out.clone(),

@@ -28,9 +28,9 @@ pub struct RecordArgs {
     /// Task to play (default: the run's own task).
     #[arg(long)]
     pub task: Option<String>,
-    /// Task overrides `key=value` (with --task).
-    #[arg(long = "env", value_name = "KEY=VALUE")]
-    pub env: Vec<String>,
+    /// Task parameters `key=value` of --task.
+    #[arg(long = "env", value_name = "KEY=VALUE", requires = "task")]
+    pub task_params: Vec<String>,
     /// Target durations to record (default: the task's evaluation TDs; with --probe each
     /// run's own TD), e.g. `4,6,9,12`. An agent trained on one fixed interval cannot tell
     /// probe trials of different TDs apart: record one run per TD instead.
@@ -71,8 +71,11 @@ pub fn record(args: RecordArgs) -> Result<()> {
         run: runs[0].clone(),
         more_runs: runs[1..].to_vec(),
         probe: args.probe,
-        task: args.task.clone(),
-        env: args.env.clone(),
+        task: args
+            .task
+            .as_deref()
+            .map(|t| chronocooked_env::Task::parse(t, &args.task_params))
+            .transpose()?,
         tds: args.tds.clone(),
         repeats: args.repeats,
         seed: args.seed,

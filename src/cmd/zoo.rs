@@ -101,7 +101,7 @@ pub fn run_zoo(cmd: ZooCommand) -> Result<()> {
             entry.parameters = match &settings {
                 Some((_, cfg)) => cfg.listing(),
                 None if entry.family == Family::Timing => {
-                    TimingRunConfig::new(&task, &model, 0).listing()
+                    TimingRunConfig::new(&chronocooked_env::Task::new(&task)?, &model, 0).listing()
                 }
                 None => entry.parameters,
             };

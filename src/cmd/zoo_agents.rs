@@ -169,8 +169,7 @@ pub fn add(args: ZooAddArgs) -> Result<()> {
     let provenance = Provenance {
         name: name.clone(),
         model: model.clone(),
-        task: task.clone(),
-        env: cfg.env.clone(),
+        task: cfg.task.clone(),
         seed: cfg.seed,
         preset: cfg.preset.clone(),
         env_steps: summary.env_steps,

@@ -24,8 +24,8 @@ use crate::ppo::config::Curriculum;
 use crate::ppo::run::{Silent, run_training};
 use crate::ppo::run_dir::RunDir;
 use crate::timing_run::{is_timing_run, load_timing_agent};
+use chronocooked_env::Task;
 use chronocooked_env::fs::write_atomic;
-use chronocooked_env::make_config;
 use chronocooked_models::run_folder;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -33,10 +33,9 @@ use std::path::Path;
 /// Settings of an adaptation run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct AdaptConfig {
-    /// Task adapted to.
-    pub task: String,
-    /// Task overrides (`key=value`).
-    pub env: Vec<String>,
+    /// Task adapted to, with its parameters (serialised as `task` and `env`).
+    #[serde(flatten)]
+    pub task: Task,
     /// Episodes played by timing agents.
     pub episodes: usize,
     /// Env steps of PPO fine-tuning.
@@ -66,8 +65,7 @@ pub const DEFAULT_EPSILON: f64 = 0.05;
 impl Default for AdaptConfig {
     fn default() -> Self {
         AdaptConfig {
-            task: "Uncertainty-v0".into(),
-            env: Vec::new(),
+            task: Task::new("Uncertainty-v0").expect("the uncertainty task is registered"),
             episodes: DEFAULT_EPISODES,
             steps: DEFAULT_STEPS,
             window: DEFAULT_WINDOW,
@@ -85,10 +83,9 @@ pub struct AdaptResult {
     pub model: String,
     /// Task the agent was trained on.
     pub from_task: String,
-    /// Task adapted to, with its overrides.
-    pub task: String,
-    /// Task overrides.
-    pub env: Vec<String>,
+    /// Task adapted to, with its parameters (serialised as `task` and `env`).
+    #[serde(flatten)]
+    pub task: Task,
     /// Episodes played.
     pub episodes: usize,
     /// Episodes played when the never-ready and the normal success of the window first both
@@ -216,7 +213,7 @@ fn check(cfg: &AdaptConfig) -> Result<(), TrainError> {
     if cfg.episodes == 0 || cfg.steps == 0 {
         return bad("episodes/steps", "0".into(), "a positive budget");
     }
-    make_config(&cfg.task, &cfg.env)?;
+    cfg.task.config()?;
     Ok(())
 }
 
@@ -229,7 +226,7 @@ pub fn run_adaptation(
 ) -> Result<AdaptResult, TrainError> {
     check(cfg)?;
     std::fs::create_dir_all(out).map_err(|e| TrainError::io(out, e))?;
-    let task = make_config(&cfg.task, &cfg.env)?;
+    let task = cfg.task.config()?;
     let (model, from_task, curve, episodes) = if is_timing_run(run) {
         let (rc, mut agent) = load_timing_agent(run)?;
         let outcomes = chronocooked_models::adaptation_episodes(
@@ -244,12 +241,11 @@ pub fn run_adaptation(
             serde_json::to_string(&agent).unwrap_or_default().as_bytes(),
         )?;
         let curve = adaptation_curve(&outcomes, cfg.window);
-        (rc.model, rc.task, curve, outcomes.len())
+        (rc.model, rc.task.id().to_string(), curve, outcomes.len())
     } else {
         let source = RunDir::open(run)?.config()?;
         let mut tc = source.clone().into_inner();
         tc.task = cfg.task.clone();
-        tc.env = cfg.env.clone();
         tc.seed = cfg.seed;
         tc.total_steps = cfg.steps;
         tc.eval_every = 0;
@@ -276,14 +272,18 @@ pub fn run_adaptation(
         };
         let curve = curve_success(&summary.dir.join(run_folder::CURVES), p)?;
         let episodes = curve.last().map_or(0, |c| c.0);
-        (source.model.name(), source.task.clone(), curve, episodes)
+        (
+            source.model.name(),
+            source.task.id().to_string(),
+            curve,
+            episodes,
+        )
     };
     let full: Vec<&(usize, f64, f64)> = curve.iter().filter(|c| c.0 >= cfg.window).collect();
     let result = AdaptResult {
         model,
         from_task,
         task: cfg.task.clone(),
-        env: cfg.env.clone(),
         episodes,
         episodes_to_adapt: full
             .iter()

@@ -5,7 +5,7 @@
 
 use crate::error::TrainError;
 use chronocooked_env::integrity;
-use chronocooked_env::{TaskConfig, make_config};
+use chronocooked_env::{Task, TaskConfig};
 use chronocooked_models::run_folder;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
@@ -48,9 +48,9 @@ struct SharedConfig {
     /// Task id (runs written before the field existed trained on `FixedInterval-v0`).
     #[serde(default = "first_task")]
     task: String,
-    /// Task overrides (`key=value`).
+    /// The task's parameters ([`Task`]'s `env`).
     #[serde(default)]
-    env: Vec<String>,
+    env: Option<serde_json::Value>,
     /// Training seed.
     #[serde(default)]
     seed: Option<u64>,
@@ -61,8 +61,8 @@ fn first_task() -> String {
 }
 
 /// A run folder opened for reading, PPO or timing model: what a reader needs before it
-/// knows which kind of run it has — the kind, the task (id, overrides and the validated
-/// [`TaskConfig`]), the seed and whether the run finished — read from `config.json`
+/// knows which kind of run it has — the kind, the task (its id and parameters, and the
+/// validated [`TaskConfig`]), the seed and whether the run finished — read from `config.json`
 /// ([`read_config_text`]: checked against its SHA-256 record). The one reader of what every
 /// run's `config.json` shares; the kinds' own loaders ([`crate::ppo::run_dir`],
 /// [`crate::timing_run::load_timing_config`]) read the rest.
@@ -72,10 +72,8 @@ pub struct RunFolder {
     pub path: PathBuf,
     /// PPO or timing model.
     pub kind: RunKind,
-    /// Task id.
-    pub task: String,
-    /// Task overrides (`key=value`).
-    pub env: Vec<String>,
+    /// The task and its parameters.
+    pub task: Task,
     /// Training seed (`None` in folders written before it was stored).
     pub seed: Option<u64>,
 }
@@ -99,19 +97,23 @@ impl RunFolder {
                 });
             }
         };
+        let env = shared.env.unwrap_or_else(|| serde_json::json!({}));
+        let fields = serde_json::json!({ "task": shared.task, "env": env });
+        let task = Task::deserialize(fields).map_err(|e| TrainError::ConfigFile {
+            file: file(),
+            message: e.to_string(),
+        })?;
         Ok(RunFolder {
             path: dir.to_path_buf(),
             kind,
-            task: shared.task,
-            env: shared.env,
+            task,
             seed: shared.seed,
         })
     }
 
-    /// The task the run trained on, validated (its id and overrides through the task's
-    /// parameter table); errors name `config.json`.
+    /// The task the run trained on, validated as a whole; errors name `config.json`.
     pub fn task_config(&self) -> Result<TaskConfig, TrainError> {
-        make_config(&self.task, &self.env).map_err(|e| TrainError::ConfigFile {
+        self.task.config().map_err(|e| TrainError::ConfigFile {
             file: self.path.join(run_folder::CONFIG).display().to_string(),
             message: e.to_string(),
         })

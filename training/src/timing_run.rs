@@ -14,7 +14,7 @@ use crate::settings::{
     self, timing::TIMING_SETTINGS, timing::TimerSettings, timing::TimingAgentSettings,
 };
 use chronocooked_env::fs::write_atomic;
-use chronocooked_env::{ChronoEnv, TaskFamily, integrity, make_config};
+use chronocooked_env::{ChronoEnv, Task, TaskFamily, integrity, make_config};
 use chronocooked_models::run_folder;
 use chronocooked_models::timing::agent::TimingAgent;
 use chronocooked_models::timing::zoo::make_timing_agent;
@@ -28,10 +28,9 @@ use std::path::{Path, PathBuf};
 pub struct TimingRunConfig {
     /// Always `"timing"` (tells run folders apart from PPO ones).
     pub kind: String,
-    /// Task id.
-    pub task: String,
-    /// Task overrides (`key=value`).
-    pub env: Vec<String>,
+    /// The task and its parameters (serialised as `task` and `env`).
+    #[serde(flatten)]
+    pub task: Task,
     /// Zoo name of the timing model.
     pub model: String,
     /// Seed.
@@ -49,8 +48,8 @@ pub struct TimingRunConfig {
 #[serde(deny_unknown_fields)]
 struct StoredTimingRunConfig {
     kind: String,
-    task: String,
-    env: Vec<String>,
+    #[serde(flatten)]
+    task: Task,
     model: String,
     seed: u64,
     train: TimingTrainConfig,
@@ -65,7 +64,6 @@ impl TryFrom<StoredTimingRunConfig> for TimingRunConfig {
             agent: no_overrides(&s.model),
             kind: s.kind,
             task: s.task,
-            env: s.env,
             model: s.model,
             seed: s.seed,
             train: s.train,
@@ -138,20 +136,19 @@ pub const REPRODUCTION_ALPHA_END: f64 = 0.005;
 
 impl TimingRunConfig {
     /// Defaults for `model` on `task`.
-    pub fn new(task: &str, model: &str, seed: u64) -> Self {
+    pub fn new(task: &Task, model: &str, seed: u64) -> Self {
         let mut train = TimingTrainConfig::default();
-        let family = make_config(task, &[] as &[&str]).map(|c| c.family());
-        if family == Ok(TaskFamily::Uncertainty) {
+        let family = task.family();
+        if family == TaskFamily::Uncertainty {
             train.episodes = UNCERTAINTY_EPISODES;
         }
-        if family == Ok(TaskFamily::Reproduction) {
+        if family == TaskFamily::Reproduction {
             train.episodes = REPRODUCTION_EPISODES;
             train.alpha_end = Some(REPRODUCTION_ALPHA_END);
         }
         TimingRunConfig {
             kind: "timing".into(),
-            task: task.into(),
-            env: Vec::new(),
+            task: task.clone(),
             model: model.into(),
             seed,
             train,
@@ -168,8 +165,7 @@ impl TimingRunConfig {
             .ok_or_else(|| TrainError::BadOverride(kv.into()))?;
         let (key, value) = (key.trim(), value.trim());
         if let Some(name) = key.strip_prefix("env.") {
-            self.env.push(format!("{name}={value}"));
-            make_config(&self.task, &self.env)?;
+            self.task.set(name, value)?;
         } else {
             let Some(spec) = settings::find(TIMING_SETTINGS, key) else {
                 return Err(settings::unknown(TIMING_SETTINGS, self, key, ENV_KEY));
@@ -184,7 +180,11 @@ impl TimingRunConfig {
     pub fn settings_markdown() -> String {
         let mut rows: Vec<settings::Setting> = Vec::new();
         for model in ["ddm", "sbf", "timecells-ms"] {
-            let cfg = TimingRunConfig::new("FixedInterval-v0", model, 0);
+            let cfg = TimingRunConfig::new(
+                &chronocooked_env::Task::new("FixedInterval-v0").expect("FI is registered"),
+                model,
+                0,
+            );
             for mut s in settings::listing(TIMING_SETTINGS, &cfg) {
                 let spec = settings::find(TIMING_SETTINGS, &s.key).expect("listed keys have specs");
                 if spec.path.first() == Some(&"agent") {
@@ -230,13 +230,13 @@ impl TimingRunConfig {
             return Err(TrainError::param("kind", &self.kind, "timing"));
         }
         settings::check(TIMING_SETTINGS, self)?;
-        make_config(&self.task, &self.env)?;
+        self.task.config()?;
         Ok(())
     }
 
     /// Builds the untrained agent with the overrides applied.
     pub fn build_agent(&self) -> Result<TimingAgent, TrainError> {
-        let env = ChronoEnv::new(&make_config(&self.task, &self.env)?)?;
+        let env = ChronoEnv::new(&self.task.config()?)?;
         let mut agent = make_timing_agent(&self.model, &env, self.seed).map_err(|e| {
             TrainError::InvalidParam {
                 field: "model".into(),
@@ -294,7 +294,7 @@ pub fn run_timing_training(
     // Every session of the folder is kept (`--resume` reruns an unfinished run).
     crate::run_config::append_line(&dir.join(run_folder::COMMAND), &format!("{command}\n"))?;
     let _ = chronocooked_env::fs::remove_temp_files(dir);
-    let task = make_config(&cfg.task, &cfg.env)?;
+    let task = cfg.task.config()?;
     let mut agent = cfg.build_agent()?;
     let tds = eval_tds(&task);
     let curve = train_timing_agent(&mut agent, &task, &cfg.train, &tds, cfg.seed, progress)?;
@@ -392,7 +392,7 @@ pub fn load_agent(
     if is_timing_run(dir) {
         let (cfg, agent) = load_timing_agent(dir)?;
         if let Some(t) = task {
-            let own = make_config(&cfg.task, &cfg.env)?;
+            let own = cfg.task.config()?;
             let (a, b) = (ChronoEnv::new(&own)?, ChronoEnv::new(t)?);
             if a.layout() != b.layout() {
                 return Err(TrainError::InvalidParam {

@@ -147,7 +147,12 @@ fn deep_settings(arch: Architecture) -> Vec<Setting> {
 
 /// The settings of timing model `name` with its defaults on FixedInterval-v0.
 fn timing_settings(name: &str) -> Vec<Setting> {
-    crate::timing_run::TimingRunConfig::new("FixedInterval-v0", name, 0).listing()
+    crate::timing_run::TimingRunConfig::new(
+        &chronocooked_env::Task::new("FixedInterval-v0").expect("FI is registered"),
+        name,
+        0,
+    )
+    .listing()
 }
 
 fn deep_entry(arch: Architecture) -> ZooEntry {

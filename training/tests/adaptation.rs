@@ -78,7 +78,11 @@ fn a_button_delivery_is_a_success_only_when_the_oven_never_readies() {
 fn a_timing_agent_trained_without_uncertainty_adapts_to_it() {
     let dir = temp_dir("timing");
     // Pre-training on the same task without uncertainty (the oven always readies).
-    let mut cfg = TimingRunConfig::new("Uncertainty-v0", "sbf", 0);
+    let mut cfg = TimingRunConfig::new(
+        &chronocooked_env::Task::new("Uncertainty-v0").unwrap(),
+        "sbf",
+        0,
+    );
     cfg.set("episodes=3000").unwrap();
     cfg.set("env.never_ready_prob=0").unwrap();
     let run = dir.join("run");
@@ -91,9 +95,9 @@ fn a_timing_agent_trained_without_uncertainty_adapts_to_it() {
     assert_eq!(r.episodes, 4000);
     assert_eq!(r.from_task, "Uncertainty-v0");
     assert!(
-        r.env.is_empty(),
-        "the task's own never-ready probability: {:?}",
-        r.env
+        r.task.is_default(),
+        "the task's own never-ready probability: {}",
+        r.task
     );
     // At first never-ready ovens mostly fail (measured 0.32: the button is pressed only
     // by exploration); the agent adapts without giving up the normal ovens.
@@ -187,7 +191,7 @@ fn ppo_fine_tuning_starts_from_the_source_run_weights() {
     let r = run_adaptation(
         &run,
         &AdaptConfig {
-            env: vec!["td=6".into()],
+            task: chronocooked_env::Task::parse("Uncertainty-v0", &["td=6"]).unwrap(),
             steps: 3000,
             ..AdaptConfig::default()
         },

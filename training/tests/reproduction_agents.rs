@@ -16,7 +16,7 @@
 //!   code does not generalise between neighbouring measurements and it needs more
 //!   episodes than the default (RESULTS, "The 0.8–1.2 criterion").
 
-use chronocooked_env::{ChronoEnv, ResetOptions, make_config};
+use chronocooked_env::{ChronoEnv, ResetOptions};
 use chronocooked_models::agent::{Agent, run_episode};
 use chronocooked_models::timing::train::train_timing_agent;
 use chronocooked_training::TimingRunConfig;
@@ -28,13 +28,17 @@ struct Productions {
 }
 
 fn productions(model: &str, seed: u64, episodes: Option<usize>) -> Productions {
-    let mut cfg = TimingRunConfig::new("Reproduction-v0", model, seed);
+    let mut cfg = TimingRunConfig::new(
+        &chronocooked_env::Task::new("Reproduction-v0").unwrap(),
+        model,
+        seed,
+    );
     cfg.set("env.priors=9-15").unwrap();
     if let Some(n) = episodes {
         cfg.train.episodes = n;
     }
     cfg.train.eval_every = 0;
-    let config = make_config(&cfg.task, &cfg.env).unwrap();
+    let config = cfg.task.config().unwrap();
     let mut agent = cfg.build_agent().unwrap();
     train_timing_agent(&mut agent, &config, &cfg.train, &[], seed, |_| {}).unwrap();
     agent.set_training(false);

@@ -19,15 +19,19 @@ fn folder(name: &str) -> PathBuf {
 #[test]
 fn the_configs_both_trainers_write_read_back_as_their_kind_task_and_seed() {
     // A timing run's config, as `timing_run` writes it.
-    let mut timing = TimingRunConfig::new("Bisection-v0", "ddm", 11);
+    let mut timing = TimingRunConfig::new(
+        &chronocooked_env::Task::new("Bisection-v0").unwrap(),
+        "ddm",
+        11,
+    );
     timing.set("env.short=3").unwrap();
     timing.set("env.long=9").unwrap();
     let dir = folder("timing");
     write_config(&dir, &serde_json::to_vec(&timing).unwrap()).unwrap();
     let run = RunFolder::open(&dir).unwrap();
     assert_eq!(run.kind, RunKind::Timing);
-    assert_eq!(run.task, "Bisection-v0");
-    assert_eq!(run.env, vec!["short=3", "long=9"]);
+    assert_eq!(run.task.id(), "Bisection-v0");
+    assert_eq!(run.task.overrides(), vec!["short=3", "long=9"]);
     assert_eq!(run.seed, Some(11));
     assert!(!run.finished(), "no summary.json yet");
     assert!(says_timing(&dir));
@@ -50,7 +54,7 @@ fn the_configs_both_trainers_write_read_back_as_their_kind_task_and_seed() {
     std::fs::write(dir.join("summary.json"), "{}").unwrap();
     let run = RunFolder::open(&dir).unwrap();
     assert_eq!(run.kind, RunKind::Ppo);
-    assert_eq!((run.task.as_str(), run.seed), ("FixedInterval-v0", Some(5)));
+    assert_eq!((run.task.id(), run.seed), ("FixedInterval-v0", Some(5)));
     assert_eq!(run.task_config().unwrap().params.td(), Some(7));
     assert!(run.finished());
     assert!(!says_timing(&dir));
@@ -73,14 +77,13 @@ fn a_folder_without_a_config_or_with_an_unknown_kind_is_refused_naming_the_file(
         err.contains("config.json") && err.contains("`kind`"),
         "{err}"
     );
-    // A task override the task does not have: refused when the task is asked for.
+    // A task parameter the task does not have: refused when the folder is opened.
     std::fs::write(
         dir.join("config.json"),
         r#"{"task":"FixedInterval-v0","env":["anchors=3,6"],"seed":1}"#,
     )
     .unwrap();
-    let run = RunFolder::open(&dir).unwrap();
-    let err = run.task_config().unwrap_err().to_string();
+    let err = RunFolder::open(&dir).unwrap_err().to_string();
     assert!(
         err.contains("config.json") && err.contains("anchors"),
         "{err}"

@@ -71,7 +71,11 @@ fn every_setting_zoo_show_lists_is_accepted_by_set_and_changes_the_config() {
                     (PPO_SETTINGS, listed.map(|a| a == base), changed)
                 }
                 Family::Timing => {
-                    let base = TimingRunConfig::new(TASK, &entry.name, 0);
+                    let base = TimingRunConfig::new(
+                        &chronocooked_env::Task::new(TASK).unwrap(),
+                        &entry.name,
+                        0,
+                    );
                     let spec = *chronocooked_training::settings::find(TIMING_SETTINGS, &s.key)
                         .unwrap_or_else(|| panic!("{}: {} has no spec", entry.name, s.key));
                     let mut a = base.clone();
@@ -139,7 +143,11 @@ fn every_key_set_accepts_is_listed() {
                 }
             }
             Family::Timing => {
-                let cfg = TimingRunConfig::new(TASK, &entry.name, 0);
+                let cfg = TimingRunConfig::new(
+                    &chronocooked_env::Task::new(TASK).unwrap(),
+                    &entry.name,
+                    0,
+                );
                 let listed = listed_keys(&cfg.listing());
                 assert_eq!(listed, listed_keys(&entry.parameters), "{}", entry.name);
                 for spec in TIMING_SETTINGS {
@@ -161,10 +169,11 @@ fn every_key_set_accepts_is_listed() {
     }
 }
 
-/// Paths of the leaves of a serialised configuration (objects walked, anything else a leaf).
+/// Paths of the leaves of a serialised configuration (objects walked, anything else — an
+/// empty object too, e.g. a task with no parameter set — a leaf).
 fn leaves(v: &serde_json::Value, prefix: &mut Vec<String>, out: &mut BTreeSet<Vec<String>>) {
     match v {
-        serde_json::Value::Object(m) => {
+        serde_json::Value::Object(m) if !m.is_empty() => {
             for (k, x) in m {
                 prefix.push(k.clone());
                 leaves(x, prefix, out);
@@ -213,7 +222,7 @@ fn every_field_of_the_configurations_is_a_setting_or_a_named_exception() {
     // the timer's family tag.
     let mut fields = BTreeSet::new();
     for model in ["ddm", "sbf", "timecells-ms"] {
-        let cfg = TimingRunConfig::new(TASK, model, 0);
+        let cfg = TimingRunConfig::new(&chronocooked_env::Task::new(TASK).unwrap(), model, 0);
         leaves(
             &serde_json::to_value(&cfg).unwrap(),
             &mut vec![],
@@ -262,7 +271,7 @@ fn an_unknown_key_or_a_bad_value_names_the_key_and_what_it_accepts() {
         "{msg}"
     );
 
-    let mut sbf = TimingRunConfig::new(TASK, "sbf", 0);
+    let mut sbf = TimingRunConfig::new(&chronocooked_env::Task::new(TASK).unwrap(), "sbf", 0);
     let err = sbf.set("noise=0.1").unwrap_err().to_string();
     assert!(
         err.contains("`noise`") && err.contains("only with ddm"),
@@ -284,7 +293,7 @@ fn an_unknown_key_or_a_bad_value_names_the_key_and_what_it_accepts() {
 
 #[test]
 fn timing_settings_are_typed_per_family_and_old_run_folders_still_load() {
-    let mut ddm = TimingRunConfig::new(TASK, "ddm", 3);
+    let mut ddm = TimingRunConfig::new(&chronocooked_env::Task::new(TASK).unwrap(), "ddm", 3);
     ddm.set("noise=0.06").unwrap();
     ddm.set("decision_rule=difference").unwrap();
     ddm.set("q_init=0.5").unwrap();

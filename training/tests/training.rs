@@ -378,7 +378,7 @@ fn same_seed_gives_identical_learning_curves_and_resume_is_exact() {
         );
         // save → load → identical greedy actions on the evaluation protocol.
         let (p1, _, c1) = load_policy(&full).unwrap();
-        let task = chronocooked_env::make_config(&c1.task, &c1.env).unwrap();
+        let task = c1.task.config().unwrap();
         let e1 = chronocooked_training::evaluate_policy(&p1, &task, c1.obs, &[4]).unwrap();
         let mut t2 = Trainer::new(tiny_cfg(model, 1000, 4).check().unwrap()).unwrap();
         while !t2.finished() {
@@ -447,9 +447,8 @@ fn every_preset_survives_its_own_validation_and_settings_replay_exactly() {
                 let cfg = resolve(task, arch, preset, 3, &[] as &[&str]).unwrap();
                 cfg.validate()
                     .unwrap_or_else(|e| panic!("{task} {arch:?} {preset}: {e}"));
-                let mut replay = chronocooked_training::TrainConfig::base(task, arch);
+                let mut replay = chronocooked_training::TrainConfig::base(cfg.task.clone(), arch);
                 replay.preset = cfg.preset.clone();
-                replay.env = cfg.env.clone();
                 for (k, v) in cfg.settings() {
                     replay.set(k, &v).unwrap();
                 }

@@ -21,7 +21,7 @@
 
 use super::psychometric::{LogisticFit, ProbeCounts, check_transition, fit_with_ci};
 use crate::records::{ConditionKind, EvalRecord};
-use chronocooked_env::{Counter, Events, make_config};
+use chronocooked_env::{Counter, Events};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -142,7 +142,7 @@ pub fn multi_anchor_metrics(records: &[EvalRecord], seed: u64) -> Option<MultiAn
         .filter(|r| r.condition.kind == ConditionKind::MultiAnchor)
         .collect();
     let first = recs.first()?;
-    let config = make_config(&first.condition.task, &first.condition.env).ok()?;
+    let config = first.condition.task.config().ok()?;
     let anchors = config.params.active_anchors()?.to_vec();
     let k = anchors.len();
     let mut by_probe: BTreeMap<u32, CategoryCounts> = BTreeMap::new();

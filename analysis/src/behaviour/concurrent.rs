@@ -14,7 +14,7 @@
 
 use super::psychometric::{LogisticFit, ProbeCounts, bp_relative, check_transition, fit_with_ci};
 use crate::records::{ConditionKind, EvalRecord};
-use chronocooked_env::{Events, Info, OvenSet, TaskParams, make_config};
+use chronocooked_env::{Events, Info, OvenSet, TaskParams};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -190,7 +190,7 @@ pub fn multi_oven_metrics(records: &[EvalRecord], seed: u64) -> Option<MultiOven
         .iter()
         .filter(|r| r.condition.kind == ConditionKind::MultiOven)
     {
-        let Ok(cfg) = make_config(&r.condition.task, &r.condition.env) else {
+        let Ok(cfg) = r.condition.task.config() else {
             continue;
         };
         if let TaskParams::MultiOven {

@@ -3,12 +3,12 @@
 
 use crate::records::{Condition, ConditionKind, EvalRecord};
 use chronocooked_env::trace::TraceLine;
-use chronocooked_env::{TaskConfig, TaskParams};
+use chronocooked_env::{Task, TaskConfig, TaskParams};
 use chronocooked_models::EpisodeRecord;
 use chronocooked_models::agent::is_success;
 
-/// Condition kind and task overrides for an episode played on `config` with target `td`.
-fn condition_of(config: &TaskConfig, td: u32) -> Condition {
+/// Condition kind and task parameters for an episode played on `config` with target `td`.
+fn condition_of(config: &TaskConfig, td: u32) -> Result<Condition, String> {
     let (kind, env, factor) = match &config.params {
         TaskParams::FixedInterval { td } => (ConditionKind::Fi, vec![format!("td={td}")], None),
         TaskParams::PeakInterval { td, probe_factor } => (
@@ -30,15 +30,14 @@ fn condition_of(config: &TaskConfig, td: u32) -> Condition {
         TaskParams::MultiOven { .. } => (ConditionKind::MultiOven, Vec::new(), None),
         TaskParams::Reproduction { .. } => (ConditionKind::Reproduction, Vec::new(), None),
     };
-    Condition {
+    Ok(Condition {
         kind,
-        task: config.id.clone(),
-        env,
+        task: Task::parse(&config.id, &env).map_err(|e| e.to_string())?,
         td,
         never_ready: None,
         factor,
         context: None,
-    }
+    })
 }
 
 /// Parses a trace file (one or more episodes, each starting with its reset line) into
@@ -66,7 +65,7 @@ pub fn records_from_trace(text: &str) -> Result<Vec<EvalRecord>, String> {
                 config
                     .validate()
                     .map_err(|e| format!("line {n}: config: {e}"))?;
-                let condition = condition_of(&config, t.info.td);
+                let condition = condition_of(&config, t.info.td)?;
                 let never = t.info.never_ready;
                 out.push(EvalRecord {
                     condition: Condition {

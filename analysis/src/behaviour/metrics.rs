@@ -6,7 +6,7 @@ use crate::behaviour::psychometric::{
     LogisticFit, ProbeCounts, bp_relative, check_transition, fit_with_ci,
 };
 use crate::records::{ConditionKind, EvalRecord};
-use chronocooked_env::{Counter, Events, TaskParams, make_config};
+use chronocooked_env::{Counter, Events, TaskParams};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -190,7 +190,7 @@ pub fn compute_metrics(model: &str, records: &[EvalRecord], seed: u64) -> Metric
             let c = &v[0].condition;
             ConditionSummary {
                 kind: c.kind,
-                task: c.task.clone(),
+                task: c.task.id().to_string(),
                 td: c.td,
                 factor: c.factor,
                 never_ready: c.never_ready,
@@ -378,10 +378,7 @@ fn bisection_metrics(records: &[EvalRecord], seed: u64) -> Option<BisectionMetri
         .filter(|r| r.condition.kind == ConditionKind::Bisection)
         .collect();
     let first = bis.first()?;
-    let (short, long) = match make_config(&first.condition.task, &first.condition.env)
-        .ok()?
-        .params
-    {
+    let (short, long) = match first.condition.task.config().ok()?.params {
         TaskParams::Bisection { short, long } => (short, long),
         _ => return None,
     };

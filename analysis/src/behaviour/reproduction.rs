@@ -8,7 +8,7 @@
 
 use crate::records::{ConditionKind, EvalRecord};
 use crate::reproduction::{Prior, Record, Rounding, fit_observers, summarize};
-use chronocooked_env::{Events, make_config};
+use chronocooked_env::Events;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -160,7 +160,7 @@ fn context_summary(prior: u8, recs: &[&EvalRecord]) -> ContextSummary {
 /// The prior the observers assume: the task's prior of this context (every whole step).
 fn observer_choice(recs: &[&EvalRecord], points: &[Record]) -> Option<ObserverChoice> {
     let c = &recs.first()?.condition;
-    let config = make_config(&c.task, &c.env).ok()?;
+    let config = c.task.config().ok()?;
     let chronocooked_env::TaskParams::Reproduction { priors, .. } = &config.params else {
         return None;
     };

@@ -13,7 +13,7 @@
 //! * dual: the trained TD; uncertainty: normal and never-ready episodes.
 
 use chronocooked_env::{
-    ChronoEnv, EnvError, ResetOptions, TaskConfig, TaskParams, derive_seed, make_config,
+    ChronoEnv, EnvError, ResetOptions, Task, TaskConfig, TaskParams, derive_seed,
 };
 use chronocooked_models::activity::TrialRecorder;
 use chronocooked_models::{Agent, run_episode};
@@ -22,11 +22,10 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 
 pub use crate::records::{Condition, ConditionKind, EvalRecord, Mode, RECORDS, read_records};
 
-fn cond(kind: ConditionKind, task: &str, env: Vec<String>, td: u32) -> Condition {
+fn cond(kind: ConditionKind, task: &Task, td: u32) -> Condition {
     Condition {
         kind,
-        task: task.into(),
-        env,
+        task: task.clone(),
         td,
         never_ready: None,
         factor: None,
@@ -34,33 +33,31 @@ fn cond(kind: ConditionKind, task: &str, env: Vec<String>, td: u32) -> Condition
     }
 }
 
-/// The reference conditions for an agent trained on `task` with overrides `env`.
-pub fn reference_conditions(task: &str, env: &[String]) -> Result<Vec<Condition>, EnvError> {
-    let config = make_config(task, env)?;
-    let env = env.to_vec();
+/// The reference conditions for an agent trained on `task`.
+pub fn reference_conditions(task: &Task) -> Result<Vec<Condition>, EnvError> {
+    let config = task.config()?;
     let mut out = Vec::new();
     match &config.params {
         TaskParams::FixedInterval { td } => {
-            out.push(cond(ConditionKind::Fi, task, env.clone(), *td));
+            out.push(cond(ConditionKind::Fi, task, *td));
             for k in [2u32, 5] {
-                let mut c = cond(
-                    ConditionKind::Pi,
+                let probe = Task::parse(
                     "PeakInterval-v0",
-                    vec![format!("td={td}"), format!("probe_factor={k}")],
-                    *td,
-                );
+                    &[format!("td={td}"), format!("probe_factor={k}")],
+                )?;
+                let mut c = cond(ConditionKind::Pi, &probe, *td);
                 c.factor = Some(f64::from(k));
                 out.push(c);
             }
         }
         TaskParams::PeakInterval { td, probe_factor } => {
-            let mut c = cond(ConditionKind::Pi, task, env.clone(), *td);
+            let mut c = cond(ConditionKind::Pi, task, *td);
             c.factor = Some(f64::from(*probe_factor));
             out.push(c);
         }
         TaskParams::Bisection { long, .. } => {
             for t in 1..=long + 4 {
-                out.push(cond(ConditionKind::Bisection, task, env.clone(), t));
+                out.push(cond(ConditionKind::Bisection, task, t));
             }
         }
         TaskParams::MultiTimer {
@@ -77,27 +74,28 @@ pub fn reference_conditions(task: &str, env: &[String]) -> Result<Vec<Condition>
                 chronocooked_env::CueMode::Categorical => active.to_vec(),
             };
             for t in probe {
-                out.push(cond(ConditionKind::MultiTimer, task, env.clone(), t));
+                out.push(cond(ConditionKind::MultiTimer, task, t));
             }
             for &t in active {
                 for f in [0.0, 0.25, 0.5, 0.75] {
                     let b = (f * f64::from(t)).round() as u32;
-                    let mut e = env.clone();
-                    e.push("mode=exact".into());
-                    e.push(format!("under_buffer={b}"));
-                    e.push(format!("over_buffer={b}"));
-                    let mut c = cond(ConditionKind::Buffer, task, e, t);
+                    let buffered = task.with(&[
+                        "mode=exact".to_string(),
+                        format!("under_buffer={b}"),
+                        format!("over_buffer={b}"),
+                    ])?;
+                    let mut c = cond(ConditionKind::Buffer, &buffered, t);
                     c.factor = Some(f);
                     out.push(c);
                 }
             }
         }
-        TaskParams::Dual { td, .. } => out.push(cond(ConditionKind::Dual, task, env.clone(), *td)),
+        TaskParams::Dual { td, .. } => out.push(cond(ConditionKind::Dual, task, *td)),
         // The reference's probes: every integer 1 … (largest active anchor) + 4.
         TaskParams::MultiAnchor { .. } => {
             let largest = config.params.active_anchors().map_or(1, |a| a[a.len() - 1]);
             for t in 1..=largest + 4 {
-                out.push(cond(ConditionKind::MultiAnchor, task, env.clone(), t));
+                out.push(cond(ConditionKind::MultiAnchor, task, t));
             }
         }
         // Every sample interval of every prior, at every gain (the context set by reset
@@ -107,7 +105,7 @@ pub fn reference_conditions(task: &str, env: &[String]) -> Result<Vec<Condition>
                 let (lo, hi) = chronocooked_env::task::parse_prior(prior)?;
                 for (g, gain) in gains.iter().enumerate() {
                     for ts in lo..=hi {
-                        let mut c = cond(ConditionKind::Reproduction, task, env.clone(), ts);
+                        let mut c = cond(ConditionKind::Reproduction, task, ts);
                         c.factor = Some(f64::from(*gain));
                         c.context = Some([p as u8, g as u8]);
                         out.push(c);
@@ -120,19 +118,18 @@ pub fn reference_conditions(task: &str, env: &[String]) -> Result<Vec<Condition>
         // interference between ovens).
         TaskParams::MultiOven { long, ovens, .. } => {
             for t in 1..=long + 4 {
-                out.push(cond(ConditionKind::MultiOven, task, env.clone(), t));
+                out.push(cond(ConditionKind::MultiOven, task, t));
             }
             if *ovens > 1 {
-                let mut one = env.clone();
-                one.push("ovens=1".into());
+                let one = task.with(&["ovens=1"])?;
                 for t in 1..=long + 4 {
-                    out.push(cond(ConditionKind::MultiOven, task, one.clone(), t));
+                    out.push(cond(ConditionKind::MultiOven, &one, t));
                 }
             }
         }
         TaskParams::Uncertainty { td, .. } => {
             for nr in [false, true] {
-                let mut c = cond(ConditionKind::Uncertainty, task, env.clone(), *td);
+                let mut c = cond(ConditionKind::Uncertainty, task, *td);
                 c.never_ready = Some(nr);
                 out.push(c);
             }
@@ -224,7 +221,7 @@ fn run_protocol_within(
     // Every episode as (condition, index within it, start cell), in condition order.
     let mut jobs: Vec<(usize, usize, (usize, usize))> = Vec::new();
     for (ci, c) in conditions.iter().enumerate() {
-        let config: TaskConfig = make_config(&c.task, &c.env)?;
+        let config: TaskConfig = c.task.config()?;
         let env = ChronoEnv::new(&config)?;
         let cells = env.layout().free_coords();
         envs.push(env);
@@ -304,7 +301,8 @@ mod tests {
     #[test]
     fn an_evaluation_past_its_step_budget_stops_with_an_error_naming_the_settings() {
         let env = vec!["max_timesteps=50".to_string()];
-        let conditions = reference_conditions("FixedInterval-v0", &env).unwrap();
+        let conditions =
+            reference_conditions(&Task::parse("FixedInterval-v0", &env).unwrap()).unwrap();
         let mode = Mode::Stochastic { episodes: 10 };
         // A waiting agent's episodes last until each task's time limit (the protocol's
         // peak-interval probes keep their own).

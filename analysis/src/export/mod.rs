@@ -249,8 +249,8 @@ pub fn export_activity(
         .collect();
     let meta = json!({
         "model": dataset.meta.model,
-        "task": dataset.meta.task,
-        "env": dataset.meta.env,
+        "task": dataset.meta.task.id(),
+        "env": dataset.meta.task.overrides(),
         "seed": dataset.meta.seed,
         "dt": dataset.meta.dt,
         "dt_unit": "model time per env step (1.0 = one step)",
@@ -443,7 +443,7 @@ pub fn export_eval(records: &[EvalRecord], dir: &Path) -> Result<Vec<PathBuf>, S
             vec![
                 i.to_string(),
                 r.condition.kind.to_string(),
-                r.condition.task.clone(),
+                r.condition.task.id().to_string(),
                 r.condition.td.to_string(),
                 r.condition.factor.map_or(String::new(), |f| f.to_string()),
                 r.episode.start.0.to_string(),

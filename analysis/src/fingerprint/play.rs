@@ -5,10 +5,10 @@ use crate::evaluation::folder::{EvalInfo, begin_evaluation, write_eval_folder};
 use crate::evaluation::protocol::{EvalRecord, reference_conditions, run_protocol};
 use crate::job_folder;
 use crate::mechanisms::{JobFiles, MechanismError, Signature, assemble, scaling_index_of_summary};
-use crate::neural::probe::{PROBE_TASK, population_summaries, probe_task};
+use crate::neural::probe::{population_summaries, probe_task};
 use crate::records::{METRICS, Mode};
 use chronocooked_env::integrity::write_recorded;
-use chronocooked_env::make_config;
+use chronocooked_env::{EnvError, Task};
 use chronocooked_models::agent::record_dataset;
 use chronocooked_models::{ActivityDataset, Agent};
 use std::path::{Path, PathBuf};
@@ -27,9 +27,9 @@ pub struct ProtocolCondition {
 }
 
 impl ProtocolCondition {
-    /// The task parameters as owned strings.
-    pub fn env_strings(&self) -> Vec<String> {
-        self.env.iter().map(|s| s.to_string()).collect()
+    /// The condition's task with its parameters.
+    pub fn to_task(&self) -> Result<Task, EnvError> {
+        Task::parse(self.task, self.env)
     }
 }
 
@@ -75,19 +75,18 @@ pub fn play_condition(
     condition: &ProtocolCondition,
     seed: u64,
 ) -> Result<ConditionPlay, MechanismError> {
-    let env = condition.env_strings();
     let here = Path::new(condition.name);
-    let conditions =
-        reference_conditions(condition.task, &env).map_err(|e| MechanismError::at(here, e))?;
+    let task = condition
+        .to_task()
+        .map_err(|e| MechanismError::at(here, e))?;
+    let conditions = reference_conditions(&task).map_err(|e| MechanismError::at(here, e))?;
     let records = run_protocol(agent, &conditions, Mode::Reference, seed)
         .map_err(|e| MechanismError::at(here, e))?;
     let probe = match condition.probe_td {
         Some(td) => {
-            let probe_env =
-                probe_task(condition.task, &env, &[td]).map_err(|e| MechanismError::at(here, e))?;
-            let config =
-                make_config(PROBE_TASK, &probe_env).map_err(|e| MechanismError::at(here, e))?;
-            let ds = record_dataset(agent, &config, PROBE_TASK, &probe_env, &[td], 1, seed)
+            let probe = probe_task(&task, &[td]).map_err(|e| MechanismError::at(here, e))?;
+            let config = probe.config().map_err(|e| MechanismError::at(here, e))?;
+            let ds = record_dataset(agent, &config, &probe, &[td], 1, seed)
                 .map_err(|e| MechanismError::at(here, e))?;
             (ds.meta.n_units() > 0).then_some(ds)
         }
@@ -114,8 +113,10 @@ pub fn write_condition(
     let eval = folder.join(job_folder::EVAL);
     let info = EvalInfo {
         model: model.to_string(),
-        task: play.condition.task.to_string(),
-        env: play.condition.env_strings(),
+        task: play
+            .condition
+            .to_task()
+            .map_err(|e| MechanismError::at(&eval, e))?,
         mode: Mode::Reference,
         seed,
         unfinished_at_step: None,

@@ -6,7 +6,7 @@
 //! --probe`, the mechanisms study and the fingerprint protocol.
 
 use crate::neural::summary::{NeuralSummary, SummaryOptions, neural_summary};
-use chronocooked_env::{TaskFamily, make_config};
+use chronocooked_env::{Task, TaskFamily};
 use chronocooked_models::ActivityDataset;
 
 /// Steps a probe episode lasts beyond `2 × TD`: time to fetch the onion and turn the oven
@@ -18,40 +18,40 @@ pub const PROBE_TASK: &str = "PeakInterval-v0";
 
 /// Whether agents trained on `task` can be recorded on probe trials.
 pub fn can_probe(task: &str) -> bool {
-    make_config(task, &[] as &[&str]).is_ok_and(|c| {
-        matches!(
-            c.family(),
-            TaskFamily::FixedInterval | TaskFamily::PeakInterval
-        )
-    })
+    Task::new(task).is_ok_and(|t| probes(t.family()))
 }
 
-/// The overrides of [`PROBE_TASK`] for an agent trained on `task` with overrides `env`, at
-/// TDs `tds`: the same settings with the soup never released and (unless `env` sets it)
-/// `max_timesteps = 2 × max TD + PROBE_MARGIN`. An error (saying why) for tasks that
-/// [`can_probe`] refuses.
-pub fn probe_task(task: &str, env: &[String], tds: &[u32]) -> Result<Vec<String>, String> {
-    if !can_probe(task) {
+fn probes(family: TaskFamily) -> bool {
+    matches!(family, TaskFamily::FixedInterval | TaskFamily::PeakInterval)
+}
+
+/// [`PROBE_TASK`] for an agent trained on `task`, at TDs `tds`: the same parameters with
+/// the soup never released and (unless `task` sets it) `max_timesteps = 2 × max TD +
+/// PROBE_MARGIN`. An error (saying why) for tasks that [`can_probe`] refuses.
+pub fn probe_task(task: &Task, tds: &[u32]) -> Result<Task, String> {
+    if !probes(task.family()) {
         return Err(format!(
             "--probe plays peak-interval probe trials, for runs trained on FixedInterval-v0 or \
-             PeakInterval-v0 (this run: {task}); record it without --probe"
+             PeakInterval-v0 (this run: {}); record it without --probe",
+            task.id()
         ));
     }
-    let key = |e: &String| e.split('=').next().unwrap_or("").trim().to_string();
-    let mut out: Vec<String> = env
-        .iter()
-        .filter(|e| !matches!(key(e).as_str(), "probe_factor" | "k"))
-        .cloned()
-        .collect();
-    out.push("probe_factor=0".into());
-    if !env
-        .iter()
-        .any(|e| matches!(key(e).as_str(), "max_timesteps" | "max_steps"))
-    {
-        let longest = tds.iter().copied().max().unwrap_or(12);
-        out.push(format!("max_timesteps={}", 2 * longest + PROBE_MARGIN));
-    }
-    Ok(out)
+    let build = || -> Result<Task, chronocooked_env::EnvError> {
+        let mut probe = Task::new(PROBE_TASK)?;
+        for (key, value) in task.values_set() {
+            if key != "probe_factor" {
+                probe.set_value(key, value.clone())?;
+            }
+        }
+        probe.set("probe_factor", "0")?;
+        if task.value_set("max_timesteps").is_none() {
+            let longest = tds.iter().copied().max().unwrap_or(12);
+            probe.set("max_timesteps", &(2 * longest + PROBE_MARGIN).to_string())?;
+        }
+        probe.config()?;
+        Ok(probe)
+    };
+    build().map_err(|e| e.to_string())
 }
 
 /// The neural summary of every population of `dataset` (populations the summary cannot

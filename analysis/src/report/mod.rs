@@ -234,7 +234,7 @@ fn row_figures_html(r: &Row) -> Result<Markup, String> {
 /// Task of an evaluation folder (from `eval.json`).
 fn eval_folder_task(folder: &Path) -> String {
     crate::records::read_eval_info(folder)
-        .map(|info| info.task)
+        .map(|info| info.task.id().to_string())
         .unwrap_or_else(|_| "unknown task".into())
 }
 

@@ -6,7 +6,10 @@
 //! accepted as aliases (`oven_duration` for `td`, `overcooked_buffer` for
 //! `over_buffer`, …) so reference configurations can be passed unchanged.
 
+mod chosen;
 pub mod params;
+
+pub use chosen::{Task, make_config};
 
 use crate::error::EnvError;
 use crate::layout::{Layout, ObjectKind};
@@ -378,19 +381,6 @@ impl TaskConfig {
             && spec.key == "tds"
         {
             *num_timers = (*num_timers).min(tds.len()).max(1);
-        }
-        Ok(())
-    }
-
-    /// Applies `key=value` overrides in order.
-    pub fn apply_overrides<S: AsRef<str>>(&mut self, overrides: &[S]) -> Result<(), EnvError> {
-        for text in overrides {
-            let text = text.as_ref();
-            let (k, v) = text.split_once('=').ok_or_else(|| EnvError::BadOverride {
-                text: text.to_string(),
-                reason: "expected key=value".into(),
-            })?;
-            self.set(k.trim(), v.trim())?;
         }
         Ok(())
     }

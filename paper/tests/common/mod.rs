@@ -6,11 +6,10 @@ use chronocooked_analysis::collect::{EpisodeRow, JobSummary};
 pub fn job(task: &str, model: &str, seed: u64, env: &[&str], ep_len: f64) -> JobSummary {
     JobSummary {
         id: format!("{task}/{model}/seed{seed}"),
-        task: task.into(),
+        task: chronocooked_env::Task::parse(task, env).unwrap(),
         model: model.into(),
         row: None,
         seed,
-        env: env.iter().map(|s| s.to_string()).collect(),
         preset: "reference".into(),
         total_steps: 1000,
         steps_done: 1000,

@@ -8,7 +8,7 @@ use chronocooked_analysis::evaluation::folder::{self as eval_folder, EvalInfo};
 use chronocooked_analysis::{
     EvalRecord, Metrics, Mode, reference_conditions, run_protocol_recorded,
 };
-use chronocooked_env::ChronoEnv;
+use chronocooked_env::{ChronoEnv, Task};
 use chronocooked_models::Agent;
 use chronocooked_models::activity::{ActivityMeta, TrialRecorder};
 use chronocooked_models::agent::{OracleAgent, RandomAgent};
@@ -30,10 +30,9 @@ pub enum EvalSubject {
 pub struct EvalRequest {
     /// Who plays.
     pub subject: EvalSubject,
-    /// Task (default: the run's own task; `FixedInterval-v0` for a reference agent).
-    pub task: Option<String>,
-    /// Task overrides `key=value` (with `task`, or for a reference agent).
-    pub env: Vec<String>,
+    /// Task with its parameters (default: the run's own task; `FixedInterval-v0` for a
+    /// reference agent).
+    pub task: Option<Task>,
     /// Reference protocol (greedy, every start cell) or stochastic episodes per condition.
     pub mode: Mode,
     /// Seed of the evaluation.
@@ -144,19 +143,16 @@ pub fn evaluate(req: &EvalRequest) -> Result<EvalOutcome, PipelineError> {
             "--stochastic needs a positive number of episodes per condition".into(),
         ));
     }
-    let (task, env) = match (&req.task, &req.subject) {
-        (Some(t), _) => (t.clone(), req.env.clone()),
-        (None, EvalSubject::Run(run)) => {
-            let r = RunFolder::open(run)?;
-            (r.task, r.env)
-        }
-        (None, EvalSubject::Reference(_)) => ("FixedInterval-v0".to_string(), req.env.clone()),
+    let task = match (&req.task, &req.subject) {
+        (Some(t), _) => t.clone(),
+        (None, EvalSubject::Run(run)) => RunFolder::open(run)?.task,
+        (None, EvalSubject::Reference(_)) => Task::new("FixedInterval-v0")?,
     };
     let unfinished_at_step = match &req.subject {
         EvalSubject::Run(run) => check_finished(run, req.unfinished)?,
         EvalSubject::Reference(_) => None,
     };
-    let config = chronocooked_env::make_config(&task, &env)?;
+    let config = task.config()?;
     let mut agent: Box<dyn Agent> = match &req.subject {
         EvalSubject::Run(run) => load_agent(run, Some(&config))?,
         EvalSubject::Reference(name) if name == "oracle" => {
@@ -181,12 +177,12 @@ pub fn evaluate(req: &EvalRequest) -> Result<EvalOutcome, PipelineError> {
             )));
         }
     };
-    let conditions = reference_conditions(&task, &env)?;
+    let conditions = reference_conditions(&task)?;
     // One writer per evaluation folder, taken before the protocol is played.
     let _lock = chronocooked_env::fs::FolderLock::acquire(&req.out)?;
     // Nothing of an earlier evaluation in the folder stays beside this one.
     eval_folder::begin_evaluation(&req.out).map_err(analysis)?;
-    let meta = ActivityMeta::new(&agent.name(), &task, &env, req.seed);
+    let meta = ActivityMeta::new(&agent.name(), &task, req.seed);
     let mut recorder = TrialRecorder::new(meta);
     let records = run_protocol_recorded(
         agent.as_mut(),
@@ -198,7 +194,6 @@ pub fn evaluate(req: &EvalRequest) -> Result<EvalOutcome, PipelineError> {
     let info = EvalInfo {
         model: agent.name(),
         task,
-        env,
         mode: req.mode,
         seed: req.seed,
         unfinished_at_step,
@@ -262,7 +257,6 @@ pub fn evaluate_human(file: &Path, seed: u64, out: &Path) -> Result<EvalOutcome,
     let info = EvalInfo {
         model: "human".into(),
         task: first.condition.task.clone(),
-        env: first.condition.env.clone(),
         mode: Mode::Stochastic {
             episodes: records.len(),
         },

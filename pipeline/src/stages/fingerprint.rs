@@ -8,7 +8,7 @@ use crate::stages::record::units_correspond;
 use chronocooked_analysis::fingerprint::{
     PROTOCOL, Placement, ProtocolCondition, play_condition, write_and_place,
 };
-use chronocooked_env::{TaskParams, make_config};
+use chronocooked_env::TaskParams;
 use chronocooked_training::RunFolder;
 use chronocooked_training::timing_run::load_agent;
 use std::path::{Path, PathBuf};
@@ -53,12 +53,12 @@ fn anchors(p: &TaskParams) -> Option<(u32, u32)> {
 fn condition_of(run: &Path) -> Result<&'static ProtocolCondition, PipelineError> {
     let folder = RunFolder::open(run)?;
     let config = folder.task_config()?;
-    let task = folder.task.as_str();
+    let task = folder.task.id();
     PROTOCOL
         .iter()
         .find(|c| {
             c.task == task
-                && make_config(c.task, &c.env_strings()).is_ok_and(|want| {
+                && c.to_task().and_then(|t| t.config()).is_ok_and(|want| {
                     want.params.td() == config.params.td()
                         && anchors(&want.params) == anchors(&config.params)
                 })
@@ -67,7 +67,7 @@ fn condition_of(run: &Path) -> Result<&'static ProtocolCondition, PipelineError>
             PipelineError::Invalid(format!(
                 "{}: trained on {task} {} — no condition of the fingerprint protocol ({})",
                 run.display(),
-                folder.env.join(" "),
+                folder.task.overrides().join(" "),
                 PROTOCOL
                     .iter()
                     .map(|c| format!("{} {}", c.task, c.env.join(" ")))
@@ -105,7 +105,7 @@ pub fn fingerprint(req: &FingerprintRequest) -> Result<FingerprintOutcome, Pipel
     let mut model = None;
     let mut plays = Vec::new();
     for (c, run) in &matched {
-        let config = make_config(c.task, &c.env_strings())?;
+        let config = c.to_task()?.config()?;
         let mut agent = load_agent(run, Some(&config))?;
         model.get_or_insert_with(|| agent.name());
         plays.push(

@@ -29,7 +29,7 @@
 use crate::PipelineError;
 use chronocooked_analysis::collect::{LEVELS_CSV, LevelEpisode, read_curve, write_level_episodes};
 use chronocooked_analysis::{Condition, ConditionKind, Mode, reference_conditions, run_protocol};
-use chronocooked_env::{CueMode, RewardMode, TaskParams, make_config};
+use chronocooked_env::{CueMode, RewardMode, TaskParams};
 use chronocooked_models::run_folder;
 use chronocooked_training::ppo::agent::PpoAgent;
 use chronocooked_training::run_dir::RunDir;
@@ -129,17 +129,18 @@ pub fn evaluate_levels(run: &Path, out: &Path, seed: u64) -> Result<Option<usize
         for &level in &levels {
             // The level's own task: `first + level` counters or ovens, as the trainer
             // built it, played with that task's reference protocol.
-            let mut env = cfg.env.clone();
-            env.push(format!("{}={}", growth.key, growth.first + level));
-            let config = make_config(&cfg.task, &env)?;
+            let level_task =
+                cfg.task
+                    .with(&[format!("{}={}", growth.key, growth.first + level)])?;
+            let config = level_task.config()?;
             let mut agent = PpoAgent::load_level(run, level, &config)?;
-            let conditions = reference_conditions(&cfg.task, &env)?;
+            let conditions = reference_conditions(&level_task)?;
             let records = run_protocol(&mut agent, &conditions, Mode::Reference, seed)?;
             rows.extend(records.iter().map(|r| LevelEpisode::of(level, r)));
         }
         return write_levels(out, &rows).map(|()| Some(levels.len()));
     }
-    let task = make_config(&cfg.task, &cfg.env)?;
+    let task = cfg.task.config()?;
     let TaskParams::MultiTimer {
         tds,
         under_buffer,
@@ -160,15 +161,14 @@ pub fn evaluate_levels(run: &Path, out: &Path, seed: u64) -> Result<Option<usize
     let mut rows = Vec::new();
     for &level in &levels {
         let (extra, test_tds) = level_test_setting(level, tds, under, *reduced_reward);
-        let env: Vec<String> = cfg.env.iter().cloned().chain(extra).collect();
-        let config = make_config(&cfg.task, &env)?;
+        let level_task = cfg.task.with(&extra)?;
+        let config = level_task.config()?;
         let mut agent = PpoAgent::load_level(run, level, &config)?;
         let conditions = |tds: &[u32]| -> Vec<Condition> {
             tds.iter()
                 .map(|&td| Condition {
                     kind: ConditionKind::MultiTimer,
-                    task: cfg.task.clone(),
-                    env: env.clone(),
+                    task: level_task.clone(),
                     td,
                     never_ready: None,
                     factor: None,

@@ -9,8 +9,8 @@
 
 use crate::PipelineError;
 pub use chronocooked_analysis::neural::probe::{PROBE_MARGIN, can_probe};
-use chronocooked_analysis::neural::probe::{PROBE_TASK, population_summaries, probe_task};
-use chronocooked_env::make_config;
+use chronocooked_analysis::neural::probe::{population_summaries, probe_task};
+use chronocooked_env::Task;
 use chronocooked_models::ActivityDataset;
 use chronocooked_models::agent::record_dataset;
 use chronocooked_training::RunFolder;
@@ -26,10 +26,8 @@ pub struct RecordRequest {
     /// More run folders of the same model (e.g. trained at other TDs), recorded into the
     /// same dataset (each at its own TD when `tds` is empty).
     pub more_runs: Vec<PathBuf>,
-    /// Task to play (default: the run's own task).
-    pub task: Option<String>,
-    /// Task overrides `key=value` (with `task`).
-    pub env: Vec<String>,
+    /// Task to play, with its parameters (default: the run's own task).
+    pub task: Option<Task>,
     /// Target durations to record (steps; default: the task's evaluation TDs — with
     /// `probe`, the run's own TD).
     pub tds: Vec<u32>,
@@ -71,19 +69,13 @@ fn json_bytes<T: serde::Serialize>(value: &T, pretty: bool) -> Result<Vec<u8>, P
     bytes.map_err(|e| PipelineError::Analysis(format!("serialising the activity: {e}")))
 }
 
-/// Records one run: `(task, env, dataset)`.
-fn record_run(
-    req: &RecordRequest,
-    run: &Path,
-) -> Result<(String, Vec<String>, ActivityDataset), PipelineError> {
-    let (task, env) = match &req.task {
-        Some(t) => (t.clone(), req.env.clone()),
-        None => {
-            let r = RunFolder::open(run)?;
-            (r.task, r.env)
-        }
+/// Records one run: the task played and the dataset.
+fn record_run(req: &RecordRequest, run: &Path) -> Result<(Task, ActivityDataset), PipelineError> {
+    let task = match &req.task {
+        Some(t) => t.clone(),
+        None => RunFolder::open(run)?.task,
     };
-    let own = make_config(&task, &env)?;
+    let own = task.config()?;
     let tds = if !req.tds.is_empty() {
         req.tds.clone()
     } else if req.probe {
@@ -91,26 +83,15 @@ fn record_run(
     } else {
         eval_tds(&own)
     };
-    let (task, env) = if req.probe {
-        (
-            PROBE_TASK.to_string(),
-            probe_task(&task, &env, &tds).map_err(PipelineError::Invalid)?,
-        )
+    let task = if req.probe {
+        probe_task(&task, &tds).map_err(PipelineError::Invalid)?
     } else {
-        (task, env)
+        task
     };
-    let config = make_config(&task, &env)?;
+    let config = task.config()?;
     let mut agent = load_agent(run, Some(&config))?;
-    let dataset = record_dataset(
-        agent.as_mut(),
-        &config,
-        &task,
-        &env,
-        &tds,
-        req.repeats,
-        req.seed,
-    )?;
-    Ok((task, env, dataset))
+    let dataset = record_dataset(agent.as_mut(), &config, &task, &tds, req.repeats, req.seed)?;
+    Ok((task, dataset))
 }
 
 /// Whether unit `j` is the same unit in every run: one run, or timing-model runs of the
@@ -142,9 +123,9 @@ pub fn record(req: &RecordRequest) -> Result<RecordOutcome, PipelineError> {
         _ => PathBuf::from("."),
     };
     let _lock = chronocooked_env::fs::FolderLock::acquire_shared_folder(&folder)?;
-    let (task, _, mut dataset) = record_run(req, &req.run)?;
+    let (task, mut dataset) = record_run(req, &req.run)?;
     for run in &req.more_runs {
-        let (_, _, more) = record_run(req, run)?;
+        let (_, more) = record_run(req, run)?;
         if more.meta.populations != dataset.meta.populations
             || more.meta.model != dataset.meta.model
         {
@@ -184,7 +165,7 @@ pub fn record(req: &RecordRequest) -> Result<RecordOutcome, PipelineError> {
     }
     Ok(RecordOutcome {
         model: dataset.meta.model.clone(),
-        task,
+        task: task.id().to_string(),
         trials: dataset.trials.len(),
         units: dataset.meta.n_units(),
     })

@@ -111,7 +111,6 @@ pub fn record_scaling(study: &Path, results: &Path) -> Result<ScalingOutcome, Pi
             more_runs: paths[1..].to_vec(),
             probe: true,
             task: None,
-            env: vec![],
             tds: vec![],
             repeats: 1,
             seed: 0,

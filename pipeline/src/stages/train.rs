@@ -1,6 +1,7 @@
 //! The train stage: a PPO agent or a timing model into a run folder, new or resumed.
 
 use crate::PipelineError;
+use chronocooked_env::Task;
 use chronocooked_env::fs::FolderLock;
 use chronocooked_models::{Architecture, TimingCurvePoint};
 use chronocooked_training::{
@@ -137,7 +138,7 @@ fn train_ppo(
     let dir = req
         .out
         .clone()
-        .unwrap_or_else(|| default_dir(&cfg.task, &model.name(), req.seed));
+        .unwrap_or_else(|| default_dir(cfg.task.id(), &model.name(), req.seed));
     let lock = FolderLock::acquire(&dir)?;
     Ok((
         run_training(Some(cfg.check()?), &dir, &req.command, &mut progress)?,
@@ -174,7 +175,7 @@ fn train_timing(
         }
         Some(dir) => (load_timing_config(dir)?, dir.clone()),
         None => {
-            let mut cfg = TimingRunConfig::new(&req.task, &req.model, req.seed);
+            let mut cfg = TimingRunConfig::new(&Task::new(&req.task)?, &req.model, req.seed);
             for kv in &req.sets {
                 cfg.set(kv)?;
             }

@@ -51,14 +51,20 @@ pub fn check_jobs(sweep: &SweepFile) -> Result<(), TrainError> {
 
 /// Resolves one job's settings as its train and evaluation stages will.
 fn check_job(sweep: &SweepFile, job: &Job) -> Result<(), TrainError> {
-    chronocooked_env::make_config(&job.task, &job.env)?;
+    job.task.config()?;
     match job.family {
         Family::DeepRl => {
             let arch = job
                 .model
                 .parse()
                 .map_err(|e: String| TrainError::param("model", &job.model, &e))?;
-            chronocooked_training::resolve(&job.task, arch, &sweep.preset, job.seed, &job.sets)?;
+            chronocooked_training::resolve(
+                job.task.id(),
+                arch,
+                &sweep.preset,
+                job.seed,
+                &job.sets,
+            )?;
         }
         Family::Timing => {
             let mut cfg = TimingRunConfig::new(&job.task, &job.model, job.seed);

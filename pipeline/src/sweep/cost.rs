@@ -39,7 +39,7 @@ pub fn estimate_seconds(sweep: &SweepFile, job: &Job) -> Option<f64> {
         .1;
     let arch = job.model.parse().ok()?;
     let cfg = chronocooked_training::ppo::presets::resolve(
-        &job.task,
+        job.task.id(),
         arch,
         &sweep.preset,
         job.seed,

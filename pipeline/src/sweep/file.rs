@@ -1,6 +1,7 @@
 //! The sweep file (TOML): models × sizes × tasks × seeds × override variants, expanded into
 //! [`Job`]s with their ids, families and settings.
 
+use chronocooked_env::Task;
 use chronocooked_training::TrainError;
 use chronocooked_training::zoo::{Family, family_of};
 use serde::{Deserialize, Serialize};
@@ -87,8 +88,9 @@ fn yes() -> bool {
 pub struct Job {
     /// Stable id, also the job folder relative to the sweep output (`task/model/seedN`).
     pub id: String,
-    /// Task id.
-    pub task: String,
+    /// The task, with the job's parameters (serialised as `task` and `env`).
+    #[serde(flatten)]
+    pub task: Task,
     /// Zoo name.
     pub model: String,
     /// Model family (decides the training command).
@@ -97,8 +99,6 @@ pub struct Job {
     pub seed: u64,
     /// Training settings (`--set`), variant settings included.
     pub sets: Vec<String>,
-    /// Task settings (`env.<param>=v` without the prefix) for evaluation.
-    pub env: Vec<String>,
     /// Leaderboard row: the model plus its variant's non-task settings (runs of one model
     /// on different task settings, e.g. FI TDs, share a row).
     pub row: String,
@@ -135,9 +135,9 @@ pub fn applies(family: Family, task: &str, model: &str, kv: &str) -> bool {
             key,
         )
         .is_some(),
-        Family::Timing => {
-            chronocooked_training::timing_run::TimingRunConfig::new(task, model, 0).has_setting(key)
-        }
+        Family::Timing => Task::new(task).is_ok_and(|t| {
+            chronocooked_training::timing_run::TimingRunConfig::new(&t, model, 0).has_setting(key)
+        }),
         Family::Baseline => false,
     }
 }
@@ -425,7 +425,7 @@ impl SweepFile {
                 };
                 for (local, global) in &vs {
                     for &seed in seeds {
-                        jobs.push(self.job(task, &model, family, (local, global), seed));
+                        jobs.push(self.job(task, &model, family, (local, global), seed)?);
                     }
                 }
             }
@@ -452,7 +452,7 @@ impl SweepFile {
         family: Family,
         (local, global): (&[String], &[String]),
         seed: u64,
-    ) -> Job {
+    ) -> Result<Job, TrainError> {
         let variant: Vec<String> = [local, global].concat();
         let variant = &variant[..];
         let mut sets: Vec<String> = Vec::new();
@@ -478,10 +478,7 @@ impl SweepFile {
             Family::Baseline => sets.extend(env_only(&self.set)),
         }
         sets.extend(variant.iter().cloned());
-        let env: Vec<String> = sets
-            .iter()
-            .filter_map(|s| s.strip_prefix("env.").map(str::to_string))
-            .collect();
+        let task_params: Vec<&str> = sets.iter().filter_map(|s| s.strip_prefix("env.")).collect();
         let label = variant_label(variant);
         let folder = if label.is_empty() {
             model.to_string()
@@ -498,16 +495,21 @@ impl SweepFile {
         } else {
             format!("{model}~{}", variant_label(&model_sets))
         };
-        Job {
-            id: format!("{task}/{folder}/seed{seed}"),
-            task: task.into(),
+        let id = format!("{task}/{folder}/seed{seed}");
+        let mut chosen = Task::new(task)?;
+        chosen.set_all(&task_params).map_err(|e| TrainError::Job {
+            id: id.clone(),
+            message: e.to_string(),
+        })?;
+        Ok(Job {
+            id,
+            task: chosen,
             model: model.into(),
             family,
             seed,
             sets,
-            env,
             row,
-        }
+        })
     }
 }
 
@@ -517,6 +519,9 @@ pub(crate) fn refusal(sweep: &SweepFile, field: &str, kv: &str) -> TrainError {
     let (k, v) = kv.split_once('=').unwrap_or((kv, ""));
     let (k, v) = (k.trim(), v.trim());
     for task in &sweep.tasks {
+        let Ok(task) = Task::new(task) else {
+            continue;
+        };
         for m in sweep.expanded_models() {
             let family = family_of(&m);
             if field == "set" && !matches!(family, Ok(Family::DeepRl)) {
@@ -524,12 +529,12 @@ pub(crate) fn refusal(sweep: &SweepFile, field: &str, kv: &str) -> TrainError {
             }
             let err = match family {
                 Ok(Family::DeepRl) => m.parse().ok().and_then(|arch| {
-                    chronocooked_training::ppo::config::TrainConfig::base(task, arch)
+                    chronocooked_training::ppo::config::TrainConfig::base(task.clone(), arch)
                         .set(k, v)
                         .err()
                 }),
                 Ok(Family::Timing) => {
-                    chronocooked_training::timing_run::TimingRunConfig::new(task, &m, 0)
+                    chronocooked_training::timing_run::TimingRunConfig::new(&task, &m, 0)
                         .set(kv)
                         .err()
                 }

@@ -49,11 +49,12 @@ impl Stage {
         let trained = job.family != Family::Baseline;
         let adapts = trained
             && sweep.adapt
-            && job.task == "Uncertainty-v0"
+            && job.task.id() == "Uncertainty-v0"
             && job
-                .env
-                .iter()
-                .any(|e| e.replace(' ', "") == "never_ready_prob=0");
+                .task
+                .value_set("never_ready_prob")
+                .and_then(serde_json::Value::as_f64)
+                == Some(0.0);
         Stage::ALL
             .into_iter()
             .filter(|s| match s {
@@ -95,7 +96,7 @@ adapt = true
         let stages = |task: &str, model: &str| {
             let job = jobs
                 .iter()
-                .find(|j| j.task == task && j.model == model)
+                .find(|j| j.task.id() == task && j.model == model)
                 .unwrap();
             Stage::for_job(&sweep, job)
         };

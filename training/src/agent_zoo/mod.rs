@@ -119,10 +119,9 @@ pub struct Provenance {
     pub name: String,
     /// Model (zoo model name, e.g. `lstm125`).
     pub model: String,
-    /// Task id it was trained on.
-    pub task: String,
-    /// Task settings (`key=value`).
-    pub env: Vec<String>,
+    /// The task it was trained on, with its parameters (serialised as `task` and `env`).
+    #[serde(flatten)]
+    pub task: chronocooked_env::Task,
     /// Training seed.
     pub seed: u64,
     /// Training preset.

@@ -59,7 +59,7 @@ impl PpoAgent {
         let (policy, pcfg, cfg) = crate::ppo::run_dir::load_policy(dir)?;
         let task = match config {
             Some(c) => c.clone(),
-            None => chronocooked_env::make_config(&cfg.task, &cfg.env)?,
+            None => cfg.task.config()?,
         };
         Self::new(&pcfg.arch.name(), policy, &task, cfg.obs)
     }

@@ -2,6 +2,7 @@
 
 use crate::error::TrainError;
 use crate::settings::{self, ppo::PPO_SETTINGS};
+use chronocooked_env::Task;
 use chronocooked_models::Architecture;
 use serde::{Deserialize, Serialize};
 
@@ -382,10 +383,10 @@ fn default_keep_checkpoints() -> usize {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TrainConfig {
-    /// Task id (`FixedInterval-v0`, …).
-    pub task: String,
-    /// Task overrides as `key=value` (the env crate's parameter names).
-    pub env: Vec<String>,
+    /// The task and its parameters (serialised as `task`, the id, and `env`, the parameters
+    /// set: `{"td": 6}`).
+    #[serde(flatten)]
+    pub task: Task,
     /// Architecture.
     pub model: Architecture,
     /// Preset the run started from (`reference`, `fast`).
@@ -425,10 +426,9 @@ pub struct TrainConfig {
 
 impl TrainConfig {
     /// Defaults for `task` and `model` before any preset.
-    pub fn base(task: &str, model: Architecture) -> Self {
+    pub fn base(task: Task, model: Architecture) -> Self {
         TrainConfig {
-            task: task.to_string(),
-            env: Vec::new(),
+            task,
             model,
             preset: "reference".into(),
             seed: 0,
@@ -450,13 +450,12 @@ impl TrainConfig {
     /// accepted values in [`crate::settings::ppo::PPO_SETTINGS`]): the value is parsed by the
     /// key's rule and written into the field through the serialised configuration.
     /// `curriculum=NAME` starts the named curriculum with its defaults; `env.<param>=v`
-    /// replaces a task parameter (checked with the task in [`TrainConfig::validate`]).
+    /// sets a task parameter (checked by its rule now, with the other parameters in
+    /// [`TrainConfig::validate`]).
     pub fn set(&mut self, key: &str, value: &str) -> Result<(), TrainError> {
         let (key, value) = (key.trim(), value.trim());
         if let Some(name) = key.strip_prefix("env.") {
-            self.env.retain(|e| e.split('=').next() != Some(name));
-            self.env.push(format!("{name}={value}"));
-            return Ok(());
+            return Ok(self.task.set(name, value)?);
         }
         let specs = PPO_SETTINGS;
         let Some(spec) = settings::find(specs, key) else {
@@ -476,7 +475,8 @@ impl TrainConfig {
         let mut rows: Vec<settings::Setting> = Vec::new();
         for name in settings::ppo::CURRICULA {
             let model = "cnn-mlp".parse().expect("cnn-mlp is a model");
-            let mut cfg = TrainConfig::base("FixedInterval-v0", model);
+            let fi = Task::new("FixedInterval-v0").expect("FI is registered");
+            let mut cfg = TrainConfig::base(fi, model);
             cfg.curriculum = Curriculum::named(name).expect("a curriculum name");
             for s in cfg.listing() {
                 if !rows.iter().any(|r| r.key == s.key) {
@@ -534,7 +534,7 @@ impl TrainConfig {
         else {
             return Ok((0.0, 0.0));
         };
-        let task = chronocooked_env::make_config(&self.task, &self.env)?;
+        let task = self.task.config()?;
         let chronocooked_env::TaskParams::Reproduction {
             tolerance,
             tolerance_steps,
@@ -562,16 +562,17 @@ impl TrainConfig {
             });
         }
         // The first level's task must itself be valid (e.g. its window inside the time limit).
-        let mut first = self.env.clone();
-        first.push(format!("tolerance={}", tolerance_start as f32));
-        first.push(format!("tolerance_steps={}", tolerance_steps_start as f32));
-        chronocooked_env::make_config(&self.task, &first).map_err(|e| {
-            TrainError::InvalidParam {
+        let first = [
+            format!("tolerance={}", tolerance_start as f32),
+            format!("tolerance_steps={}", tolerance_steps_start as f32),
+        ];
+        self.task
+            .with(&first)
+            .map_err(|e| TrainError::InvalidParam {
                 field: "curriculum_tolerance_start".into(),
                 value: format!("{tolerance_start}, {tolerance_steps_start} steps"),
                 allowed: format!("a first window the task accepts ({e})"),
-            }
-        })?;
+            })?;
         Ok((f64::from(tolerance), f64::from(tolerance_steps)))
     }
 
@@ -581,7 +582,7 @@ impl TrainConfig {
     /// and the task and overrides (a valid env).
     pub fn validate(&self) -> Result<(), TrainError> {
         settings::check(PPO_SETTINGS, self)?;
-        chronocooked_env::make_config(&self.task, &self.env)?;
+        self.task.config()?;
         self.reproduction_window()?;
         if let Some(window) = self.curriculum.window()
             && window > self.stats_window

@@ -132,8 +132,7 @@ pub fn resolve<S: AsRef<str>>(
     seed: u64,
     sets: &[S],
 ) -> Result<TrainConfig, TrainError> {
-    chronocooked_env::find_task(task)?;
-    let mut cfg = TrainConfig::base(task, model);
+    let mut cfg = TrainConfig::base(chronocooked_env::Task::new(task)?, model);
     cfg.preset = preset.to_string();
     for (k, v) in preset_settings(task, model, preset)? {
         cfg.set(&k, &v)?;

@@ -15,7 +15,7 @@ use crate::ppo::run_dir::{RunDir, RunSummary, curve_header, expected_policy, rea
 use crate::ppo::state::UpdateLog;
 use crate::ppo::trainer::Trainer;
 use chronocooked_env::fs::write_atomic;
-use chronocooked_env::{integrity, make_config};
+use chronocooked_env::integrity;
 use chronocooked_models::run_folder;
 use std::path::Path;
 
@@ -140,7 +140,7 @@ pub fn run_training(
     };
     run.append_command(command)?;
     let cfg = trainer.config().clone();
-    let task = make_config(&cfg.task, &cfg.env)?;
+    let task = cfg.task.config()?;
     let batch = (cfg.ppo.n_envs * cfg.ppo.n_steps) as u64;
     let every = |k: u64, steps: u64| interval(k, batch).is_some_and(|n| steps.is_multiple_of(n));
     let mut solved_at = None;

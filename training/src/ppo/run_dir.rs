@@ -375,7 +375,7 @@ impl RunDir {
 
 /// The policy description a run of `cfg` trains (what its `policy.json` must hold).
 pub fn expected_policy(cfg: &TrainConfig) -> Result<PolicyConfig, TrainError> {
-    let task = chronocooked_env::make_config(&cfg.task, &cfg.env)?;
+    let task = cfg.task.config()?;
     let enc = crate::ppo::obs::ObsEncoder::for_config(cfg.obs, &task)?;
     let mut p = PolicyConfig::new(
         cfg.model,

@@ -45,7 +45,10 @@ fn run_info(eval: &Path) -> RunInfo {
     let info = read_eval_info(eval).ok();
     RunInfo {
         eval: eval.to_path_buf(),
-        task: info.as_ref().map(|i| i.task.clone()).unwrap_or_default(),
+        task: info
+            .as_ref()
+            .map(|i| i.task.id().to_string())
+            .unwrap_or_default(),
         seed: info.map_or(0, |i| i.seed),
     }
 }

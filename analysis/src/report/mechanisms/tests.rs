@@ -50,7 +50,11 @@ fn dataset(
             }
         })
         .collect();
-    let mut meta = ActivityMeta::new(model, "PeakInterval-v0", &[], 0);
+    let mut meta = ActivityMeta::new(
+        model,
+        &chronocooked_env::Task::new("PeakInterval-v0").unwrap(),
+        0,
+    );
     meta.populations = vec![
         Population {
             name: "cells".into(),
@@ -73,8 +77,7 @@ fn row(root: &Path, model: &str, sets: Vec<ActivityDataset>) -> Row {
         std::fs::create_dir_all(job.join("eval")).unwrap();
         let info = crate::records::EvalInfo {
             model: model.into(),
-            task: "FixedInterval-v0".into(),
-            env: Vec::new(),
+            task: chronocooked_env::Task::new("FixedInterval-v0").unwrap(),
             mode: crate::records::Mode::Reference,
             seed: 0,
             unfinished_at_step: None,

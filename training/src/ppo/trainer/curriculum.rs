@@ -5,7 +5,7 @@
 use super::Trainer;
 use crate::error::TrainError;
 use crate::ppo::config::Curriculum;
-use chronocooked_env::{TaskParams, VecEnv, make_config};
+use chronocooked_env::{TaskParams, VecEnv};
 
 impl Trainer {
     pub(super) fn apply_curriculum(&mut self) -> Result<(), TrainError> {
@@ -97,7 +97,7 @@ impl Trainer {
             return Ok(());
         }
         if level == 0 {
-            let task = make_config(&self.cfg.task, &self.cfg.env)?;
+            let task = self.cfg.task.config()?;
             set_warmup(&mut self.envs, &task, false)?;
         } else {
             self.envs.set_num_timers(level + 1)?;
@@ -232,9 +232,8 @@ pub(super) fn growth_task(
     let Some(g) = cfg.curriculum.growth() else {
         return Ok(None);
     };
-    let mut env = cfg.env.clone();
-    env.push(format!("{}={}", g.key, g.first + level));
-    Ok(Some(make_config(&cfg.task, &env)?))
+    let level = format!("{}={}", g.key, g.first + level);
+    Ok(Some(cfg.task.with(&[level])?.config()?))
 }
 
 /// The last level of a growing curriculum: the configured task's counters (multi-anchor)
@@ -245,7 +244,7 @@ pub(super) fn growth_last_level(
     let Some(g) = cfg.curriculum.growth() else {
         return Ok(0);
     };
-    let task = make_config(&cfg.task, &cfg.env)?;
+    let task = cfg.task.config()?;
     let last = match (&task.params, g.key) {
         (TaskParams::MultiAnchor { .. }, "num_anchors") => {
             task.params.active_anchors().map_or(2, <[u32]>::len)

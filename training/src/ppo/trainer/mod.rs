@@ -18,7 +18,7 @@ use crate::ppo::params::{flat_params, param_shapes, write_params};
 use crate::ppo::rollout::{Rollout, chunks};
 pub use crate::ppo::state::{EpisodeStat, TrainerState, UpdateLog};
 use burn::module::Module;
-use chronocooked_env::{Action, Autoreset, TaskParams, VecEnv, make_config};
+use chronocooked_env::{Action, Autoreset, TaskParams, VecEnv};
 use chronocooked_models::deep::native::NativePolicy;
 use chronocooked_models::deep::spec::check_shapes;
 use chronocooked_models::{ActorCritic, CoreKind, PolicyConfig};
@@ -80,7 +80,7 @@ impl Trainer {
     /// configuration ([`crate::checked::Check::check`]).
     pub fn new(cfg: Checked<TrainConfig>) -> Result<Self, TrainError> {
         let cfg = cfg.into_inner();
-        let task = make_config(&cfg.task, &cfg.env)?;
+        let task = cfg.task.config()?;
         let p = &cfg.ppo;
         let mut envs = VecEnv::new(&task, p.n_envs, Autoreset::SameStep)?;
         let encoder = ObsEncoder::new(cfg.obs, &envs);
@@ -212,7 +212,7 @@ impl Trainer {
                 .set_num_timers(state.num_timers)
                 .map_err(|e| TrainError::BadState(state_field("num_timers", e)))?;
             if warmup {
-                let task = make_config(&t.cfg.task, &t.cfg.env)?;
+                let task = t.cfg.task.config()?;
                 set_warmup(&mut t.envs, &task, state.curriculum_level == 0)?;
             }
         }
