@@ -57,6 +57,7 @@ impl ChronoEnv {
     }
 
     /// Takes one action. Errors if the episode is over (call `reset`).
+    #[inline]
     pub fn step(&mut self, action: Action) -> Result<Transition, EnvError> {
         self.kitchen.step(action, &mut self.obs)
     }
@@ -67,6 +68,7 @@ impl ChronoEnv {
     }
 
     /// Current observation, codes encoding, `[R, C, 6]` flattened row-major.
+    #[inline]
     pub fn obs_codes(&self) -> &[u8] {
         &self.obs
     }

@@ -11,7 +11,8 @@
 //! * [`obs`] — the reference "codes" encoding and a one-hot view for networks.
 //! * [`oracle`] — optimal scripted policies; [`render`] — ASCII, PNG, GIF;
 //!   [`trace`] — JSON-lines episode traces; [`fs`] — the one atomic file write;
-//!   [`integrity`] — SHA-256 records of learned state.
+//!   [`integrity`] — SHA-256 records of learned state; [`markdown`] — the one Markdown
+//!   table writer.
 
 #![warn(missing_docs)]
 
@@ -25,6 +26,7 @@ pub mod integrity;
 pub mod interrupt;
 pub mod kitchen;
 pub mod layout;
+pub mod markdown;
 pub mod obs;
 pub mod oracle;
 pub mod registry;

@@ -10,6 +10,7 @@
 //! to its path. The task parameters ([`crate::task::params`]) and the training settings of
 //! the training crate are tables of this one kind.
 
+use crate::markdown::Table;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 use serde_json::Value;
@@ -387,20 +388,17 @@ pub fn listing<T: Serialize>(specs: &[Spec], config: &T) -> Vec<Setting> {
 
 /// A Markdown table of settings (key, type, default, accepted values, meaning).
 pub fn markdown_table(settings: &[Setting]) -> String {
-    let mut out = String::from(
-        "| key | type | default | allowed | meaning |\n|-----|------|---------|---------|---------|\n",
-    );
+    let mut table = Table::new(["key", "type", "default", "allowed", "meaning"]);
     for s in settings {
-        out += &format!(
-            "| `{}` | {} | `{}` | {} | {} |\n",
-            s.key,
-            s.kind,
-            s.value,
-            s.allowed.replace('|', "\\|"),
-            s.doc.replace('|', "\\|")
-        );
+        table.row([
+            format!("`{}`", s.key),
+            s.kind.clone(),
+            format!("`{}`", s.value),
+            s.allowed.clone(),
+            s.doc.clone(),
+        ]);
     }
-    out
+    table.render()
 }
 
 /// A setting of `key` at `path` in the serialised configuration, accepted by `rule`, with

@@ -13,6 +13,7 @@ use super::reference::{
     APPENDIX_PREFIX, PaperNumber, appendix_fi_numbers, appendix_numbers, lab_model,
     multitimer_2_10_numbers, numbers,
 };
+use chronocooked_env::markdown::Table;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -284,6 +285,7 @@ fn rate(c: &Counts) -> String {
 /// The agreement section of `tables.md`: every table × source under both rules, then the
 /// negative control.
 pub fn agreement_markdown(m: &mut String, a: &Agreement) {
+    let agree = |c: &Counts| format!("{} of {} ({})", c.yes, c.yes + c.no, rate(c));
     use std::fmt::Write as _;
     let _ = writeln!(
         m,
@@ -292,11 +294,16 @@ pub fn agreement_markdown(m: &mut String, a: &Agreement) {
         a.rules.get("old").map_or("", |s| s.as_str()),
         a.rules.get("z").map_or("", |s| s.as_str())
     );
-    let _ = writeln!(
-        m,
-        "| table | source | rows | old rule: agree | z rule: agree | n/a | both NaN |"
-    );
-    let _ = writeln!(m, "|---|---|---:|---:|---:|---:|---:|");
+    let mut table = Table::new([
+        "table",
+        "source",
+        "rows",
+        "old rule: agree",
+        "z rule: agree",
+        "n/a",
+        "both NaN",
+    ])
+    .right(2..7);
     let find = |t: &str, s: &str, r: &str| {
         a.counts
             .iter()
@@ -306,33 +313,31 @@ pub fn agreement_markdown(m: &mut String, a: &Agreement) {
         let Some(z) = find(&c.table, &c.source, "z") else {
             continue;
         };
-        let _ = writeln!(
-            m,
-            "| {} | {} | {} | {} of {} ({}) | {} of {} ({}) | {} / {} | {} |",
-            c.table,
-            c.source,
-            c.counts.rows,
-            c.counts.yes,
-            c.counts.yes + c.counts.no,
-            rate(&c.counts),
-            z.counts.yes,
-            z.counts.yes + z.counts.no,
-            rate(&z.counts),
-            c.counts.na,
-            z.counts.na,
-            c.counts.both_nan
-        );
+        table.row([
+            c.table.clone(),
+            c.source.clone(),
+            c.counts.rows.to_string(),
+            agree(&c.counts),
+            agree(&z.counts),
+            format!("{} / {}", c.counts.na, z.counts.na),
+            c.counts.both_nan.to_string(),
+        ]);
     }
+    m.push_str(&table.render());
     let _ = writeln!(
         m,
         "\nNegative control (mismatched pairs: agreement here is agreement by chance) beside \
          the faithful pairs on the same numbers:\n"
     );
-    let _ = writeln!(
-        m,
-        "| pairing | matched | source | rows | old rule: agree | z rule: agree |"
-    );
-    let _ = writeln!(m, "|---|---|---|---:|---:|---:|");
+    let mut table = Table::new([
+        "pairing",
+        "matched",
+        "source",
+        "rows",
+        "old rule: agree",
+        "z rule: agree",
+    ])
+    .right(3..6);
     // Pairings without a number in this study (e.g. a study of one task) are left out.
     for c in a
         .negative_control
@@ -346,21 +351,16 @@ pub fn agreement_markdown(m: &mut String, a: &Agreement) {
         else {
             continue;
         };
-        let _ = writeln!(
-            m,
-            "| {} | {} | {} | {} | {} of {} ({}) | {} of {} ({}) |",
-            c.pairing,
-            if c.matched { "yes" } else { "no" },
-            c.source,
-            c.counts.rows,
-            c.counts.yes,
-            c.counts.yes + c.counts.no,
-            rate(&c.counts),
-            z.counts.yes,
-            z.counts.yes + z.counts.no,
-            rate(&z.counts)
-        );
+        table.row([
+            c.pairing.clone(),
+            if c.matched { "yes" } else { "no" }.to_string(),
+            c.source.clone(),
+            c.counts.rows.to_string(),
+            agree(&c.counts),
+            agree(&z.counts),
+        ]);
     }
+    m.push_str(&table.render());
     for n in &a.notes {
         let _ = writeln!(m, "\n* {n}");
     }

@@ -8,6 +8,7 @@
 
 use super::spreads::{condition_stats, prediction_interval};
 use chronocooked_analysis::collect::CompactJob;
+use chronocooked_env::markdown::Table;
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use thiserror::Error;
@@ -200,29 +201,32 @@ fn num(x: f64) -> String {
 /// runs that have a value of all its runs, the 95% range for a new run, SDs from the mean,
 /// verdict) and a count line.
 pub fn held_out_markdown(checks: &[HeldOutCheck]) -> String {
-    let mut s = String::from(
-        "| job | statistic | held-out run | study (mean ± SD; runs with a value of all) | 95% range for a new run | SDs from mean | verdict |\n|---|---|---:|---|---|---:|---|\n",
-    );
+    let mut table = Table::new([
+        "job",
+        "statistic",
+        "held-out run",
+        "study (mean ± SD; runs with a value of all)",
+        "95% range for a new run",
+        "SDs from mean",
+        "verdict",
+    ])
+    .right([2, 5]);
     for c in checks {
-        s.push_str(&format!(
-            "| {} | {} | {} | {} ± {} ({} of {}) | {} … {} | {} | {} |\n",
-            c.id,
-            c.statistic,
+        table.row([
+            c.id.clone(),
+            c.statistic.to_string(),
             num(c.value),
-            num(c.mean),
-            num(c.sd),
-            c.n,
-            c.runs,
-            num(c.lo),
-            num(c.hi),
+            format!("{} ± {} ({} of {})", num(c.mean), num(c.sd), c.n, c.runs),
+            format!("{} … {}", num(c.lo), num(c.hi)),
             if c.sds_from_mean.is_finite() {
                 format!("{:+.1}", c.sds_from_mean)
             } else {
                 "–".into()
             },
-            c.verdict
-        ));
+            c.verdict.to_string(),
+        ]);
     }
+    let mut s = table.render();
     let count = |v| checks.iter().filter(|c| c.verdict == v).count();
     s.push_str(&format!(
         "\n{} inside, {} outside, {} without a held-out value, {} without a study range\n",

@@ -18,6 +18,7 @@
 use chronocooked_analysis::collect::{CollectError, CompactJob, err};
 use chronocooked_analysis::records::ConditionKind;
 use chronocooked_analysis::records::METRICS;
+use chronocooked_env::markdown::Table;
 use serde::{Deserialize, Serialize};
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 use std::path::Path;
@@ -334,25 +335,32 @@ pub fn pi_markdown(m: &mut String, v: &[PiVerdict]) {
          TD … factor·TD − 1 (p ≥ {ALPHA} = uniform); a model × factor is `uniform` when at \
          least 3/4 of its curves with checks are.\n"
     );
-    let _ = writeln!(
-        m,
-        "| model | factor | curves | uniform | non-uniform | no checks or no bins | mean rate after TD | mean drop by 2×TD | mean slope per TD | verdict |"
-    );
-    let _ = writeln!(m, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|");
+    let mut table = Table::new([
+        "model",
+        "factor",
+        "curves",
+        "uniform",
+        "non-uniform",
+        "no checks or no bins",
+        "mean rate after TD",
+        "mean drop by 2×TD",
+        "mean slope per TD",
+        "verdict",
+    ])
+    .right(1..9);
     for x in v {
-        let _ = writeln!(
-            m,
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
-            x.model,
-            x.factor,
-            x.curves,
-            x.uniform,
-            x.non_uniform,
-            x.no_checks,
+        table.row([
+            x.model.to_string(),
+            x.factor.to_string(),
+            x.curves.to_string(),
+            x.uniform.to_string(),
+            x.non_uniform.to_string(),
+            x.no_checks.to_string(),
             f(x.mean_rate),
             f(x.mean_drop_2td),
             f(x.mean_slope_per_td),
-            x.verdict
-        );
+            x.verdict.to_string(),
+        ]);
     }
+    m.push_str(&table.render());
 }

@@ -19,6 +19,7 @@ use super::reference::HUMAN_WF_VS_RATIO;
 use super::spreads::{NewRunRange, SpreadChange, new_run_ranges, spread_changes};
 use chronocooked_analysis::behaviour::aggregate::Spread;
 use chronocooked_analysis::collect::{CollectError, CompactJob, err, read_compact, write_csv};
+use chronocooked_env::markdown::{Align, Table};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -158,11 +159,19 @@ fn spreads_markdown(m: &mut String, rows: &[SpreadChange]) {
         m,
         "\n## Spread over runs: first four seeds vs every run\n\nSD ratio = SD over every run ÷ SD over seeds 1–4, per condition (both with ≥ 2 runs); each condition in `spreads.csv`. Shift = |mean over every run − mean over seeds 1–4| in units of the seeds-1–4 SD.\n"
     );
-    let _ = writeln!(
-        m,
-        "| task | model | statistic | conditions | runs (first → all) | median SD ratio | SD ratio range | ratio > 1.5 | median shift | shift > 1 |"
-    );
-    let _ = writeln!(m, "|---|---|---|---:|---|---:|---|---:|---:|---:|");
+    let mut table = Table::new([
+        "task",
+        "model",
+        "statistic",
+        "conditions",
+        "runs (first → all)",
+        "median SD ratio",
+        "SD ratio range",
+        "ratio > 1.5",
+        "median shift",
+        "shift > 1",
+    ])
+    .right([3, 5, 7, 8, 9]);
     let mut keys: Vec<(&str, &str, &str)> = Vec::new();
     for r in rows {
         let k = (r.task.as_str(), r.model.as_str(), r.statistic.as_str());
@@ -194,42 +203,46 @@ fn spreads_markdown(m: &mut String, rows: &[SpreadChange]) {
         };
         let n_first = Spread::of(sel.iter().map(|r| r.n_first as f64));
         let n_all = Spread::of(sel.iter().map(|r| r.n_all as f64));
-        let _ = writeln!(
-            m,
-            "| {task} | {model} | {stat} | {} | {} → {} | {} | {}–{} | {} | {} | {} |",
-            sel.len(),
-            f(n_first.mean, 1),
-            f(n_all.mean, 1),
+        table.row([
+            task.to_string(),
+            model.to_string(),
+            stat.to_string(),
+            sel.len().to_string(),
+            format!("{} → {}", f(n_first.mean, 1), f(n_all.mean, 1)),
             f(median(&ratios), 2),
-            f(ratios.first().copied().unwrap_or(f64::NAN), 2),
-            f(ratios.last().copied().unwrap_or(f64::NAN), 2),
-            ratios.iter().filter(|x| **x > 1.5).count(),
+            format!(
+                "{}–{}",
+                f(ratios.first().copied().unwrap_or(f64::NAN), 2),
+                f(ratios.last().copied().unwrap_or(f64::NAN), 2)
+            ),
+            ratios.iter().filter(|x| **x > 1.5).count().to_string(),
             f(median(&shifts), 2),
-            shifts.iter().filter(|x| **x > 1.0).count(),
-        );
+            shifts.iter().filter(|x| **x > 1.0).count().to_string(),
+        ]);
     }
+    m.push_str(&table.render());
 }
 
-/// A Markdown table's header: the `fixed` columns (left-aligned) then the numeric `cols`.
-fn table_head(m: &mut String, fixed: &[&str], cols: &[String]) {
-    let _ = writeln!(m, "| {} | {} |", fixed.join(" | "), cols.join(" | "));
-    let _ = writeln!(
-        m,
-        "|{}{}",
-        "---|".repeat(fixed.len()),
-        "---:|".repeat(cols.len())
-    );
+/// A Markdown table of the `fixed` columns (left-aligned) then the numeric `cols`.
+fn numeric_table<S: ToString>(fixed: &[&str], cols: &[S]) -> Table {
+    let columns = fixed
+        .iter()
+        .map(|c| (c.to_string(), Align::Left))
+        .chain(cols.iter().map(|c| (c.to_string(), Align::Right)));
+    Table::aligned(columns)
+}
+
+/// The multi-timer table of the columns `cols` after model, curriculum and TD list.
+fn mt_table(cols: &[&str]) -> Table {
+    numeric_table(&["model", "curriculum", "TDs"], cols)
 }
 
 /// One multi-timer cell's table row: model, curriculum, TD list, then `cells`.
-fn mt_row(m: &mut String, c: &MtCell, cells: &[String]) {
-    let _ = writeln!(
-        m,
-        "| {} | {} | {} | {} |",
-        c.model,
-        c.curriculum,
-        tds_label(&c.tds),
-        cells.join(" | ")
+fn mt_row(table: &mut Table, c: &MtCell, cells: &[String]) {
+    table.row(
+        [c.model.clone(), c.curriculum.clone(), tds_label(&c.tds)]
+            .into_iter()
+            .chain(cells.iter().cloned()),
     );
 }
 
@@ -254,8 +267,7 @@ fn level_ood_markdown(m: &mut String, cells: &[MtCell]) {
         m,
         "\nEach level's policy (levels 1 … 5) also on the TDs it was not trained on, 1 … its longest + 1 (the paper's figures' out-of-distribution TDs): mean reward there, and the timers it stores — the paper's \"number of distinct shifts\" in the oven-off curve over every tested TD (mean oven-off times where the soup is taken on ≥ half the cells, grouped when within {PLATEAU_GAP} step) — as reward at untrained TDs / timers, mean over runs (runs):\n"
     );
-    let _ = writeln!(m, "| model | curriculum | TDs | 1 | 2 | 3 | 4 | 5 |");
-    let _ = writeln!(m, "|---|---|---|---:|---:|---:|---:|---:|");
+    let mut table = mt_table(&["1", "2", "3", "4", "5"]);
     for c in with {
         let r: Vec<String> = (1..LEVELS)
             .map(
@@ -267,8 +279,9 @@ fn level_ood_markdown(m: &mut String, cells: &[MtCell]) {
                 },
             )
             .collect();
-        mt_row(m, c, &r);
+        mt_row(&mut table, c, &r);
     }
+    m.push_str(&table.render());
 }
 
 /// Markdown tables of the study (what `RESULTS.md` quotes), titled with the study's name
@@ -284,20 +297,28 @@ pub fn tables_markdown(s: &PaperStudy, study: &str) -> String {
          \"Lab convention\": the same pool with an interact run from the onion put counted as \
          a check at step 1 (the paper's code reports 0).\n"
     );
-    let _ = writeln!(
-        m,
-        "| model | TD | runs | n | FOC mean | SD | CV | FOC mean, lab convention | per-run mean FOC | per-run CV | FOC/TD per run |"
+    let mut table = numeric_table(
+        &["model"],
+        &[
+            "TD",
+            "runs",
+            "n",
+            "FOC mean",
+            "SD",
+            "CV",
+            "FOC mean, lab convention",
+            "per-run mean FOC",
+            "per-run CV",
+            "FOC/TD per run",
+        ],
     );
-    let _ = writeln!(m, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for model in &s.fi {
         for c in &model.cells {
-            let _ = writeln!(
-                m,
-                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
-                model.model,
-                c.td,
-                c.runs,
-                c.pooled.n,
+            table.row([
+                model.model.clone(),
+                c.td.to_string(),
+                c.runs.to_string(),
+                c.pooled.n.to_string(),
                 f(c.pooled.mean, 2),
                 f(c.pooled.sd, 2),
                 f(c.pooled.cv, 2),
@@ -306,27 +327,32 @@ pub fn tables_markdown(s: &PaperStudy, study: &str) -> String {
                     .map_or("–".into(), |x| f(x.mean, 2)),
                 pm(&c.run_mean, 2),
                 pm(&c.run_cv, 2),
-                pm(&c.run_ratio, 2)
-            );
+                pm(&c.run_ratio, 2),
+            ]);
         }
     }
-    let _ = writeln!(
-        m,
-        "\n| model | R² mean vs TD (pooled) | R² SD vs mean (pooled) | slope mean vs TD | R² mean vs TD per run | R² SD vs mean per run |"
+    m.push_str(&table.render());
+    let mut table = numeric_table(
+        &["model"],
+        &[
+            "R² mean vs TD (pooled)",
+            "R² SD vs mean (pooled)",
+            "slope mean vs TD",
+            "R² mean vs TD per run",
+            "R² SD vs mean per run",
+        ],
     );
-    let _ = writeln!(m, "|---|---:|---:|---:|---:|---:|");
     for model in &s.fi {
-        let _ = writeln!(
-            m,
-            "| {} | {} | {} | {} | {} | {} |",
-            model.model,
+        table.row([
+            model.model.clone(),
             f(model.scalar.r2_mean_vs_td, 2),
             f(model.scalar.r2_sd_vs_mean, 2),
             f(model.scalar.mean_slope, 2),
             pm(&model.run_r2_mean_vs_td, 2),
-            pm(&model.run_r2_sd_vs_mean, 2)
-        );
+            pm(&model.run_r2_sd_vs_mean, 2),
+        ]);
     }
+    let _ = write!(m, "\n{table}");
     let _ = writeln!(
         m,
         "\n## Bisection\n\nRuns excluded when their last 100 training episodes averaged more \
@@ -334,22 +360,27 @@ pub fn tables_markdown(s: &PaperStudy, study: &str) -> String {
          curve (paper figure) and per run (mean ± SD: the paper's tables); MLE: binomial \
          maximum likelihood on the pooled counts (the lab's).\n"
     );
-    let _ = writeln!(
-        m,
-        "| model | anchors | runs (excluded) | anchor acc. | BP (avg curve) | WF (avg curve) | WF per run | DL per run | BP per run | BP (MLE) | WF (MLE) |"
+    let mut table = numeric_table(
+        &["model", "anchors"],
+        &[
+            "runs (excluded)",
+            "anchor acc.",
+            "BP (avg curve)",
+            "WF (avg curve)",
+            "WF per run",
+            "DL per run",
+            "BP per run",
+            "BP (MLE)",
+            "WF (MLE)",
+        ],
     );
-    let _ = writeln!(m, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for model in &s.bisection {
         for c in &model.cells {
             let excl = c.runs.iter().filter(|r| r.excluded).count();
-            let _ = writeln!(
-                m,
-                "| {} | {}-{} | {} ({}) | {} | {} | {} | {} | {} | {} | {} | {} |",
-                model.model,
-                c.short,
-                c.long,
-                c.runs.len(),
-                excl,
+            table.row([
+                model.model.clone(),
+                format!("{}-{}", c.short, c.long),
+                format!("{} ({excl})", c.runs.len()),
                 pm(&c.anchor_accuracy, 2),
                 c.fit.map_or("failed".into(), |x| f(x.bp, 2)),
                 c.fit.map_or("failed".into(), |x| f(x.wf, 3)),
@@ -358,70 +389,69 @@ pub fn tables_markdown(s: &PaperStudy, study: &str) -> String {
                 pm(&c.bp, 2),
                 c.mle.as_ref().map_or("–".into(), |x| f(x.bp, 2)),
                 c.mle.as_ref().map_or("–".into(), |x| f(x.wf, 3)),
-            );
+            ]);
         }
     }
+    m.push_str(&table.render());
     let _ = writeln!(
         m,
         "\nWF vs log2(L/S) (human reference: r = {}, p = {}):\n",
         HUMAN_WF_VS_RATIO.0, HUMAN_WF_VS_RATIO.1
     );
-    let _ = writeln!(
-        m,
-        "| model | r (avg curves) | p | n | r (per run) | p | n |"
+    let mut table = numeric_table(
+        &["model"],
+        &["r (avg curves)", "p", "n", "r (per run)", "p", "n"],
     );
-    let _ = writeln!(m, "|---|---:|---:|---:|---:|---:|---:|");
     for model in &s.bisection {
         let r = |x: &Option<super::bisection::WfRegression>| {
-            x.map_or("– | – | –".into(), |w| {
-                format!("{} | {} | {}", f(w.r, 3), f(w.p, 3), w.n)
+            x.map_or(["–".to_string(), "–".into(), "–".into()], |w| {
+                [f(w.r, 3), f(w.p, 3), w.n.to_string()]
             })
         };
-        let _ = writeln!(
-            m,
-            "| {} | {} | {} |",
-            model.model,
-            r(&model.wf_vs_ratio),
-            r(&model.wf_vs_ratio_runs)
+        table.row(
+            std::iter::once(model.model.clone())
+                .chain(r(&model.wf_vs_ratio))
+                .chain(r(&model.wf_vs_ratio_runs)),
         );
     }
+    m.push_str(&table.render());
     let _ = writeln!(m, "\n## Multi-timer\n");
     let _ = writeln!(
         m,
         "Curriculum: level 0 warm-up, then 1 … 5 timers (the TDs of the list in order). Steps per level: env steps spent in a level by the runs that left it.\n"
     );
-    let _ = writeln!(
-        m,
-        "| model | curriculum | TDs | runs | level reached | runs at level 5 | steps in level 0 | 1 | 2 | 3 | 4 |"
-    );
-    let _ = writeln!(m, "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    let mut table = mt_table(&[
+        "runs",
+        "level reached",
+        "runs at level 5",
+        "steps in level 0",
+        "1",
+        "2",
+        "3",
+        "4",
+    ]);
     for c in &s.multitimer {
-        let steps: Vec<String> = c.steps_in_level.iter().map(|s| pm(s, 0)).collect();
-        let _ = writeln!(
-            m,
-            "| {} | {} | {} | {} | {} | {} | {} |",
-            c.model,
-            c.curriculum,
-            tds_label(&c.tds),
-            c.runs.len(),
+        let cells: Vec<String> = [
+            c.runs.len().to_string(),
             pm(&c.level, 1),
-            c.reached_last,
-            steps.join(" | "),
-        );
+            c.reached_last.to_string(),
+        ]
+        .into_iter()
+        .chain(c.steps_in_level.iter().map(|s| pm(s, 0)))
+        .collect();
+        mt_row(&mut table, c, &cells);
     }
+    m.push_str(&table.render());
     let _ = writeln!(
         m,
         "\nTraining reward per curriculum level (mean of the learning curve's samples at that level, then mean ± SD over the runs with samples there):\n"
     );
-    let _ = writeln!(
-        m,
-        "| model | curriculum | TDs | level 0 | 1 | 2 | 3 | 4 | 5 |"
-    );
-    let _ = writeln!(m, "|---|---|---|---:|---:|---:|---:|---:|---:|");
+    let mut table = mt_table(&["level 0", "1", "2", "3", "4", "5"]);
     for c in &s.multitimer {
         let r: Vec<String> = c.level_reward.iter().map(|s| pm(s, 2)).collect();
-        mt_row(&mut m, c, &r);
+        mt_row(&mut table, c, &r);
     }
+    m.push_str(&table.render());
     if s.multitimer
         .iter()
         .any(|c| c.level_eval.iter().any(|x| x.n > 0))
@@ -430,11 +460,7 @@ pub fn tables_markdown(s: &PaperStudy, study: &str) -> String {
             m,
             "\nEach level's own policy in that level's test setting (the notebooks' evaluation: level 0 one timer, soup only at TD, reduced reward 0.1; level L ≥ 1 the first L TDs, undercooking possible; exact: reduced reward 0; categorical: reduced reward 0.1, 2 steps early allowed), mean reward over its TDs and 12 start cells, then mean ± SD (runs) over the runs that reached the level:\n"
         );
-        let _ = writeln!(
-            m,
-            "| model | curriculum | TDs | level 0 | 1 | 2 | 3 | 4 | 5 |"
-        );
-        let _ = writeln!(m, "|---|---|---|---:|---:|---:|---:|---:|---:|");
+        let mut table = mt_table(&["level 0", "1", "2", "3", "4", "5"]);
         for c in s
             .multitimer
             .iter()
@@ -451,8 +477,9 @@ pub fn tables_markdown(s: &PaperStudy, study: &str) -> String {
                     }
                 })
                 .collect();
-            mt_row(&mut m, c, &r);
+            mt_row(&mut table, c, &r);
         }
+        m.push_str(&table.render());
     }
     level_ood_markdown(&mut m, &s.multitimer);
     let _ = writeln!(
@@ -467,7 +494,7 @@ pub fn tables_markdown(s: &PaperStudy, study: &str) -> String {
     tds.sort_unstable();
     tds.dedup();
     let head: Vec<String> = tds.iter().map(|td| format!("TD {td}")).collect();
-    table_head(&mut m, &["model", "curriculum", "TDs"], &head);
+    let mut table = numeric_table(&["model", "curriculum", "TDs"], &head);
     for c in &s.multitimer {
         let cells: Vec<String> = tds
             .iter()
@@ -480,8 +507,9 @@ pub fn tables_markdown(s: &PaperStudy, study: &str) -> String {
                     })
             })
             .collect();
-        mt_row(&mut m, c, &cells);
+        mt_row(&mut table, c, &cells);
     }
+    m.push_str(&table.render());
     if !s.exact_timer.is_empty() {
         let mut fracs: Vec<f64> = s
             .exact_timer
@@ -498,7 +526,7 @@ pub fn tables_markdown(s: &PaperStudy, study: &str) -> String {
             .iter()
             .map(|f| format!("buffer {:.0}%", f * 100.0))
             .collect();
-        table_head(&mut m, &["model", "TD", "runs"], &head);
+        let mut table = numeric_table(&["model", "TD", "runs"], &head);
         for c in &s.exact_timer {
             let cells: Vec<String> = fracs
                 .iter()
@@ -509,38 +537,34 @@ pub fn tables_markdown(s: &PaperStudy, study: &str) -> String {
                         .map_or("–".into(), |b| pm(&b.1, 2))
                 })
                 .collect();
-            let _ = writeln!(
-                m,
-                "| {} | {} | {} | {} |",
-                c.model,
-                c.td,
-                c.runs,
-                cells.join(" | ")
+            table.row(
+                [c.model.clone(), c.td.to_string(), c.runs.to_string()]
+                    .into_iter()
+                    .chain(cells),
             );
         }
+        m.push_str(&table.render());
     }
     claims_markdown(&mut m, &s.claims);
     spreads_markdown(&mut m, &s.spreads);
     super::agreement::agreement_markdown(&mut m, &s.agreement);
     super::pi::pi_markdown(&mut m, &s.pi_verdicts);
     let _ = writeln!(m, "\n## Cost per job kind (one core per job)\n");
-    let _ = writeln!(
-        m,
-        "| task | model | jobs | wall-clock s per job | env-steps/s | core-hours |"
+    let mut table = numeric_table(
+        &["task", "model"],
+        &["jobs", "wall-clock s per job", "env-steps/s", "core-hours"],
     );
-    let _ = writeln!(m, "|---|---|---:|---:|---:|---:|");
     for c in &s.cost {
-        let _ = writeln!(
-            m,
-            "| {} | {} | {} | {} | {} | {} |",
-            c.task,
-            c.model,
-            c.jobs,
+        table.row([
+            c.task.clone(),
+            c.model.clone(),
+            c.jobs.to_string(),
             pm(&c.wall_s, 0),
             pm(&c.steps_per_s, 0),
-            f(c.core_hours, 2)
-        );
+            f(c.core_hours, 2),
+        ]);
     }
+    m.push_str(&table.render());
     m
 }
 

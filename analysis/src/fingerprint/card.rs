@@ -8,6 +8,7 @@ use crate::figures::markup::{figure_file, page};
 use crate::figures::{Chart, Series, write_chart_sized, write_panels};
 use crate::job_folder;
 use crate::mechanisms::{FEATURES, MechanismError};
+use chronocooked_env::markdown::Table;
 use maud::html;
 use std::path::{Path, PathBuf};
 
@@ -108,26 +109,34 @@ fn markdown(p: &Placement) -> String {
          mechanism is the nearest.\n\n",
         p.reference_identification.0, p.reference_identification.1, p.resamples
     );
-    md += "| mechanism | distance | self-distance | limit | bootstrap share |\n|---|---|---|---|---|\n";
+    let mut distances = Table::new([
+        "mechanism",
+        "distance",
+        "self-distance",
+        "limit",
+        "bootstrap share",
+    ]);
     for d in &p.distances {
-        md += &format!(
-            "| {} | {} | {} | {} | {:.2} |\n",
-            d.mechanism,
+        distances.row([
+            d.mechanism.to_string(),
             fmt(d.distance),
             range(d.self_range),
             d.limit.map_or("–".into(), fmt),
-            d.bootstrap_share
-        );
+            format!("{:.2}", d.bootstrap_share),
+        ]);
     }
-    md += "\n| feature | value |\n|---|---|\n";
+    md += &distances.render();
+    let mut features = Table::new(["feature", "value"]);
     for f in FEATURES {
-        md += &format!(
-            "| {f} | {} |\n",
+        features.row([
+            f.to_string(),
             p.signature
                 .get(f)
-                .map_or("missing".into(), |v| format!("{v:.3}"))
-        );
+                .map_or("missing".into(), |v| format!("{v:.3}")),
+        ]);
     }
+    md += "\n";
+    md += &features.render();
     if !p.missing.is_empty() {
         md += &format!("\nMissing features: {}.\n", p.missing.join(", "));
     }

@@ -4,6 +4,7 @@ use super::{
     Comparison, FEATURES, MECHANISMS, MechanismError, Signature, compare, feature_sds,
     mean_features, read::signatures,
 };
+use chronocooked_env::markdown::Table;
 use std::path::{Path, PathBuf};
 
 /// What [`write_tables`] wrote.
@@ -76,11 +77,10 @@ pub fn write_tables(
     models.dedup();
     let mut md = String::from("# Mechanism fingerprints\n\n");
     md.push_str(&format!(
-        "Mean ± SD over training seeds (n). Features: {}.\n\n| model | n | {} |\n|---|---|{}\n",
-        FEATURES.join(", "),
-        FEATURES.join(" | "),
-        "---|".repeat(FEATURES.len())
+        "Mean ± SD over training seeds (n). Features: {}.\n\n",
+        FEATURES.join(", ")
     ));
+    let mut table = Table::new(["model", "n"].into_iter().chain(FEATURES));
     for m in &models {
         let mine: Vec<&Signature> = sigs.iter().filter(|s| s.model == *m).collect();
         let cells: Vec<String> = FEATURES
@@ -96,20 +96,25 @@ pub fn write_tables(
                 }
             })
             .collect();
-        md.push_str(&format!(
-            "| {m} | {} | {} |\n",
-            mine.len(),
-            cells.join(" | ")
-        ));
+        table.row(
+            [m.to_string(), mine.len().to_string()]
+                .into_iter()
+                .chain(cells),
+        );
     }
+    md.push_str(&table.render());
     md.push_str(&format!(
         "\n## Nearest mechanism\n\nDistance: RMS of feature differences in units of each \
          feature's seed-to-seed SD within a mechanism (pooled over the mechanisms; 1 = one \
          seed SD on every feature); nearest: the share of {resamples} bootstrap \
-         resamples of the seeds in which the mechanism is the nearest.\n\n| agent | {} | nearest (bootstrap share) |\n|---|{}---|\n",
-        MECHANISMS.join(" | "),
-        "---|".repeat(MECHANISMS.len())
+         resamples of the seeds in which the mechanism is the nearest.\n\n"
     ));
+    let mut table = Table::new(
+        ["agent"]
+            .into_iter()
+            .chain(MECHANISMS)
+            .chain(["nearest (bootstrap share)"]),
+    );
     let mut agents: Vec<&str> = comparisons.iter().map(|c| c.agent.as_str()).collect();
     agents.dedup();
     for a in &agents {
@@ -123,8 +128,9 @@ pub fn write_tables(
             })
             .collect();
         let nearest = crate::mechanisms::nearest_label(&mine);
-        md.push_str(&format!("| {a} | {} | {nearest} |\n", cells.join(" | ")));
+        table.row(std::iter::once(a.to_string()).chain(cells).chain([nearest]));
     }
+    md.push_str(&table.render());
     let identification = super::identify(&sigs);
     md.push_str(&identification_markdown(&identification));
     let mut files = vec![
@@ -154,11 +160,12 @@ pub fn identification_markdown(id: &super::Identification) -> String {
          self-distance (log-normal, spread pooled over the mechanisms); nearest other: their \
          smallest distance to another.\n\n",
     );
-    md.push_str(&format!(
-        "| mechanism | {} | correct | self-distance | limit | nearest other |\n|---|{}---|---|---|---|\n",
-        MECHANISMS.join(" | "),
-        "---|".repeat(MECHANISMS.len())
-    ));
+    let mut table = Table::new(["mechanism"].into_iter().chain(MECHANISMS).chain([
+        "correct",
+        "self-distance",
+        "limit",
+        "nearest other",
+    ]));
     for m in MECHANISMS {
         let mine: Vec<&super::HeldOut> = id.held_out.iter().filter(|h| h.mechanism == m).collect();
         if mine.is_empty() {
@@ -175,37 +182,46 @@ pub fn identification_markdown(id: &super::Identification) -> String {
             .iter()
             .map(|h| h.other_distance)
             .fold(f64::INFINITY, f64::min);
-        md.push_str(&format!(
-            "| {m} | {} | {}/{} | {range} | {} | {} |\n",
-            cells.join(" | "),
-            id.count(m, m),
-            mine.len(),
+        table.row(std::iter::once(m.to_string()).chain(cells).chain([
+            format!("{}/{}", id.count(m, m), mine.len()),
+            range,
             id.limit(m).map_or("–".into(), |l| fmt(l, 2)),
-            fmt(other, 2)
-        ));
+            fmt(other, 2),
+        ]));
     }
+    md.push_str(&table.render());
     md.push_str(
         "\nAgents on the same scale (fingerprints and SDs from every mechanism signature): \
          identified only when the distance to the nearest mechanism lies within that \
-         mechanism's limit.\n\n| agent | nearest | distance | its self-distance | its limit | verdict |\n|---|---|---|---|---|---|\n",
+         mechanism's limit.\n\n",
     );
+    let mut table = Table::new([
+        "agent",
+        "nearest",
+        "distance",
+        "its self-distance",
+        "its limit",
+        "verdict",
+    ]);
     for a in &id.agents {
         let range = id.self_range(&a.nearest).map_or("–".into(), |(lo, hi)| {
             format!("{}–{}", fmt(lo, 2), fmt(hi, 2))
         });
-        md.push_str(&format!(
-            "| {} | {} | {} | {range} | {} | {} |\n",
-            a.agent,
-            a.nearest,
+        table.row([
+            a.agent.clone(),
+            a.nearest.clone(),
             fmt(a.distance, 2),
+            range,
             id.limit(&a.nearest).map_or("–".into(), |l| fmt(l, 2)),
             if a.identified {
                 "identified"
             } else {
                 "not identified"
             }
-        ));
+            .to_string(),
+        ]);
     }
+    md.push_str(&table.render());
     md
 }
 

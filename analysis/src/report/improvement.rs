@@ -2,6 +2,7 @@
 //! (`report --improvement METRIC`; rliable, Agarwal et al. 2021).
 
 use crate::report::leaderboard::Row;
+use chronocooked_env::markdown::Table;
 use std::path::{Path, PathBuf};
 
 /// Writes the probability of improvement on `metric` between every two rows with values
@@ -57,24 +58,22 @@ pub fn write_improvement(rows: &[Row], metric: &str, out: &Path) -> Result<Vec<P
     let header_refs: Vec<&str> = header.iter().map(String::as_str).collect();
     let csv = crate::export::csv_text(&header_refs, &table)?;
     let mut md = format!(
-        "# Probability of improvement on `{metric}`\n\nP(row > column): the share of (run of the row, run of the column) pairs in which the row's value is larger, ties counting one half (rliable). Runs: {}.\n\n| row |",
+        "# Probability of improvement on `{metric}`\n\nP(row > column): the share of (run of the row, run of the column) pairs in which the row's value is larger, ties counting one half (rliable). Runs: {}.\n\n",
         with.iter()
             .map(|(m, v)| format!("{m} {}", v.len()))
             .collect::<Vec<_>>()
             .join(", ")
     );
-    for (m, _) in &with {
-        md += &format!(" {m} |");
-    }
-    md += &format!("\n|---|{}\n", "---|".repeat(with.len()));
+    let mut shown = Table::new(std::iter::once("row").chain(with.iter().map(|(m, _)| *m)));
     for line in &table {
-        md += &format!("| {} |", line[0]);
-        for v in &line[1..] {
-            let v: f64 = v.parse().unwrap_or(f64::NAN);
-            md += &format!(" {v:.2} |");
-        }
-        md.push('\n');
+        shown.row(
+            std::iter::once(line[0].clone()).chain(line[1..].iter().map(|v| {
+                let v: f64 = v.parse().unwrap_or(f64::NAN);
+                format!("{v:.2}")
+            })),
+        );
     }
+    md += &shown.render();
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     let mut files = Vec::new();
     for (name, text) in [("improvement.csv", csv), ("improvement.md", md)] {

@@ -15,6 +15,7 @@ use crate::behaviour::aggregate::Spread;
 use crate::figures::markup::{figure, figure_file, inline_svg};
 pub use crate::report::improvement::write_improvement;
 pub use crate::report::leaderboard::{Robust, Row, load_metrics, load_rows, load_rows_from_runs};
+use chronocooked_env::markdown::Table;
 use maud::{Markup, html};
 use std::path::{Path, PathBuf};
 
@@ -377,13 +378,26 @@ fn fi_by_td_markdown(rows: &[Row]) -> String {
     if lines.is_empty() {
         return String::new();
     }
-    let mut md = format!(
-        "\n## Fixed interval per TD\n\n{FI_BY_TD}\n\n| model | TD (steps) | episodes | mean FOC (steps) | FOC / TD | FOC CV |\n|---|---:|---:|---:|---:|---:|\n"
-    );
+    let mut table = Table::new([
+        "model",
+        "TD (steps)",
+        "episodes",
+        "mean FOC (steps)",
+        "FOC / TD",
+        "FOC CV",
+    ])
+    .right(1..6);
     for (m, td, n, mean, ratio, cv) in lines {
-        md += &format!("| {m} | {td} | {n} | {mean} | {ratio} | {cv} |\n");
+        table.row([
+            m.to_string(),
+            td.to_string(),
+            n.to_string(),
+            mean.to_string(),
+            ratio.to_string(),
+            cv.to_string(),
+        ]);
     }
-    md
+    format!("\n## Fixed interval per TD\n\n{FI_BY_TD}\n\n{table}")
 }
 
 /// Writes `report.html`, `report.md` and `report.csv` into `out`.
@@ -425,24 +439,25 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
     let header: Vec<&str> = header.iter().map(String::as_str).collect();
     let csv = crate::export::csv_text(&header, &table)?;
     // Markdown.
-    let mut md = String::from("# Chronocooked leaderboard\n\n| model | runs |");
-    for (k, _) in &cols {
-        md += &format!(" {k} |");
-    }
-    md += "\n|---|---|";
-    md += &"---|".repeat(cols.len());
-    md.push('\n');
+    let mut leaderboard = Table::new(
+        ["model".to_string(), "runs".to_string()]
+            .into_iter()
+            .chain(cols.iter().map(|(k, _)| k.to_string())),
+    );
     for r in rows {
-        md += &format!("| {} | {} |", r.model, r.runs.len());
-        for (k, _) in &cols {
-            md += &format!(" {}", cell(r.values.get(*k)));
-            if let Some(i) = iqm_cell(r.robust.get(*k)) {
-                md += &format!("; {i}");
-            }
-            md += " |";
-        }
-        md.push('\n');
+        leaderboard.row(
+            [r.model.clone(), r.runs.len().to_string()]
+                .into_iter()
+                .chain(cols.iter().map(|(k, _)| {
+                    let mut c = cell(r.values.get(*k));
+                    if let Some(i) = iqm_cell(r.robust.get(*k)) {
+                        c += &format!("; {i}");
+                    }
+                    c
+                })),
+        );
     }
+    let mut md = format!("# Chronocooked leaderboard\n\n{leaderboard}");
     md += "\n## Columns\n\n";
     md += &format!("* `runs`: {RUNS_LEGEND}\n");
     if rows.iter().any(|r| r.baseline.is_some()) {

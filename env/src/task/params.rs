@@ -12,6 +12,7 @@
 #[cfg(doc)]
 use super::TaskConfig;
 use super::TaskFamily;
+use crate::markdown::Table;
 use crate::settings::{Rule, Spec, UNIT};
 
 /// Largest target duration of any task (steps).
@@ -418,24 +419,28 @@ pub fn rows(config: &super::TaskConfig) -> Vec<ParamRow> {
 /// The README's table of every registered task's own parameters, then the common ones
 /// (generated; a test compares it with the README).
 pub fn markdown() -> String {
-    let mut out = String::from(
-        "| task | key (aliases) | type | default | allowed | meaning |\n|---|---|---|---|---|---|\n",
-    );
-    let cell = |t: &str| t.replace('|', "\\|");
-    let line = |task: &str, r: &ParamRow| {
+    let mut table = Table::new([
+        "task",
+        "key (aliases)",
+        "type",
+        "default",
+        "allowed",
+        "meaning",
+    ]);
+    let mut line = |task: &str, r: &ParamRow| {
         let aliases = if r.aliases.is_empty() {
             String::new()
         } else {
             format!(" ({})", r.aliases.join(", "))
         };
-        format!(
-            "| {task} | `{}`{aliases} | {} | `{}` | {} | {} |\n",
-            r.key,
-            r.kind,
-            r.default,
-            cell(&r.allowed),
-            cell(&r.doc)
-        )
+        table.row([
+            task.to_string(),
+            format!("`{}`{aliases}", r.key),
+            r.kind.clone(),
+            format!("`{}`", r.default),
+            r.allowed.clone(),
+            r.doc.clone(),
+        ]);
     };
     let mut common = Vec::new();
     for t in crate::registry::all_tasks() {
@@ -446,12 +451,12 @@ pub fn markdown() -> String {
                     common.push(r);
                 }
             } else {
-                out += &line(&format!("`{}`", t.id), &r);
+                line(&format!("`{}`", t.id), &r);
             }
         }
     }
     for r in &common {
-        out += &line("every task", r);
+        line("every task", r);
     }
-    out
+    table.render()
 }

@@ -30,6 +30,7 @@
 
 use super::reference::lab_model;
 use chronocooked_analysis::behaviour::aggregate::Spread;
+use chronocooked_env::markdown::Table;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 
@@ -312,21 +313,20 @@ pub fn claims_markdown(m: &mut String, rows: &[ClaimRow]) {
         m,
         "\n## The paper's statements in words, tested (`claims.csv`)\n\nMeans over runs: Welch's t (the exact randomisation test where each side's runs share one value), two-sided p < 0.05; z = d/se. \"Equally well\" and \"at the minimum\": the 95% interval of the difference within 0.1. A \"generally\" verdict needs at least 3 tested settings (each TD, pair or level behind it is a row of `claims.csv`).\n"
     );
-    let _ = writeln!(m, "| statement | setting | test | lab | z | p | verdict |");
-    let _ = writeln!(m, "|---|---|---|---|---:|---:|---|");
+    let mut table =
+        Table::new(["statement", "setting", "test", "lab", "z", "p", "verdict"]).right([4, 5]);
     for r in rows.iter().filter(|r| r.summary) {
-        let _ = writeln!(
-            m,
-            "| {} | {} | {} | {} | {} | {} | {} |",
-            r.statement,
-            r.setting,
-            r.test,
-            r.lab,
+        table.row([
+            r.statement.to_string(),
+            r.setting.to_string(),
+            r.test.to_string(),
+            r.lab.to_string(),
             z_text(r.z),
             p_text(r.p),
-            r.verdict
-        );
+            r.verdict.to_string(),
+        ]);
     }
+    m.push_str(&table.render());
 }
 
 /// A p for tables: 3 decimals (`< 0.001` below), `–` for none.

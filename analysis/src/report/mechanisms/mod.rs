@@ -31,6 +31,7 @@ use crate::records::{METRICS, read_eval_info};
 use crate::report::leaderboard::Row;
 use card::card_and_scaling;
 use card_html::{card_charts, card_html};
+use chronocooked_env::markdown::Table;
 use maud::{Markup, html};
 use std::path::{Path, PathBuf};
 
@@ -128,19 +129,21 @@ fn nearest_tables(sigs: &[Signature]) -> Option<(Markup, String)> {
             }
         }
     };
-    let mut md = String::from("| agent | seeds |");
-    for m in &mechs {
-        md += &format!(" {m} |");
-    }
-    md += &format!(" nearest |\n|---|---|{}---|\n", "---|".repeat(mechs.len()));
+    let mut table = Table::new(
+        ["agent".to_string(), "seeds".to_string()]
+            .into_iter()
+            .chain(mechs.iter().map(|m| m.to_string()))
+            .chain(["nearest".to_string()]),
+    );
     for (a, seeds, cells, nearest) in &lines {
-        md += &format!("| {a} | {seeds} |");
-        for c in cells {
-            md += &format!(" {c} |");
-        }
-        md += &format!(" {nearest} |\n");
+        table.row(
+            [a.to_string(), seeds.to_string()]
+                .into_iter()
+                .chain(cells.iter().cloned())
+                .chain([nearest.clone()]),
+        );
     }
-    Some((html, md))
+    Some((html, table.render()))
 }
 
 /// A card's line-chart panels: `(file name, chart, caption)`.
@@ -263,14 +266,15 @@ pub fn mechanisms_section(rows: &[Row], out: &Path) -> Result<(Markup, String), 
         md += "Nearest timing mechanism (distance in feature SDs):\n\n";
         md += table_md;
     }
-    md += "\n| model | population | scaling index |\n|---|---|---|\n";
+    let mut table = Table::new(["model", "population", "scaling index"]);
     for c in &cards {
-        md += &format!(
-            "| {} | {} | {} |\n",
-            c.model,
-            c.population,
-            c.scaling_index.map_or("–".into(), |i| format!("{i:.2}"))
-        );
+        table.row([
+            c.model.clone(),
+            c.population.clone(),
+            c.scaling_index.map_or("–".into(), |i| format!("{i:.2}")),
+        ]);
     }
+    md += "\n";
+    md += &table.render();
     Ok((html, md))
 }
