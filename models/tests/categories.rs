@@ -7,7 +7,7 @@
 //! 28.3 vs 30), several probe steps from each other, and none of the docs use them.
 
 use chronocooked_env::{ChronoEnv, make_config};
-use chronocooked_models::timing::judgment::DecisionRule;
+use chronocooked_models::timing::judgment::{DecisionRule, ddm_judgment_boundary};
 use chronocooked_models::timing::timers::Timer;
 use chronocooked_models::timing::zoo::make_timing_agent;
 use rand::{Rng, SeedableRng};
@@ -112,7 +112,8 @@ fn median(mut values: Vec<f64>) -> f64 {
 /// cells' preferred times), which is not linear in `t` over the population's range, so
 /// the boundary is `f⁻¹(c)`, with `c` the median criterion of the decoded memories and `f`
 /// the median estimate over noisy trials (the 50% point of "estimate ≥ c").
-/// Drift-diffusion: the rule's mean of the anchors.
+/// Drift-diffusion: the 50% point of its judgment on its two noisy accumulators
+/// ([`ddm_judgment_boundary`]: the rule's criterion, raised ≈ 0.5% by the noise).
 fn predicted_boundary(
     timer: &mut Timer,
     rule: DecisionRule,
@@ -120,6 +121,13 @@ fn predicted_boundary(
     r: &mut Xoshiro256PlusPlus,
 ) -> f64 {
     let (lo, hi) = (ANCHORS[slot as usize], ANCHORS[slot as usize + 1]);
+    if let Timer::Ddm(d) = timer {
+        // Its remembered anchors are its drifts (learned exactly from the rewarded
+        // anchors); where the rule's criterion falls on its noisy accumulators.
+        let (s, l) = (f64::from(lo), f64::from(hi));
+        let noise = (d.acc.noise, d.memory_noise);
+        return ddm_judgment_boundary(s, l, rule.criterion(s, l), noise, d.acc.threshold);
+    }
     let (Some(a), Some(b)) = (remembered(timer, slot), remembered(timer, slot + 1)) else {
         return rule.criterion(f64::from(lo), f64::from(hi));
     };
@@ -167,11 +175,8 @@ fn predicted_boundary(
 /// How far (fraction) each model's measured boundary may lie from its prediction: the
 /// 50% point interpolated from 600 trials per whole step has an SE of ≈ 1% of the boundary
 /// (a binomial SE of 0.02 on a psychometric slope of ≈ 0.07 per step at 28 steps), so 3%
-/// is three SEs. Drift-diffusion: 4% (the log of a noisy accumulator is low on average, a
-/// bias of a few percent).
-fn tolerance(model: &str) -> f64 {
-    if model == "ddm" { 0.04 } else { 0.03 }
-}
+/// is three SEs.
+const TOLERANCE: f64 = 0.03;
 
 #[test]
 fn every_model_puts_each_boundary_where_its_rule_predicts() {
@@ -193,7 +198,7 @@ fn every_model_puts_each_boundary_where_its_rule_predicts() {
                 let want = predicted_boundary(&mut t, rule, b as u8, &mut r);
                 let bp = boundary_point(&mut t, b, &mut r);
                 measured.push(bp);
-                if (bp / want - 1.0).abs() > tolerance(model) {
+                if (bp / want - 1.0).abs() > TOLERANCE {
                     failures.push(format!(
                         "{model} {} boundary {lo}-{hi}: {bp:.2} (predicted {want:.2})",
                         rule.name()

@@ -15,7 +15,9 @@
 //!   the short and the long anchor (`z/S`, `z/L`, each from its own rewarded trials); the
 //!   ratios `t/S` and `t/L` are read as `x_S/z` and `x_L/z`, so "long" iff
 //!   `ln(x_S/z) + ln(x_L/z) ≥ 0` (Simen et al. 2011's timer, two drifts). Diffusion noise
-//!   in both accumulators gives the scalar variability of the judgment.
+//!   in both accumulators gives the scalar variability of the judgment, and puts its 50%
+//!   point ≈ 0.5% above the rule's criterion ([`ddm_judgment_boundary`]: the median of the
+//!   product of two independent Gaussian accumulators lies below the product of their means).
 //! * striatal beat frequency — a criterion pattern is stored at `√(T_S·T_L)` from one
 //!   sample of each anchor memory (memory noise, Matell & Meck 2004); "long" iff its
 //!   coincidence has been passed during the interval (its detector envelope peaked).
@@ -235,6 +237,117 @@ impl Decision {
 /// long-anchor accumulators' values `x_s`, `x_l` (a non-positive value is "short").
 pub fn ddm_ratio_rule(x_s: f64, x_l: f64, z: f64) -> bool {
     x_s > 0.0 && x_l > 0.0 && (x_s / z).ln() + (x_l / z).ln() >= 0.0
+}
+
+/// Probability that drift-diffusion's judgment says "long" after `t` steps of
+/// accumulation, for remembered anchors `s` < `l` (steps: drifts `z/s`, `z/l`), threshold
+/// `z`, noise coefficient `m` (diffusion `c = m √A`, as
+/// [`crate::timing::ddm::DriftDiffusion`]), memory noise `kappa` (each trial's drift of an
+/// anchor is its learned drift times `exp(κ ε)`, `ε ~ N(0, 1)`, drawn per anchor) and the
+/// rule's `criterion` between the anchors (steps; [`DecisionRule::criterion`]).
+///
+/// The judgment compares the accumulators' geometric reading `τ = √(x_S/A_S · x_L/A_L)`
+/// (`A` the learned drifts) with the criterion — for the ratio rule, whose criterion is
+/// `√(s·l)`, that is exactly [`ddm_ratio_rule`]'s `x_S·x_L ≥ z²`. Given the trial's drifts
+/// `a_S`, `a_L`, each accumulator's value after `t` steps is Gaussian, `x ~ N(a t, m² a t)`
+/// (the sum of `t` Gaussian increments), the two independent, so with
+/// `k = criterion² z² / (s l)`
+/// `P(long | a_S, a_L) = ∫₀^∞ φ_S(x) · (1 − Φ((k/x − μ_L)/σ_L)) dx`
+/// (a non-positive value is "short"; Simpson, 400 intervals over `μ_S ± 10 σ_S`), averaged
+/// over the two memory factors (midpoint rule, 40 points per factor over ±5 SD). Without
+/// noise it is the step at the criterion.
+pub fn ddm_judgment_p_long(
+    t: f64,
+    s: f64,
+    l: f64,
+    criterion: f64,
+    noise: (f64, f64),
+    z: f64,
+) -> f64 {
+    let (m, kappa) = noise;
+    let k = criterion * criterion * z * z / (s * l);
+    // Memory factors: (value, weight) pairs of exp(κ ε).
+    let factors: Vec<(f64, f64)> = if kappa > 0.0 {
+        const POINTS: usize = 40;
+        let width = 10.0 / POINTS as f64;
+        let raw: Vec<(f64, f64)> = (0..POINTS)
+            .map(|i| {
+                let e = -5.0 + (i as f64 + 0.5) * width;
+                ((kappa * e).exp(), (-0.5 * e * e).exp())
+            })
+            .collect();
+        let total: f64 = raw.iter().map(|(_, w)| w).sum();
+        raw.into_iter().map(|(f, w)| (f, w / total)).collect()
+    } else {
+        vec![(1.0, 1.0)]
+    };
+    let mut p = 0.0;
+    for &(f_s, w_s) in &factors {
+        for &(f_l, w_l) in &factors {
+            let (a_s, a_l) = (f_s * z / s, f_l * z / l);
+            p += w_s
+                * w_l
+                * product_at_least(
+                    a_s * t,
+                    m * (a_s * t).sqrt(),
+                    a_l * t,
+                    m * (a_l * t).sqrt(),
+                    k,
+                );
+        }
+    }
+    p.clamp(0.0, 1.0)
+}
+
+/// `P(x_S · x_L ≥ k)` for independent `x_S ~ N(μ_S, σ_S²)`, `x_L ~ N(μ_L, σ_L²)`, both
+/// positive (a non-positive value fails).
+fn product_at_least(mu_s: f64, sd_s: f64, mu_l: f64, sd_l: f64, k: f64) -> f64 {
+    use statrs::distribution::{ContinuousCDF, Normal};
+    if sd_s == 0.0 || sd_l == 0.0 {
+        return if mu_s > 0.0 && mu_l > 0.0 && mu_s * mu_l >= k {
+            1.0
+        } else {
+            0.0
+        };
+    }
+    let unit = Normal::standard();
+    let (lo, hi) = ((mu_s - 10.0 * sd_s).max(0.0), mu_s + 10.0 * sd_s);
+    const N: usize = 400;
+    let h = (hi - lo) / N as f64;
+    let f = |x: f64| {
+        if x <= 0.0 {
+            return 0.0;
+        }
+        let density = (-0.5 * ((x - mu_s) / sd_s).powi(2)).exp()
+            / (sd_s * (2.0 * std::f64::consts::PI).sqrt());
+        density * (1.0 - unit.cdf((k / x - mu_l) / sd_l))
+    };
+    let mut sum = f(lo) + f(hi);
+    for i in 1..N {
+        sum += f(lo + i as f64 * h) * if i % 2 == 1 { 4.0 } else { 2.0 };
+    }
+    sum * h / 3.0
+}
+
+/// Where drift-diffusion's category boundary between anchors `s` < `l` lies on noisy
+/// accumulators and memories (`noise` = (diffusion `m`, memory `κ`)): the `t` (steps) at
+/// which [`ddm_judgment_p_long`] is one half. The diffusion noise puts it above the rule's
+/// criterion — the median of the product `x_S x_L` of two independent Gaussians lies below
+/// the product of their means — by ≈ 0.5% at the default m 0.15 for any anchor pair (the
+/// accumulators' relative spreads there are `m/√(t/s)` and `m/√(t/l)`, which depend on the
+/// pair only through its ratio); the log-symmetric memory factors widen the curve without
+/// moving its midpoint much.
+pub fn ddm_judgment_boundary(s: f64, l: f64, criterion: f64, noise: (f64, f64), z: f64) -> f64 {
+    let (mut lo, mut hi) = (s, l);
+    for _ in 0..50 {
+        let mid = 0.5 * (lo + hi);
+        if ddm_judgment_p_long(mid, s, l, criterion, noise, z) < 0.5 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
 }
 
 /// Boundaries between neighbouring remembered anchors, and the category of a duration:
@@ -457,5 +570,56 @@ mod tests {
             );
         }
         assert!(!ddm_ratio_rule(-0.1, 2.0, 1.0));
+    }
+
+    #[test]
+    fn the_ratio_rules_probability_is_what_two_simulated_accumulators_give() {
+        use crate::timing::ddm::DriftDiffusion;
+        use rand::{Rng, SeedableRng};
+        // Anchors 7 and 13 (no doc uses them), the default noises (diffusion 0.15, memory
+        // 0.2), z 1: the two accumulators stepped as the agent steps them, judged by the
+        // rule, against the integral.
+        let (s, l, m, kappa, z) = (7.0, 13.0, 0.15, 0.2, 1.0);
+        let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(11);
+        let trials = 40_000;
+        for t in [7u32, 9, 10, 13] {
+            let mut long = 0;
+            for _ in 0..trials {
+                // This trial's memory samples of the two drifts, then the accumulators.
+                let e_s: f64 = rng.sample(rand_distr::StandardNormal);
+                let e_l: f64 = rng.sample(rand_distr::StandardNormal);
+                let mut a = DriftDiffusion::new((kappa * e_s).exp() * z / s, z, m);
+                let mut b = DriftDiffusion::new((kappa * e_l).exp() * z / l, z, m);
+                for _ in 0..t {
+                    a.step(1.0, &mut rng);
+                    b.step(1.0, &mut rng);
+                }
+                long += usize::from(ddm_ratio_rule(a.x, b.x, z));
+            }
+            let measured = long as f64 / trials as f64;
+            let p = ddm_judgment_p_long(f64::from(t), s, l, (s * l).sqrt(), (m, kappa), z);
+            let se = (p * (1.0 - p) / trials as f64).sqrt().max(1e-4);
+            assert!(
+                (measured - p).abs() < 4.0 * se,
+                "t {t}: simulated {measured:.4}, integral {p:.4}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_noisy_ratio_rules_boundary_lies_just_above_the_geometric_mean() {
+        // Without noise the geometric mean exactly; with the default diffusion noise ≈ 0.5%
+        // above it for any pair, growing with the noise.
+        for (s, l) in [(7.0, 13.0), (4.0, 8.0), (16.0, 28.0)] {
+            let gm = f64::sqrt(s * l);
+            assert!((ddm_judgment_boundary(s, l, gm, (0.0, 0.0), 1.0) - gm).abs() < 1e-9);
+            // Memory noise alone (log-symmetric factors, exact accumulators): the GM.
+            let memory = ddm_judgment_boundary(s, l, gm, (0.0, 0.2), 1.0) / gm - 1.0;
+            assert!(memory.abs() < 1e-3, "{s}-{l}: {memory}");
+            let b = ddm_judgment_boundary(s, l, gm, (0.15, 0.0), 1.0) / gm - 1.0;
+            assert!((0.002..0.01).contains(&b), "{s}-{l}: {b}");
+            let wider = ddm_judgment_boundary(s, l, gm, (0.3, 0.0), 1.0) / gm - 1.0;
+            assert!(wider > 2.0 * b, "{s}-{l}: {wider} vs {b}");
+        }
     }
 }
