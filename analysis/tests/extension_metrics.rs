@@ -340,6 +340,16 @@ fn multi_oven_curves_interference_offsets_and_orders_match_the_generator() {
         m.orders,
         vec![("0-1-2".to_string(), 2500), ("2-0-1".to_string(), 2500)]
     );
+    // The leaderboard's columns: the mean accuracy and WF over the ovens, and the mean
+    // interference, which oven 3's wider judgment makes positive.
+    let h = chronocooked_analysis::behaviour::aggregate::headline(
+        &chronocooked_analysis::behaviour::metrics::compute_metrics("scripted", &recs, 1),
+    );
+    let mean = |v: Vec<f64>| v.iter().sum::<f64>() / v.len() as f64;
+    let d_wf = mean(m.interference.iter().map(|i| i.d_wf).collect());
+    assert!((h["mo_d_wf"] - d_wf).abs() < 1e-12 && d_wf > 0.0, "{h:?}");
+    let accuracy = mean(m.per_oven.iter().map(|c| c.accuracy).collect());
+    assert!((h["mo_accuracy"] - accuracy).abs() < 1e-12, "{h:?}");
     // Records alternate three-oven and one-oven episodes: the second three-oven one (e = 1).
     assert_eq!(delivery_order(&recs[2].episode.ovens), vec![2, 0, 1]);
     // A multi-oven record without the ovens' states is refused, not scored without them.
@@ -347,4 +357,26 @@ fn multi_oven_curves_interference_offsets_and_orders_match_the_generator() {
     bare.episode.ovens.clear();
     let err = bare.validate().unwrap_err();
     assert!(err.contains("`ovens`"), "{err}");
+}
+
+#[test]
+fn the_leaderboard_columns_of_a_categorizer_are_its_known_boundary_and_weber_fraction() {
+    // A geometric-mean categorizer with σ 0.1 on anchors 5, 11, 23 (no doc uses them):
+    // boundary / GM ≈ 1, WF ≈ sinh(0.6745 σ), and an accuracy the headline copies.
+    let sigma = [0.1];
+    let recs = categorize(&[5, 11, 23], &sigma, gm, 300, 21);
+    let m = chronocooked_analysis::behaviour::metrics::compute_metrics("scripted", &recs, 3);
+    let h = chronocooked_analysis::behaviour::aggregate::headline(&m);
+    let ma = m.multi_anchor.as_ref().expect("multi-anchor metrics");
+    assert_eq!(h["ma_accuracy"], ma.anchor_accuracy);
+    assert!(
+        (h["ma_bp_over_gm"] - 1.0).abs() < 0.03,
+        "{}",
+        h["ma_bp_over_gm"]
+    );
+    let wf = wf_of(sigma[0]);
+    assert!((h["ma_wf"] - wf).abs() / wf < 0.2, "{} vs {wf}", h["ma_wf"]);
+    for key in ["mo_accuracy", "rp_slope", "fi_success"] {
+        assert!(!h.contains_key(key), "{key} without its task");
+    }
 }

@@ -66,7 +66,14 @@ fn a_gain_contexts_bias_is_measured_against_its_target() {
         reference_conditions(&chronocooked_env::Task::parse("Reproduction-v0", &sets).unwrap())
             .unwrap();
     let recs = run_protocol(&mut oracle, &conds, Mode::Reference, 4).unwrap();
-    let m = compute_metrics("oracle", &recs, 0).reproduction.unwrap();
+    let all = compute_metrics("oracle", &recs, 0);
+    // The leaderboard's columns: every production in its window, slope per unit of g·ts 1
+    // at both gains.
+    let h = chronocooked_analysis::behaviour::aggregate::headline(&all);
+    assert_eq!(h["rp_success"], 1.0);
+    assert!((h["rp_slope"] - 1.0).abs() < 0.07, "{h:?}");
+    assert!(h["rp_bias"] < 0.5, "{h:?}");
+    let m = all.reproduction.unwrap();
     assert_eq!(m.contexts.len(), 2);
     for c in &m.contexts {
         let (bias, slope) = (c.bias.unwrap(), c.slope.unwrap());

@@ -70,6 +70,77 @@ pub fn headline(m: &Metrics) -> BTreeMap<String, f64> {
         h.insert("unc_success".into(), u.success_normal);
         h.insert("unc_button_use".into(), u.button_use);
     }
+    let mean_of = |v: Vec<f64>| {
+        let s = Spread::of(v.into_iter().filter(|x| x.is_finite()));
+        (s.n > 0).then_some(s.mean)
+    };
+    let mut insert = |key: &str, v: Option<f64>| {
+        if let Some(v) = v {
+            h.insert(key.into(), v);
+        }
+    };
+    if let Some(ma) = &m.multi_anchor {
+        let fits: Vec<_> = ma
+            .boundaries
+            .iter()
+            .filter_map(|b| b.fit.as_ref().map(|f| (b, f)))
+            .collect();
+        insert(
+            "ma_accuracy",
+            Some(ma.anchor_accuracy).filter(|x| x.is_finite()),
+        );
+        insert(
+            "ma_bp_over_gm",
+            mean_of(fits.iter().map(|(b, f)| f.bp / b.gm).collect()),
+        );
+        insert("ma_wf", mean_of(fits.iter().map(|(_, f)| f.wf).collect()));
+    }
+    if let Some(mo) = &m.multi_oven {
+        insert(
+            "mo_accuracy",
+            mean_of(mo.per_oven.iter().map(|o| o.accuracy).collect()),
+        );
+        insert(
+            "mo_wf",
+            mean_of(
+                mo.per_oven
+                    .iter()
+                    .filter_map(|o| o.fit.as_ref().map(|f| f.wf))
+                    .collect(),
+            ),
+        );
+        insert(
+            "mo_d_wf",
+            mean_of(mo.interference.iter().map(|i| i.d_wf).collect()),
+        );
+    }
+    if let Some(rp) = &m.reproduction {
+        let success: Vec<f64> = m
+            .conditions
+            .iter()
+            .filter(|c| c.kind == ConditionKind::Reproduction)
+            .map(|c| c.success_rate)
+            .collect();
+        insert("rp_success", mean_of(success));
+        // Slope of tp on g·ts: 1 = no regression to the mean at any gain.
+        insert(
+            "rp_slope",
+            mean_of(
+                rp.contexts
+                    .iter()
+                    .filter_map(|c| c.slope.map(|s| s / c.gain))
+                    .collect(),
+            ),
+        );
+        insert(
+            "rp_bias",
+            mean_of(rp.contexts.iter().filter_map(|c| c.bias).collect()),
+        );
+        insert(
+            "rp_weber",
+            mean_of(rp.contexts.iter().filter_map(|c| c.weber).collect()),
+        );
+    }
     h
 }
 

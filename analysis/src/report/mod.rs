@@ -26,7 +26,7 @@ pub const RUNS_LEGEND: &str = "evaluation folders aggregated in the row (seeds, 
 pub const BASELINE_LEGEND: &str = "rows labelled `model (study)` are committed baselines: the compact results of that study in the repository (results/<study>/jobs/, one run per job), grouped exactly as evaluation folders are";
 
 /// What every column means and which direction is better.
-pub const COLUMNS: [(&str, &str); 31] = [
+pub const COLUMNS: [(&str, &str); 41] = [
     (
         "fi_success",
         "FI: full-reward deliveries at the trained TD (higher is better)",
@@ -89,6 +89,46 @@ pub const COLUMNS: [(&str, &str); 31] = [
     (
         "unc_adapted",
         "uncertainty adaptation: fraction of runs that adapted within the budget (higher is better)",
+    ),
+    (
+        "ma_accuracy",
+        "multi-anchor: deliveries to the anchor's own counter at the anchor TDs, among deliveries (higher is better; bounded by the anchors' spacing)",
+    ),
+    (
+        "ma_bp_over_gm",
+        "multi-anchor: boundary between neighbouring anchors / their geometric mean, mean over the fitted boundaries",
+    ),
+    (
+        "ma_wf",
+        "multi-anchor: Weber fraction DL/BP, mean over the fitted boundaries (lower = sharper)",
+    ),
+    (
+        "mo_accuracy",
+        "multi-oven: correct counter at S and L, mean over the ovens (higher is better)",
+    ),
+    (
+        "mo_wf",
+        "multi-oven: Weber fraction of each oven's curve, mean over the ovens",
+    ),
+    (
+        "mo_d_wf",
+        "multi-oven interference: each oven's WF minus the same agent's one-oven WF, mean over the ovens (0 = no interference)",
+    ),
+    (
+        "rp_success",
+        "reproduction: productions inside the reward window (higher is better)",
+    ),
+    (
+        "rp_slope",
+        "reproduction: slope of mean tp against g·ts per prior and gain, mean over contexts (1 = no regression to the mean, < 1 = central tendency)",
+    ),
+    (
+        "rp_bias",
+        "reproduction: BIAS (root mean squared difference of mean tp and g·ts, steps), mean over contexts",
+    ),
+    (
+        "rp_weber",
+        "reproduction: Weber fraction of tp (SD / mean), mean over contexts",
     ),
     (
         "neural_units",
@@ -156,6 +196,16 @@ pub fn column_title(key: &str) -> &'static str {
         "unc_button_use" => "button use (never ready)",
         "unc_episodes_to_adapt" => "episodes to adapt",
         "unc_adapted" => "runs adapted",
+        "ma_accuracy" => "category accuracy",
+        "ma_bp_over_gm" => "boundary / GM",
+        "ma_wf" => "category WF",
+        "mo_accuracy" => "oven accuracy",
+        "mo_wf" => "oven WF",
+        "mo_d_wf" => "ΔWF vs one oven",
+        "rp_success" => "in window",
+        "rp_slope" => "tp~ts slope",
+        "rp_bias" => "BIAS (steps)",
+        "rp_weber" => "tp Weber fraction",
         "neural_units" => "units",
         "frac_ramp" => "ramps",
         "frac_time_field" => "time fields",
@@ -264,6 +314,9 @@ pub fn column_group(key: &str) -> &'static str {
         k if k.starts_with("mt_") => "Multi-timer",
         k if k.starts_with("dual_") => "Dual task",
         k if k.starts_with("unc_") => "Uncertainty",
+        k if k.starts_with("ma_") => "Multi-anchor categorization",
+        k if k.starts_with("mo_") => "Multi-oven bisection",
+        k if k.starts_with("rp_") => "Temporal reproduction",
         _ => "Neural activity",
     }
 }
@@ -549,6 +602,9 @@ mod tests {
                 "{k}: title {t:?} repeats within {}",
                 column_group(k)
             );
+            // Only the neural summary's columns sit under "Neural activity".
+            let neural = leaderboard::NEURAL_COLUMNS.contains(&k);
+            assert_eq!(column_group(k) == "Neural activity", neural, "{k}");
         }
     }
 }
