@@ -169,6 +169,40 @@ mod tests {
         }
     }
 
+    /// Two runs pooled: each ts's mean production is the mean of the runs' means, trials
+    /// add up, the slope is averaged, and the observer is the one both chose with the mean
+    /// of their noises; a context only the second run has is not drawn.
+    #[test]
+    fn pooled_runs_average_their_means_slopes_and_observers() {
+        let choice = |best: &str, wm: f64| ObserverChoice {
+            best: best.into(),
+            wm,
+            wp: 0.04,
+            log_likelihoods: vec![],
+        };
+        let a = ReproductionMetrics {
+            contexts: vec![context(0, 1.0, Some(choice("BLS", 0.1)))],
+        };
+        let mut b_context = context(0, 1.0, Some(choice("BLS", 0.2)));
+        b_context.by_ts = vec![(8, 11.0, 3.0, 6), (10, 12.0, 1.0, 6), (12, 13.0, 1.0, 6)];
+        b_context.slope = Some(0.7);
+        let b = ReproductionMetrics {
+            contexts: vec![b_context, context(1, 1.0, None)],
+        };
+        let pooled = pool_reproduction(&[&a, &b]).unwrap();
+        assert_eq!(pooled.contexts.len(), 1);
+        let c = &pooled.contexts[0];
+        assert_eq!(
+            c.by_ts,
+            vec![(8, 10.0, 2.0, 10), (10, 11.0, 1.0, 10), (12, 12.0, 1.0, 10)]
+        );
+        assert!((c.slope.unwrap() - 0.6).abs() < 1e-12);
+        let o = c.observer.as_ref().unwrap();
+        assert_eq!(o.best, "BLS");
+        assert!((o.wm - 0.15).abs() < 1e-12 && (o.wp - 0.04).abs() < 1e-12);
+        assert!(pool_reproduction(&[]).is_none());
+    }
+
     /// Dots at the mean productions, the observer's line from the analytic prediction (a
     /// BLS observer regresses: its line is flatter than the veridical one and passes near
     /// the prior's mean at its middle), one veridical line per gain.
@@ -247,4 +281,135 @@ mod tests {
         assert!(c.series[0].label.contains("0.90"), "{}", c.series[0].label);
         assert!(speed_chart("t", &[b]).is_none());
     }
+}
+
+/// The runs of one model pooled for its panel of the report's grid: per context (prior,
+/// gain) of the first run, each `ts`'s mean `tp` averaged over the runs (SD the mean of
+/// theirs, trials summed), the slope averaged, and the observer most runs chose with the
+/// mean of their `wm` and `wp` — the fields [`reproduction_chart`] draws. `None` without
+/// runs.
+pub fn pool_reproduction(runs: &[&ReproductionMetrics]) -> Option<ReproductionMetrics> {
+    let first = runs.first()?;
+    let mean = |v: Vec<f64>| {
+        let v: Vec<f64> = v.into_iter().filter(|x| x.is_finite()).collect();
+        (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
+    };
+    let contexts = first
+        .contexts
+        .iter()
+        .map(|c0| {
+            let same: Vec<&ContextSummary> = runs
+                .iter()
+                .filter_map(|r| {
+                    r.contexts
+                        .iter()
+                        .find(|c| c.prior == c0.prior && c.gain == c0.gain)
+                })
+                .collect();
+            let mut pooled = c0.clone();
+            pooled.by_ts = c0
+                .by_ts
+                .iter()
+                .map(|&(ts, _, _, _)| {
+                    let at: Vec<&(u32, f64, f64, usize)> = same
+                        .iter()
+                        .filter_map(|c| c.by_ts.iter().find(|b| b.0 == ts))
+                        .collect();
+                    (
+                        ts,
+                        mean(at.iter().map(|b| b.1).collect()).unwrap_or(f64::NAN),
+                        mean(at.iter().map(|b| b.2).collect()).unwrap_or(f64::NAN),
+                        at.iter().map(|b| b.3).sum(),
+                    )
+                })
+                .collect();
+            pooled.slope = mean(same.iter().filter_map(|c| c.slope).collect());
+            let choices: Vec<&crate::behaviour::reproduction::ObserverChoice> =
+                same.iter().filter_map(|c| c.observer.as_ref()).collect();
+            let mut names: Vec<&str> = choices.iter().map(|o| o.best.as_str()).collect();
+            names.sort_unstable();
+            let best = names
+                .iter()
+                .max_by_key(|n| names.iter().filter(|m| m == n).count())
+                .map(|n| n.to_string());
+            pooled.observer = best.map(|best| {
+                let of_best: Vec<_> = choices.iter().filter(|o| o.best == best).collect();
+                crate::behaviour::reproduction::ObserverChoice {
+                    wm: mean(of_best.iter().map(|o| o.wm).collect()).unwrap_or(f64::NAN),
+                    wp: mean(of_best.iter().map(|o| o.wp).collect()).unwrap_or(f64::NAN),
+                    log_likelihoods: Vec::new(),
+                    best,
+                }
+            });
+            pooled
+        })
+        .collect();
+    Some(ReproductionMetrics { contexts })
+}
+
+/// The runs' KiNeT speeds pooled for one model's speed panel: per context of the first
+/// run, each `ts`'s relative speed averaged over the runs that have it, and the scaling
+/// index averaged. Empty without runs.
+pub fn pool_speed(runs: &[&[ProductionSpeed]]) -> Vec<ProductionSpeed> {
+    let Some(first) = runs.first() else {
+        return Vec::new();
+    };
+    first
+        .iter()
+        .map(|c0| {
+            let same: Vec<&ProductionSpeed> = runs
+                .iter()
+                .filter_map(|r| r.iter().find(|c| c.prior == c0.prior && c.gain == c0.gain))
+                .collect();
+            let mean = |v: Vec<f64>| {
+                let v: Vec<f64> = v.into_iter().filter(|x| x.is_finite()).collect();
+                (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
+            };
+            let mut pooled = c0.clone();
+            for x in &mut pooled.conditions {
+                x.relative_speed = mean(
+                    same.iter()
+                        .filter_map(|c| c.conditions.iter().find(|y| y.ts == x.ts))
+                        .filter_map(|y| y.relative_speed)
+                        .collect(),
+                );
+            }
+            pooled.scaling_index = mean(same.iter().filter_map(|c| c.scaling_index).collect());
+            pooled
+        })
+        .collect()
+}
+
+/// The report's reproduction grid, one row per model: its runs' pooled reproduction panel
+/// ([`pool_reproduction`], [`reproduction_chart`]) and, when any model has one, its pooled
+/// speed panel ([`pool_speed`], [`speed_chart`]). Rows without reproduction runs are left
+/// out; returns the files written (`<stem>.svg` / `.png`), none without any.
+pub fn reproduction_grid(
+    stem: &std::path::Path,
+    rows: &[(String, Vec<ReproductionMetrics>, Vec<Vec<ProductionSpeed>>)],
+) -> Result<Vec<std::path::PathBuf>, super::FigureError> {
+    let rows: Vec<_> = rows.iter().filter(|r| !r.1.is_empty()).collect();
+    if rows.is_empty() {
+        return Ok(Vec::new());
+    }
+    let with_speed = rows.iter().any(|r| !r.2.is_empty());
+    let mut charts = Vec::new();
+    for (model, metrics, speeds) in &rows {
+        let runs: Vec<&ReproductionMetrics> = metrics.iter().collect();
+        // Short titles: a panel is 420 pixels wide.
+        charts.push(pool_reproduction(&runs).map(|m| Chart {
+            title: format!("{model}: tp vs ts"),
+            ..reproduction_chart(model, &m)
+        }));
+        if with_speed {
+            let runs: Vec<&[ProductionSpeed]> = speeds.iter().map(Vec::as_slice).collect();
+            charts.push(speed_chart(&format!("{model}: speed"), &pool_speed(&runs)));
+        }
+    }
+    let shape = if with_speed {
+        (rows.len(), 2)
+    } else {
+        super::grid::grid_shape(rows.len(), 1)
+    };
+    super::write_panels(stem, shape, &charts)
 }

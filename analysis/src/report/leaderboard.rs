@@ -10,7 +10,9 @@
 use crate::behaviour::aggregate::{Spread, aggregate, headline};
 use crate::behaviour::foc::{FocStats, pool_foc_stats, scalar_property};
 use crate::behaviour::metrics::{BisectionMetrics, Metrics};
+use crate::behaviour::reproduction::ReproductionMetrics;
 use crate::job_folder;
+use crate::neural::production::ProductionSpeed;
 use crate::neural::summary::NeuralSummary;
 use crate::records::{EVAL_INFO, RECORDS, read_eval_info};
 use crate::stats::robust::{BOOTSTRAP_RESAMPLES, iqm, stratified_bootstrap_ci};
@@ -28,6 +30,11 @@ pub struct Row {
     pub values: BTreeMap<String, Spread>,
     /// Bisection metrics of every run that has them (for the psychometric grid).
     pub bisection: Vec<BisectionMetrics>,
+    /// Reproduction metrics of every run that has them (for the reproduction grid).
+    pub reproduction: Vec<ReproductionMetrics>,
+    /// The KiNeT speed after Set of every run whose neural summary has one (for the
+    /// reproduction grid's speed panels).
+    pub speed: Vec<Vec<ProductionSpeed>>,
     /// Fixed interval: first-oven-check statistics per TD, pooled over the row's runs
     /// (sorted by TD; empty without FI runs).
     pub foc: Vec<FocStats>,
@@ -411,11 +418,24 @@ pub fn group_rows(results: Vec<RunResult>) -> Vec<Row> {
             if let Some(c) = wf_constancy(&bisection) {
                 values.insert("wf_cv_anchors".into(), Spread::of([c]));
             }
+            let reproduction = g
+                .metrics
+                .iter()
+                .filter_map(|m| m.reproduction.clone())
+                .collect();
+            let speed = g
+                .neural
+                .iter()
+                .map(|s| s.production_speed.clone())
+                .filter(|s| !s.is_empty())
+                .collect();
             Row {
                 model: g.label,
                 runs: g.runs,
                 values,
                 bisection,
+                reproduction,
+                speed,
                 foc: pooled,
                 robust,
                 baseline: None,

@@ -423,6 +423,9 @@ fn columns_legend(cols: &[(&str, &str)], baselines: bool) -> Markup {
     }
 }
 
+/// Caption of the reproduction grid.
+const REPRODUCTION_CAPTION: &str = "Per model (runs pooled): left, mean production tp against the sample interval ts, one colour per prior × gain, the best Bayesian observer's predicted mean (line, its mean wm and wp over the runs that chose it) and tp = g·ts; right, KiNeT's relative speed of the population trajectory after Set against ts (mean over runs), with the time-stretched answer ts_ref/ts and the fixed-speed clock 1";
+
 /// Caption of the psychometric grid.
 const GRID_CAPTION: &str = "P(long) per probe: grey dots = runs, blue = mean over runs, red = logistic fit of the pooled counts; AM/GM = arithmetic/geometric mean of the anchors, BP = bisection point";
 
@@ -537,6 +540,22 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
         Some(svg) => Some(inline_svg(svg)?),
         None => None,
     };
+    let reproduction_rows: Vec<_> = rows
+        .iter()
+        .map(|r| (r.model.clone(), r.reproduction.clone(), r.speed.clone()))
+        .collect();
+    let reproduction = crate::figures::reproduction::reproduction_grid(
+        &out.join("reproduction_grid"),
+        &reproduction_rows,
+    )
+    .map_err(|e| e.to_string())?;
+    let reproduction_svg = match reproduction
+        .iter()
+        .find(|p| p.extension().is_some_and(|e| e == "svg"))
+    {
+        Some(svg) => Some(inline_svg(svg)?),
+        None => None,
+    };
     let row_figures = rows
         .iter()
         .filter(|r| r.baseline.is_none())
@@ -553,6 +572,10 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
                 h2 { "Psychometric curves (bisection)" }
                 (figure(svg, GRID_CAPTION, Some("wide")))
             }
+            @if let Some(svg) = reproduction_svg {
+                h2 { "Temporal reproduction" }
+                (figure(svg, REPRODUCTION_CAPTION, Some("wide")))
+            }
             @for (model, figures) in row_figures {
                 h2 { (model) }
                 (figures)
@@ -565,6 +588,12 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
     {
         md += "\n## Psychometric curves\n\n![psychometric grid](psychometric_grid.png)\n";
     }
+    if reproduction
+        .iter()
+        .any(|p| p.extension().is_some_and(|e| e == "png"))
+    {
+        md += "\n## Temporal reproduction\n\n![reproduction grid](reproduction_grid.png)\n";
+    }
     let mut files = Vec::new();
     for (name, text) in [
         ("report.html", html),
@@ -576,6 +605,7 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
         files.push(p);
     }
     files.extend(grid);
+    files.extend(reproduction);
     Ok(files)
 }
 

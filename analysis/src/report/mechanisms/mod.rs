@@ -167,6 +167,8 @@ pub fn agent_card(
         runs: fi_evals.to_vec(),
         values: Default::default(),
         bisection: Vec::new(),
+        reproduction: Vec::new(),
+        speed: Vec::new(),
         foc: Vec::new(),
         robust: Default::default(),
         baseline: None,

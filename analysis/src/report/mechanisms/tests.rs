@@ -97,6 +97,8 @@ fn row(root: &Path, model: &str, sets: Vec<ActivityDataset>) -> Row {
         runs,
         values: BTreeMap::new(),
         bisection: Vec::new(),
+        reproduction: Vec::new(),
+        speed: Vec::new(),
         foc: Vec::new(),
         robust: Default::default(),
         baseline: None,
