@@ -147,6 +147,152 @@ pub fn speed_chart(title: &str, contexts: &[ProductionSpeed]) -> Option<Chart> {
     })
 }
 
+/// One model's runs for the reproduction grid.
+pub struct ReproductionRuns {
+    /// Row label.
+    pub model: String,
+    /// Every run's reproduction metrics.
+    pub metrics: Vec<ReproductionMetrics>,
+    /// Every run's KiNeT speeds after Set (runs without a neural summary left out).
+    pub speed: Vec<Vec<ProductionSpeed>>,
+}
+
+/// The runs of one model pooled for its panel of the report's grid: per context (prior,
+/// gain) of the first run, each `ts`'s mean `tp` averaged over the runs (SD the mean of
+/// theirs, trials summed), the slope averaged, and the observer most runs chose with the
+/// mean of their `wm` and `wp` — the fields [`reproduction_chart`] draws. `None` without
+/// runs.
+pub fn pool_reproduction(runs: &[&ReproductionMetrics]) -> Option<ReproductionMetrics> {
+    let first = runs.first()?;
+    let mean = |v: Vec<f64>| {
+        let v: Vec<f64> = v.into_iter().filter(|x| x.is_finite()).collect();
+        (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
+    };
+    let contexts = first
+        .contexts
+        .iter()
+        .map(|c0| {
+            let same: Vec<&ContextSummary> = runs
+                .iter()
+                .filter_map(|r| {
+                    r.contexts
+                        .iter()
+                        .find(|c| c.prior == c0.prior && c.gain == c0.gain)
+                })
+                .collect();
+            let mut pooled = c0.clone();
+            pooled.by_ts = c0
+                .by_ts
+                .iter()
+                .map(|&(ts, _, _, _)| {
+                    let at: Vec<&(u32, f64, f64, usize)> = same
+                        .iter()
+                        .filter_map(|c| c.by_ts.iter().find(|b| b.0 == ts))
+                        .collect();
+                    (
+                        ts,
+                        mean(at.iter().map(|b| b.1).collect()).unwrap_or(f64::NAN),
+                        mean(at.iter().map(|b| b.2).collect()).unwrap_or(f64::NAN),
+                        at.iter().map(|b| b.3).sum(),
+                    )
+                })
+                .collect();
+            pooled.slope = mean(same.iter().filter_map(|c| c.slope).collect());
+            let choices: Vec<&crate::behaviour::reproduction::ObserverChoice> =
+                same.iter().filter_map(|c| c.observer.as_ref()).collect();
+            let mut names: Vec<&str> = choices.iter().map(|o| o.best.as_str()).collect();
+            names.sort_unstable();
+            let best = names
+                .iter()
+                .max_by_key(|n| names.iter().filter(|m| m == n).count())
+                .map(|n| n.to_string());
+            pooled.observer = best.map(|best| {
+                let of_best: Vec<_> = choices.iter().filter(|o| o.best == best).collect();
+                crate::behaviour::reproduction::ObserverChoice {
+                    wm: mean(of_best.iter().map(|o| o.wm).collect()).unwrap_or(f64::NAN),
+                    wp: mean(of_best.iter().map(|o| o.wp).collect()).unwrap_or(f64::NAN),
+                    log_likelihoods: Vec::new(),
+                    best,
+                }
+            });
+            pooled
+        })
+        .collect();
+    Some(ReproductionMetrics { contexts })
+}
+
+/// The runs' KiNeT speeds pooled for one model's speed panel: per context of the first
+/// run, each `ts`'s relative speed averaged over the runs that have it, and the scaling
+/// index averaged. Empty without runs.
+pub fn pool_speed(runs: &[&[ProductionSpeed]]) -> Vec<ProductionSpeed> {
+    let Some(first) = runs.first() else {
+        return Vec::new();
+    };
+    first
+        .iter()
+        .map(|c0| {
+            let same: Vec<&ProductionSpeed> = runs
+                .iter()
+                .filter_map(|r| r.iter().find(|c| c.prior == c0.prior && c.gain == c0.gain))
+                .collect();
+            let mean = |v: Vec<f64>| {
+                let v: Vec<f64> = v.into_iter().filter(|x| x.is_finite()).collect();
+                (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
+            };
+            let mut pooled = c0.clone();
+            for x in &mut pooled.conditions {
+                x.relative_speed = mean(
+                    same.iter()
+                        .filter_map(|c| c.conditions.iter().find(|y| y.ts == x.ts))
+                        .filter_map(|y| y.relative_speed)
+                        .collect(),
+                );
+            }
+            pooled.scaling_index = mean(same.iter().filter_map(|c| c.scaling_index).collect());
+            pooled
+        })
+        .collect()
+}
+
+/// The report's reproduction grid, one row per model: its runs' pooled reproduction panel
+/// ([`pool_reproduction`], [`reproduction_chart`]) and, when any model has one, its pooled
+/// speed panel ([`pool_speed`], [`speed_chart`]). Rows without reproduction runs are left
+/// out; returns the files written (`<stem>.svg` / `.png`), none without any.
+pub fn reproduction_grid(
+    stem: &std::path::Path,
+    rows: &[ReproductionRuns],
+) -> Result<Vec<std::path::PathBuf>, super::FigureError> {
+    let rows: Vec<_> = rows.iter().filter(|r| !r.metrics.is_empty()).collect();
+    if rows.is_empty() {
+        return Ok(Vec::new());
+    }
+    let with_speed = rows.iter().any(|r| !r.speed.is_empty());
+    let mut charts = Vec::new();
+    for ReproductionRuns {
+        model,
+        metrics,
+        speed: speeds,
+    } in &rows
+    {
+        let runs: Vec<&ReproductionMetrics> = metrics.iter().collect();
+        // Short titles: a panel is 420 pixels wide.
+        charts.push(pool_reproduction(&runs).map(|m| Chart {
+            title: format!("{model}: tp vs ts"),
+            ..reproduction_chart(model, &m)
+        }));
+        if with_speed {
+            let runs: Vec<&[ProductionSpeed]> = speeds.iter().map(Vec::as_slice).collect();
+            charts.push(speed_chart(&format!("{model}: speed"), &pool_speed(&runs)));
+        }
+    }
+    let shape = if with_speed {
+        (rows.len(), 2)
+    } else {
+        super::grid::grid_shape(rows.len(), 1)
+    };
+    super::write_panels(stem, shape, &charts)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -281,135 +427,4 @@ mod tests {
         assert!(c.series[0].label.contains("0.90"), "{}", c.series[0].label);
         assert!(speed_chart("t", &[b]).is_none());
     }
-}
-
-/// The runs of one model pooled for its panel of the report's grid: per context (prior,
-/// gain) of the first run, each `ts`'s mean `tp` averaged over the runs (SD the mean of
-/// theirs, trials summed), the slope averaged, and the observer most runs chose with the
-/// mean of their `wm` and `wp` — the fields [`reproduction_chart`] draws. `None` without
-/// runs.
-pub fn pool_reproduction(runs: &[&ReproductionMetrics]) -> Option<ReproductionMetrics> {
-    let first = runs.first()?;
-    let mean = |v: Vec<f64>| {
-        let v: Vec<f64> = v.into_iter().filter(|x| x.is_finite()).collect();
-        (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
-    };
-    let contexts = first
-        .contexts
-        .iter()
-        .map(|c0| {
-            let same: Vec<&ContextSummary> = runs
-                .iter()
-                .filter_map(|r| {
-                    r.contexts
-                        .iter()
-                        .find(|c| c.prior == c0.prior && c.gain == c0.gain)
-                })
-                .collect();
-            let mut pooled = c0.clone();
-            pooled.by_ts = c0
-                .by_ts
-                .iter()
-                .map(|&(ts, _, _, _)| {
-                    let at: Vec<&(u32, f64, f64, usize)> = same
-                        .iter()
-                        .filter_map(|c| c.by_ts.iter().find(|b| b.0 == ts))
-                        .collect();
-                    (
-                        ts,
-                        mean(at.iter().map(|b| b.1).collect()).unwrap_or(f64::NAN),
-                        mean(at.iter().map(|b| b.2).collect()).unwrap_or(f64::NAN),
-                        at.iter().map(|b| b.3).sum(),
-                    )
-                })
-                .collect();
-            pooled.slope = mean(same.iter().filter_map(|c| c.slope).collect());
-            let choices: Vec<&crate::behaviour::reproduction::ObserverChoice> =
-                same.iter().filter_map(|c| c.observer.as_ref()).collect();
-            let mut names: Vec<&str> = choices.iter().map(|o| o.best.as_str()).collect();
-            names.sort_unstable();
-            let best = names
-                .iter()
-                .max_by_key(|n| names.iter().filter(|m| m == n).count())
-                .map(|n| n.to_string());
-            pooled.observer = best.map(|best| {
-                let of_best: Vec<_> = choices.iter().filter(|o| o.best == best).collect();
-                crate::behaviour::reproduction::ObserverChoice {
-                    wm: mean(of_best.iter().map(|o| o.wm).collect()).unwrap_or(f64::NAN),
-                    wp: mean(of_best.iter().map(|o| o.wp).collect()).unwrap_or(f64::NAN),
-                    log_likelihoods: Vec::new(),
-                    best,
-                }
-            });
-            pooled
-        })
-        .collect();
-    Some(ReproductionMetrics { contexts })
-}
-
-/// The runs' KiNeT speeds pooled for one model's speed panel: per context of the first
-/// run, each `ts`'s relative speed averaged over the runs that have it, and the scaling
-/// index averaged. Empty without runs.
-pub fn pool_speed(runs: &[&[ProductionSpeed]]) -> Vec<ProductionSpeed> {
-    let Some(first) = runs.first() else {
-        return Vec::new();
-    };
-    first
-        .iter()
-        .map(|c0| {
-            let same: Vec<&ProductionSpeed> = runs
-                .iter()
-                .filter_map(|r| r.iter().find(|c| c.prior == c0.prior && c.gain == c0.gain))
-                .collect();
-            let mean = |v: Vec<f64>| {
-                let v: Vec<f64> = v.into_iter().filter(|x| x.is_finite()).collect();
-                (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
-            };
-            let mut pooled = c0.clone();
-            for x in &mut pooled.conditions {
-                x.relative_speed = mean(
-                    same.iter()
-                        .filter_map(|c| c.conditions.iter().find(|y| y.ts == x.ts))
-                        .filter_map(|y| y.relative_speed)
-                        .collect(),
-                );
-            }
-            pooled.scaling_index = mean(same.iter().filter_map(|c| c.scaling_index).collect());
-            pooled
-        })
-        .collect()
-}
-
-/// The report's reproduction grid, one row per model: its runs' pooled reproduction panel
-/// ([`pool_reproduction`], [`reproduction_chart`]) and, when any model has one, its pooled
-/// speed panel ([`pool_speed`], [`speed_chart`]). Rows without reproduction runs are left
-/// out; returns the files written (`<stem>.svg` / `.png`), none without any.
-pub fn reproduction_grid(
-    stem: &std::path::Path,
-    rows: &[(String, Vec<ReproductionMetrics>, Vec<Vec<ProductionSpeed>>)],
-) -> Result<Vec<std::path::PathBuf>, super::FigureError> {
-    let rows: Vec<_> = rows.iter().filter(|r| !r.1.is_empty()).collect();
-    if rows.is_empty() {
-        return Ok(Vec::new());
-    }
-    let with_speed = rows.iter().any(|r| !r.2.is_empty());
-    let mut charts = Vec::new();
-    for (model, metrics, speeds) in &rows {
-        let runs: Vec<&ReproductionMetrics> = metrics.iter().collect();
-        // Short titles: a panel is 420 pixels wide.
-        charts.push(pool_reproduction(&runs).map(|m| Chart {
-            title: format!("{model}: tp vs ts"),
-            ..reproduction_chart(model, &m)
-        }));
-        if with_speed {
-            let runs: Vec<&[ProductionSpeed]> = speeds.iter().map(Vec::as_slice).collect();
-            charts.push(speed_chart(&format!("{model}: speed"), &pool_speed(&runs)));
-        }
-    }
-    let shape = if with_speed {
-        (rows.len(), 2)
-    } else {
-        super::grid::grid_shape(rows.len(), 1)
-    };
-    super::write_panels(stem, shape, &charts)
 }

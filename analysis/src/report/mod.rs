@@ -456,6 +456,23 @@ fn fi_by_td_markdown(rows: &[Row]) -> String {
     format!("\n## Fixed interval per TD\n\n{FI_BY_TD}\n\n{table}")
 }
 
+fn has_extension(files: &[PathBuf], ext: &str) -> bool {
+    files
+        .iter()
+        .any(|p| p.extension().is_some_and(|e| e == ext))
+}
+
+/// The first SVG of a figure's `files`, ready to inline (`None` without one).
+fn inline_svg_of(files: &[PathBuf]) -> Result<Option<Markup>, String> {
+    match files
+        .iter()
+        .find(|p| p.extension().is_some_and(|e| e == "svg"))
+    {
+        Some(svg) => Ok(Some(inline_svg(svg)?)),
+        None => Ok(None),
+    }
+}
+
 /// Writes `report.html`, `report.md` and `report.csv` into `out`.
 pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
     // One writer per report folder; a killed writer's temporary files are removed.
@@ -533,29 +550,21 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
         .collect();
     let grid = crate::figures::psychometric_grid(&out.join("psychometric_grid"), &grid_rows)
         .map_err(|e| e.to_string())?;
-    let grid_svg = match grid
-        .iter()
-        .find(|p| p.extension().is_some_and(|e| e == "svg"))
-    {
-        Some(svg) => Some(inline_svg(svg)?),
-        None => None,
-    };
+    let grid_svg = inline_svg_of(&grid)?;
     let reproduction_rows: Vec<_> = rows
         .iter()
-        .map(|r| (r.model.clone(), r.reproduction.clone(), r.speed.clone()))
+        .map(|r| crate::figures::reproduction::ReproductionRuns {
+            model: r.model.clone(),
+            metrics: r.reproduction.clone(),
+            speed: r.speed.clone(),
+        })
         .collect();
     let reproduction = crate::figures::reproduction::reproduction_grid(
         &out.join("reproduction_grid"),
         &reproduction_rows,
     )
     .map_err(|e| e.to_string())?;
-    let reproduction_svg = match reproduction
-        .iter()
-        .find(|p| p.extension().is_some_and(|e| e == "svg"))
-    {
-        Some(svg) => Some(inline_svg(svg)?),
-        None => None,
-    };
+    let reproduction_svg = inline_svg_of(&reproduction)?;
     let row_figures = rows
         .iter()
         .filter(|r| r.baseline.is_none())
@@ -582,16 +591,10 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
             }
         },
     );
-    if grid
-        .iter()
-        .any(|p| p.extension().is_some_and(|e| e == "png"))
-    {
+    if has_extension(&grid, "png") {
         md += "\n## Psychometric curves\n\n![psychometric grid](psychometric_grid.png)\n";
     }
-    if reproduction
-        .iter()
-        .any(|p| p.extension().is_some_and(|e| e == "png"))
-    {
+    if has_extension(&reproduction, "png") {
         md += "\n## Temporal reproduction\n\n![reproduction grid](reproduction_grid.png)\n";
     }
     let mut files = Vec::new();
