@@ -4,7 +4,9 @@
 //! into a checked configuration that the env can run. Parameter names follow the
 //! reference implementation where one exists, and the reference's own names are
 //! accepted as aliases (`oven_duration` for `td`, `overcooked_buffer` for
-//! `over_buffer`, …) so reference configurations can be passed unchanged.
+//! `over_buffer`, …) so reference configurations can be passed unchanged. A chosen task
+//! travels as a [`Task`] (its id and the typed values of the parameters set), which
+//! [`Task::config`] turns into the checked [`TaskConfig`].
 
 mod chosen;
 pub mod params;
