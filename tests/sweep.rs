@@ -504,7 +504,8 @@ fn train_eval_record_export_report_end_to_end() {
         "ddm — accumulator",
         // One headline table per theme (readable in a 1366 px window).
         "<h2 class=\"group\">Fixed interval</h2>",
-        "<h2 class=\"group\">Neural activity</h2>",
+        "<h2 class=\"group\">Neural activity: unit categories</h2>",
+        "<h2 class=\"group\">Neural activity: population</h2>",
     ] {
         assert!(html.contains(needle), "{needle} missing from the report");
     }
