@@ -21,8 +21,13 @@ from collections import defaultdict
 
 
 def anchors_of(env):
-    """The active anchors of a job's task at a level (multi-anchor) or (S, L) multi-oven."""
-    kv = dict(e.split("=", 1) for e in env)
+    """The active anchors of a job's task at a level (multi-anchor) or (S, L) multi-oven.
+    `env` is the job's task parameters: a map of typed values (`{"anchors": [4, 8, 16]}`),
+    or in jobs collected before the map a list of `key=value` texts."""
+    if isinstance(env, dict):
+        kv = {k: ",".join(map(str, v)) if isinstance(v, list) else str(v) for k, v in env.items()}
+    else:
+        kv = dict(e.split("=", 1) for e in env)
     if "anchors" in kv:
         return [int(a) for a in kv["anchors"].split(",")]
     return [int(kv.get("short", 4)), int(kv.get("long", 12))]
