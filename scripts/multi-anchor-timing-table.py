@@ -5,8 +5,14 @@ pair's GM and AM, in how many single runs the GM lies inside the run's own 95% i
 the boundary, and in how many the model's rule's prediction does (over every boundary of
 every seed).
 
-The prediction is the GM for SBF and the time cells (their ratio rule compares a decoded
-time with the GM of remembered anchors). For drift-diffusion it is where the lab's logistic
+The prediction is the GM for the time cells (their ratio rule compares a decoded time with
+the GM of remembered anchors) and, without the runs' folders, for SBF. Given the grid's run
+folders (RUNS_DIR, `<anchors>-<model>-<seed>/agent.json`), SBF's is computed from what the
+run remembers: each trial's criterion is the GM of one stored duration of each neighbouring
+anchor (`choice_memories`, in steps), passed when the clock-speed-scaled time k·t reaches it
+(ln k ~ N(0, clock_noise²)), so P(long | t) = mean over criterion draws of
+Φ((ln t − ln c) / σ) — the prediction of `models/tests/categories.rs` — then the same
+logistic fit. For drift-diffusion it is where the lab's logistic
 fit over the pair's probes puts the 50% point of the ratio rule on its two noisy
 accumulators and memories: P(long | t) as `models::timing::judgment::ddm_judgment_p_long`
 integrates it (x ~ N(a t, m² a t) per accumulator, a = exp(κ ε)/anchor the trial's drift,
@@ -14,9 +20,12 @@ z 1, diffusion m 0.15, memory κ 0.2, "long" iff x_S·x_L ≥ 1), then a
 binomial maximum-likelihood logistic in t over the probes a_i … a_(i+1), as
 `analysis::behaviour::psychometric::fit_logistic` fits the measured curve.
 
-    python3 scripts/multi-anchor-timing-table.py OUT_DIR/lines.txt > OUT_DIR/summary.md
+    python3 scripts/multi-anchor-timing-table.py OUT_DIR/lines.txt [OUT_DIR/runs] > OUT_DIR/summary.md
 """
+import json
 import math
+import os
+import random
 import re
 import sys
 from collections import OrderedDict
@@ -101,6 +110,27 @@ def logistic_bp(ts, ps):
     return -a / b
 
 
+RUNS = sys.argv[2] if len(sys.argv) > 2 else None
+
+
+def sbf_prediction(anchors, seed, k, lo, hi, draws=4000):
+    """SBF's fitted boundary k from run `anchors`-sbf-`seed`'s remembered durations; None
+    without its folder."""
+    path = os.path.join(RUNS, f"{anchors}-sbf-{seed}", "agent.json") if RUNS else None
+    if not path or not os.path.isfile(path):
+        return None
+    timer = json.load(open(path))["timer"]["sbf"]
+    scale = timer["seconds_per_step"] * timer["model"]["memory_scale"]
+    low = [t / scale for t in timer["choice_memories"][str(k)]]
+    high = [t / scale for t in timer["choice_memories"][str(k + 1)]]
+    rnd = random.Random(1)
+    logs = [0.5 * (math.log(rnd.choice(low)) + math.log(rnd.choice(high))) for _ in range(draws)]
+    sigma = timer["clock_noise"]
+    ts = list(range(lo, hi + 1))
+    ps = [sum(phi((math.log(t) - c) / sigma) for c in logs) / draws for t in ts]
+    return logistic_bp(ts, ps)
+
+
 _ddm_cache = {}
 
 
@@ -113,7 +143,7 @@ def ddm_prediction(lo, hi):
 cells = OrderedDict()
 for line in open(sys.argv[1]):
     parts = line.split(" ", 5)
-    anchors, model, acc = parts[0], parts[1], float(parts[4])
+    anchors, model, seed, acc = parts[0], parts[1], parts[2], float(parts[4])
     fits = parts[5].strip().split(" | ") if len(parts) > 5 else []
     cell = cells.setdefault(
         (anchors, model), {"acc": [], "bounds": {}, "inside": 0, "rule_inside": 0, "fits": 0})
@@ -121,19 +151,26 @@ for line in open(sys.argv[1]):
     cell["acc"].append(acc)
     for k, f in enumerate(fits):
         m = re.match(r"([\d.]+)\[([\d.]+),([\d.]+)\]gm([\d.]+)([* ])am([\d.]+)", f)
-        b = cell["bounds"].setdefault(k, {"bp": [], "gm": None, "am": None, "rule": None})
+        b = cell["bounds"].setdefault(k, {"bp": [], "gm": None, "am": None})
         if not m:
             continue
         bp, ci_lo, ci_hi = float(m[1]), float(m[2]), float(m[3])
         gm, star, am = float(m[4]), m[5], float(m[6])
-        rule = ddm_prediction(values[k], values[k + 1]) if model == "ddm" else gm
+        if model == "ddm":
+            rule = ddm_prediction(values[k], values[k + 1])
+        elif model == "sbf":
+            rule = sbf_prediction(anchors, seed, k, values[k], values[k + 1])
+        else:
+            rule = None
         b["bp"].append(bp)
-        b["gm"], b["am"], b["rule"] = gm, am, rule
+        b["gm"], b["am"] = gm, am
+        if rule is not None:
+            b.setdefault("rules", []).append(rule)
         cell["fits"] += 1
         cell["inside"] += star == "*"
-        cell["rule_inside"] += (ci_lo <= rule <= ci_hi) if model == "ddm" else star == "*"
+        cell["rule_inside"] += (ci_lo <= rule <= ci_hi) if rule is not None else star == "*"
 
-print("| anchors | model | anchor accuracy: mean (min–max), seeds | each boundary: mean BP over seeds (GM / AM; DDM: its rule's prediction) | GM inside the run's 95% interval | rule's prediction inside |")
+print("| anchors | model | anchor accuracy: mean (min–max), seeds | each boundary: mean BP over seeds (GM / AM; DDM, SBF: its rule's prediction, mean over seeds) | GM inside the run's 95% interval | rule's prediction inside |")
 print("|---|---|---|---|---|---|")
 for (anchors, model), c in cells.items():
     acc = c["acc"]
@@ -144,7 +181,8 @@ for (anchors, model), c in cells.items():
             bounds.append("no fit")
             continue
         note = "" if len(b["bp"]) == len(acc) else f" [{len(b['bp'])} fits]"
-        pred = f"; {b['rule']:.2f}" if model == "ddm" else ""
+        rules = b.get("rules")
+        pred = f"; {sum(rules) / len(rules):.2f}" if rules else ""
         bounds.append(
             f"{sum(b['bp']) / len(b['bp']):.2f} ({b['gm']:.2f} / {b['am']:.1f}{pred}){note}")
     print(f"| {anchors} | {model} | {sum(acc) / len(acc):.3f} ({min(acc):.3f}–{max(acc):.3f}) "
