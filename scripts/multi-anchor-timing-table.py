@@ -5,8 +5,12 @@ pair's GM and AM, in how many single runs the GM lies inside the run's own 95% i
 the boundary, and in how many the model's rule's prediction does (over every boundary of
 every seed).
 
-The prediction is the GM for the time cells (their ratio rule compares a decoded time with
-the GM of remembered anchors) and, without the runs' folders, for SBF. Given the grid's run
+The time cells' prediction, given PREDICTIONS (the output of `cargo run --release --example
+predicted_boundaries -- RUNS_DIR/*-timecells-*`: each run's own timer — its learned anchor
+memories, clock noise and decision rule, without the task — judging 2,000 trials per probe,
+then the lab's fit), is that simulated boundary; without it, the GM of the anchors (the
+ratio rule compares the decoded time with the GM of remembered anchors). Without the runs'
+folders SBF's is the GM too. Given the grid's run
 folders (RUNS_DIR, `<anchors>-<model>-<seed>/agent.json`), SBF's is computed from what the
 run remembers: each trial's criterion is the GM of one stored duration of each neighbouring
 anchor (`choice_memories`, in steps), passed when the clock-speed-scaled time k·t reaches it
@@ -20,7 +24,7 @@ z 1, diffusion m 0.15, memory κ 0.2, "long" iff x_S·x_L ≥ 1), then a
 binomial maximum-likelihood logistic in t over the probes a_i … a_(i+1), as
 `analysis::behaviour::psychometric::fit_logistic` fits the measured curve.
 
-    python3 scripts/multi-anchor-timing-table.py OUT_DIR/lines.txt [OUT_DIR/runs] > OUT_DIR/summary.md
+    python3 scripts/multi-anchor-timing-table.py OUT_DIR/lines.txt [OUT_DIR/runs [PREDICTIONS]] > OUT_DIR/summary.md
 """
 import json
 import math
@@ -111,6 +115,13 @@ def logistic_bp(ts, ps):
 
 
 RUNS = sys.argv[2] if len(sys.argv) > 2 else None
+# "<run dir> bp1 bp2 …" per run (examples/predicted_boundaries.rs), keyed by the run's name.
+SIMULATED = {}
+if len(sys.argv) > 3:
+    for line in open(sys.argv[3]):
+        fields = line.split()
+        if fields:
+            SIMULATED[os.path.basename(fields[0].rstrip("/"))] = [float(x) for x in fields[1:]]
 
 
 def sbf_prediction(anchors, seed, k, lo, hi, draws=4000):
@@ -161,7 +172,8 @@ for line in open(sys.argv[1]):
         elif model == "sbf":
             rule = sbf_prediction(anchors, seed, k, values[k], values[k + 1])
         else:
-            rule = None
+            simulated = SIMULATED.get(f"{anchors}-{model}-{seed}", [])
+            rule = simulated[k] if k < len(simulated) else None
         b["bp"].append(bp)
         b["gm"], b["am"] = gm, am
         if rule is not None:
@@ -170,7 +182,7 @@ for line in open(sys.argv[1]):
         cell["inside"] += star == "*"
         cell["rule_inside"] += (ci_lo <= rule <= ci_hi) if rule is not None else star == "*"
 
-print("| anchors | model | anchor accuracy: mean (min–max), seeds | each boundary: mean BP over seeds (GM / AM; DDM, SBF: its rule's prediction, mean over seeds) | GM inside the run's 95% interval | rule's prediction inside |")
+print("| anchors | model | anchor accuracy: mean (min–max), seeds | each boundary: mean BP over seeds (GM / AM; its rule's prediction, mean over seeds, where computed) | GM inside the run's 95% interval | rule's prediction inside |")
 print("|---|---|---|---|---|---|")
 for (anchors, model), c in cells.items():
     acc = c["acc"]
