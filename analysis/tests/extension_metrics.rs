@@ -380,3 +380,63 @@ fn the_leaderboard_columns_of_a_categorizer_are_its_known_boundary_and_weber_fra
         assert!(!h.contains_key(key), "{key} without its task");
     }
 }
+
+#[test]
+fn a_drift_diffusion_timers_simulated_boundaries_equal_its_closed_form() {
+    // Anchors 5, 11, 23 (no doc uses them) learned by the model's own rule; its judgment
+    // simulated on the timer alone and its closed form on the anchors it remembers, both
+    // fitted as the lab fits over the probes between the true anchors.
+    use chronocooked_analysis::behaviour::predicted::predicted_boundaries;
+    use chronocooked_analysis::behaviour::psychometric::{ProbeCounts, fit_logistic};
+    use chronocooked_models::timing::judgment::ddm_judgment_p_long;
+    use chronocooked_models::timing::timers::Timer;
+    let anchors = [5u32, 11, 23];
+    let config = chronocooked_env::make_config("MultiAnchor-v0", &["anchors=5,11,23"]).unwrap();
+    let env = chronocooked_env::ChronoEnv::new(&config).unwrap();
+    let mut timer = chronocooked_models::timing::zoo::make_timing_agent("ddm", &env, 3)
+        .unwrap()
+        .timer;
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(4);
+    for _ in 0..40 {
+        for (slot, &a) in anchors.iter().enumerate() {
+            timer.clear();
+            timer.onset(1, anchors.len(), &mut rng);
+            for step in 1..=a {
+                timer.tick(step, &mut rng);
+            }
+            timer.reinforce_choice(slot as u8, f64::from(a), &mut rng);
+        }
+    }
+    let Timer::Ddm(d) = &timer else {
+        unreachable!()
+    };
+    let (noise, z) = ((d.acc.noise, d.memory_noise), d.acc.threshold);
+    // What it remembers of each anchor: z / its learned drift (learned from noisy trials,
+    // so a few percent from the anchor).
+    let remembered: Vec<f64> = (0..anchors.len() as u8)
+        .map(|slot| z / d.choice_drifts[&slot])
+        .collect();
+    let simulated = predicted_boundaries(&mut timer, &anchors, 2000, 7).unwrap();
+    for (i, pair) in anchors.windows(2).enumerate() {
+        let (s, l) = (remembered[i], remembered[i + 1]);
+        let probes: Vec<ProbeCounts> = (pair[0]..=pair[1])
+            .map(|t| {
+                let p = ddm_judgment_p_long(f64::from(t), s, l, (s * l).sqrt(), noise, z);
+                ProbeCounts {
+                    t: f64::from(t),
+                    valid: 1_000_000,
+                    long: (p * 1e6).round() as u32,
+                    failed: 0,
+                }
+            })
+            .collect();
+        let closed = fit_logistic(&probes).unwrap().bp;
+        assert!(
+            (simulated[i] / closed - 1.0).abs() < 0.01,
+            "{s}-{l}: simulated {:.3}, closed form {closed:.3}",
+            simulated[i]
+        );
+        // Both above the GM, as the noise puts them.
+        assert!(closed > (s * l).sqrt(), "{s}-{l}: {closed}");
+    }
+}

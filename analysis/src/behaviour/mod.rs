@@ -21,5 +21,6 @@ pub mod foc;
 pub mod human;
 pub mod metrics;
 pub mod peak;
+pub mod predicted;
 pub mod psychometric;
 pub mod reproduction;
