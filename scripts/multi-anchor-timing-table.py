@@ -5,18 +5,12 @@ pair's GM and AM, in how many single runs the GM lies inside the run's own 95% i
 the boundary, and in how many the model's rule's prediction does (over every boundary of
 every seed).
 
-The time cells' prediction, given PREDICTIONS (the output of `cargo run --release --example
-predicted_boundaries -- RUNS_DIR/*-timecells-*`: each run's own timer — its learned anchor
-memories, clock noise and decision rule, without the task — judging 2,000 trials per probe,
-then the lab's fit), is that simulated boundary; without it, the GM of the anchors (the
-ratio rule compares the decoded time with the GM of remembered anchors). Without the runs'
-folders SBF's is the GM too. Given the grid's run
-folders (RUNS_DIR, `<anchors>-<model>-<seed>/agent.json`), SBF's is computed from what the
-run remembers: each trial's criterion is the GM of one stored duration of each neighbouring
-anchor (`choice_memories`, in steps), passed when the clock-speed-scaled time k·t reaches it
-(ln k ~ N(0, clock_noise²)), so P(long | t) = mean over criterion draws of
-Φ((ln t − ln c) / σ) — the prediction of `models/tests/categories.rs` — then the same
-logistic fit. For drift-diffusion it is where the lab's logistic
+SBF's and the time cells' predictions, given PREDICTIONS (the output of `cargo run --release
+--example predicted_boundaries -- RUNS_DIR/*-sbf-* RUNS_DIR/*-timecells-*`: each run's own
+timer — its learned anchor memories, clock noise and decision rule, without the task —
+judging 2,000 trials per probe, then the lab's fit; `analysis::behaviour::predicted`), are
+those simulated boundaries; without it, the GM of the anchors (their ratio rule's criterion
+between remembered anchors). For drift-diffusion it is where the lab's logistic
 fit over the pair's probes puts the 50% point of the ratio rule on its two noisy
 accumulators and memories: P(long | t) as `models::timing::judgment::ddm_judgment_p_long`
 integrates it (x ~ N(a t, m² a t) per accumulator, a = exp(κ ε)/anchor the trial's drift,
@@ -24,12 +18,10 @@ z 1, diffusion m 0.15, memory κ 0.2, "long" iff x_S·x_L ≥ 1), then a
 binomial maximum-likelihood logistic in t over the probes a_i … a_(i+1), as
 `analysis::behaviour::psychometric::fit_logistic` fits the measured curve.
 
-    python3 scripts/multi-anchor-timing-table.py OUT_DIR/lines.txt [OUT_DIR/runs [PREDICTIONS]] > OUT_DIR/summary.md
+    python3 scripts/multi-anchor-timing-table.py OUT_DIR/lines.txt [PREDICTIONS] > OUT_DIR/summary.md
 """
-import json
 import math
 import os
-import random
 import re
 import sys
 from collections import OrderedDict
@@ -114,32 +106,13 @@ def logistic_bp(ts, ps):
     return -a / b
 
 
-RUNS = sys.argv[2] if len(sys.argv) > 2 else None
 # "<run dir> bp1 bp2 …" per run (examples/predicted_boundaries.rs), keyed by the run's name.
 SIMULATED = {}
-if len(sys.argv) > 3:
-    for line in open(sys.argv[3]):
+if len(sys.argv) > 2:
+    for line in open(sys.argv[2]):
         fields = line.split()
         if fields:
             SIMULATED[os.path.basename(fields[0].rstrip("/"))] = [float(x) for x in fields[1:]]
-
-
-def sbf_prediction(anchors, seed, k, lo, hi, draws=4000):
-    """SBF's fitted boundary k from run `anchors`-sbf-`seed`'s remembered durations; None
-    without its folder."""
-    path = os.path.join(RUNS, f"{anchors}-sbf-{seed}", "agent.json") if RUNS else None
-    if not path or not os.path.isfile(path):
-        return None
-    timer = json.load(open(path))["timer"]["sbf"]
-    scale = timer["seconds_per_step"] * timer["model"]["memory_scale"]
-    low = [t / scale for t in timer["choice_memories"][str(k)]]
-    high = [t / scale for t in timer["choice_memories"][str(k + 1)]]
-    rnd = random.Random(1)
-    logs = [0.5 * (math.log(rnd.choice(low)) + math.log(rnd.choice(high))) for _ in range(draws)]
-    sigma = timer["clock_noise"]
-    ts = list(range(lo, hi + 1))
-    ps = [sum(phi((math.log(t) - c) / sigma) for c in logs) / draws for t in ts]
-    return logistic_bp(ts, ps)
 
 
 _ddm_cache = {}
@@ -169,8 +142,6 @@ for line in open(sys.argv[1]):
         gm, star, am = float(m[4]), m[5], float(m[6])
         if model == "ddm":
             rule = ddm_prediction(values[k], values[k + 1])
-        elif model == "sbf":
-            rule = sbf_prediction(anchors, seed, k, values[k], values[k + 1])
         else:
             simulated = SIMULATED.get(f"{anchors}-{model}-{seed}", [])
             rule = simulated[k] if k < len(simulated) else None

@@ -187,10 +187,15 @@ pub fn read_level_episodes(path: &Path) -> Result<Vec<LevelEpisode>, CollectErro
     if !path.is_file() {
         return Ok(Vec::new());
     }
+    read_rows(path)
+}
+
+/// Every row of the CSV file `path`; errors name the file.
+fn read_rows<T: serde::de::DeserializeOwned>(path: &Path) -> Result<Vec<T>, CollectError> {
     csv::Reader::from_path(path)
         .map_err(|e| err(path, e))?
         .deserialize()
-        .collect::<Result<Vec<LevelEpisode>, _>>()
+        .collect::<Result<Vec<T>, _>>()
         .map_err(|e| err(path, e))
 }
 
@@ -516,18 +521,8 @@ pub fn read_compact(root: &Path) -> Result<Vec<CompactJob>, CollectError> {
             let p = dir.join(job_folder::JOB);
             serde_json::from_value(read_json(&p)?).map_err(|e| err(&p, e))?
         };
-        let ep_path = dir.join("episodes.csv");
-        let episodes = csv::Reader::from_path(&ep_path)
-            .map_err(|e| err(&ep_path, e))?
-            .deserialize()
-            .collect::<Result<Vec<EpisodeRow>, _>>()
-            .map_err(|e| err(&ep_path, e))?;
-        let c_path = dir.join("curve.csv");
-        let curve = csv::Reader::from_path(&c_path)
-            .map_err(|e| err(&c_path, e))?
-            .deserialize()
-            .collect::<Result<Vec<CurveRow>, _>>()
-            .map_err(|e| err(&c_path, e))?;
+        let episodes: Vec<EpisodeRow> = read_rows(&dir.join("episodes.csv"))?;
+        let curve: Vec<CurveRow> = read_rows(&dir.join("curve.csv"))?;
         let levels = read_level_episodes(&dir.join(LEVELS_CSV))?;
         out.push(CompactJob {
             job,

@@ -148,13 +148,13 @@ pub fn speed_chart(title: &str, contexts: &[ProductionSpeed]) -> Option<Chart> {
 }
 
 /// One model's runs for the reproduction grid.
-pub struct ReproductionRuns {
+pub struct ReproductionRuns<'a> {
     /// Row label.
-    pub model: String,
+    pub model: &'a str,
     /// Every run's reproduction metrics.
-    pub metrics: Vec<ReproductionMetrics>,
+    pub metrics: &'a [ReproductionMetrics],
     /// Every run's KiNeT speeds after Set (runs without a neural summary left out).
-    pub speed: Vec<Vec<ProductionSpeed>>,
+    pub speed: &'a [Vec<ProductionSpeed>],
 }
 
 /// The runs of one model pooled for its panel of the report's grid: per context (prior,
@@ -260,7 +260,7 @@ pub fn pool_speed(runs: &[&[ProductionSpeed]]) -> Vec<ProductionSpeed> {
 /// out; returns the files written (`<stem>.svg` / `.png`), none without any.
 pub fn reproduction_grid(
     stem: &std::path::Path,
-    rows: &[ReproductionRuns],
+    rows: &[ReproductionRuns<'_>],
 ) -> Result<Vec<std::path::PathBuf>, super::FigureError> {
     let rows: Vec<_> = rows.iter().filter(|r| !r.metrics.is_empty()).collect();
     if rows.is_empty() {

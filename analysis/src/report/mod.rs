@@ -556,9 +556,9 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
     let reproduction_rows: Vec<_> = rows
         .iter()
         .map(|r| crate::figures::reproduction::ReproductionRuns {
-            model: r.model.clone(),
-            metrics: r.reproduction.clone(),
-            speed: r.speed.clone(),
+            model: &r.model,
+            metrics: &r.reproduction,
+            speed: &r.speed,
         })
         .collect();
     let reproduction = crate::figures::reproduction::reproduction_grid(
