@@ -451,6 +451,11 @@ fn an_sbf_clock_is_overdue_from_k_times_its_remembered_time() {
 
 /// Trains `timecells-csc` on fixed interval TD 6 for 300 episodes with `alpha_end`.
 fn trained_weights(alpha_end: Option<f64>) -> (f64, String) {
+    trained_weights_with(alpha_end, 0.0)
+}
+
+/// [`trained_weights`] with the visit-count step floor `visit_power`.
+fn trained_weights_with(alpha_end: Option<f64>, visit_power: f64) -> (f64, String) {
     use chronocooked_env::{ChronoEnv, make_config};
     use chronocooked_models::timing::zoo::make_timing_agent;
     use chronocooked_models::{TimingTrainConfig, train_timing_agent};
@@ -461,10 +466,19 @@ fn trained_weights(alpha_end: Option<f64>) -> (f64, String) {
         episodes: 300,
         eval_every: 0,
         alpha_end,
+        visit_power,
         ..Default::default()
     };
     train_timing_agent(&mut agent, &config, &train, &[6], 3, |_| {}).unwrap();
     let weights = serde_json::to_string(&agent.learner.weights).unwrap();
+    let saved = serde_json::to_value(&agent.learner).unwrap();
+    let mut keys: Vec<&String> = saved.as_object().unwrap().keys().collect();
+    keys.sort();
+    assert_eq!(
+        keys,
+        ["actions", "config", "features", "q_init", "weights"],
+        "the saved learner holds no visit counts"
+    );
     (agent.learner.config.alpha, weights)
 }
 
@@ -483,4 +497,13 @@ fn an_annealed_step_size_changes_learning_and_leaves_the_agents_alpha_as_configu
     assert_eq!(alpha_const, 0.05);
     assert_eq!(alpha_same, 0.05);
     assert_eq!(alpha_annealed, 0.05);
+    // The visit-count floor changes learning too; off (0) it is the plain schedule.
+    let (_, floor_off) = trained_weights_with(Some(0.005), 0.0);
+    assert_eq!(floor_off, annealed);
+    let (alpha_floor, floor) = trained_weights_with(Some(0.005), 0.85);
+    assert_ne!(
+        floor, annealed,
+        "visit_power had no effect on the learned weights"
+    );
+    assert_eq!(alpha_floor, 0.05);
 }

@@ -4,6 +4,10 @@
 //! hands, visible oven) and `φ` the temporal features of its timing model (with a bias
 //! unit). Replacing traces per `(s, a)` block (`e_{s,a} ← φ` on a visit, all traces
 //! decay by `γλ`), step size `α / max(1, |φ|²)` (normalised LMS), ε-greedy exploration.
+//! Optionally each weight's step has a floor that falls with how often its feature was
+//! active in the pair, `max(α, nᵢ^−ω) / max(1, |φ|²)`: Even-Dar & Mansour's (2003)
+//! polynomial learning rate `1/n(s, a)^ω`, ω ∈ (1/2, 1), per feature
+//! ([`SarsaLambda::set_visit_power`]); for one-hot features it is their per-pair rate.
 //! Weights are stored sparsely (only visited pairs), in a `BTreeMap` so that saved
 //! agents are byte-identical across runs.
 
@@ -51,6 +55,22 @@ pub struct SarsaLambda {
     pub q_init: f64,
     #[serde(skip)]
     traces: Vec<(u32, Vec<f64>)>,
+    /// Exponent ω of the visit-count step floor (0 = off); set for a training run only.
+    #[serde(skip)]
+    visit_power: f64,
+    /// Per pair, per feature: the summed squared activity `nᵢ = Σ φᵢ²` over the pair's
+    /// visits and the step floor `max(1, nᵢ)^−ω` it gives.
+    #[serde(skip)]
+    visits: BTreeMap<u32, Visits>,
+}
+
+/// How often each feature of one state–action pair was active ([`SarsaLambda::visit`]).
+#[derive(Debug, Clone, PartialEq, Default)]
+struct Visits {
+    /// `nᵢ = Σ φᵢ²` over the pair's visits.
+    count: Vec<f64>,
+    /// `max(1, nᵢ)^−ω`.
+    floor: Vec<f64>,
 }
 
 impl SarsaLambda {
@@ -63,7 +83,24 @@ impl SarsaLambda {
             weights: BTreeMap::new(),
             q_init: 0.0,
             traces: Vec::new(),
+            visit_power: 0.0,
+            visits: BTreeMap::new(),
         }
+    }
+
+    /// Turns the visit-count step floor on with exponent `power` (ω; 0 turns it off) and
+    /// forgets every count. With it a weight steps by `max(α, nᵢ^−ω) / max(1, |φ|²)` where
+    /// `nᵢ` is its feature's summed squared activity over the pair's visits: a feature
+    /// seen a few times learns from its first samples at a rate near `1/n` (for a lone
+    /// feature with ω = 1 the weight is the sample average of its targets), one seen
+    /// thousands of times at the annealed `α`. Under one global step size annealed by
+    /// episode, a pair first visited late starts from its initial value at a small `α` and
+    /// stays near it for hundreds of visits (Even-Dar & Mansour 2003: polynomial rates
+    /// `1/n^ω`, ω ∈ (1/2, 1), converge in time polynomial in `1/(1 − γ)`). The counts are
+    /// not saved with the learner: the floor belongs to one training run.
+    pub fn set_visit_power(&mut self, power: f64) {
+        self.visit_power = power;
+        self.visits.clear();
     }
 
     fn key(&self, state: u32, action: usize) -> u32 {
@@ -123,6 +160,19 @@ impl SarsaLambda {
         let base = state * self.actions as u32;
         self.traces
             .retain(|(k, _)| *k == key || *k < base || *k >= base + self.actions as u32);
+        if self.visit_power > 0.0 {
+            let (n, power) = (self.features, self.visit_power);
+            let v = self.visits.entry(key).or_insert_with(|| Visits {
+                count: vec![0.0; n],
+                floor: vec![1.0; n],
+            });
+            for ((c, f), x) in v.count.iter_mut().zip(&mut v.floor).zip(phi) {
+                if *x != 0.0 {
+                    *c += x * x;
+                    *f = c.max(1.0).powf(-power);
+                }
+            }
+        }
         match self.traces.iter_mut().find(|(k, _)| *k == key) {
             Some((_, e)) => e.copy_from_slice(phi),
             None => self.traces.push((key, phi.to_vec())),
@@ -130,9 +180,12 @@ impl SarsaLambda {
     }
 
     /// Applies TD error `delta` along the traces (step `α/max(1, |φ|²)` for the
-    /// features `phi` of the updated pair), then decays the traces by `γλ`.
+    /// features `phi` of the updated pair, or `max(α, nᵢ^−ω)/max(1, |φ|²)` per weight with
+    /// the visit-count floor), then decays the traces by `γλ`.
     pub fn apply(&mut self, delta: f64, phi_norm2: f64) {
-        let step = self.config.alpha / phi_norm2.max(1.0) * delta;
+        let norm = phi_norm2.max(1.0);
+        let alpha = self.config.alpha;
+        let step = alpha / norm * delta;
         let (n, q0) = (self.features, self.q_init);
         for (key, e) in &self.traces {
             let w = self.weights.entry(*key).or_insert_with(|| {
@@ -140,8 +193,19 @@ impl SarsaLambda {
                 w[0] = q0;
                 w
             });
-            for (wi, ei) in w.iter_mut().zip(e) {
-                *wi += step * ei;
+            match self.visits.get(key) {
+                Some(v) if self.visit_power > 0.0 => {
+                    for ((wi, ei), f) in w.iter_mut().zip(e).zip(&v.floor) {
+                        if *ei != 0.0 {
+                            *wi += f.max(alpha) / norm * delta * ei;
+                        }
+                    }
+                }
+                _ => {
+                    for (wi, ei) in w.iter_mut().zip(e) {
+                        *wi += step * ei;
+                    }
+                }
             }
         }
         let decay = self.config.gamma * self.config.lambda;
@@ -174,5 +238,94 @@ mod tests {
         assert!((l.q(7, 1, &phi) - (1.0 + 2.0 * step)).abs() < 1e-12);
         // Other pairs keep their optimism.
         assert_eq!(l.q(7, 0, &phi), 1.0);
+    }
+
+    /// With ω = 1 a lone feature's weight is the sample average of its targets — the
+    /// textbook `1/n` rule (Sutton & Barto 2018 §2.4) — whatever the (tiny) `α`; with the
+    /// floor off it moves by `α δ` per update; with ω = 0.85 it steps by `n^−0.85` until
+    /// that falls below `α`, and by `α` after.
+    #[test]
+    fn the_visit_count_floor_gives_sample_averages_at_power_one_and_alpha_after() {
+        let targets = [0.3, 1.0, 0.0, 0.7, 0.2, 0.9, 0.4];
+        let config = SarsaConfig {
+            alpha: 1e-6,
+            ..SarsaConfig::default()
+        };
+        let run = |power: f64, targets: &[f64]| {
+            let mut l = SarsaLambda::new(config.clone(), 1, 1);
+            l.set_visit_power(power);
+            let mut steps = Vec::new();
+            for &r in targets {
+                l.clear_traces();
+                l.visit(0, 0, &[1.0]);
+                let before = l.q(0, 0, &[1.0]);
+                let delta = r - before;
+                l.apply(delta, 1.0);
+                steps.push((l.q(0, 0, &[1.0]) - before) / delta);
+            }
+            (l.q(0, 0, &[1.0]), steps)
+        };
+        let (avg, _) = run(1.0, &targets);
+        let mean = targets.iter().sum::<f64>() / targets.len() as f64;
+        assert!((avg - mean).abs() < 1e-12, "{avg} vs mean {mean}");
+        let (off, _) = run(0.0, &targets[..1]);
+        assert!((off - 1e-6 * 0.3).abs() < 1e-15, "{off}");
+        let (_, steps) = run(0.85, &[1.0, 3.0, -2.0, 5.0, 0.5, 4.0]);
+        for (i, s) in steps.iter().enumerate() {
+            let expected = ((i + 1) as f64).powf(-0.85);
+            assert!(
+                (s - expected).abs() < 1e-9,
+                "visit {}: {s} vs {expected}",
+                i + 1
+            );
+        }
+        // Where the floor falls below α, α rules.
+        let mut l = SarsaLambda::new(
+            SarsaConfig {
+                alpha: 0.05,
+                ..SarsaConfig::default()
+            },
+            1,
+            1,
+        );
+        l.set_visit_power(0.85);
+        for _ in 0..100 {
+            l.clear_traces();
+            l.visit(0, 0, &[1.0]);
+        }
+        l.clear_traces();
+        l.visit(0, 0, &[1.0]);
+        l.apply(1.0, 1.0);
+        assert!(
+            (l.q(0, 0, &[1.0]) - 0.05).abs() < 1e-12,
+            "101 visits: step α"
+        );
+        // A one-hot feature seen once, beside a bias seen on every visit: its own weight
+        // takes the large step, the bias the annealed one (normalised by |φ|² = 2).
+        let mut l = SarsaLambda::new(
+            SarsaConfig {
+                alpha: 0.01,
+                ..SarsaConfig::default()
+            },
+            1,
+            3,
+        );
+        l.set_visit_power(0.85);
+        for _ in 0..500 {
+            l.clear_traces();
+            l.visit(0, 0, &[1.0, 1.0, 0.0]);
+        }
+        l.clear_traces();
+        l.visit(0, 0, &[1.0, 0.0, 1.0]);
+        l.apply(1.0, 2.0);
+        let w = &l.weights[&0];
+        assert!(
+            (w[0] - 0.01 / 2.0).abs() < 1e-12 && (w[2] - 0.5).abs() < 1e-12,
+            "{w:?}"
+        );
+        assert_eq!(w[1], 0.0);
+        // Turning it off (or on again) forgets the counts.
+        l.set_visit_power(0.0);
+        assert!(l.visits.is_empty());
     }
 }

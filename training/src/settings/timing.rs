@@ -353,6 +353,12 @@ pub const TIMING_SETTINGS: &[Spec] = &[
         Rule::Optional(&STEP_SIZE),
         "final SARSA(lambda) learning rate, annealed from alpha like epsilon (none = constant alpha; 0.005 on Reproduction-v0)",
     ),
+    spec(
+        "visit_power",
+        &["train", "visit_power"],
+        UNIT,
+        "exponent w of the per-feature step floor n^-w, n = the feature's visits in its state-action pair (Even-Dar & Mansour 2003; 0 = off, 0.85 on Reproduction-v0)",
+    ),
     spec("gamma", &["agent", "gamma"], UNIT, "discount per step"),
     spec(
         "lambda",
