@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# The time cells on reproduction priors that no test or doc uses (issue #45's criterion:
-# mean tp/ts within 0.8-1.2 at every ts of a held-out prior): the three time-cell models,
-# seeds 1-4, on the intermediate prior alone (`inter`) and on priors 10-16 with 15-21
-# (`custom`), run defaults. One line per run: set-up, run, evaluation success, then per
+# The timing models on reproduction priors that no test or doc uses (issue #45's criterion:
+# mean tp/ts within 0.8-1.2 at every ts of a held-out prior): every timing model, seeds
+# 1-4, on the intermediate prior alone (`inter`) and on priors 10-16 with 15-21 (`custom`),
+# run defaults. One line per run: set-up, run, evaluation success, then per
 # prior its slope and the mean tp/ts at each ts in order. Resumable: a run with a line is
 # skipped.
 #
@@ -16,7 +16,7 @@ for setup in inter custom; do
     inter) priors=intermediate ;;
     custom) priors=10-16,15-21 ;;
   esac
-  for m in timecells-csc timecells-ms timecells-laplace; do
+  for m in timecells-csc timecells-ms timecells-laplace ddm sbf; do
     for s in 1 2 3 4; do
       name="r-$setup-$m-$s"
       grep -q " $name " "$out/heldout-priors.txt" && continue
