@@ -140,9 +140,10 @@ pub const REPRODUCTION_ALPHA_END: f64 = 0.005;
 /// `m ⊗ p`, and with the delay line each (measurement, time since Set) pair is a feature of
 /// its own. The greedy production moves across them as it learns, so the pairs just after
 /// it are first tried late — by the exploration of later responses, at an annealed `α`
-/// near 0.005 — and stayed near their initial value: the learned production stopped at the
-/// first pair already learned, 0.77–0.79 × `ts` at the long end of the priors 10–16 and
-/// 15–21 (seeds 1–4), where an ideal observer with the model's clock noise produces 0.90.
+/// near 0.005 — and stayed near their initial value, below the greedy pair's: the learned
+/// production stopped at the last well-learned pair, as little as 0.77–0.79 × `ts` at the
+/// long end of the priors 10–16 and 15–21 (seeds 1–4), where an ideal observer with the
+/// model's clock noise produces 0.90.
 /// With the floor: RESULTS, "The 0.8–1.2 criterion".
 pub const REPRODUCTION_VISIT_POWER: f64 = 0.85;
 
