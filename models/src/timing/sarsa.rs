@@ -279,21 +279,24 @@ mod tests {
                 i + 1
             );
         }
-        // Where the floor falls below α, α rules.
-        let mut l = SarsaLambda::new(
-            SarsaConfig {
-                alpha: 0.05,
+        // A learner with step size `alpha` and the floor at ω = 0.85, whose pair (0, 0) was
+        // visited `visits` times with features `seen`.
+        let visited = |alpha: f64, seen: &[f64], visits: usize| {
+            let config = SarsaConfig {
+                alpha,
                 ..SarsaConfig::default()
-            },
-            1,
-            1,
-        );
-        l.set_visit_power(0.85);
-        for _ in 0..100 {
+            };
+            let mut l = SarsaLambda::new(config, 1, seen.len());
+            l.set_visit_power(0.85);
+            for _ in 0..visits {
+                l.clear_traces();
+                l.visit(0, 0, seen);
+            }
             l.clear_traces();
-            l.visit(0, 0, &[1.0]);
-        }
-        l.clear_traces();
+            l
+        };
+        // Where the floor falls below α, α rules.
+        let mut l = visited(0.05, &[1.0], 100);
         l.visit(0, 0, &[1.0]);
         l.apply(1.0, 1.0);
         assert!(
@@ -302,20 +305,7 @@ mod tests {
         );
         // A one-hot feature seen once, beside a bias seen on every visit: its own weight
         // takes the large step, the bias the annealed one (normalised by |φ|² = 2).
-        let mut l = SarsaLambda::new(
-            SarsaConfig {
-                alpha: 0.01,
-                ..SarsaConfig::default()
-            },
-            1,
-            3,
-        );
-        l.set_visit_power(0.85);
-        for _ in 0..500 {
-            l.clear_traces();
-            l.visit(0, 0, &[1.0, 1.0, 0.0]);
-        }
-        l.clear_traces();
+        let mut l = visited(0.01, &[1.0, 1.0, 0.0], 500);
         l.visit(0, 0, &[1.0, 0.0, 1.0]);
         l.apply(1.0, 2.0);
         let w = &l.weights[&0];
