@@ -531,11 +531,7 @@ fn a_timing_run_config_with_an_unknown_field_names_it() {
 
 /// `record --figures` on a reproduction run draws each clock population's speed after Set
 /// (KiNeT) with both known answers, and none for the learner's value signal: drift-diffusion
-/// (whose accumulator times the production by speed). The figure needs productions, so the
-/// agent trains for 1,000 episodes (about 0.1 s): with the task's visit-count step floor the
-/// first few hundred episodes' values are their first raw samples, and at 300 episodes the
-/// seed-0 agent had not yet delivered a soup (0.38 without the floor; 0.76–0.80 at
-/// 600–2,000 episodes with it).
+/// (whose accumulator times the production by speed).
 #[test]
 fn a_reproduction_recording_draws_the_speed_figure() {
     let dir = temp_dir("reproduction_speed_figure");
@@ -547,7 +543,7 @@ fn a_reproduction_recording_draws_the_speed_figure() {
         "--model",
         "ddm",
         "--set",
-        "episodes=1000",
+        "episodes=300",
         "--quiet",
         "--out",
         &p("run"),

@@ -399,3 +399,31 @@ fn every_count_setting_is_bounded_below_the_types_maximum() {
         "{err}"
     );
 }
+
+/// The reproduction task's training defaults: every timing model anneals its step size to
+/// 0.005 over 60,000 episodes; the visit-count step floor (ω 0.85) is on for the models whose
+/// responses are learned (the time cells) and off for the gated clocks (drift-diffusion,
+/// SBF) and on every other task.
+#[test]
+fn the_visit_count_floor_is_a_reproduction_default_of_the_time_cells_only() {
+    use chronocooked_env::Task;
+    let reproduction = Task::new("Reproduction-v0").unwrap();
+    for (model, floor) in [
+        ("ddm", 0.0),
+        ("sbf", 0.0),
+        ("timecells-csc", 0.85),
+        ("timecells-ms", 0.85),
+        ("timecells-laplace", 0.85),
+    ] {
+        let cfg = TimingRunConfig::new(&reproduction, model, 1);
+        assert_eq!(cfg.train.visit_power, floor, "{model}");
+        assert_eq!(cfg.train.alpha_end, Some(0.005), "{model}");
+        assert_eq!(cfg.train.episodes, 60_000, "{model}");
+        let fixed = TimingRunConfig::new(&Task::new(TASK).unwrap(), model, 1);
+        assert_eq!(fixed.train.visit_power, 0.0, "{model} on {TASK}");
+    }
+    // An override still wins.
+    let mut cfg = TimingRunConfig::new(&reproduction, "ddm", 1);
+    cfg.set("visit_power=0.7").unwrap();
+    assert_eq!(cfg.train.visit_power, 0.7);
+}

@@ -33,7 +33,8 @@ pub struct TimingTrainConfig {
     /// activity over its pair's visits ([`crate::timing::sarsa::SarsaLambda::set_visit_power`];
     /// Even-Dar & Mansour 2003). With `alpha_end` a pair first visited late in training
     /// would learn at the annealed step size from its initial value; with the floor it
-    /// learns from its first samples. Off by default; 0.85 on the reproduction task.
+    /// learns from its first samples. Off by default; 0.85 for the time cells on the
+    /// reproduction task.
     #[serde(default)]
     pub visit_power: f64,
     /// Evaluate every this many episodes (0: only at the end).

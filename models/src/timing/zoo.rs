@@ -180,6 +180,14 @@ pub fn is_timing_model(name: &str) -> bool {
     TIMING_MODELS.iter().any(|m| m.name == name)
 }
 
+/// Whether timing model `name` gates its responses natively ([`Timer::has_gate`]:
+/// drift-diffusion and SBF respond when their clock says so; the time cells' responses are
+/// learned by TD). `None` for an unknown name.
+pub fn has_native_gate(name: &str) -> Option<bool> {
+    let spec = TIMING_MODELS.iter().find(|m| m.name == name)?;
+    Some((spec.build)(&mut Xoshiro256PlusPlus::seed_from_u64(0)).has_gate())
+}
+
 /// Builds an untrained timing agent `name` for `env`'s task (`seed` draws SBF frequencies).
 /// Errors name the allowed values.
 pub fn make_timing_agent(name: &str, env: &ChronoEnv, seed: u64) -> Result<TimingAgent, String> {

@@ -357,7 +357,7 @@ pub const TIMING_SETTINGS: &[Spec] = &[
         "visit_power",
         &["train", "visit_power"],
         UNIT,
-        "exponent w of the per-feature step floor n^-w, n = the feature's visits in its state-action pair (Even-Dar & Mansour 2003; 0 = off, 0.85 on Reproduction-v0)",
+        "exponent w of the per-feature step floor n^-w, n = the feature's visits in its state-action pair (Even-Dar & Mansour 2003; 0 = off, 0.85 for the time cells on Reproduction-v0)",
     ),
     spec("gamma", &["agent", "gamma"], UNIT, "discount per step"),
     spec(
