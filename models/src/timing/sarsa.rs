@@ -65,7 +65,7 @@ pub struct SarsaLambda {
 }
 
 /// How often each feature of one state–action pair was active ([`SarsaLambda::visit`]).
-#[derive(Debug, Clone, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq)]
 struct Visits {
     /// `nᵢ = Σ φᵢ²` over the pair's visits.
     count: Vec<f64>,
@@ -193,15 +193,21 @@ impl SarsaLambda {
                 w[0] = q0;
                 w
             });
-            match self.visits.get(key) {
-                Some(v) if self.visit_power > 0.0 => {
+            // Off: no count lookup on the hot path.
+            let floor = if self.visit_power > 0.0 {
+                self.visits.get(key)
+            } else {
+                None
+            };
+            match floor {
+                Some(v) => {
                     for ((wi, ei), f) in w.iter_mut().zip(e).zip(&v.floor) {
                         if *ei != 0.0 {
                             *wi += f.max(alpha) / norm * delta * ei;
                         }
                     }
                 }
-                _ => {
+                None => {
                     for (wi, ei) in w.iter_mut().zip(e) {
                         *wi += step * ei;
                     }
