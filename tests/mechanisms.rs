@@ -4,7 +4,7 @@
 
 use crate::common;
 
-use chronocooked_analysis::mechanisms::{compare, signatures};
+use chronocooked_analysis::mechanisms::{View, compare, signatures};
 use common::run_ok;
 use serde_json::json;
 use std::path::Path;
@@ -133,7 +133,7 @@ fn fingerprints_read_every_feature_and_find_the_mechanism_an_agent_copies() {
     assert!((f("wf") - 0.2).abs() < 1e-12);
     assert!((f("frac_ramp") - 0.1).abs() < 1e-12 && (f("frac_time_field") - 0.9).abs() < 1e-12);
     assert!((f("decode_error_over_td") - 0.1).abs() < 1e-12);
-    let c = compare(&sigs, &["ddm", "timecells-csc"], 300, 3);
+    let c = compare(&sigs, &["ddm", "timecells-csc"], 300, 3, View::Units);
     let get = |m: &str| {
         c.iter()
             .find(|x| x.agent == "agent125" && x.mechanism == m)
@@ -259,7 +259,7 @@ fn copy_tree(src: &Path, dst: &Path) {
 fn the_committed_study_names_every_held_out_mechanism_and_not_a_random_agent() {
     use chronocooked_analysis::mechanisms::{MECHANISMS, identify};
     let study = Path::new(env!("CARGO_MANIFEST_DIR")).join("results/mechanisms");
-    let id = identify(&signatures(&study).unwrap());
+    let id = identify(&signatures(&study).unwrap(), View::Units);
     for m in MECHANISMS {
         assert_eq!(id.accuracy(m), 1.0, "{m}: {:?}", id.held_out);
     }
@@ -314,10 +314,10 @@ fn the_committed_study_names_every_held_out_mechanism_and_not_a_random_agent() {
     ]);
     let line = out
         .lines()
-        .find(|l| l.starts_with("random:"))
+        .find(|l| l.trim_start().starts_with("random:"))
         .unwrap_or_default();
     assert!(line.contains("not identified"), "{out}");
-    let id = identify(&signatures(root.path()).unwrap());
+    let id = identify(&signatures(root.path()).unwrap(), View::Units);
     let random = id.agents.iter().find(|a| a.agent == "random").unwrap();
     assert!(!random.identified, "{random:?}");
 }
@@ -375,8 +375,10 @@ fn fingerprint_identifies_held_out_seeds_of_the_mechanisms_from_their_runs() {
             &std::fs::read_to_string(dir.join(format!("fp-{m}/fingerprint.json"))).unwrap(),
         )
         .unwrap();
-        assert_eq!(fp["placement"]["nearest"], m);
-        assert_eq!(fp["placement"]["missing"], json!([]));
+        for view in ["units", "dynamics"] {
+            assert_eq!(fp[view]["nearest"], m, "{view}");
+            assert_eq!(fp[view]["missing"], json!([]), "{view}");
+        }
         for f in [
             "fingerprint.html",
             "fingerprint.png",
@@ -423,7 +425,7 @@ fn fingerprint_identifies_held_out_seeds_of_the_mechanisms_from_their_runs() {
 fn the_reference_study_names_its_held_out_seeds() {
     use chronocooked_analysis::mechanisms::identify;
     let study = Path::new(env!("CARGO_MANIFEST_DIR")).join("results/mechanisms-reference");
-    let id = identify(&signatures(&study).unwrap());
+    let id = identify(&signatures(&study).unwrap(), View::Units);
     let correct = id
         .held_out
         .iter()

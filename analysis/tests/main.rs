@@ -5,6 +5,7 @@
 mod synthetic;
 
 mod behaviour_metrics;
+mod dynamics_known_answers;
 mod eval_protocol;
 mod extension_metrics;
 mod fingerprint_reference;

@@ -148,19 +148,37 @@ pub fn fingerprint<'py>(
                 .join(", ")
         )));
     }
-    let (placement, files) = write_and_place(&out, &plays, name, units_correspond, seed, resamples)
-        .map_err(|e| pyo3::exceptions::PyOSError::new_err(e.to_string()))?;
+    let (fingerprint, files) =
+        write_and_place(&out, &plays, name, units_correspond, seed, resamples)
+            .map_err(|e| pyo3::exceptions::PyOSError::new_err(e.to_string()))?;
+    let view = |p: &chronocooked_analysis::fingerprint::Placement| {
+        serde_json::json!({
+            "missing": p.missing,
+            "distances": p.distances,
+            "nearest": p.nearest,
+            "identified": p.identified,
+            "verdict": chronocooked_analysis::fingerprint::verdict(p),
+            "reference_identification": p.reference_identification,
+        })
+    };
+    let units = &fingerprint.units;
+    // Top-level placement keys: the unit view (as before the dynamics view existed); the
+    // two views side by side under `units` and `dynamics`.
     let json = serde_json::json!({
         "out": out,
         "conditions": plays.iter().map(|p| p.condition.name).collect::<Vec<_>>(),
-        "model": placement.model,
-        "signature": placement.signature,
-        "missing": placement.missing,
-        "distances": placement.distances,
-        "nearest": placement.nearest,
-        "identified": placement.identified,
-        "verdict": chronocooked_analysis::fingerprint::verdict(&placement),
-        "reference_identification": placement.reference_identification,
+        "model": units.model,
+        "signature": units.signature,
+        "missing": units.missing,
+        "distances": units.distances,
+        "nearest": units.nearest,
+        "identified": units.identified,
+        "verdict": chronocooked_analysis::fingerprint::verdict(units),
+        "reference_identification": units.reference_identification,
+        "units": view(units),
+        "dynamics": view(&fingerprint.dynamics),
+        "views_agree": fingerprint.views_agree(),
+        "agreement": chronocooked_analysis::fingerprint::agreement(&fingerprint),
         "files": files,
     });
     crate::info::to_py(py, &json)

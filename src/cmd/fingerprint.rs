@@ -48,27 +48,26 @@ pub fn run(args: FingerprintArgs) -> Result<()> {
             out: args.out.clone(),
         },
     )?;
-    let p = &r.placement;
-    println!(
-        "{} ({}): {}",
-        p.model,
-        r.conditions.join(", "),
-        chronocooked_analysis::fingerprint::verdict(p)
-    );
-    for d in &p.distances {
-        println!(
-            "  {:<18} distance {:5.2}  its own seeds {}  limit {}  bootstrap share {:.2}",
-            d.mechanism,
-            d.distance,
-            d.self_range
-                .map_or("–".into(), |(lo, hi)| format!("{lo:.2}–{hi:.2}")),
-            d.limit.map_or("–".into(), |l| format!("{l:.2}")),
-            d.bootstrap_share
-        );
+    let f = &r.placement;
+    println!("{} ({})", f.model(), r.conditions.join(", "));
+    for p in f.views() {
+        println!("  {}", chronocooked_analysis::fingerprint::verdict(p));
+        for d in &p.distances {
+            println!(
+                "    {:<18} distance {:5.2}  its own seeds {}  limit {}  bootstrap share {:.2}",
+                d.mechanism,
+                d.distance,
+                d.self_range
+                    .map_or("–".into(), |(lo, hi)| format!("{lo:.2}–{hi:.2}")),
+                d.limit.map_or("–".into(), |l| format!("{l:.2}")),
+                d.bootstrap_share
+            );
+        }
+        if !p.missing.is_empty() {
+            println!("    missing features: {}", p.missing.join(", "));
+        }
     }
-    if !p.missing.is_empty() {
-        println!("  missing features: {}", p.missing.join(", "));
-    }
+    println!("  {}.", chronocooked_analysis::fingerprint::agreement(f));
     println!("wrote {}", args.out.join("fingerprint.html").display());
     Ok(())
 }

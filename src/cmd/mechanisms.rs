@@ -56,7 +56,15 @@ pub fn run(args: MechanismsArgs) -> Result<()> {
             .collect::<Vec<_>>()
             .join(", ")
     );
-    let id = &w.identification;
+    for id in &w.identifications {
+        println!("{}:", id.view.title());
+        print_identification(id);
+    }
+    Ok(())
+}
+
+/// The leave-one-seed-out identification and the agents' verdicts of one view.
+fn print_identification(id: &chronocooked_analysis::mechanisms::Identification) {
     let mut mechs: Vec<&str> = id.held_out.iter().map(|h| h.mechanism.as_str()).collect();
     mechs.dedup();
     let held: Vec<String> = mechs
@@ -73,7 +81,7 @@ pub fn run(args: MechanismsArgs) -> Result<()> {
         })
         .collect();
     println!(
-        "identification, leave one seed out (held-out seeds named as their own mechanism): {}",
+        "  identification, leave one seed out (held-out seeds named as their own mechanism): {}",
         held.join("; ")
     );
     for a in &id.agents {
@@ -84,7 +92,7 @@ pub fn run(args: MechanismsArgs) -> Result<()> {
             .limit(&a.nearest)
             .map_or("–".into(), |l| format!("{l:.2}"));
         println!(
-            "{}: {} (nearest {}, distance {:.2}; its limit {limit}, its seeds lie {range} \
+            "  {}: {} (nearest {}, distance {:.2}; its limit {limit}, its seeds lie {range} \
              from it)",
             a.agent,
             if a.identified {
@@ -96,5 +104,4 @@ pub fn run(args: MechanismsArgs) -> Result<()> {
             a.distance
         );
     }
-    Ok(())
 }

@@ -1,13 +1,14 @@
-//! The fingerprint's files: `fingerprint.json` (the placement), `fingerprint.md`,
-//! `fingerprint.html` (a card in the style of the report's mechanism cards, with the
-//! placement) and `fingerprint.png` (the distance panel beside the card's panels).
+//! The fingerprint's files: `fingerprint.json` (the placements in both views),
+//! `fingerprint.md`, `fingerprint.html` (the two views side by side, then a card in the
+//! style of the report's mechanism cards) and `fingerprint.png` (the distance panels of
+//! both views beside the card's panels).
 
-use super::place::{Placement, REFERENCE_SOURCE};
+use super::place::{Fingerprint, Placement, REFERENCE_SOURCE};
 use super::play::PROTOCOL;
 use crate::figures::markup::{figure_file, page};
 use crate::figures::{Chart, Series, write_chart_sized, write_panels};
 use crate::job_folder;
-use crate::mechanisms::{FEATURES, MechanismError};
+use crate::mechanisms::MechanismError;
 use chronocooked_env::markdown::Table;
 use maud::html;
 use std::path::{Path, PathBuf};
@@ -24,8 +25,31 @@ fn range(r: Option<(f64, f64)>) -> String {
     r.map_or("–".into(), |(lo, hi)| format!("{lo:.2}–{hi:.2}"))
 }
 
-/// One sentence: what the placement says.
+/// One sentence: what the placement says, in its view.
 pub fn verdict(p: &Placement) -> String {
+    format!("{} view: {}", p.view.key(), bare_verdict(p))
+}
+
+/// Whether the two views agree, as a sentence (says which view says what where not).
+pub fn agreement(f: &Fingerprint) -> String {
+    let say = |p: &Placement| match (&p.nearest, p.identified) {
+        (Some(m), true) => format!("identified as {m}"),
+        (Some(m), false) => format!("not identified (nearest {m})"),
+        (None, _) => "no verdict".to_string(),
+    };
+    if f.views_agree() {
+        format!("The two views agree: {}", say(&f.dynamics))
+    } else {
+        format!(
+            "The two views disagree: the unit view says {}, the dynamics view {}. Unit \
+             categories change with the basis of the units; the dynamics view does not",
+            say(&f.units),
+            say(&f.dynamics)
+        )
+    }
+}
+
+fn bare_verdict(p: &Placement) -> String {
     let limit = |d: &crate::fingerprint::MechanismDistance| {
         d.limit.map_or("–".into(), |l| format!("{l:.2}"))
     };
@@ -87,7 +111,7 @@ fn distance_chart(p: &Placement) -> Chart {
         .filter(|v| v.is_finite())
         .fold(1.0f64, f64::max);
     Chart {
-        title: format!("{}: distance to each mechanism", p.model),
+        title: format!("{} view: distance to each mechanism", p.view.key()),
         x_label: "mechanism, nearest first (bar: its own seeds up to its limit)".into(),
         y_label: "distance (seed SDs)".into(),
         series,
@@ -96,18 +120,14 @@ fn distance_chart(p: &Placement) -> Chart {
     }
 }
 
-fn markdown(p: &Placement) -> String {
-    let mut md = format!("# Fingerprint of {}\n\n{}.\n\n", p.model, verdict(p));
-    md += &format!(
-        "Compared with {REFERENCE_SOURCE}; the reference names {} of its {} held-out \
-         mechanism seeds as their own mechanism. Distance: RMS over the shared features of \
-         the differences in units of each feature's seed-to-seed SD within a mechanism \
-         (pooled over the mechanisms; 1 = one seed SD on every feature); \
-         self-distance: the range of the mechanism's own held-out seeds' distances; limit: \
-         the upper 99% prediction limit for a new seed's distance (identified within it); \
-         bootstrap share: of {} resamples of the mechanisms' seeds, the share in which the \
-         mechanism is the nearest.\n\n",
-        p.reference_identification.0, p.reference_identification.1, p.resamples
+fn view_markdown(p: &Placement) -> String {
+    let mut md = format!(
+        "## {}\n\n{}.\n\nThe reference names {} of its {} held-out mechanism seeds as their own \
+         mechanism in this view.\n\n",
+        p.view.title(),
+        bare_verdict(p),
+        p.reference_identification.0,
+        p.reference_identification.1
     );
     let mut distances = Table::new([
         "mechanism",
@@ -127,11 +147,11 @@ fn markdown(p: &Placement) -> String {
     }
     md += &distances.render();
     let mut features = Table::new(["feature", "value"]);
-    for f in FEATURES {
+    for f in p.view.features() {
         features.row([
             f.to_string(),
             p.signature
-                .get(f)
+                .get(*f)
                 .map_or("missing".into(), |v| format!("{v:.3}")),
         ]);
     }
@@ -143,10 +163,32 @@ fn markdown(p: &Placement) -> String {
     md
 }
 
+fn markdown(f: &Fingerprint) -> String {
+    let mut md = format!("# Fingerprint of {}\n\n{}.\n\n", f.model(), agreement(f));
+    md += &format!(
+        "Compared with {REFERENCE_SOURCE}. Distance: RMS over the view's shared features of \
+         the differences in units of each feature's seed-to-seed SD within a mechanism \
+         (pooled over the mechanisms; 1 = one seed SD on every feature); \
+         self-distance: the range of the mechanism's own held-out seeds' distances; limit: \
+         the upper 99% prediction limit for a new seed's distance (identified within it); \
+         bootstrap share: of {} resamples of the mechanisms' seeds, the share in which the \
+         mechanism is the nearest. The unit view reads single-unit categories, which change \
+         when the units are mixed; the dynamics view reads the population trajectory's \
+         basis-free signature, the same in any orthogonal basis.\n\n",
+        f.units.resamples
+    );
+    for p in f.views() {
+        md += &view_markdown(p);
+        md += "\n";
+    }
+    md
+}
+
 /// Writes `fingerprint.md`, `fingerprint.html`, `fingerprint.png` and, last, `fingerprint.json`
 /// (panel files in `card/`) into `dir`, the folder the agent's protocol conditions were
 /// written to (its fixed-interval recordings make the card); returns the files.
-pub fn write_fingerprint(dir: &Path, p: &Placement) -> Result<Vec<PathBuf>, MechanismError> {
+pub fn write_fingerprint(dir: &Path, f: &Fingerprint) -> Result<Vec<PathBuf>, MechanismError> {
+    let p = &f.units;
     let write = |name: &str, bytes: &[u8]| {
         let path = dir.join(name);
         chronocooked_env::fs::write_atomic(&path, bytes)
@@ -155,13 +197,19 @@ pub fn write_fingerprint(dir: &Path, p: &Placement) -> Result<Vec<PathBuf>, Mech
     };
     let mut files = Vec::new();
     let json = serde_json::json!({
-        "placement": p,
-        "verdict": verdict(p),
+        "units": f.units,
+        "dynamics": f.dynamics,
+        "verdicts": {"units": verdict(&f.units), "dynamics": verdict(&f.dynamics)},
+        "views_agree": f.views_agree(),
+        "agreement": agreement(f),
         "reference": REFERENCE_SOURCE,
-        "features": FEATURES,
+        "features": {
+            "units": crate::mechanisms::View::Units.features(),
+            "dynamics": crate::mechanisms::View::Dynamics.features(),
+        },
     });
     let text = serde_json::to_string_pretty(&json).map_err(|e| MechanismError::at(dir, e))? + "\n";
-    files.push(write("fingerprint.md", markdown(p).as_bytes())?);
+    files.push(write("fingerprint.md", markdown(f).as_bytes())?);
     let panels_dir = dir.join("card");
     let fi_evals: Vec<PathBuf> = PROTOCOL
         .iter()
@@ -176,44 +224,62 @@ pub fn write_fingerprint(dir: &Path, p: &Placement) -> Result<Vec<PathBuf>, Mech
         p.signature.get("scaling_index").copied(),
     )
     .map_err(|e| MechanismError::at(&panels_dir, e))?;
-    let chart = distance_chart(p);
-    let distance_files = write_chart_sized(&panels_dir.join("distances"), &chart, (560, 360))
+    let charts_of_views: Vec<Chart> = f.views().iter().map(|p| distance_chart(p)).collect();
+    let mut view_blocks = Vec::new();
+    for (p, chart) in f.views().into_iter().zip(&charts_of_views) {
+        let files = write_chart_sized(
+            &panels_dir.join(format!("distances-{}", p.view.key())),
+            chart,
+            (560, 360),
+        )
         .map_err(|e| MechanismError::at(&panels_dir, e))?;
-    let distance_figure = figure_file(
-        &distance_files[0],
-        "distance to each mechanism's fingerprint (dots) beside bars from the nearest of the \
-         mechanism's own held-out seeds to its identification limit (the upper 99% \
-         prediction limit for a new seed): a dot within its bar is as near as an unseen \
-         seed of that mechanism",
-        Some("half"),
-    )
-    .map_err(|e| MechanismError::at(&panels_dir, e))?;
-    let body = html! {
-        p { (verdict(p)) "." }
-        p { (format!("Compared with {REFERENCE_SOURCE}: {} of {} held-out mechanism seeds named as their own mechanism.", p.reference_identification.0, p.reference_identification.1)) }
-        table {
-            tr { th { "mechanism" } th { "distance" } th { "self-distance" } th { "limit" } th { "bootstrap share" } }
-            @for d in &p.distances {
-                tr {
-                    td { (d.mechanism) } td { (fmt(d.distance)) } td { (range(d.self_range)) }
-                    td { (d.limit.map_or("–".into(), fmt)) }
-                    td { (format!("{:.2}", d.bootstrap_share)) }
+        let figure = figure_file(
+            &files[0],
+            "distance to each mechanism's fingerprint (dots) beside bars from the nearest of \
+             the mechanism's own held-out seeds to its identification limit (the upper 99% \
+             prediction limit for a new seed): a dot within its bar is as near as an unseen \
+             seed of that mechanism",
+            None,
+        )
+        .map_err(|e| MechanismError::at(&panels_dir, e))?;
+        view_blocks.push(html! {
+            div style="flex: 1 1 560px; min-width: 0" {
+                h2 { (p.view.title()) }
+                p { (bare_verdict(p)) "." }
+                p { (format!("{} of {} held-out mechanism seeds named as their own mechanism in this view.", p.reference_identification.0, p.reference_identification.1)) }
+                table {
+                    tr { th { "mechanism" } th { "distance" } th { "self-distance" } th { "limit" } th { "bootstrap share" } }
+                    @for d in &p.distances {
+                        tr {
+                            td { (d.mechanism) } td { (fmt(d.distance)) } td { (range(d.self_range)) }
+                            td { (d.limit.map_or("–".into(), fmt)) }
+                            td { (format!("{:.2}", d.bootstrap_share)) }
+                        }
+                    }
+                }
+                (figure)
+                table {
+                    tr { th { "feature" } th { "value" } }
+                    @for feat in p.view.features() {
+                        tr { td { (feat) } td { (p.signature.get(*feat).map_or("missing".into(), |v| format!("{v:.3}"))) } }
+                    }
                 }
             }
+        });
+    }
+    let body = html! {
+        p { strong { (agreement(f)) "." } }
+        p { (format!("Compared with {REFERENCE_SOURCE}."))
+            " The unit view reads single-unit categories, which change when the units are mixed (another basis of the same dynamics); the dynamics view reads the population trajectory's basis-free signature." }
+        div style="display: flex; flex-wrap: wrap; gap: 1.5em" {
+            @for b in &view_blocks { (b) }
         }
-        (distance_figure)
         @if let Some((markup, _)) = &card { (markup) }
         @else { p { "No neural card: the agent recorded no activity with a varying timing population on the probe trials." } }
-        table {
-            tr { th { "feature" } th { "value" } }
-            @for f in FEATURES {
-                tr { td { (f) } td { (p.signature.get(f).map_or("missing".into(), |v| format!("{v:.3}"))) } }
-            }
-        }
     };
     let html_page = page(&format!("Fingerprint — {}", p.model), body);
     files.push(write("fingerprint.html", html_page.as_bytes())?);
-    let mut charts = vec![Some(chart)];
+    let mut charts: Vec<Option<Chart>> = charts_of_views.into_iter().map(Some).collect();
     if let Some((_, panels)) = card {
         charts.extend(panels.into_iter().map(|(_, c, _)| Some(c)));
     }

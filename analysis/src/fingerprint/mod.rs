@@ -24,8 +24,10 @@ mod card;
 mod place;
 mod play;
 
-pub use card::{verdict, write_fingerprint};
-pub use place::{MechanismDistance, Placement, place, reference_signatures, signatures_from_csv};
+pub use card::{agreement, verdict, write_fingerprint};
+pub use place::{
+    Fingerprint, MechanismDistance, Placement, place, reference_signatures, signatures_from_csv,
+};
 pub use play::{
     ConditionPlay, PROTOCOL, ProtocolCondition, agent_signature, play_condition, write_condition,
 };
@@ -33,9 +35,9 @@ pub use play::{
 /// Writes the played conditions into `out` (holding its lock; folders of conditions not
 /// played now are removed, `fingerprint.json` first removed so that it is written last)
 /// and places the agent `model`: its signature (`units_correspond` as in
-/// [`agent_signature`]), the placement among [`reference_signatures`] (`resamples`
-/// bootstrap resamples, `seed`) and the fingerprint's files. Returns the placement and the
-/// files.
+/// [`agent_signature`]), the placement in both views among [`reference_signatures`]
+/// (`resamples` bootstrap resamples, `seed`) and the fingerprint's files. Returns the
+/// placements and the files.
 pub fn write_and_place(
     out: &std::path::Path,
     plays: &[ConditionPlay],
@@ -43,7 +45,7 @@ pub fn write_and_place(
     units_correspond: bool,
     seed: u64,
     resamples: usize,
-) -> Result<(Placement, Vec<std::path::PathBuf>), crate::mechanisms::MechanismError> {
+) -> Result<(Fingerprint, Vec<std::path::PathBuf>), crate::mechanisms::MechanismError> {
     use crate::mechanisms::MechanismError;
     let _lock =
         chronocooked_env::fs::FolderLock::acquire(out).map_err(|e| MechanismError::at(out, e))?;
@@ -57,7 +59,7 @@ pub fn write_and_place(
         write_condition(out, play, model, seed)?;
     }
     let signature = agent_signature(out, model, units_correspond, seed)?;
-    let placement = place(&signature, &reference_signatures(), resamples, seed);
-    let files = write_fingerprint(out, &placement)?;
-    Ok((placement, files))
+    let fingerprint = Fingerprint::place(&signature, &reference_signatures(), resamples, seed);
+    let files = write_fingerprint(out, &fingerprint)?;
+    Ok((fingerprint, files))
 }

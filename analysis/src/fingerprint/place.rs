@@ -2,7 +2,7 @@
 //! identification's scale, self-distance ranges, bootstrap shares and the verdict.
 
 use crate::mechanisms::{
-    FEATURES, MECHANISMS, Scale, Signature, distance, identify, mean_features,
+    ALL_FEATURES, MECHANISMS, Scale, Signature, View, distance, identify, mean_features,
 };
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -20,7 +20,7 @@ pub const REFERENCE_SOURCE: &str =
 
 /// Parses a `signatures.csv` (`model,seed,<features…>`, written by `chronocooked
 /// mechanisms`): one signature per line, empty cells missing. Columns other than
-/// [`FEATURES`] are refused; a feature missing from the header is missing everywhere.
+/// [`ALL_FEATURES`] are refused; a feature missing from the header is missing everywhere.
 pub fn signatures_from_csv(text: &str) -> Result<Vec<Signature>, String> {
     let mut reader = csv::ReaderBuilder::new().from_reader(text.as_bytes());
     let header: Vec<String> = reader
@@ -35,10 +35,10 @@ pub fn signatures_from_csv(text: &str) -> Result<Vec<Signature>, String> {
         ));
     }
     for f in &header[2..] {
-        if !FEATURES.contains(&f.as_str()) {
+        if !ALL_FEATURES.contains(&f.as_str()) {
             return Err(format!(
                 "unknown feature column `{f}` (allowed: {})",
-                FEATURES.join(", ")
+                ALL_FEATURES.join(", ")
             ));
         }
     }
@@ -99,15 +99,17 @@ pub struct MechanismDistance {
     pub bootstrap_share: f64,
 }
 
-/// One agent placed among the mechanisms.
+/// One agent placed among the mechanisms in one view.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Placement {
+    /// The view whose features were compared.
+    pub view: View,
     /// The agent's name.
     pub model: String,
-    /// Its signature: feature → value.
+    /// Its signature: feature → value (every feature it has, of both views).
     pub signature: BTreeMap<String, f64>,
-    /// Features it lacks (e.g. the neural ones of an agent without activity), in
-    /// [`FEATURES`] order.
+    /// Features of the view it lacks (e.g. the neural ones of an agent without activity),
+    /// in the view's order.
     pub missing: Vec<String>,
     /// Every mechanism, nearest first.
     pub distances: Vec<MechanismDistance>,
@@ -123,7 +125,7 @@ pub struct Placement {
 }
 
 /// Places `agent` among the `mechanisms`' signatures (models of [`MECHANISMS`]; others are
-/// ignored): distances on the leave-one-seed-out identification's scale
+/// ignored) in `view`: distances on the leave-one-seed-out identification's scale
 /// ([`identify`]), the self-distance ranges, `resamples` bootstrap resamples of the
 /// mechanisms' seeds (seeded by `seed`) and the verdict.
 pub fn place(
@@ -131,6 +133,7 @@ pub fn place(
     mechanisms: &[Signature],
     resamples: usize,
     seed: u64,
+    view: View,
 ) -> Placement {
     let mechs: Vec<&Signature> = mechanisms
         .iter()
@@ -143,9 +146,9 @@ pub fn place(
         model: probe_name.clone(),
         ..agent.clone()
     });
-    let id = identify(&all);
+    let id = identify(&all, view);
     let verdict = id.agents.iter().find(|a| a.agent == probe_name);
-    let scale = Scale::of(&mechs, &MECHANISMS);
+    let scale = Scale::of(&mechs, &MECHANISMS, view);
     let x = mean_features(&[agent]);
     let mut by_model: BTreeMap<&str, Vec<&Signature>> = BTreeMap::new();
     for s in &mechs {
@@ -188,9 +191,11 @@ pub fn place(
         .filter(|h| h.named.as_deref() == Some(h.mechanism.as_str()))
         .count();
     Placement {
+        view,
         model: agent.model.clone(),
         signature: agent.features.clone(),
-        missing: FEATURES
+        missing: view
+            .features()
             .iter()
             .filter(|f| !agent.features.contains_key(**f))
             .map(|f| f.to_string())
@@ -200,6 +205,42 @@ pub fn place(
         identified: verdict.is_some_and(|v| v.identified),
         reference_identification: (correct, id.held_out.len()),
         resamples,
+    }
+}
+
+/// One agent placed in both views, side by side.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Fingerprint {
+    /// The unit view (basis-dependent).
+    pub units: Placement,
+    /// The dynamics view (basis-free).
+    pub dynamics: Placement,
+}
+
+impl Fingerprint {
+    /// Places `agent` in both views (see [`place`]).
+    pub fn place(agent: &Signature, mechanisms: &[Signature], resamples: usize, seed: u64) -> Self {
+        Fingerprint {
+            units: place(agent, mechanisms, resamples, seed, View::Units),
+            dynamics: place(agent, mechanisms, resamples, seed, View::Dynamics),
+        }
+    }
+
+    /// Both placements, unit view first.
+    pub fn views(&self) -> [&Placement; 2] {
+        [&self.units, &self.dynamics]
+    }
+
+    /// The agent's name.
+    pub fn model(&self) -> &str {
+        &self.units.model
+    }
+
+    /// Whether the two views give the same verdict: the same nearest mechanism, and
+    /// identified in both or in neither.
+    pub fn views_agree(&self) -> bool {
+        self.units.nearest == self.dynamics.nearest
+            && self.units.identified == self.dynamics.identified
     }
 }
 
@@ -243,20 +284,28 @@ mod tests {
                 seed: 0,
                 features: mean.iter().map(|(k, v)| (k.to_string(), *v)).collect(),
             };
-            let p = place(&agent, &mechs, 200, 1);
+            let p = place(&agent, &mechs, 200, 1, View::Units);
             assert_eq!(p.nearest.as_deref(), Some(m), "{p:?}");
             assert!(p.identified, "{p:?}");
             assert!(p.distances[0].distance < 1e-9);
             assert_eq!(p.distances[0].mechanism, m);
             assert!(p.distances[0].bootstrap_share > 0.9, "{p:?}");
-            assert!(p.missing.is_empty() || own.iter().any(|s| s.features.len() < FEATURES.len()));
+            assert!(
+                p.missing.is_empty()
+                    || own
+                        .iter()
+                        .any(|s| s.features.len() < crate::mechanisms::FEATURES.len())
+            );
         }
         let far = Signature {
             model: "far".into(),
             seed: 0,
-            features: FEATURES.iter().map(|f| (f.to_string(), 100.0)).collect(),
+            features: ALL_FEATURES
+                .iter()
+                .map(|f| (f.to_string(), 100.0))
+                .collect(),
         };
-        let p = place(&far, &mechs, 100, 1);
+        let p = place(&far, &mechs, 100, 1, View::Units);
         assert!(!p.identified && p.nearest.is_some(), "{p:?}");
         let (correct, all) = p.reference_identification;
         assert_eq!(all, 40);

@@ -4,7 +4,10 @@
 use crate::evaluation::folder::{EvalInfo, begin_evaluation, write_eval_folder};
 use crate::evaluation::protocol::{EvalRecord, reference_conditions, run_protocol};
 use crate::job_folder;
-use crate::mechanisms::{JobFiles, MechanismError, Signature, assemble, scaling_index_of_summary};
+use crate::mechanisms::{
+    JobFiles, MechanismError, Signature, assemble, geometry_index_of_summary,
+    scaling_index_of_summary,
+};
 use crate::neural::probe::{population_summaries, probe_task};
 use crate::records::{METRICS, Mode};
 use chronocooked_env::integrity::write_recorded;
@@ -203,7 +206,10 @@ pub fn agent_signature(
             let summaries = population_summaries(&merged, units_correspond, seed);
             let json = serde_json::to_value(&summaries).map_err(|e| MechanismError::at(dir, e))?;
             if let Some(i) = scaling_index_of_summary(&json).filter(|i| i.is_finite()) {
-                scaling.push((model.to_string(), seed, i));
+                scaling.push((model.to_string(), seed, "scaling_index", i));
+            }
+            if let Some(i) = geometry_index_of_summary(&json).filter(|i| i.is_finite()) {
+                scaling.push((model.to_string(), seed, "dyn_scaling", i));
             }
         }
     }

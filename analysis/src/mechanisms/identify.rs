@@ -22,7 +22,7 @@
 //!   mechanism's identification limit; otherwise it is "not identified", however near it is
 //!   relative to the other mechanisms.
 
-use super::{MECHANISMS, Scale, Signature, distance, mean_features};
+use super::{MECHANISMS, Scale, Signature, View, distance, mean_features};
 use std::collections::BTreeMap;
 
 /// One held-out signature of a mechanism and what it was named.
@@ -57,9 +57,12 @@ pub struct AgentVerdict {
 /// (one-sided).
 pub const LIMIT_COVERAGE: f64 = 0.99;
 
-/// Leave-one-seed-out identification of every mechanism, and the agents' verdicts.
+/// Leave-one-seed-out identification of every mechanism, and the agents' verdicts, in one
+/// view.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Identification {
+    /// The view whose features were compared.
+    pub view: View,
     /// Every held-out mechanism signature, in mechanism then seed order.
     pub held_out: Vec<HeldOut>,
     /// Agents (models not among the mechanisms), in name order.
@@ -180,8 +183,8 @@ fn nearest(
 }
 
 /// Leave-one-seed-out identification of the [`MECHANISMS`] among `sigs` and the verdict on
-/// every other model (see the module docs).
-pub fn identify(sigs: &[Signature]) -> Identification {
+/// every other model (see the module docs), on `view`'s features.
+pub fn identify(sigs: &[Signature], view: View) -> Identification {
     let mechs: Vec<&Signature> = sigs
         .iter()
         .filter(|s| MECHANISMS.contains(&s.model.as_str()))
@@ -198,7 +201,7 @@ pub fn identify(sigs: &[Signature]) -> Identification {
         if !rest.iter().any(|s| s.model == h.model) {
             continue;
         }
-        let scale = Scale::of(&rest, &MECHANISMS);
+        let scale = Scale::of(&rest, &MECHANISMS, view);
         let x = mean_features(&[*h]);
         let (best, own, other) = nearest(&x, &fingerprints(&rest), &scale, &h.model);
         held_out.push(HeldOut {
@@ -216,10 +219,11 @@ pub fn identify(sigs: &[Signature]) -> Identification {
             .then(a.seed.cmp(&b.seed))
     });
     let mut id = Identification {
+        view,
         held_out,
         agents: Vec::new(),
     };
-    let scale = Scale::of(&mechs, &MECHANISMS);
+    let scale = Scale::of(&mechs, &MECHANISMS, view);
     let prints = fingerprints(&mechs);
     let mut agents: BTreeMap<&str, Vec<&Signature>> = BTreeMap::new();
     for s in sigs
@@ -241,6 +245,49 @@ pub fn identify(sigs: &[Signature]) -> Identification {
         }
     }
     id
+}
+
+/// One agent seed's own verdict.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct SeedVerdict {
+    /// The agent.
+    pub agent: String,
+    /// Its training seed.
+    pub seed: u64,
+    /// The mechanism whose fingerprint is nearest to this seed's signature.
+    pub nearest: String,
+    /// Its distance (same scale as the identification's).
+    pub distance: f64,
+    /// Whether it lies within that mechanism's identification limit.
+    pub identified: bool,
+}
+
+/// Every seed of every agent (model not among the [`MECHANISMS`]) of `sigs` placed on its
+/// own, in `id`'s view, against the fingerprints and limits of all mechanism signatures.
+pub fn seed_verdicts(sigs: &[Signature], id: &Identification) -> Vec<SeedVerdict> {
+    let mechs: Vec<&Signature> = sigs
+        .iter()
+        .filter(|s| MECHANISMS.contains(&s.model.as_str()))
+        .collect();
+    let scale = Scale::of(&mechs, &MECHANISMS, id.view);
+    let prints = fingerprints(&mechs);
+    let mut out: Vec<SeedVerdict> = sigs
+        .iter()
+        .filter(|s| !MECHANISMS.contains(&s.model.as_str()))
+        .filter_map(|s| {
+            let (best, _, _) = nearest(&mean_features(&[s]), &prints, &scale, "");
+            let (m, d) = best?;
+            Some(SeedVerdict {
+                agent: s.model.clone(),
+                seed: s.seed,
+                identified: id.limit(&m).is_some_and(|l| d <= l),
+                nearest: m,
+                distance: d,
+            })
+        })
+        .collect();
+    out.sort_by(|a, b| a.agent.cmp(&b.agent).then(a.seed.cmp(&b.seed)));
+    out
 }
 
 #[cfg(test)]
@@ -280,7 +327,7 @@ mod tests {
                 &[("wf", 0.2 + e), ("foc_cv", 0.3 - e)],
             ));
         }
-        let id = identify(&s);
+        let id = identify(&s, View::Units);
         assert_eq!(id.held_out.len(), 16);
         assert_eq!((id.accuracy("ddm"), id.accuracy("sbf")), (1.0, 1.0));
         assert_eq!(id.count("ddm", "sbf"), 0);
@@ -312,6 +359,7 @@ mod tests {
     #[test]
     fn the_limit_is_the_log_normal_prediction_limit_with_a_pooled_spread() {
         let id = Identification {
+            view: View::Units,
             held_out: vec![
                 held("a", (-0.1f64).exp()),
                 held("a", 0.1f64.exp()),
@@ -332,6 +380,7 @@ mod tests {
         );
         assert_eq!(id.limit("c"), None);
         let single = Identification {
+            view: View::Units,
             held_out: vec![held("a", 1.0), held("b", 2.0)],
             agents: vec![],
         };

@@ -40,8 +40,10 @@ mod identify;
 mod read;
 mod tables;
 
-pub use identify::{AgentVerdict, HeldOut, Identification, identify};
-pub use read::{JobFiles, assemble, scaling_index_of_summary, signatures};
+pub use identify::{AgentVerdict, HeldOut, Identification, SeedVerdict, identify, seed_verdicts};
+pub use read::{
+    JobFiles, assemble, geometry_index_of_summary, scaling_index_of_summary, signatures,
+};
 pub use tables::{Written, fingerprint_figure, write_tables};
 
 use rand::{Rng, SeedableRng};
@@ -49,7 +51,11 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
-/// The features of a signature, in table order.
+/// The features of the *unit view*, in table order: the behaviour, the unit categories,
+/// the scaling index and the decoding error. The unit categories are properties of single
+/// units and change when the units are mixed (another basis of the same dynamics); the
+/// scaling index falls back on per-unit factors and the ridge decoder standardises each
+/// unit. This view is basis-dependent.
 pub const FEATURES: [&str; 12] = [
     "foc_cv",
     "foc_cv_trend",
@@ -64,6 +70,118 @@ pub const FEATURES: [&str; 12] = [
     "scaling_index",
     "decode_error_over_td",
 ];
+
+/// The behavioural features (the same in every basis: they read no unit).
+pub const BEHAVIOUR_FEATURES: [&str; 7] = [
+    "foc_cv",
+    "foc_cv_trend",
+    "foc_over_td",
+    "pi_peak_over_td",
+    "pi_cv",
+    "wf",
+    "bp_over_gm",
+];
+
+/// The basis-free neural features of the *dynamics view*: the population trajectory's
+/// signature ([`crate::neural::dynamics`], `dyn_<feature>`: unit-weighted mean over the
+/// model's timing populations and its fixed-interval jobs) and `dyn_scaling`, the geometry
+/// scaling index alone (distances between states, [`crate::neural::geometry`]).
+pub const DYNAMICS_NEURAL: [&str; 8] = [
+    "dyn_dimension",
+    "dyn_speed_trend",
+    "dyn_turning",
+    "dyn_straightness",
+    "dyn_continuation",
+    "dyn_spectral_radius",
+    "dyn_rotation",
+    "dyn_scaling",
+];
+
+/// The features of the *dynamics view*, in table order: the behaviour and the basis-free
+/// neural features. Every one is the same for any orthogonal mixing of a population's
+/// units (tests mix each feature's input).
+pub const DYNAMICS_FEATURES: [&str; 15] = [
+    "foc_cv",
+    "foc_cv_trend",
+    "foc_over_td",
+    "pi_peak_over_td",
+    "pi_cv",
+    "wf",
+    "bp_over_gm",
+    "dyn_dimension",
+    "dyn_speed_trend",
+    "dyn_turning",
+    "dyn_straightness",
+    "dyn_continuation",
+    "dyn_spectral_radius",
+    "dyn_rotation",
+    "dyn_scaling",
+];
+
+/// Every feature a signature may hold (unit view, then the dynamics view's own), the
+/// columns of `signatures.csv`.
+pub const ALL_FEATURES: [&str; 20] = [
+    "foc_cv",
+    "foc_cv_trend",
+    "foc_over_td",
+    "pi_peak_over_td",
+    "pi_cv",
+    "wf",
+    "bp_over_gm",
+    "frac_ramp",
+    "frac_time_field",
+    "frac_oscillating",
+    "scaling_index",
+    "decode_error_over_td",
+    "dyn_dimension",
+    "dyn_speed_trend",
+    "dyn_turning",
+    "dyn_straightness",
+    "dyn_continuation",
+    "dyn_spectral_radius",
+    "dyn_rotation",
+    "dyn_scaling",
+];
+
+/// Which features a comparison reads: the two views of a fingerprint, each with its own
+/// scale, distances, identification limits and verdicts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum View {
+    /// Behaviour and single-unit categories ([`FEATURES`]): basis-dependent.
+    Units,
+    /// Behaviour and the population's dynamics ([`DYNAMICS_FEATURES`]): basis-free.
+    Dynamics,
+}
+
+impl View {
+    /// Both views, in display order.
+    pub const ALL: [View; 2] = [View::Units, View::Dynamics];
+
+    /// The view's features, in table order.
+    pub fn features(self) -> &'static [&'static str] {
+        match self {
+            View::Units => &FEATURES,
+            View::Dynamics => &DYNAMICS_FEATURES,
+        }
+    }
+
+    /// Short key (`units`, `dynamics`): file and JSON names.
+    pub fn key(self) -> &'static str {
+        match self {
+            View::Units => "units",
+            View::Dynamics => "dynamics",
+        }
+    }
+
+    /// Heading with what the view depends on.
+    pub fn title(self) -> &'static str {
+        match self {
+            View::Units => "Unit view (basis-dependent: single-unit categories)",
+            View::Dynamics => "Dynamics view (basis-free: population trajectory)",
+        }
+    }
+}
 
 /// Populations that read the model's timing out rather than keep time (excluded from the
 /// unit categories): the learner's value and reward-prediction error, the learned drift.
@@ -113,7 +231,7 @@ fn per_feature<'a>(
     sigs: impl Iterator<Item = &'a Signature> + Clone,
     pick: impl Fn(crate::stats::Spread) -> Option<f64>,
 ) -> BTreeMap<&'static str, f64> {
-    FEATURES
+    ALL_FEATURES
         .iter()
         .filter_map(|&f| {
             let values = sigs.clone().filter_map(|s| s.features.get(f).copied());
@@ -175,23 +293,25 @@ fn within_sds(mechs: &[&Signature]) -> BTreeMap<&'static str, f64> {
     out
 }
 
-/// The scale of a distance: each feature's pooled within-mechanism SD.
+/// The scale of a distance in one view: the pooled within-mechanism SD of each of the
+/// view's features.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Scale {
     sds: BTreeMap<&'static str, f64>,
 }
 
 impl Scale {
-    /// The within-mechanism SDs of the signatures of the `mechanisms` among `sigs`.
-    pub(crate) fn of(sigs: &[&Signature], mechanisms: &[&str]) -> Self {
+    /// The within-mechanism SDs of `view`'s features over the signatures of the
+    /// `mechanisms` among `sigs`.
+    pub(crate) fn of(sigs: &[&Signature], mechanisms: &[&str], view: View) -> Self {
         let mechs: Vec<&Signature> = sigs
             .iter()
             .copied()
             .filter(|s| mechanisms.contains(&s.model.as_str()))
             .collect();
-        Scale {
-            sds: within_sds(&mechs),
-        }
+        let mut sds = within_sds(&mechs);
+        sds.retain(|f, _| view.features().contains(f));
+        Scale { sds }
     }
 }
 
@@ -233,16 +353,17 @@ pub struct Comparison {
     pub seeds: (usize, usize),
 }
 
-/// Compares every model not in `mechanisms` with every model in it: distances of the
-/// seed-mean fingerprints and the bootstrap support of the nearest (`resamples` resamples
-/// of every model's seeds, seeded by `seed`).
+/// Compares every model not in `mechanisms` with every model in it in `view`: distances
+/// of the seed-mean fingerprints and the bootstrap support of the nearest (`resamples`
+/// resamples of every model's seeds, seeded by `seed`).
 pub fn compare(
     sigs: &[Signature],
     mechanisms: &[&str],
     resamples: usize,
     seed: u64,
+    view: View,
 ) -> Vec<Comparison> {
-    let scale = Scale::of(&sigs.iter().collect::<Vec<_>>(), mechanisms);
+    let scale = Scale::of(&sigs.iter().collect::<Vec<_>>(), mechanisms, view);
     let mut by_model: BTreeMap<&str, Vec<&Signature>> = BTreeMap::new();
     for s in sigs {
         by_model.entry(s.model.as_str()).or_default().push(s);
@@ -347,7 +468,7 @@ mod tests {
                 &[("frac_ramp", 0.95 - e), ("wf", 0.11 + e)],
             ));
         }
-        let c = compare(&s, &["ramp", "cells"], 200, 1);
+        let c = compare(&s, &["ramp", "cells"], 200, 1, View::Units);
         let get = |m: &str| {
             c.iter()
                 .find(|x| x.agent == "agent" && x.mechanism == m)

@@ -83,10 +83,24 @@ fn job_features(
         let pops = read(summary)?;
         let (mut counts, mut units) = ([0.0f64; 3], 0.0);
         let mut decode = Vec::new();
+        // Dynamics features, weighted by population size (constant units included: how
+        // many units vary is itself basis-dependent).
+        let mut dynamics: BTreeMap<&'static str, (f64, f64)> = BTreeMap::new();
         for p in pops.as_array().into_iter().flatten() {
             let name = p["population"].as_str().unwrap_or_default();
             if READOUTS.contains(&name) {
                 continue;
+            }
+            let size =
+                p["units"].as_f64().unwrap_or(0.0) + p["constant_units"].as_f64().unwrap_or(0.0);
+            for (feature, key) in DYNAMICS_KEYS {
+                if let Some(v) = num(&p["dynamics"][key])
+                    && size > 0.0
+                {
+                    let slot = dynamics.entry(feature).or_insert((0.0, 0.0));
+                    slot.0 += size * v;
+                    slot.1 += size;
+                }
             }
             let c = &p["categories"]["counts"];
             for (k, key) in ["ramp", "time_field", "oscillating"].iter().enumerate() {
@@ -111,9 +125,23 @@ fn job_features(
                 decode.iter().sum::<f64>() / decode.len() as f64,
             ));
         }
+        for (feature, (sum, weight)) in dynamics {
+            out.values.push((feature, sum / weight));
+        }
     }
     Ok(out)
 }
+
+/// Signature feature ← field of a population summary's `dynamics`.
+const DYNAMICS_KEYS: [(&str, &str); 7] = [
+    ("dyn_dimension", "dimension"),
+    ("dyn_speed_trend", "speed_trend"),
+    ("dyn_turning", "turning"),
+    ("dyn_straightness", "straightness"),
+    ("dyn_continuation", "continuation"),
+    ("dyn_spectral_radius", "spectral_radius"),
+    ("dyn_rotation", "rotation"),
+];
 
 /// The scaling index of one model × seed's joint recording (`activity.summary.json` of
 /// `record --summary` over runs at several TDs): per non-read-out population the geometry
@@ -142,8 +170,32 @@ pub fn scaling_index_of_summary(summary: &Value) -> Option<f64> {
     (weight > 0.0).then(|| sum / weight)
 }
 
-/// `(model, seed, scaling index)` of every joint recording under `<results>/scaling/`.
-fn scaling_features(results: &Path) -> Result<Vec<(String, u64, f64)>, MechanismError> {
+/// The geometry scaling index of one model × seed's joint recording alone (no per-unit
+/// fallback: the dynamics view's `dyn_scaling`), units-weighted over the non-read-out
+/// populations that have one (weights: population size, constant units included).
+pub fn geometry_index_of_summary(summary: &Value) -> Option<f64> {
+    let (mut sum, mut weight) = (0.0, 0.0);
+    for p in summary.as_array().into_iter().flatten() {
+        let name = p["population"].as_str().unwrap_or_default();
+        if READOUTS.contains(&name) {
+            continue;
+        }
+        let size = p["units"].as_f64().unwrap_or(0.0) + p["constant_units"].as_f64().unwrap_or(0.0);
+        if let Some(i) = num(&p["scaling"]["geometry_index"])
+            && size > 0.0
+        {
+            sum += size * i;
+            weight += size;
+        }
+    }
+    (weight > 0.0).then(|| sum / weight)
+}
+
+/// `(model, seed, feature, value)` of every joint recording under `<results>/scaling/`:
+/// `scaling_index` and, where the geometry tells, `dyn_scaling`.
+fn scaling_features(
+    results: &Path,
+) -> Result<Vec<(String, u64, &'static str, f64)>, MechanismError> {
     let mut out = Vec::new();
     for model_dir in chronocooked_env::fs::real_subdirs(&results.join("scaling")) {
         for dir in chronocooked_env::fs::real_subdirs(&model_dir) {
@@ -161,8 +213,12 @@ fn scaling_features(results: &Path) -> Result<Vec<(String, u64, f64)>, Mechanism
                     message: "fields `model` and `seed` required".into(),
                 });
             };
-            if let Some(i) = scaling_index_of_summary(&read(&summary)?) {
-                out.push((model.to_string(), seed, i));
+            let summary = read(&summary)?;
+            if let Some(i) = scaling_index_of_summary(&summary) {
+                out.push((model.to_string(), seed, "scaling_index", i));
+            }
+            if let Some(i) = geometry_index_of_summary(&summary) {
+                out.push((model.to_string(), seed, "dyn_scaling", i));
             }
         }
     }
@@ -239,11 +295,11 @@ pub struct JobFiles {
     pub summary: PathBuf,
 }
 
-/// One signature per (model, seed) of `jobs`, the scaling indices `(model, seed, index)`
-/// added where given.
+/// One signature per (model, seed) of `jobs`, the scaling features `(model, seed, feature,
+/// value)` (`scaling_index`, `dyn_scaling`) added where given.
 pub fn assemble(
     jobs: &[JobFiles],
-    scaling: &[(String, u64, f64)],
+    scaling: &[(String, u64, &'static str, f64)],
 ) -> Result<Vec<Signature>, MechanismError> {
     type Key = (String, u64);
     let mut values: BTreeMap<Key, BTreeMap<&'static str, Vec<f64>>> = BTreeMap::new();
@@ -260,9 +316,9 @@ pub fn assemble(
             fi_cvs.entry(key).or_default().push(cv);
         }
     }
-    for (model, seed, index) in scaling {
+    for (model, seed, feature, value) in scaling {
         if let Some(slot) = values.get_mut(&(model.clone(), *seed)) {
-            slot.entry("scaling_index").or_default().push(*index);
+            slot.entry(feature).or_default().push(*value);
         }
     }
     Ok(values

@@ -1,8 +1,8 @@
 //! The fingerprint tables and figure of a study (`chronocooked mechanisms RESULTS`).
 
 use super::{
-    Comparison, FEATURES, MECHANISMS, MechanismError, Signature, compare, feature_sds,
-    mean_features, read::signatures,
+    ALL_FEATURES, Comparison, DYNAMICS_NEURAL, FEATURES, MECHANISMS, MechanismError, Signature,
+    View, compare, feature_sds, mean_features, read::signatures,
 };
 use chronocooked_env::markdown::Table;
 use std::path::{Path, PathBuf};
@@ -16,8 +16,9 @@ pub struct Written {
     pub signatures: usize,
     /// Agents compared.
     pub agents: usize,
-    /// The leave-one-seed-out identification (also in `mechanisms.md`).
-    pub identification: super::Identification,
+    /// The leave-one-seed-out identification in each view, unit view first (also in
+    /// `mechanisms.md`).
+    pub identifications: Vec<super::Identification>,
 }
 
 fn fmt(x: f64, digits: usize) -> String {
@@ -29,10 +30,11 @@ fn fmt(x: f64, digits: usize) -> String {
 }
 
 /// Reads the compact results under `results`, compares every agent with the
-/// [`MECHANISMS`] (bootstrap of `resamples`, seeded) and writes into `out`:
-/// `signatures.csv` (model, seed, every feature), `mechanisms.csv` (agent, mechanism,
-/// distance, nearest fraction, seeds) and `mechanisms.md` (the fingerprints with seed
-/// spreads, then per agent its distances and nearest mechanism).
+/// [`MECHANISMS`] in both views (bootstrap of `resamples`, seeded) and writes into `out`:
+/// `signatures.csv` (model, seed, every feature of both views), `mechanisms.csv` (view,
+/// agent, mechanism, distance, nearest fraction, seeds) and `mechanisms.md` (the
+/// fingerprints with seed spreads, then per view the agents' distances and nearest
+/// mechanism, the leave-one-seed-out identification and every agent seed's verdict).
 pub fn write_tables(
     results: &Path,
     out: &Path,
@@ -45,7 +47,6 @@ pub fn write_tables(
             message: e.to_string(),
         })?;
     let sigs = signatures(results)?;
-    let comparisons = compare(&sigs, &MECHANISMS, resamples, seed);
     let write = |name: &str, text: &str| {
         let p = out.join(name);
         chronocooked_env::fs::write_atomic(&p, text.as_bytes()).map_err(|e| {
@@ -56,34 +57,108 @@ pub fn write_tables(
         })?;
         Ok::<PathBuf, MechanismError>(p)
     };
-    let mut csv = format!("model,seed,{}\n", FEATURES.join(","));
+    let mut csv = format!("model,seed,{}\n", ALL_FEATURES.join(","));
     for s in &sigs {
-        let row: Vec<String> = FEATURES
+        let row: Vec<String> = ALL_FEATURES
             .iter()
             .map(|f| s.features.get(*f).map_or(String::new(), |v| v.to_string()))
             .collect();
         csv.push_str(&format!("{},{},{}\n", s.model, s.seed, row.join(",")));
     }
-    let mut mcsv =
-        String::from("agent,mechanism,distance,nearest_fraction,agent_seeds,mechanism_seeds\n");
-    for c in &comparisons {
-        mcsv.push_str(&format!(
-            "{},{},{},{},{},{}\n",
-            c.agent, c.mechanism, c.distance, c.nearest_fraction, c.seeds.0, c.seeds.1
-        ));
-    }
-    // Markdown: fingerprints (mean ± SD over seeds), then the comparison.
+    let mut mcsv = String::from(
+        "view,agent,mechanism,distance,nearest_fraction,agent_seeds,mechanism_seeds\n",
+    );
+    // Markdown: fingerprints (mean ± SD over seeds), then the comparison per view.
     let mut models: Vec<&str> = sigs.iter().map(|s| s.model.as_str()).collect();
     models.dedup();
     let mut md = String::from("# Mechanism fingerprints\n\n");
-    md.push_str(&format!(
-        "Mean ± SD over training seeds (n). Features: {}.\n\n",
-        FEATURES.join(", ")
-    ));
-    let mut table = Table::new(["model", "n"].into_iter().chain(FEATURES));
-    for m in &models {
+    md.push_str(
+        "Mean ± SD over training seeds (n). Unit view (basis-dependent): the behaviour and \
+         the single-unit features; dynamics view (basis-free): the behaviour and the \
+         population trajectory's features (`dyn_*`, the same in any orthogonal basis of \
+         the units).\n\n",
+    );
+    for (title, features) in [
+        ("Behaviour and unit features", &FEATURES[..]),
+        ("Dynamics features", &DYNAMICS_NEURAL[..]),
+    ] {
+        md.push_str(&format!("### {title}\n\n"));
+        md.push_str(&spread_table(&sigs, &models, features));
+        md.push('\n');
+    }
+    let mut identifications = Vec::new();
+    let mut agents_compared = 0;
+    for view in View::ALL {
+        let comparisons = compare(&sigs, &MECHANISMS, resamples, seed, view);
+        for c in &comparisons {
+            mcsv.push_str(&format!(
+                "{},{},{},{},{},{},{}\n",
+                view.key(),
+                c.agent,
+                c.mechanism,
+                c.distance,
+                c.nearest_fraction,
+                c.seeds.0,
+                c.seeds.1
+            ));
+        }
+        md.push_str(&format!("\n# {}\n", view.title()));
+        md.push_str(&format!(
+            "\n## Nearest mechanism\n\nFeatures: {}. Distance: RMS of feature differences \
+             in units of each feature's seed-to-seed SD within a mechanism (pooled over the \
+             mechanisms; 1 = one seed SD on every feature); nearest: the share of \
+             {resamples} bootstrap resamples of the seeds in which the mechanism is the \
+             nearest.\n\n",
+            view.features().join(", ")
+        ));
+        let mut table = Table::new(
+            ["agent"]
+                .into_iter()
+                .chain(MECHANISMS)
+                .chain(["nearest (bootstrap share)"]),
+        );
+        let mut agents: Vec<&str> = comparisons.iter().map(|c| c.agent.as_str()).collect();
+        agents.dedup();
+        agents_compared = agents.len();
+        for a in &agents {
+            let mine: Vec<&Comparison> = comparisons.iter().filter(|c| c.agent == *a).collect();
+            let cells: Vec<String> = MECHANISMS
+                .iter()
+                .map(|m| {
+                    mine.iter()
+                        .find(|c| c.mechanism == *m)
+                        .map_or("–".into(), |c| fmt(c.distance, 2))
+                })
+                .collect();
+            let nearest = crate::mechanisms::nearest_label(&mine);
+            table.row(std::iter::once(a.to_string()).chain(cells).chain([nearest]));
+        }
+        md.push_str(&table.render());
+        let identification = super::identify(&sigs, view);
+        md.push_str(&identification_markdown(&identification));
+        md.push_str(&seed_verdicts_markdown(&sigs, &identification));
+        identifications.push(identification);
+    }
+    let mut files = vec![
+        write("signatures.csv", &csv)?,
+        write("mechanisms.csv", &mcsv)?,
+        write("mechanisms.md", &md)?,
+    ];
+    files.extend(fingerprint_figure(&sigs, &out.join("fingerprints"))?);
+    Ok(Written {
+        files,
+        signatures: sigs.len(),
+        agents: agents_compared,
+        identifications,
+    })
+}
+
+/// Mean ± SD over seeds of `features` per model, as a Markdown table.
+fn spread_table(sigs: &[Signature], models: &[&str], features: &[&str]) -> String {
+    let mut table = Table::new(["model", "n"].into_iter().chain(features.iter().copied()));
+    for m in models {
         let mine: Vec<&Signature> = sigs.iter().filter(|s| s.model == *m).collect();
-        let cells: Vec<String> = FEATURES
+        let cells: Vec<String> = features
             .iter()
             .map(|f| {
                 let sp = crate::stats::Spread::of(
@@ -102,49 +177,96 @@ pub fn write_tables(
                 .chain(cells),
         );
     }
-    md.push_str(&table.render());
-    md.push_str(&format!(
-        "\n## Nearest mechanism\n\nDistance: RMS of feature differences in units of each \
-         feature's seed-to-seed SD within a mechanism (pooled over the mechanisms; 1 = one \
-         seed SD on every feature); nearest: the share of {resamples} bootstrap \
-         resamples of the seeds in which the mechanism is the nearest.\n\n"
-    ));
-    let mut table = Table::new(
-        ["agent"]
-            .into_iter()
-            .chain(MECHANISMS)
-            .chain(["nearest (bootstrap share)"]),
+    table.render()
+}
+
+/// Every agent seed's own verdict (a verdict per model hides seeds that differ: Eissa et
+/// al. 2025): its nearest mechanism, distance and that mechanism's limit, then per agent
+/// how many seeds are nearest which mechanism and how many are identified.
+pub fn seed_verdicts_markdown(sigs: &[Signature], id: &super::Identification) -> String {
+    let verdicts = super::seed_verdicts(sigs, id);
+    if verdicts.is_empty() {
+        return String::new();
+    }
+    let mut md = String::from(
+        "\nEvery agent seed on its own (its signature against the mechanisms' fingerprints, \
+         same scale and limits):\n\n",
     );
-    let mut agents: Vec<&str> = comparisons.iter().map(|c| c.agent.as_str()).collect();
-    agents.dedup();
-    for a in &agents {
-        let mine: Vec<&Comparison> = comparisons.iter().filter(|c| c.agent == *a).collect();
-        let cells: Vec<String> = MECHANISMS
-            .iter()
-            .map(|m| {
-                mine.iter()
-                    .find(|c| c.mechanism == *m)
-                    .map_or("–".into(), |c| fmt(c.distance, 2))
-            })
-            .collect();
-        let nearest = crate::mechanisms::nearest_label(&mine);
-        table.row(std::iter::once(a.to_string()).chain(cells).chain([nearest]));
+    let mut table = Table::new([
+        "agent",
+        "seed",
+        "nearest",
+        "distance",
+        "its limit",
+        "verdict",
+    ]);
+    for v in &verdicts {
+        table.row([
+            v.agent.clone(),
+            v.seed.to_string(),
+            v.nearest.clone(),
+            fmt(v.distance, 2),
+            id.limit(&v.nearest).map_or("–".into(), |l| fmt(l, 2)),
+            if v.identified {
+                "identified"
+            } else {
+                "not identified"
+            }
+            .to_string(),
+        ]);
     }
     md.push_str(&table.render());
-    let identification = super::identify(&sigs);
-    md.push_str(&identification_markdown(&identification));
-    let mut files = vec![
-        write("signatures.csv", &csv)?,
-        write("mechanisms.csv", &mcsv)?,
-        write("mechanisms.md", &md)?,
-    ];
-    files.extend(fingerprint_figure(&sigs, &out.join("fingerprints"))?);
-    Ok(Written {
-        files,
-        signatures: sigs.len(),
-        agents: agents.len(),
-        identification,
-    })
+    let mut agents: Vec<&str> = verdicts.iter().map(|v| v.agent.as_str()).collect();
+    agents.dedup();
+    let mut summary = Table::new([
+        "agent",
+        "seeds",
+        "nearest (seeds)",
+        "identified",
+        "distance / limit (min–max)",
+    ]);
+    for a in agents {
+        let mine: Vec<_> = verdicts.iter().filter(|v| v.agent == a).collect();
+        let mut nearest: Vec<(String, usize)> = Vec::new();
+        for v in &mine {
+            match nearest.iter_mut().find(|(m, _)| *m == v.nearest) {
+                Some(slot) => slot.1 += 1,
+                None => nearest.push((v.nearest.clone(), 1)),
+            }
+        }
+        nearest.sort_by(|x, y| y.1.cmp(&x.1).then(x.0.cmp(&y.0)));
+        let ratios: Vec<f64> = mine
+            .iter()
+            .filter_map(|v| id.limit(&v.nearest).map(|l| v.distance / l))
+            .collect();
+        let (lo, hi) = ratios
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), r| {
+                (lo.min(*r), hi.max(*r))
+            });
+        summary.row([
+            a.to_string(),
+            mine.len().to_string(),
+            nearest
+                .iter()
+                .map(|(m, n)| format!("{m} {n}"))
+                .collect::<Vec<_>>()
+                .join(", "),
+            format!(
+                "{}/{}",
+                mine.iter().filter(|v| v.identified).count(),
+                mine.len()
+            ),
+            if ratios.is_empty() {
+                "–".into()
+            } else {
+                format!("{}–{}", fmt(lo, 2), fmt(hi, 2))
+            },
+        ]);
+    }
+    md.push('\n');
+    md.push_str(&summary.render());
+    md
 }
 
 /// The leave-one-seed-out identification as Markdown: the confusion matrix, each

@@ -15,6 +15,7 @@
 
 pub mod categories;
 pub mod decode;
+pub mod dynamics;
 pub mod geometry;
 mod locking;
 pub mod oscillation;

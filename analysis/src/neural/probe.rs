@@ -119,3 +119,40 @@ pub fn summarize_file(
     chronocooked_env::integrity::write_recorded(&out, &json).map_err(|e| e.to_string())?;
     Ok((out, summaries))
 }
+
+/// Recomputes the dynamics signature ([`crate::neural::dynamics`]) of every population of
+/// an existing `activity.summary.json` from its `activity.json` (`path`: either file or
+/// their folder), leaving every other field as it was (the category tests are not rerun),
+/// and rewrites the summary (SHA-256-recorded). For summaries made before the dynamics
+/// view, or by an older version of it. Returns the populations refreshed.
+pub fn refresh_dynamics(path: &std::path::Path) -> Result<usize, String> {
+    use crate::neural::summary::{NeuralSummary, SummaryOptions, population_dynamics};
+    let folder = if path.is_dir() {
+        path.to_path_buf()
+    } else {
+        path.parent()
+            .map(std::path::Path::to_path_buf)
+            .unwrap_or_default()
+    };
+    let activity = folder.join(crate::job_folder::ACTIVITY);
+    let summary = folder.join(crate::job_folder::ACTIVITY_SUMMARY);
+    let _lock = chronocooked_env::fs::FolderLock::acquire_shared_folder(&folder)
+        .map_err(|e| e.to_string())?;
+    let bytes = chronocooked_env::integrity::read_checked(&activity).map_err(|e| e.to_string())?;
+    let dataset =
+        ActivityDataset::from_json(&bytes).map_err(|e| format!("{}: {e}", activity.display()))?;
+    let text = chronocooked_env::integrity::read_checked(&summary).map_err(|e| e.to_string())?;
+    let mut summaries: Vec<NeuralSummary> =
+        serde_json::from_slice(&text).map_err(|e| format!("{}: {e}", summary.display()))?;
+    let opts = SummaryOptions::default();
+    for s in &mut summaries {
+        let population = (s.population != "all").then_some(s.population.as_str());
+        for t in &mut s.by_td {
+            t.dynamics = population_dynamics(&dataset, population, t.td, &opts).ok();
+        }
+        s.dynamics = s.by_td.last().and_then(|t| t.dynamics);
+    }
+    let json = serde_json::to_vec_pretty(&summaries).map_err(|e| e.to_string())?;
+    chronocooked_env::integrity::write_recorded(&summary, &json).map_err(|e| e.to_string())?;
+    Ok(summaries.len())
+}

@@ -22,6 +22,7 @@ use crate::neural::categories::{
     UnitTests, classify_units, wilson_interval,
 };
 use crate::neural::decode::{Decoder, decode_time};
+use crate::neural::dynamics::{Dynamics, dynamics};
 use crate::neural::production::{ProductionSpeed, production_speed};
 use crate::neural::{Cube, scaling_factor_from, sequentiality_index};
 use chronocooked_models::{ActivityDataset, Marker, population_oven};
@@ -141,6 +142,10 @@ pub struct TdSummary {
     pub decode_ridge: Option<f64>,
     /// Cross-validated Bayesian decoding error (steps).
     pub decode_bayes: Option<f64>,
+    /// The basis-free signature of the population's trajectory over the window and the
+    /// window after it ([`crate::neural::dynamics`]); absent in summaries made before it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dynamics: Option<Dynamics>,
 }
 
 /// Temporal scaling between the shortest and the longest recorded TD.
@@ -207,6 +212,9 @@ pub struct NeuralSummary {
     pub decode_ridge: Option<f64>,
     /// Its Bayesian decoding error (steps).
     pub decode_bayes: Option<f64>,
+    /// Its basis-free dynamics signature ([`crate::neural::dynamics`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dynamics: Option<Dynamics>,
     /// Scaling between the shortest and the longest TD (two or more TDs recorded).
     pub scaling: Option<Scaling>,
     /// Every TD, shortest first.
@@ -228,6 +236,9 @@ pub struct TdClassification {
     pub cube: Cube,
     /// The trial average `[window, population size]` of every unit of the population.
     pub average_all: Vec<f64>,
+    /// The trial average `[2 × window, population size]` of every unit: the window and the
+    /// steps recorded after it (NaN where no trial reaches), for the dynamics signature.
+    pub trajectory: Vec<f64>,
     /// Population size (all units).
     pub size: usize,
     /// Population index of each varying unit (column `j` of `cube`).
@@ -295,6 +306,61 @@ pub fn classify_td(
     td: u32,
     opts: &SummaryOptions,
 ) -> Result<TdClassification, SummaryError> {
+    let a = align_population(dataset, population, td, opts)?;
+    let (full, cols, window, span) = (&a.full, &a.cols, a.window, a.span);
+    let size = cols.len();
+    let pick = |units: &[usize], time: usize| {
+        let columns: Vec<usize> = units.iter().map(|&j| cols.start + j).collect();
+        full.select(time, &columns)
+    };
+    let all: Vec<usize> = (0..size).collect();
+    let average_all = pick(&all, window).average();
+    let trajectory = pick(&all, (2 * window).min(span)).average();
+    let varying: Vec<usize> = all
+        .into_iter()
+        .filter(|&j| {
+            let (lo, hi) = crate::neural::finite_range(
+                (0..full.trials())
+                    .flat_map(|k| (0..window).map(move |t| (k, t)))
+                    .map(|(k, t)| full.at(k, t, cols.start + j)),
+            );
+            hi - lo > 1e-9
+        })
+        .collect();
+    let cube = pick(&varying, window);
+    let mut cfg = opts.categories.clone();
+    cfg.seed = cfg.seed.wrapping_add(u64::from(td));
+    let tests = classify_units(&pick(&varying, span), window, &cfg);
+    Ok(TdClassification {
+        td,
+        window,
+        cube,
+        average_all,
+        trajectory,
+        size,
+        varying,
+        tests,
+    })
+}
+
+/// The trials of one TD of a population, aligned (see [`classify_td`]).
+struct AlignedPopulation {
+    /// `[trials, span, every unit of the dataset]`.
+    full: Cube,
+    /// The population's columns.
+    cols: std::ops::Range<usize>,
+    /// The window (steps).
+    window: usize,
+    /// Steps aligned (the window and the steps the category tests read after it).
+    span: usize,
+}
+
+fn align_population(
+    dataset: &ActivityDataset,
+    population: Option<&str>,
+    td: u32,
+    opts: &SummaryOptions,
+) -> Result<AlignedPopulation, SummaryError> {
     let n = dataset.meta.n_units();
     let cols = match population {
         Some(p) => dataset
@@ -324,38 +390,29 @@ pub fn classify_td(
     if used.is_empty() {
         return Err(SummaryError::NoOvenOn);
     }
-    let full = Cube::from_f32(&aligned, used.len(), span, n);
-    let size = cols.len();
-    let pick = |units: &[usize], time: usize| {
-        let columns: Vec<usize> = units.iter().map(|&j| cols.start + j).collect();
-        full.select(time, &columns)
-    };
-    let all: Vec<usize> = (0..size).collect();
-    let average_all = pick(&all, window).average();
-    let varying: Vec<usize> = all
-        .into_iter()
-        .filter(|&j| {
-            let (lo, hi) = crate::neural::finite_range(
-                (0..full.trials())
-                    .flat_map(|k| (0..window).map(move |t| (k, t)))
-                    .map(|(k, t)| full.at(k, t, cols.start + j)),
-            );
-            hi - lo > 1e-9
-        })
-        .collect();
-    let cube = pick(&varying, window);
-    let mut cfg = opts.categories.clone();
-    cfg.seed = cfg.seed.wrapping_add(u64::from(td));
-    let tests = classify_units(&pick(&varying, span), window, &cfg);
-    Ok(TdClassification {
-        td,
+    Ok(AlignedPopulation {
+        full: Cube::from_f32(&aligned, used.len(), span, n),
+        cols,
         window,
-        cube,
-        average_all,
-        size,
-        varying,
-        tests,
+        span,
     })
+}
+
+/// The dynamics signature alone of `population` on the trials of TD `td` (as
+/// [`classify_td`] aligns them; no category tests): what [`TdSummary::dynamics`] holds.
+pub fn population_dynamics(
+    dataset: &ActivityDataset,
+    population: Option<&str>,
+    td: u32,
+    opts: &SummaryOptions,
+) -> Result<Dynamics, SummaryError> {
+    let a = align_population(dataset, population, td, opts)?;
+    let columns: Vec<usize> = a.cols.clone().collect();
+    let trajectory = a
+        .full
+        .select((2 * a.window).min(a.span), &columns)
+        .average();
+    Ok(dynamics(&trajectory, columns.len(), a.window, td))
 }
 
 /// Mean distance per step of a `[time, units]` trajectory (rows with NaN skipped).
@@ -406,6 +463,7 @@ fn td_summary(c: &TdClassification) -> TdSummary {
             .and_then(finite),
         decode_ridge: decode(Decoder::Ridge),
         decode_bayes: decode(Decoder::Bayes),
+        dynamics: Some(dynamics(&c.trajectory, c.size, c.window, c.td)),
     }
 }
 
@@ -514,6 +572,7 @@ pub fn neural_summary(
         sequentiality: head.sequentiality,
         decode_ridge: head.decode_ridge,
         decode_bayes: head.decode_bayes,
+        dynamics: head.dynamics,
         scaling: (classes.len() >= 2).then(|| scaling(first, last, opts)),
         by_td,
         production_speed: production_speed(dataset, population),

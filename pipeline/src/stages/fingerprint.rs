@@ -6,7 +6,7 @@
 use crate::PipelineError;
 use crate::stages::record::units_correspond;
 use chronocooked_analysis::fingerprint::{
-    PROTOCOL, Placement, ProtocolCondition, play_condition, write_and_place,
+    Fingerprint, PROTOCOL, ProtocolCondition, play_condition, write_and_place,
 };
 use chronocooked_env::TaskParams;
 use chronocooked_training::RunFolder;
@@ -32,8 +32,8 @@ pub struct FingerprintRequest {
 /// What the stage wrote.
 #[derive(Debug, Clone)]
 pub struct FingerprintOutcome {
-    /// The placement among the mechanisms.
-    pub placement: Placement,
+    /// The placements among the mechanisms, in the unit and the dynamics view.
+    pub placement: Fingerprint,
     /// Conditions played, in protocol order.
     pub conditions: Vec<&'static str>,
     /// Files written.

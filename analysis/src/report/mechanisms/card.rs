@@ -50,12 +50,13 @@ fn merged(datasets: Vec<ActivityDataset>) -> Option<ActivityDataset> {
     Some(first)
 }
 
-/// The scaling index of one seed's merged recording (as in the study's fingerprints:
-/// geometry index per timing population, per-unit where the geometry cannot tell and the
-/// units correspond — timing models of one seed).
-fn seed_scaling(ds: &ActivityDataset) -> Option<f64> {
+/// The scaling features of one seed's merged recording (as in the study's fingerprints):
+/// `scaling_index` (geometry index per timing population, per-unit where the geometry
+/// cannot tell and the units correspond — timing models of one seed) and `dyn_scaling`
+/// (the geometry alone), where defined.
+fn seed_scaling(ds: &ActivityDataset) -> Vec<(&'static str, f64)> {
     if recorded_tds(ds).len() < 2 {
-        return None;
+        return Vec::new();
     }
     let opts = SummaryOptions {
         units_correspond: MECHANISMS.contains(&ds.meta.model.as_str()),
@@ -68,12 +69,26 @@ fn seed_scaling(ds: &ActivityDataset) -> Option<f64> {
         .filter(|p| !READOUTS.contains(&p.name.as_str()))
         .filter_map(|p| neural_summary(ds, Some(&p.name), &opts).ok())
         .collect();
-    let json = serde_json::to_value(&summaries).ok()?;
-    crate::mechanisms::scaling_index_of_summary(&json)
+    let Ok(json) = serde_json::to_value(&summaries) else {
+        return Vec::new();
+    };
+    [
+        (
+            "scaling_index",
+            crate::mechanisms::scaling_index_of_summary(&json),
+        ),
+        (
+            "dyn_scaling",
+            crate::mechanisms::geometry_index_of_summary(&json),
+        ),
+    ]
+    .into_iter()
+    .filter_map(|(f, v)| v.map(|v| (f, v)))
+    .collect()
 }
 
-/// `(model, seed, scaling index)` of one seed's fixed-interval recordings.
-pub(super) type SeedScaling = (String, u64, f64);
+/// `(model, seed, feature, value)` of one seed's fixed-interval recordings.
+pub(super) type SeedScaling = (String, u64, &'static str, f64);
 
 /// What a card shows, computed from one seed's recordings.
 pub(super) struct Card {
@@ -174,9 +189,13 @@ pub(super) fn card_and_scaling(
     let mut scaling = Vec::new();
     for (seed, datasets) in by_seed {
         let Some(ds) = merged(datasets) else { continue };
-        let index = seed_scaling(&ds);
-        if let Some(i) = index {
-            scaling.push((row.model.clone(), seed, i));
+        let features = seed_scaling(&ds);
+        let index = features
+            .iter()
+            .find(|(f, _)| *f == "scaling_index")
+            .map(|(_, v)| *v);
+        for (f, v) in features {
+            scaling.push((row.model.clone(), seed, f, v));
         }
         if card.is_some() {
             continue;

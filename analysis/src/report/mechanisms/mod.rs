@@ -26,7 +26,7 @@ mod card_html;
 mod tests;
 
 use crate::figures::markup::figure_file;
-use crate::mechanisms::{JobFiles, MECHANISMS, Signature, assemble, compare};
+use crate::mechanisms::{JobFiles, MECHANISMS, Signature, View, assemble, compare};
 use crate::records::{METRICS, read_eval_info};
 use crate::report::leaderboard::Row;
 use card::card_and_scaling;
@@ -79,7 +79,7 @@ fn job_files(rows: &[Row]) -> (Vec<JobFiles>, Vec<Vec<RunInfo>>) {
 /// The nearest-mechanism table (HTML, Markdown) of the agents among `sigs`; `None` when
 /// no agent is among them.
 fn nearest_tables(sigs: &[Signature]) -> Option<(Markup, String)> {
-    let comparisons = compare(sigs, &MECHANISMS, 1000, 0);
+    let comparisons = compare(sigs, &MECHANISMS, 1000, 0, View::Units);
     let mut agents: Vec<&str> = comparisons.iter().map(|c| c.agent.as_str()).collect();
     agents.dedup();
     if agents.is_empty() {

@@ -147,7 +147,8 @@ fn cards_show_the_stretching_sequence_and_the_fixed_clock_for_what_they_are() {
         .count();
     assert!(fields >= 4, "{tests:?}");
     // Fields at fixed fractions of TD: the geometry stretches by the TD ratio.
-    let s = scaling[0].2;
+    assert_eq!(scaling[0].2, "scaling_index");
+    let s = scaling[0].3;
     assert!((s - 1.0).abs() < 0.15, "sequence scaling index {s}");
     let (card, scaling) = card_and_scaling(&osc, &infos(&osc)).unwrap();
     let tests = card.unwrap().by_td[1].tests.clone().unwrap();
@@ -159,9 +160,9 @@ fn cards_show_the_stretching_sequence_and_the_fixed_clock_for_what_they_are() {
             >= 3
     );
     assert!(
-        scaling[0].2.abs() < 0.15,
+        scaling[0].3.abs() < 0.15,
         "oscillator scaling index {}",
-        scaling[0].2
+        scaling[0].3
     );
     // The section: a card per model with its four panels and the category bar.
     let out = root.join("report");
