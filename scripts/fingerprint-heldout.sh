@@ -3,7 +3,8 @@
 # jobs of `sweeps/mechanisms-heldout.toml` (seeds 40-47, never used by the committed
 # study), then fingerprints each model x seed from its three runs (fixed interval TD 6 and
 # TD 12, bisection 4-12) against the committed mechanisms. One line per agent: model, seed,
-# nearest mechanism, distance, that mechanism's limit, verdict, nearest other mechanism.
+# nearest mechanism, distance, that mechanism's limit, verdict, nearest other mechanism, in
+# the unit view and in the dynamics view.
 # Committed lines: results/mechanisms-reference/heldout-fingerprints.txt.
 # Resumable: finished sweep jobs and agents with a fingerprint.json are skipped.
 #
@@ -25,13 +26,17 @@ for m in ddm sbf timecells-csc timecells-ms timecells-laplace; do
     fi
     python3 - "$fp/fingerprint.json" "$m" "$s" >> "$out/heldout.txt" <<'PY'
 import json, sys
-p = json.load(open(sys.argv[1]))["placement"]
-d = sorted(p["distances"], key=lambda x: x["distance"])
-own = next(x for x in d if x["mechanism"] == p["nearest"])
-other = next(x for x in d if x["mechanism"] != p["nearest"])
-verdict = "identified" if p["identified"] else "not-identified"
-print(f"{sys.argv[2]} seed {sys.argv[3]}: nearest {p['nearest']} {own['distance']:.2f} "
-      f"(limit {own['limit']:.2f}) {verdict}; nearest other {other['mechanism']} {other['distance']:.2f}")
+fp = json.load(open(sys.argv[1]))
+parts = []
+for view in ("units", "dynamics"):
+    p = fp[view]
+    d = sorted(p["distances"], key=lambda x: x["distance"])
+    own = next(x for x in d if x["mechanism"] == p["nearest"])
+    other = next(x for x in d if x["mechanism"] != p["nearest"])
+    verdict = "identified" if p["identified"] else "not-identified"
+    parts.append(f"{view}: nearest {p['nearest']} {own['distance']:.2f} (limit {own['limit']:.2f}) "
+                 f"{verdict}; nearest other {other['mechanism']} {other['distance']:.2f}")
+print(f"{sys.argv[2]} seed {sys.argv[3]}: " + " | ".join(parts))
 PY
   done
 done
