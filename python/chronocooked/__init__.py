@@ -26,7 +26,7 @@ from ._core import EVENT_FLAGS, PolicyError, __version__, reference_conditions
 from .envs import ChronoEnv, ChronoVectorEnv, overrides, register_envs, task_ids
 from . import sb3, zoo
 from .evaluation import check_export, evaluate, load_activity, load_eval, record
-from .fingerprint import CONDITIONS, fingerprint, summarize
+from .fingerprint import CONDITIONS, distance, fingerprint, summarize
 from .zoo import report
 
 
@@ -65,10 +65,12 @@ def mechanisms(results, out=None, *, resamples=1000, seed=0):
     results ``results`` (e.g. ``results/mechanisms-reference``), the leave-one-seed-out
     identification of the timing mechanisms and each agent's nearest mechanism, written into
     ``out`` (default ``results``: ``signatures.csv``, ``mechanisms.csv``, ``mechanisms.md``,
-    the fingerprint figures). Returns a dict: ``files``, ``signatures`` (count), ``agents``
-    (count), ``held_out`` (per mechanism seed: ``mechanism``, ``seed``, ``named``,
-    ``self_distance``, ``other_distance``) and ``verdicts`` (per agent: ``agent``,
-    ``nearest``, ``distance``, ``identified``). ``ValueError`` when the folder holds no
+    ``pairwise.csv``, the fingerprint figures). Returns a dict: ``files``, ``signatures``
+    (count), ``agents`` (count), ``held_out`` (per mechanism seed: ``mechanism``, ``seed``,
+    ``named``, ``self_distance``, ``other_distance``) and ``verdicts`` (per agent:
+    ``agent``, ``nearest``, ``distance``, ``identified``) of the unit view, and ``views``:
+    ``held_out`` and ``verdicts`` of the ``units`` and the ``dynamics`` view (basis-free).
+    ``ValueError`` when the folder holds no
     finished job; ``OSError`` naming the file otherwise."""
     import os
 
@@ -127,6 +129,7 @@ __all__ = [
     "collect",
     "evaluate",
     "export",
+    "distance",
     "fingerprint",
     "load_activity",
     "load_eval",

@@ -7,7 +7,16 @@ peak-interval probe trials. Its behaviour (first-check CV and its trend, peak ti
 spread, Weber fraction, bisection point) and its activity (unit categories, temporal
 scaling between the two TDs, decoding error) form a *signature*. :func:`fingerprint` runs
 the same protocol with your policies and places your agent's signature among the
-committed mechanism signatures.
+committed mechanism signatures, in two views side by side:
+
+* the *unit view* reads single-unit categories (ramp, time field, oscillating …): they
+  depend on the basis of the units, and change when the units are mixed;
+* the *dynamics view* reads the population trajectory's basis-free signature (participation
+  ratio, speed trend, turning, straightness, continuation past the interval, the spectrum
+  of a linear dynamics fit, geometry scaling): the same for any orthogonal mixing of the
+  units, so the same verdict for the same dynamics in another basis.
+
+:func:`distance` compares two fingerprinted agents (or seeds) on the mechanisms' scale.
 """
 
 from __future__ import annotations
@@ -60,7 +69,10 @@ def fingerprint(policies, out, *, seed: int = 0, obs_mode: str = "codes",
     of that mechanism's own held-out seeds —, ``limit`` — the upper 99% prediction limit
     for a new seed's distance — and ``bootstrap_share``), ``nearest``, ``identified`` (the
     distance lies within the nearest mechanism's limit), ``verdict`` (one sentence),
-    ``reference_identification`` and ``files``.
+    ``reference_identification`` and ``files`` — these top-level keys are the unit view's;
+    ``units`` and ``dynamics`` hold each view's ``distances``, ``nearest``, ``identified``,
+    ``verdict``, ``missing`` and ``reference_identification``; ``views_agree`` says whether
+    both views give the same verdict and ``agreement`` says so in a sentence.
     """
     kwargs = {"seed": int(seed), "obs_mode": obs_mode, "units_correspond": bool(units_correspond),
               "name": name, "resamples": int(resamples)}
@@ -77,3 +89,13 @@ def summarize(path, *, units_correspond: bool = False, seed: int = 0) -> list:
     decoding error, scaling between TDs (``units_correspond`` as in :func:`fingerprint`)."""
     return _core.summarize(os.fspath(Path(path)), units_correspond=bool(units_correspond),
                            seed=int(seed))
+
+
+def distance(a, b, *, view: str = "dynamics") -> float:
+    """The distance between two fingerprinted agents (folders written by
+    :func:`fingerprint` or ``chronocooked fingerprint``: agent against agent, seed against
+    seed) in ``view`` (``"dynamics"`` or ``"units"``), on the scale of the committed
+    mechanisms: each feature in units of its seed-to-seed SD within a mechanism, as the
+    distances and identification limits of :func:`fingerprint` are. NaN when they share no
+    feature of the view."""
+    return _core.fingerprint_distance(os.fspath(Path(a)), os.fspath(Path(b)), view=view)

@@ -47,16 +47,32 @@ pub fn mechanisms<'py>(
         )));
     }
     let out = out.unwrap_or_else(|| results.clone());
-    let w = chronocooked_analysis::mechanisms::write_tables(&results, &out, resamples, seed)
-        .map_err(|e| match e {
-            MechanismError::Empty(_) => PyValueError::new_err(e.to_string()),
-            MechanismError::File { .. } => PyOSError::new_err(e.to_string()),
-        })?;
+    let w = chronocooked_analysis::mechanisms::write_tables(
+        &results,
+        &out,
+        resamples,
+        seed,
+        &chronocooked_analysis::mechanisms::View::ALL,
+    )
+    .map_err(|e| match e {
+        MechanismError::Empty(_) => PyValueError::new_err(e.to_string()),
+        MechanismError::File { .. } => PyOSError::new_err(e.to_string()),
+    })?;
     let d = pyo3::types::PyDict::new(py);
     d.set_item("files", w.files)?;
     d.set_item("signatures", w.signatures)?;
     d.set_item("agents", w.agents)?;
-    d.set_item("held_out", to_py(py, &w.identification.held_out)?)?;
-    d.set_item("verdicts", to_py(py, &w.identification.agents)?)?;
+    // Top level: the unit view (as before the dynamics view); both under `views`.
+    let units = &w.identifications[0];
+    d.set_item("held_out", to_py(py, &units.held_out)?)?;
+    d.set_item("verdicts", to_py(py, &units.agents)?)?;
+    let views = pyo3::types::PyDict::new(py);
+    for id in &w.identifications {
+        let v = pyo3::types::PyDict::new(py);
+        v.set_item("held_out", to_py(py, &id.held_out)?)?;
+        v.set_item("verdicts", to_py(py, &id.agents)?)?;
+        views.set_item(id.view.key(), v)?;
+    }
+    d.set_item("views", views)?;
     Ok(d.into_any())
 }

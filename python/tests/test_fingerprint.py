@@ -10,7 +10,7 @@ import pytest
 import chronocooked
 from conftest import ROOT
 from policies import TimingOracle
-from timing_agents import Accumulator, OscillatorBank
+from timing_agents import Accumulator, Mixed, OscillatorBank, TimeCellChain
 
 
 def _distance(result, mechanism):
@@ -43,7 +43,7 @@ def test_a_timing_agent_is_named_as_the_mechanism_it_implements(tmp_path, agent,
     for f in ("fingerprint.md", "fingerprint.html", "fingerprint.png", "fingerprint.json"):
         assert (out / f).stat().st_size > 0
     saved = json.loads((out / "fingerprint.json").read_text())
-    assert saved["placement"]["nearest"] == mechanism
+    assert saved["units"]["nearest"] == mechanism
     assert "<h1>Fingerprint — " in (out / "fingerprint.html").read_text()
 
 
@@ -178,3 +178,35 @@ def test_the_readme_fingerprint_block_runs_as_written(tmp_path):
     assert out.returncode == 0, out.stderr
     assert (tmp_path / "lab-out" / "fp-mine" / "fingerprint.json").is_file()
     assert "my-pacemaker" in out.stdout
+
+
+@pytest.mark.parametrize(
+    "agent", [Accumulator, OscillatorBank, TimeCellChain],
+    ids=["ramps", "oscillator-bank", "time-cell-chain"],
+)
+def test_the_dynamics_view_gives_the_same_verdict_in_any_orthogonal_basis(tmp_path, agent):
+    """The same agent seen through a fixed random orthogonal mixing of its units (the same
+    dynamics in another basis): the dynamics view's distances and verdict do not move; the
+    unit view of the oscillator bank does (a documented fact of single-unit categories)."""
+    plain = chronocooked.fingerprint(lambda task, params: agent(task, params, seed=3),
+                                     tmp_path / "plain", seed=3, units_correspond=True)
+    mixed = chronocooked.fingerprint(lambda task, params: Mixed(agent(task, params, seed=3)),
+                                     tmp_path / "mixed", seed=3, units_correspond=True)
+    a, b = plain["dynamics"], mixed["dynamics"]
+    assert (a["nearest"], a["identified"]) == (b["nearest"], b["identified"]), (a, b)
+    for x, y in zip(a["distances"], b["distances"]):
+        assert x["mechanism"] == y["mechanism"]
+        assert x["distance"] == pytest.approx(y["distance"], rel=1e-4, abs=1e-4)
+    # Two fingerprints of one agent's dynamics are at distance 0 on the mechanisms' scale.
+    assert chronocooked.distance(tmp_path / "plain", tmp_path / "mixed") == pytest.approx(0, abs=1e-3)
+    if agent is OscillatorBank:
+        assert plain["signature"]["frac_oscillating"] > 0.9
+        assert mixed["signature"]["frac_oscillating"] < 0.6
+        assert plain["nearest"] == "sbf" and plain["dynamics"]["nearest"] == "sbf"
+
+
+def test_distance_refuses_an_unknown_view_and_a_folder_without_a_fingerprint(tmp_path):
+    with pytest.raises(ValueError, match="allowed"):
+        chronocooked.distance(tmp_path, tmp_path, view="cells")
+    with pytest.raises(ValueError, match="fingerprint.json"):
+        chronocooked.distance(tmp_path, tmp_path)

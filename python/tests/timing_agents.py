@@ -159,3 +159,36 @@ class OscillatorBank(_Walker):
 
     def activity(self, t):
         return np.cos(2 * np.pi * self.freqs * self.m * max(t, 0)).astype(np.float32)
+
+
+class TimeCellChain(Accumulator):
+    """A chain of time cells on the accumulator's clock: 40 units with Gaussian fields at
+    log-spaced delays from 0.1 to 3 × the learned interval, each as wide as a quarter of
+    its delay (a scale-invariant sequence, after Howard et al. 2014). Behaviour: the
+    accumulator's."""
+
+    def __init__(self, task, params, seed=0, cv=0.15):
+        super().__init__(task, params, seed, cv)
+        self.delays = np.geomspace(0.1, 3.0, 40)
+
+    def activity(self, t):
+        x = self.x(t)
+        return np.exp(-((x - self.delays) ** 2) / (2 * (0.25 * self.delays) ** 2)).astype(np.float32)
+
+
+class Mixed:
+    """An agent whose activity is seen through a fixed random orthogonal matrix (Haar, from
+    a QR decomposition with the signs fixed; the same matrix in every condition)."""
+
+    def __init__(self, agent, seed=11):
+        self.agent = agent
+        self.q = None
+        self.seed = seed
+
+    def __call__(self, obs, state, episode_start):
+        action, state, activity = self.agent(obs, state, episode_start)
+        if self.q is None:
+            g = np.random.default_rng(self.seed).standard_normal((activity.size, activity.size))
+            q, r = np.linalg.qr(g)
+            self.q = q * np.sign(np.diag(r))
+        return action, state, (self.q @ activity.astype(np.float64)).astype(np.float32)

@@ -27,6 +27,32 @@ pub struct MechanismsArgs {
     /// (groups already there are skipped).
     #[arg(long, value_name = "SWEEP_OUT")]
     pub scaling_from: Option<PathBuf>,
+    /// Which views to compare in: `units` (single-unit categories, basis-dependent),
+    /// `dynamics` (the population trajectory, basis-free) or `both`.
+    #[arg(long, value_enum, default_value_t = ViewArg::Both)]
+    pub view: ViewArg,
+}
+
+/// The views `mechanisms` compares in.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ViewArg {
+    /// The unit view only.
+    Units,
+    /// The dynamics view only.
+    Dynamics,
+    /// Both, side by side.
+    Both,
+}
+
+impl ViewArg {
+    fn views(self) -> Vec<chronocooked_analysis::mechanisms::View> {
+        use chronocooked_analysis::mechanisms::View;
+        match self {
+            ViewArg::Units => vec![View::Units],
+            ViewArg::Dynamics => vec![View::Dynamics],
+            ViewArg::Both => View::ALL.to_vec(),
+        }
+    }
 }
 
 /// Runs `mechanisms`.
@@ -45,6 +71,7 @@ pub fn run(args: MechanismsArgs) -> Result<()> {
         &out,
         args.resamples as usize,
         args.seed,
+        &args.view.views(),
     )?;
     println!(
         "{} signatures (model x seed), {} agents compared with the timing mechanisms; wrote {}",

@@ -26,7 +26,8 @@ mod play;
 
 pub use card::{agreement, verdict, write_fingerprint};
 pub use place::{
-    Fingerprint, MechanismDistance, Placement, place, reference_signatures, signatures_from_csv,
+    Fingerprint, MechanismDistance, Placement, REFERENCE_SOURCE, place, reference_signatures,
+    signatures_from_csv,
 };
 pub use play::{
     ConditionPlay, PROTOCOL, ProtocolCondition, agent_signature, play_condition, write_condition,

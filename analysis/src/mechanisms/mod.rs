@@ -40,7 +40,9 @@ mod identify;
 mod read;
 mod tables;
 
-pub use identify::{AgentVerdict, HeldOut, Identification, SeedVerdict, identify, seed_verdicts};
+pub use identify::{
+    AgentVerdict, HeldOut, Identification, LIMIT_COVERAGE, SeedVerdict, identify, seed_verdicts,
+};
 pub use read::{
     JobFiles, assemble, geometry_index_of_summary, scaling_index_of_summary, signatures,
 };
@@ -259,10 +261,25 @@ pub(crate) fn mean_features(sigs: &[&Signature]) -> BTreeMap<&'static str, f64> 
 /// 0.0001 to 0.2 on both committed studies (40/40 and 20/20).
 const SCALE_FLOOR: f64 = 0.05;
 
+/// The smallest scale of a feature that is measured on a grid: the SD of its rounding
+/// error, `grid step / √12`. `dyn_scaling`, the geometry scaling index, is found on
+/// stretch factors `1.01ᵏ` ([`crate::neural::geometry`]): a step of `ln 1.01 / ln 2` in
+/// index units at the studies' TD ratio 2. Every fixed clock among the mechanisms has index
+/// ≈ 0 within that step, so their seed spread (and the spread over all of them) is below
+/// what the grid resolves: without this floor a new seed one grid step away would lie
+/// hundreds of "seed SDs" away. 0 for the other features.
+fn resolution(feature: &str) -> f64 {
+    match feature {
+        "dyn_scaling" => 1.01f64.ln() / 2f64.ln() / 12f64.sqrt(),
+        _ => 0.0,
+    }
+}
+
 /// The pooled within-mechanism SD of each feature over the mechanism signatures `mechs`
 /// (the SD of the seeds around their own mechanism's mean, pooled over the mechanisms),
-/// floored at [`SCALE_FLOOR`] × the feature's SD over all of them. Features no two
-/// signatures have, or with no spread at all, are left out.
+/// floored at [`SCALE_FLOOR`] × the feature's SD over all of them and at the feature's
+/// measurement resolution ([`resolution`]). Features no two signatures have, or with no
+/// spread at all, are left out.
 fn within_sds(mechs: &[&Signature]) -> BTreeMap<&'static str, f64> {
     let mut by_model: BTreeMap<&str, Vec<&Signature>> = BTreeMap::new();
     for s in mechs {
@@ -288,7 +305,7 @@ fn within_sds(mechs: &[&Signature]) -> BTreeMap<&'static str, f64> {
         } else {
             0.0
         };
-        out.insert(f, within.max(SCALE_FLOOR * total_sd));
+        out.insert(f, within.max(SCALE_FLOOR * total_sd).max(resolution(f)));
     }
     out
 }
@@ -336,6 +353,53 @@ pub(crate) fn distance(
     } else {
         f64::NAN
     }
+}
+
+/// The distance between two signatures in `view` (any two recorded agents, or seeds of
+/// one), on the calibrated scale of the mechanisms: each feature in units of its pooled
+/// within-mechanism SD over the [`MECHANISMS`] among `reference` — the scale of the
+/// identification limits, so that a distance below a mechanism's limit is as near as two
+/// seeds of one mechanism lie. NaN when they share no feature of the view.
+pub fn signature_distance(
+    a: &Signature,
+    b: &Signature,
+    reference: &[Signature],
+    view: View,
+) -> f64 {
+    let refs: Vec<&Signature> = reference.iter().collect();
+    let scale = Scale::of(&refs, &MECHANISMS, view);
+    distance(&mean_features(&[a]), &mean_features(&[b]), &scale)
+}
+
+/// One pair of signatures and their distance (see [`signature_distance`]).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct PairDistance {
+    /// First signature: model and seed.
+    pub a: (String, u64),
+    /// Second signature.
+    pub b: (String, u64),
+    /// Their distance.
+    pub distance: f64,
+}
+
+/// The distance of every pair of `sigs` (model × seed) in `view`, on the scale of the
+/// mechanisms among `sigs` (see [`signature_distance`]).
+pub fn pairwise(sigs: &[Signature], view: View) -> Vec<PairDistance> {
+    let refs: Vec<&Signature> = sigs.iter().collect();
+    let scale = Scale::of(&refs, &MECHANISMS, view);
+    let means: Vec<BTreeMap<&'static str, f64>> =
+        sigs.iter().map(|s| mean_features(&[s])).collect();
+    let mut out = Vec::new();
+    for i in 0..sigs.len() {
+        for j in i + 1..sigs.len() {
+            out.push(PairDistance {
+                a: (sigs[i].model.clone(), sigs[i].seed),
+                b: (sigs[j].model.clone(), sigs[j].seed),
+                distance: distance(&means[i], &means[j], &scale),
+            });
+        }
+    }
+    out
 }
 
 /// One agent compared with one mechanism.
@@ -443,6 +507,31 @@ pub const MECHANISMS: [&str; 5] = [
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Pairwise distances by hand: two mechanisms (two seeds each) give the scale (pooled
+    /// within SD of `dyn_turning` √((4·0.1²)/2) = 0.1414, above the floor 0.05 × 0.589);
+    /// the unit-view feature `frac_ramp` is not read by the dynamics view. Agents a and b
+    /// differ by 0.1 in turning: 0.707 seed SDs.
+    #[test]
+    fn pairwise_distances_are_on_the_mechanisms_scale_of_the_view() {
+        let s = vec![
+            sig("ddm", 0, &[("dyn_turning", 0.9)]),
+            sig("ddm", 1, &[("dyn_turning", 1.1)]),
+            sig("sbf", 0, &[("dyn_turning", -0.1)]),
+            sig("sbf", 1, &[("dyn_turning", 0.1)]),
+            sig("a", 0, &[("dyn_turning", 0.5), ("frac_ramp", 0.0)]),
+            sig("b", 0, &[("dyn_turning", 0.6), ("frac_ramp", 1.0)]),
+        ];
+        let p = pairwise(&s, View::Dynamics);
+        assert_eq!(p.len(), 15);
+        let ab = p.iter().find(|p| p.a.0 == "a" && p.b.0 == "b").unwrap();
+        assert!((ab.distance - 0.1 / 0.02f64.sqrt()).abs() < 1e-9, "{ab:?}");
+        let d = signature_distance(&s[4], &s[5], &s, View::Dynamics);
+        assert!((d - ab.distance).abs() < 1e-12);
+        // The unit view has no shared feature with a scale here (frac_ramp has no
+        // mechanism spread): undefined.
+        assert!(signature_distance(&s[4], &s[5], &s, View::Units).is_nan());
+    }
 
     /// A signature of `model`'s seed `seed` with features `f` (shared with `identify`'s tests).
     pub(super) fn sig(model: &str, seed: u64, f: &[(&str, f64)]) -> Signature {

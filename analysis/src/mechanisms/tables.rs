@@ -10,7 +10,8 @@ use std::path::{Path, PathBuf};
 /// What [`write_tables`] wrote.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Written {
-    /// `signatures.csv`, `mechanisms.csv`, `mechanisms.md`, `fingerprints.svg`/`.png`.
+    /// `signatures.csv`, `mechanisms.csv`, `mechanisms.md`, `pairwise.csv`,
+    /// `fingerprints.svg`/`.png`.
     pub files: Vec<PathBuf>,
     /// Signatures (model × seed).
     pub signatures: usize,
@@ -30,9 +31,11 @@ fn fmt(x: f64, digits: usize) -> String {
 }
 
 /// Reads the compact results under `results`, compares every agent with the
-/// [`MECHANISMS`] in both views (bootstrap of `resamples`, seeded) and writes into `out`:
+/// [`MECHANISMS`] in `views` (bootstrap of `resamples`, seeded) and writes into `out`:
 /// `signatures.csv` (model, seed, every feature of both views), `mechanisms.csv` (view,
-/// agent, mechanism, distance, nearest fraction, seeds) and `mechanisms.md` (the
+/// agent, mechanism, distance, nearest fraction, seeds), `pairwise.csv` (view, every
+/// pair of model × seed signatures and their distance on the mechanisms' scale) and
+/// `mechanisms.md` (the
 /// fingerprints with seed spreads, then per view the agents' distances and nearest
 /// mechanism, the leave-one-seed-out identification and every agent seed's verdict).
 pub fn write_tables(
@@ -40,6 +43,7 @@ pub fn write_tables(
     out: &Path,
     resamples: usize,
     seed: u64,
+    views: &[View],
 ) -> Result<Written, MechanismError> {
     let _lock =
         chronocooked_env::fs::FolderLock::acquire(out).map_err(|e| MechanismError::File {
@@ -88,7 +92,7 @@ pub fn write_tables(
     }
     let mut identifications = Vec::new();
     let mut agents_compared = 0;
-    for view in View::ALL {
+    for &view in views {
         let comparisons = compare(&sigs, &MECHANISMS, resamples, seed, view);
         for c in &comparisons {
             mcsv.push_str(&format!(
@@ -139,10 +143,25 @@ pub fn write_tables(
         md.push_str(&seed_verdicts_markdown(&sigs, &identification));
         identifications.push(identification);
     }
+    let mut pairs = String::from("view,model_a,seed_a,model_b,seed_b,distance\n");
+    for &view in views {
+        for p in super::pairwise(&sigs, view) {
+            pairs.push_str(&format!(
+                "{},{},{},{},{},{}\n",
+                view.key(),
+                p.a.0,
+                p.a.1,
+                p.b.0,
+                p.b.1,
+                p.distance
+            ));
+        }
+    }
     let mut files = vec![
         write("signatures.csv", &csv)?,
         write("mechanisms.csv", &mcsv)?,
         write("mechanisms.md", &md)?,
+        write("pairwise.csv", &pairs)?,
     ];
     files.extend(fingerprint_figure(&sigs, &out.join("fingerprints"))?);
     Ok(Written {

@@ -26,7 +26,7 @@ mod card_html;
 mod tests;
 
 use crate::figures::markup::figure_file;
-use crate::mechanisms::{JobFiles, MECHANISMS, Signature, View, assemble, compare};
+use crate::mechanisms::{JobFiles, Signature, View, assemble};
 use crate::records::{METRICS, read_eval_info};
 use crate::report::leaderboard::Row;
 use card::card_and_scaling;
@@ -76,74 +76,190 @@ fn job_files(rows: &[Row]) -> (Vec<JobFiles>, Vec<Vec<RunInfo>>) {
     (jobs, infos)
 }
 
-/// The nearest-mechanism table (HTML, Markdown) of the agents among `sigs`; `None` when
-/// no agent is among them.
-fn nearest_tables(sigs: &[Signature]) -> Option<(Markup, String)> {
-    let comparisons = compare(sigs, &MECHANISMS, 1000, 0, View::Units);
-    let mut agents: Vec<&str> = comparisons.iter().map(|c| c.agent.as_str()).collect();
-    agents.dedup();
-    if agents.is_empty() {
+/// Bootstrap resamples behind the report's placements.
+const REPORT_RESAMPLES: usize = 1000;
+
+/// One model of the report placed among the committed mechanisms in one view.
+struct PlacedRow {
+    model: String,
+    view: View,
+    seeds: usize,
+    nearest: String,
+    distance: f64,
+    limit: Option<f64>,
+    share: f64,
+    identified: bool,
+    /// Seeds identified (each seed placed on its own) and the mechanism they were
+    /// identified with, most often first.
+    seeds_identified: Vec<(String, usize)>,
+}
+
+/// Every model among `sigs` placed among the committed mechanism signatures
+/// ([`crate::fingerprint::reference_signatures`]) in both views, as `chronocooked
+/// fingerprint` places one agent: its seed mean, and each seed on its own.
+fn placed_rows(sigs: &[Signature]) -> Vec<PlacedRow> {
+    let reference = crate::fingerprint::reference_signatures();
+    let mut models: Vec<&str> = sigs.iter().map(|s| s.model.as_str()).collect();
+    models.sort_unstable();
+    models.dedup();
+    let mut rows = Vec::new();
+    for m in models {
+        let mine: Vec<&Signature> = sigs.iter().filter(|s| s.model == m).collect();
+        let mean = Signature {
+            model: m.to_string(),
+            seed: 0,
+            features: crate::mechanisms::mean_features(&mine)
+                .into_iter()
+                .map(|(k, v)| (k.to_string(), v))
+                .collect(),
+        };
+        for view in View::ALL {
+            let p = crate::fingerprint::place(&mean, &reference, REPORT_RESAMPLES, 0, view);
+            let Some(first) = p.distances.first() else {
+                continue;
+            };
+            let mut ids: Vec<(String, usize)> = Vec::new();
+            for s in &mine {
+                let q = crate::fingerprint::place(s, &reference, 1, 0, view);
+                if let (true, Some(n)) = (q.identified, q.nearest) {
+                    match ids.iter_mut().find(|(x, _)| *x == n) {
+                        Some(slot) => slot.1 += 1,
+                        None => ids.push((n, 1)),
+                    }
+                }
+            }
+            ids.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
+            rows.push(PlacedRow {
+                model: m.to_string(),
+                view,
+                seeds: mine.len(),
+                nearest: first.mechanism.clone(),
+                distance: first.distance,
+                limit: first.limit,
+                share: first.bootstrap_share,
+                identified: p.identified,
+                seeds_identified: ids,
+            });
+        }
+    }
+    rows
+}
+
+/// The placement table (HTML, Markdown) of the models among `sigs`, both views side by
+/// side; `None` when there is none.
+fn placement_tables(sigs: &[Signature]) -> Option<(Markup, String)> {
+    let rows = placed_rows(sigs);
+    if rows.is_empty() {
         return None;
     }
-    let mechs: Vec<&str> = MECHANISMS
-        .iter()
-        .copied()
-        .filter(|m| comparisons.iter().any(|c| c.mechanism == *m))
-        .collect();
-    // Per agent: name, seeds, distance cell per mechanism, nearest label.
-    let lines: Vec<(&str, usize, Vec<String>, String)> = agents
-        .into_iter()
-        .map(|a| {
-            let mine: Vec<_> = comparisons.iter().filter(|c| c.agent == a).collect();
-            let seeds = mine.first().map_or(0, |c| c.seeds.0);
-            let cells = mechs
-                .iter()
-                .map(|m| {
-                    let d = mine
+    let fmt = |x: f64| {
+        if x.is_finite() {
+            format!("{x:.2}")
+        } else {
+            "–".into()
+        }
+    };
+    let cells = |r: &PlacedRow| {
+        let identified: usize = r.seeds_identified.iter().map(|x| x.1).sum();
+        [
+            r.nearest.clone(),
+            fmt(r.distance),
+            r.limit.map_or("–".into(), fmt),
+            if r.identified {
+                "identified"
+            } else {
+                "not identified"
+            }
+            .to_string(),
+            format!("{:.2}", r.share),
+            if identified == 0 {
+                format!("0/{}", r.seeds)
+            } else {
+                format!(
+                    "{identified}/{} ({})",
+                    r.seeds,
+                    r.seeds_identified
                         .iter()
-                        .find(|c| c.mechanism == *m)
-                        .map_or(f64::NAN, |c| c.distance);
-                    if d.is_finite() {
-                        format!("{d:.2}")
-                    } else {
-                        "–".into()
-                    }
-                })
-                .collect();
-            (a, seeds, cells, crate::mechanisms::nearest_label(&mine))
-        })
-        .collect();
+                        .map(|(m, n)| format!("{m} {n}"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                )
+            },
+        ]
+    };
+    let mut models: Vec<&str> = rows.iter().map(|r| r.model.as_str()).collect();
+    models.dedup();
+    let of = |m: &str, v: View| rows.iter().find(|r| r.model == m && r.view == v);
+    let heads = [
+        "nearest",
+        "distance",
+        "limit",
+        "verdict",
+        "share",
+        "seeds identified",
+    ];
     let html = html! {
         table {
             tr {
-                th { "agent" } th { "seeds" }
-                @for m in &mechs { th { (m) } }
-                th { "nearest (bootstrap share)" }
+                th rowspan="2" { "model" }
+                th colspan="6" { (View::Units.title()) }
+                th colspan="6" { (View::Dynamics.title()) }
+                th rowspan="2" { "views" }
             }
-            @for (a, seeds, cells, nearest) in &lines {
+            tr { @for _ in 0..2 { @for h in heads { th { (h) } } } }
+            @for m in &models {
                 tr {
-                    td { (a) } td { (seeds) }
-                    @for c in cells { td { (c) } }
-                    td { (nearest) }
+                    td { (m) }
+                    @for v in View::ALL {
+                        @if let Some(r) = of(m, v) { @for c in cells(r) { td { (c) } } }
+                        @else { @for _ in 0..6 { td { "–" } } }
+                    }
+                    td { (agreement(of(m, View::Units), of(m, View::Dynamics))) }
                 }
             }
         }
     };
-    let mut table = Table::new(
-        ["agent".to_string(), "seeds".to_string()]
-            .into_iter()
-            .chain(mechs.iter().map(|m| m.to_string()))
-            .chain(["nearest".to_string()]),
-    );
-    for (a, seeds, cells, nearest) in &lines {
+    let mut table = Table::new(["model", "view"].into_iter().chain(heads));
+    for r in &rows {
         table.row(
-            [a.to_string(), seeds.to_string()]
+            [r.model.clone(), r.view.key().to_string()]
                 .into_iter()
-                .chain(cells.iter().cloned())
-                .chain([nearest.clone()]),
+                .chain(cells(r)),
         );
     }
-    Some((html, table.render()))
+    let mut md = table.render();
+    for m in &models {
+        let say = agreement(of(m, View::Units), of(m, View::Dynamics));
+        if say != "agree" {
+            md += &format!("\n{m}: the views {say}.\n");
+        }
+    }
+    Some((html, md))
+}
+
+/// Whether the two views give the same verdict (`agree`), or how they differ.
+fn agreement(units: Option<&PlacedRow>, dynamics: Option<&PlacedRow>) -> String {
+    match (units, dynamics) {
+        (Some(u), Some(d)) if u.nearest == d.nearest && u.identified == d.identified => {
+            "agree".into()
+        }
+        (Some(u), Some(d)) => format!(
+            "disagree: units {} {}, dynamics {} {}",
+            if u.identified {
+                "identified as"
+            } else {
+                "nearest"
+            },
+            u.nearest,
+            if d.identified {
+                "identified as"
+            } else {
+                "nearest"
+            },
+            d.nearest
+        ),
+        _ => "one view only".into(),
+    }
 }
 
 /// A card's line-chart panels: `(file name, chart, caption)`.
@@ -194,14 +310,28 @@ const MECHANISMS_INTRO: &str = "How each model keeps time, on peak-interval prob
      cards: each model's fingerprint and each agent's distance to every timing \
      mechanism.";
 
-/// How the nearest-mechanism table is read (the paragraph above it).
-const NEAREST_LEGEND: &str = "Distance: RMS over the shared \
-     features of the difference in units of each feature's SD over all \
-     signatures (models × seeds), each feature weighted by how well it tells the \
-     timing mechanisms apart (F/(1+F), F = variance between their means over the \
-     pooled variance of their seeds); nearest: the share of 1,000 bootstrap \
-     resamples of the seeds in which it is the nearest. With one seed per \
-     model the share is 1 by construction: run more seeds for a test.";
+/// How the placement table is read (the paragraph above it), from the constants the
+/// placement uses.
+fn nearest_legend() -> String {
+    format!(
+        "Each model's seed mean is placed among the committed mechanism signatures ({}) as \
+         `chronocooked fingerprint` places one agent, in two views: the unit view (features: \
+         {}) reads single-unit categories, which depend on the basis of the units; the \
+         dynamics view (features: {}) reads the population trajectory, the same in any \
+         orthogonal basis. Distance: RMS over the view's shared features of the difference \
+         in units of each feature's seed-to-seed SD within a mechanism, pooled over the \
+         mechanisms (1 = one seed SD on every feature). Limit: the nearest mechanism's \
+         identification limit, the upper {:.0}% prediction limit for one new seed's distance \
+         (leave one seed out); a model is identified only within it. Share: of {} bootstrap \
+         resamples of the mechanisms' seeds, the share in which that mechanism is the \
+         nearest. Seeds identified: each seed placed on its own.",
+        crate::fingerprint::REFERENCE_SOURCE,
+        View::Units.features().join(", "),
+        View::Dynamics.features().join(", "),
+        100.0 * crate::mechanisms::LIMIT_COVERAGE,
+        REPORT_RESAMPLES
+    )
+}
 
 /// The "Mechanisms" section of the leaderboard (HTML, Markdown) for `rows`; its figures go
 /// to `<out>/mechanisms/`. Empty strings when no row has recorded fixed-interval runs.
@@ -230,7 +360,7 @@ pub fn mechanisms_section(rows: &[Row], out: &Path) -> Result<(Markup, String), 
         .iter()
         .map(|card| card_html(card, &dir))
         .collect::<Result<Vec<_>, _>>()?;
-    let nearest = nearest_tables(&sigs);
+    let nearest = placement_tables(&sigs);
     let fig = crate::mechanisms::fingerprint_figure(&sigs, &dir.join("fingerprints"))
         .map_err(|e| e.to_string())?;
     let fingerprint = match fig
@@ -258,14 +388,15 @@ pub fn mechanisms_section(rows: &[Row], out: &Path) -> Result<(Markup, String), 
         @for card in &card_markup { (card) }
         @if let Some(f) = &fingerprint { (f) }
         @if let Some((table, _)) = &nearest {
-            h3 { "Nearest timing mechanism" }
-            p { (NEAREST_LEGEND) }
+            h3 { "Nearest timing mechanism, in two views" }
+            p { (nearest_legend()) }
             (table)
         }
     };
     let mut md = String::from("\n## Mechanisms\n\n");
     if let Some((_, table_md)) = &nearest {
-        md += "Nearest timing mechanism (distance in feature SDs):\n\n";
+        md += "Nearest timing mechanism, in two views (distance in seed-to-seed SDs of the \
+               committed mechanisms; limit: the nearest mechanism's identification limit):\n\n";
         md += table_md;
     }
     let mut table = Table::new(["model", "population", "scaling index"]);
