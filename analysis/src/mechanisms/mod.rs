@@ -443,23 +443,53 @@ pub fn compare(
         .filter(|m| !mechanisms.contains(m))
         .collect();
     let mean_of = |m: &str| mean_features(&by_model[m]);
+    // The bootstrap on dense rows of the scale's features (NaN = missing): the same draws
+    // and means as `mean_features` and `distance`, without a map per resample.
+    let features: Vec<&'static str> = scale.sds.keys().copied().collect();
+    let sds: Vec<f64> = features.iter().map(|f| scale.sds[f]).collect();
+    let dense: BTreeMap<&str, Vec<Vec<f64>>> = by_model
+        .iter()
+        .map(|(m, seeds)| {
+            let rows = seeds
+                .iter()
+                .map(|s| {
+                    features
+                        .iter()
+                        .map(|f| s.features.get(*f).copied().unwrap_or(f64::NAN))
+                        .collect()
+                })
+                .collect();
+            (*m, rows)
+        })
+        .collect();
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
     let mut wins: BTreeMap<(&str, &str), usize> = BTreeMap::new();
+    let (mut sum, mut count) = (vec![0.0; features.len()], vec![0usize; features.len()]);
     for _ in 0..resamples {
         let mut draw = |m: &str| {
-            let s = &by_model[m];
-            let pick: Vec<&Signature> = (0..s.len())
-                .map(|_| s[rng.random_range(0..s.len())])
-                .collect();
-            mean_features(&pick)
+            let rows = &dense[m];
+            sum.iter_mut().for_each(|x| *x = 0.0);
+            count.iter_mut().for_each(|x| *x = 0);
+            for _ in 0..rows.len() {
+                let row = &rows[rng.random_range(0..rows.len())];
+                for (k, v) in row.iter().enumerate() {
+                    if v.is_finite() {
+                        sum[k] += v;
+                        count[k] += 1;
+                    }
+                }
+            }
+            sum.iter()
+                .zip(&count)
+                .map(|(s, &n)| if n > 0 { s / n as f64 } else { f64::NAN })
+                .collect::<Vec<f64>>()
         };
-        let mech_means: Vec<(&str, BTreeMap<&str, f64>)> =
-            mechs.iter().map(|&m| (m, draw(m))).collect();
+        let mech_means: Vec<(&str, Vec<f64>)> = mechs.iter().map(|&m| (m, draw(m))).collect();
         for &a in &agents {
             let am = draw(a);
             let nearest = mech_means
                 .iter()
-                .map(|(m, mm)| (*m, distance(&am, mm, &scale)))
+                .map(|(m, mm)| (*m, dense_distance(&am, mm, &sds)))
                 .filter(|(_, d)| d.is_finite())
                 .min_by(|x, y| x.1.total_cmp(&y.1));
             if let Some((m, _)) = nearest {
@@ -482,6 +512,23 @@ pub fn compare(
         }
     }
     out
+}
+
+/// [`distance`] on dense rows: the RMS of `(a − b) / sd` over the features both have (NaN
+/// when none).
+fn dense_distance(a: &[f64], b: &[f64], sds: &[f64]) -> f64 {
+    let (mut sum, mut n) = (0.0, 0usize);
+    for ((x, y), sd) in a.iter().zip(b).zip(sds) {
+        if x.is_finite() && y.is_finite() {
+            sum += ((x - y) / sd).powi(2);
+            n += 1;
+        }
+    }
+    if n > 0 {
+        (sum / n as f64).sqrt()
+    } else {
+        f64::NAN
+    }
 }
 
 /// The nearest mechanism among one agent's comparisons as `mechanism (bootstrap share)`,
