@@ -13,7 +13,7 @@ committed mechanism signatures, in two views side by side:
   depend on the basis of the units, and change when the units are mixed;
 * the *dynamics view* reads the population trajectory's basis-free signature (participation
   ratio, speed trend, turning, straightness, continuation past the interval, the spectrum
-  of a linear dynamics fit, geometry scaling): the same for any orthogonal mixing of the
+  of a linear dynamics fit): the same for any orthogonal mixing of the
   units, so the same verdict for the same dynamics in another basis.
 
 :func:`distance` compares two fingerprinted agents (or seeds) on the mechanisms' scale.

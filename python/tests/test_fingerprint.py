@@ -157,11 +157,11 @@ def test_the_worked_example_runs_as_written_in_under_a_minute(tmp_path):
     assert seconds < 60, f"{seconds:.0f} s"
     for agent in ("pacemaker", "lstm125"):
         saved = json.loads((tmp_path / "fp" / agent / "fingerprint.json").read_text())
-        assert saved["placement"]["nearest"] in {"ddm", "sbf", "timecells-csc", "timecells-ms",
+        assert saved["units"]["nearest"] in {"ddm", "sbf", "timecells-csc", "timecells-ms",
                                                  "timecells-laplace"}
     # The zoo agent has no TD-6 run: the trend and scaling features are missing.
     lstm = json.loads((tmp_path / "fp" / "lstm125" / "fingerprint.json").read_text())
-    assert {"foc_cv_trend", "scaling_index"} <= set(lstm["placement"]["missing"])
+    assert {"foc_cv_trend", "scaling_index"} <= set(lstm["units"]["missing"])
     assert out.stdout.count("distance") >= 10, out.stdout
 
 

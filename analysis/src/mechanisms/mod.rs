@@ -85,10 +85,9 @@ pub const BEHAVIOUR_FEATURES: [&str; 7] = [
 ];
 
 /// The basis-free neural features of the *dynamics view*: the population trajectory's
-/// signature ([`crate::neural::dynamics`], `dyn_<feature>`: unit-weighted mean over the
-/// model's timing populations and its fixed-interval jobs) and `dyn_scaling`, the geometry
-/// scaling index alone (distances between states, [`crate::neural::geometry`]).
-pub const DYNAMICS_NEURAL: [&str; 8] = [
+/// signature ([`crate::neural::dynamics`], `dyn_<feature>`: mean over the model's timing
+/// populations, weighted by their size, and over its fixed-interval jobs).
+pub const DYNAMICS_NEURAL: [&str; 7] = [
     "dyn_dimension",
     "dyn_speed_trend",
     "dyn_turning",
@@ -96,13 +95,20 @@ pub const DYNAMICS_NEURAL: [&str; 8] = [
     "dyn_continuation",
     "dyn_spectral_radius",
     "dyn_rotation",
-    "dyn_scaling",
 ];
 
 /// The features of the *dynamics view*, in table order: the behaviour and the basis-free
 /// neural features. Every one is the same for any orthogonal mixing of a population's
 /// units (tests mix each feature's input).
-pub const DYNAMICS_FEATURES: [&str; 15] = [
+///
+/// `dyn_scaling` (the geometry scaling index, basis-free too) is recorded beside them but
+/// not compared: every mechanism whose geometry defines it is a fixed clock (index 0 within
+/// the 1.01ᵏ grid of the search), it is undefined for drift-diffusion and Laplace (a
+/// straight or a one-signed decaying path), so it has no seed spread to scale a distance
+/// by — an agent with any other index would be hundreds of "seed SDs" from three mechanisms
+/// on that feature alone and, as a missing feature is left out, nearer the two that lack
+/// it (measured: `results/mechanisms-reference/dsa-crosscheck.md`).
+pub const DYNAMICS_FEATURES: [&str; 14] = [
     "foc_cv",
     "foc_cv_trend",
     "foc_over_td",
@@ -117,7 +123,6 @@ pub const DYNAMICS_FEATURES: [&str; 15] = [
     "dyn_continuation",
     "dyn_spectral_radius",
     "dyn_rotation",
-    "dyn_scaling",
 ];
 
 /// Every feature a signature may hold (unit view, then the dynamics view's own), the
@@ -261,25 +266,10 @@ pub(crate) fn mean_features(sigs: &[&Signature]) -> BTreeMap<&'static str, f64> 
 /// 0.0001 to 0.2 on both committed studies (40/40 and 20/20).
 const SCALE_FLOOR: f64 = 0.05;
 
-/// The smallest scale of a feature that is measured on a grid: the SD of its rounding
-/// error, `grid step / √12`. `dyn_scaling`, the geometry scaling index, is found on
-/// stretch factors `1.01ᵏ` ([`crate::neural::geometry`]): a step of `ln 1.01 / ln 2` in
-/// index units at the studies' TD ratio 2. Every fixed clock among the mechanisms has index
-/// ≈ 0 within that step, so their seed spread (and the spread over all of them) is below
-/// what the grid resolves: without this floor a new seed one grid step away would lie
-/// hundreds of "seed SDs" away. 0 for the other features.
-fn resolution(feature: &str) -> f64 {
-    match feature {
-        "dyn_scaling" => 1.01f64.ln() / 2f64.ln() / 12f64.sqrt(),
-        _ => 0.0,
-    }
-}
-
 /// The pooled within-mechanism SD of each feature over the mechanism signatures `mechs`
 /// (the SD of the seeds around their own mechanism's mean, pooled over the mechanisms),
-/// floored at [`SCALE_FLOOR`] × the feature's SD over all of them and at the feature's
-/// measurement resolution ([`resolution`]). Features no two signatures have, or with no
-/// spread at all, are left out.
+/// floored at [`SCALE_FLOOR`] × the feature's SD over all of them. Features no two
+/// signatures have, or with no spread at all, are left out.
 fn within_sds(mechs: &[&Signature]) -> BTreeMap<&'static str, f64> {
     let mut by_model: BTreeMap<&str, Vec<&Signature>> = BTreeMap::new();
     for s in mechs {
@@ -305,7 +295,7 @@ fn within_sds(mechs: &[&Signature]) -> BTreeMap<&'static str, f64> {
         } else {
             0.0
         };
-        out.insert(f, within.max(SCALE_FLOOR * total_sd).max(resolution(f)));
+        out.insert(f, within.max(SCALE_FLOOR * total_sd));
     }
     out
 }
