@@ -84,7 +84,10 @@ pub fn write_tables(
     );
     for (title, features) in [
         ("Behaviour and unit features", &FEATURES[..]),
-        ("Dynamics features (`dyn_scaling` recorded, not compared)", &DYNAMICS_TABLE[..]),
+        (
+            "Dynamics features (`dyn_scaling` recorded, not compared)",
+            &DYNAMICS_TABLE[..],
+        ),
     ] {
         md.push_str(&format!("### {title}\n\n"));
         md.push_str(&spread_table(&sigs, &models, features));
