@@ -10,6 +10,7 @@
 //!   another order: no dynamics) — a negative control: not identified in the dynamics view.
 
 use crate::common::{self, run_ok};
+use crate::mechanisms::copy_tree;
 use chronocooked_analysis::fingerprint::{Fingerprint, agent_signature, reference_signatures};
 use chronocooked_analysis::neural::probe::summarize_file;
 use chronocooked_models::ActivityDataset;
@@ -106,19 +107,6 @@ fn changed(fp: &Path, to: &Path, change: &mut dyn FnMut(&mut ActivityDataset)) -
 fn place(fp: &Path) -> Fingerprint {
     let sig = agent_signature(fp, "agent", true, 0).unwrap();
     Fingerprint::place(&sig, &reference_signatures(), 100, 1)
-}
-
-fn copy_tree(src: &Path, dst: &Path) {
-    std::fs::create_dir_all(dst).unwrap();
-    for e in std::fs::read_dir(src).unwrap() {
-        let e = e.unwrap();
-        let to = dst.join(e.file_name());
-        if e.file_type().unwrap().is_dir() {
-            copy_tree(&e.path(), &to);
-        } else {
-            std::fs::copy(e.path(), &to).unwrap();
-        }
-    }
 }
 
 /// Mixes every timing population of `ds` by its own matrix from `mixes` (made on first

@@ -238,7 +238,8 @@ fn scaling_from_a_sweep_records_each_model_and_seed_at_both_tds_and_enters_the_f
 }
 
 /// Copies `src` into `dst` recursively.
-fn copy_tree(src: &Path, dst: &Path) {
+/// Copies the folder `src` to `dst` (files and subfolders).
+pub(crate) fn copy_tree(src: &Path, dst: &Path) {
     std::fs::create_dir_all(dst).unwrap();
     for e in std::fs::read_dir(src).unwrap() {
         let e = e.unwrap();

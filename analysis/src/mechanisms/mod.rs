@@ -73,17 +73,6 @@ pub const FEATURES: [&str; 12] = [
     "decode_error_over_td",
 ];
 
-/// The behavioural features (the same in every basis: they read no unit).
-pub const BEHAVIOUR_FEATURES: [&str; 7] = [
-    "foc_cv",
-    "foc_cv_trend",
-    "foc_over_td",
-    "pi_peak_over_td",
-    "pi_cv",
-    "wf",
-    "bp_over_gm",
-];
-
 /// The basis-free neural features of the *dynamics view*: the population trajectory's
 /// signature ([`crate::neural::dynamics`], `dyn_<feature>`: mean over the model's timing
 /// populations, weighted by their size, and over its fixed-interval jobs).
