@@ -73,6 +73,20 @@ struct Case {
     compare: &'static [&'static str],
     /// What a faulted run may leave: returns why the folder would pass for complete.
     passes_for_complete: fn(&Path) -> Option<String>,
+    /// A reader of the output and what its refusal of a faulted, incomplete output must
+    /// name (`{OUT}` as in `args`); `None` when the output is not read back.
+    reader: Option<Reader>,
+}
+
+/// A command that reads a case's output.
+struct Reader {
+    /// Arguments; `{OUT}` is the faulted output folder.
+    args: Vec<String>,
+    /// Whether the faulted output is complete anyway (the fault hit a write after its last
+    /// essential file): then the reader must accept it.
+    complete: fn(&Path) -> bool,
+    /// Texts the refusal must contain: the missing file, the command that completes it.
+    names: fn(&Path) -> Vec<String>,
 }
 
 fn with_out(args: &[String], out: &Path) -> Vec<String> {
@@ -175,6 +189,23 @@ fn cases() -> Vec<Case> {
                 (out.join("summary.json").is_file() && !out.join("agent.json").is_file())
                     .then(|| "summary.json without agent.json".into())
             },
+            reader: Some(Reader {
+                args: strings(&["eval", "--run", "{OUT}", "--out", "{OUT}-read"]),
+                complete: |out| out.join("summary.json").is_file(),
+                names: |out| {
+                    if out.join("config.json").is_file() {
+                        let mut v: Vec<String> = ["agent.json", "summary.json"]
+                            .into_iter()
+                            .filter(|f| !out.join(f).is_file())
+                            .map(String::from)
+                            .collect();
+                        v.push("chronocooked train --resume".into());
+                        v
+                    } else {
+                        vec!["chronocooked train".into()]
+                    }
+                },
+            }),
         },
         Case {
             name: "train-ppo",
@@ -200,6 +231,7 @@ fn cases() -> Vec<Case> {
                 (out.join("summary.json").is_file() && !out.join("model.bpk").is_file())
                     .then(|| "summary.json without model.bpk".into())
             },
+            reader: None,
         },
         Case {
             name: "eval",
@@ -211,6 +243,23 @@ fn cases() -> Vec<Case> {
                     .is_file()
                     .then(|| "metrics.json of a failed evaluation".into())
             },
+            reader: Some(Reader {
+                args: strings(&["report", "--eval", "{OUT}", "--out", "{OUT}-read"]),
+                complete: |_| false,
+                names: |out| {
+                    if !out.join("eval.json").is_file() {
+                        // Stopped at its first writes: not (yet) an evaluation folder.
+                        return vec!["eval.json".into()];
+                    }
+                    let mut v = vec!["metrics.json".to_string()];
+                    if out.join("records.jsonl").is_file() && out.join("eval.json").is_file() {
+                        v.push("eval --from".into());
+                    } else {
+                        v.push("chronocooked eval".into());
+                    }
+                    v
+                },
+            }),
         },
         Case {
             name: "record",
@@ -220,6 +269,8 @@ fn cases() -> Vec<Case> {
                 s(&i.run),
                 "--probe",
                 "--summary",
+                "--figures",
+                "{OUT}/figs",
                 "--out",
                 "{OUT}/activity.json",
             ]),
@@ -230,6 +281,7 @@ fn cases() -> Vec<Case> {
                     .is_file()
                     .then(|| "a summary of a failed recording".into())
             },
+            reader: None,
         },
         Case {
             name: "export",
@@ -241,6 +293,7 @@ fn cases() -> Vec<Case> {
                     .is_ok()
                     .then(|| "an interrupted export passes its completeness check".into())
             },
+            reader: None,
         },
         Case {
             name: "report",
@@ -248,6 +301,7 @@ fn cases() -> Vec<Case> {
             resume: None,
             compare: &["report.md", "report.csv"],
             passes_for_complete: |_| None,
+            reader: None,
         },
         Case {
             name: "collect",
@@ -259,6 +313,7 @@ fn cases() -> Vec<Case> {
                     .is_ok_and(|jobs| !jobs.is_empty())
                     .then(|| "a half-collected folder is readable".into())
             },
+            reader: None,
         },
     ]
 }
@@ -309,6 +364,32 @@ fn campaign(case: &Case, kind: &str, root: &Path) -> usize {
         }
         if let Some(why) = (case.passes_for_complete)(&out) {
             panic!("{} {kind}@{n}: {why}", case.name);
+        }
+        if let Some(reader) = &case.reader {
+            let o = run(&with_out(&reader.args, &out), None);
+            let err = stderr(&o);
+            if (reader.complete)(&out) {
+                assert!(
+                    o.status.success(),
+                    "{} {kind}@{n}: reader: {err}",
+                    case.name
+                );
+            } else {
+                assert_eq!(
+                    o.status.code(),
+                    Some(2),
+                    "{} {kind}@{n}: a reader accepted the incomplete output: {err}",
+                    case.name
+                );
+                for what in (reader.names)(&out) {
+                    assert!(
+                        err.contains(&what),
+                        "{} {kind}@{n}: the refusal does not name `{what}`: {err}",
+                        case.name
+                    );
+                }
+            }
+            let _ = std::fs::remove_dir_all(PathBuf::from(format!("{}-read", s(&out))));
         }
         let rerun = match &case.resume {
             Some(r) if out.join("config.json").is_file() => with_out(r, &out),
@@ -514,5 +595,79 @@ fn collect_takes_only_finished_jobs_and_readers_refuse_an_unfinished_collect() {
             "{args:?}: {err}"
         );
     }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A sweep killed at any write of any of its processes (the sweep or a worker: kill -9 of
+/// one of the group), then rerun, equals an uninterrupted sweep: the same files (figures
+/// included), the same learned state and metrics, and no lock or temporary file left.
+#[test]
+fn a_sweep_killed_at_any_write_then_rerun_equals_an_uninterrupted_sweep() {
+    let dir = temp_dir("faults-sweep-kill");
+    let sweep = dir.join("k.toml");
+    std::fs::write(
+        &sweep,
+        "name = \"kill\"\ntasks = [\"FixedInterval-v0\"]\nmodels = [\"ddm\"]\n\
+         seeds = [1]\nepisodes = 60\nrecord = false\nexport = false\n\
+         set = [\"env.td=6\"]\n",
+    )
+    .unwrap();
+    let args = |out: &Path| -> Vec<String> {
+        strings(&[
+            "sweep",
+            s(&sweep),
+            "--out",
+            s(out),
+            "--workers",
+            "1",
+            "--no-report",
+        ])
+    };
+    let clean = dir.join("clean");
+    let o = run(&args(&clean), None);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // Files by relative path; the bytes of those that are a function of the seed alone.
+    let listing = |out: &Path| -> Vec<(String, Option<Vec<u8>>)> {
+        files_below(out)
+            .into_iter()
+            .map(|p| {
+                let rel = p.strip_prefix(out).unwrap().display().to_string();
+                let stable = ["agent.json", "curves.csv", "metrics.json", "records.jsonl"]
+                    .iter()
+                    .any(|f| rel.ends_with(f))
+                    || rel.ends_with(".png")
+                    || rel.ends_with(".svg");
+                let bytes = stable.then(|| std::fs::read(&p).unwrap());
+                (rel, bytes)
+            })
+            .collect()
+    };
+    let reference = listing(&clean);
+    assert!(
+        reference
+            .iter()
+            .any(|(f, _)| f.ends_with("run/figures/learning_curve.png")),
+        "{reference:?}"
+    );
+    let mut killed = 0;
+    for n in 1..=200 {
+        let out = dir.join(format!("kill{n}"));
+        let o = run(&args(&out), Some(&format!("kill@{n}")));
+        if o.status.success() {
+            break;
+        }
+        killed += 1;
+        assert!(!stderr(&o).contains("panicked"), "kill@{n}: {}", stderr(&o));
+        let o = run(&args(&out), None);
+        assert!(o.status.success(), "kill@{n}: rerun failed: {}", stderr(&o));
+        let got = listing(&out);
+        let names = |v: &[(String, Option<Vec<u8>>)]| -> Vec<String> {
+            v.iter().map(|(f, _)| f.clone()).collect()
+        };
+        assert_eq!(names(&got), names(&reference), "kill@{n}: other files");
+        assert_eq!(got, reference, "kill@{n}: other contents");
+        let _ = std::fs::remove_dir_all(&out);
+    }
+    assert!(killed > 3, "the fault fired {killed} times");
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -234,6 +234,41 @@ pub struct EvalInfo {
     pub episodes: Option<usize>,
 }
 
+/// Checks that `dir` holds a complete evaluation: `eval.json`, `records.jsonl` and
+/// `metrics.json`, the metrics being written last (`evaluation::folder::start_writing`),
+/// so a folder without them is one whose writer stopped half-way (killed, out of disk). The
+/// error names the missing file and the command that completes the folder: recomputing
+/// the metrics and figures from whole records (`eval --from DIR --out DIR`), or the
+/// evaluation again when its records are missing too. Every reader of evaluation results
+/// (report, export, collect, zoo) calls it; `eval --from` itself does not (it completes).
+pub fn check_complete_eval(dir: &Path) -> Result<(), String> {
+    let missing: Vec<&str> = [EVAL_INFO, RECORDS, METRICS]
+        .into_iter()
+        .filter(|f| std::fs::symlink_metadata(dir.join(f)).is_err())
+        .collect();
+    if missing.is_empty() {
+        return Ok(());
+    }
+    let d = dir.display();
+    let how = if missing.contains(&RECORDS) || missing.contains(&EVAL_INFO) {
+        "run the `chronocooked eval` command that wrote it again (same --out)".to_string()
+    } else {
+        format!(
+            "complete it with `chronocooked eval --from {d} --out {d}` (the metrics and \
+             figures again from its records), or run its `eval` command again"
+        )
+    };
+    Err(format!(
+        "{d}: not a complete evaluation: {} missing (an evaluation writes {METRICS} last; this \
+         one was stopped, killed or ran out of disk); {how}",
+        missing
+            .iter()
+            .map(|f| format!("{}", dir.join(f).display()))
+            .collect::<Vec<_>>()
+            .join(", ")
+    ))
+}
+
 /// Reads `eval.json` of an evaluation folder; errors name the file.
 pub fn read_eval_info(dir: &Path) -> Result<EvalInfo, String> {
     let path = dir.join(EVAL_INFO);

@@ -128,7 +128,15 @@ fn run_stage(
     Ok(match stage {
         Stage::Train => {
             if run.join(run_folder::SUMMARY).is_file() {
-                return Ok("already trained".into());
+                // Trained by a worker that may have died before its learning-curve figure
+                // (drawn after the summary): the figure is drawn again under the folder's
+                // lock, which also clears what a killed holder left there (its lock file,
+                // temporary files), so the folder equals an uninterrupted run's.
+                let _lock = chronocooked_env::fs::FolderLock::acquire(&run)?;
+                chronocooked_env::fs::remove_temp_files(&run.join(run_folder::FIGURES));
+                chronocooked_analysis::figures::learning_curve(&run)
+                    .map_err(|e| PipelineError::Analysis(e.to_string()))?;
+                return Ok("already trained (learning-curve figure drawn)".into());
             }
             let resume = job.family == Family::DeepRl && run.join(run_folder::CONFIG).is_file();
             let req = TrainRequest {

@@ -54,7 +54,8 @@ pub fn export(
     let records = eval
         .as_deref()
         .map(|dir| {
-            chronocooked_analysis::evaluation::protocol::read_records(dir)
+            chronocooked_analysis::records::check_complete_eval(dir)
+                .and_then(|()| chronocooked_analysis::evaluation::protocol::read_records(dir))
                 .map_err(|e| value_err(format!("{e} (not an evaluation folder)")))
         })
         .transpose()?;

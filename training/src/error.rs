@@ -97,9 +97,21 @@ pub enum TrainError {
     },
     /// A folder given as a run folder holds no run.
     #[error(
-        "{path} is not a run folder (no config.json): give a folder written by `chronocooked train --out`"
+        "{path} is not a run folder (no config.json): give a folder written by `chronocooked train --out`; if that `train` stopped before it wrote its config.json (out of disk, killed), run the `chronocooked train` command again"
     )]
     NotARun {
+        /// Folder.
+        path: String,
+    },
+    /// A folder the lab began to write as a run (its records or lock file are there) whose
+    /// `config.json` was never written: the first write of `train` failed (out of disk,
+    /// killed). Nothing in it can be resumed.
+    #[error(
+        "{path}: the run never started (the lab's files are there but no config.json: its first \
+         write failed, out of disk or killed); nothing of it can be resumed: run the \
+         `chronocooked train` command again with `--out {path}`"
+    )]
+    NeverStarted {
         /// Folder.
         path: String,
     },

@@ -10,6 +10,27 @@ use chronocooked_models::run_folder;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
+/// The error for a folder without `config.json`: [`TrainError::NeverStarted`] when the lab
+/// began to write a run there (its `SHA256SUMS`, `command.txt`, lock or temporary files),
+/// else [`TrainError::NotARun`].
+pub fn not_a_run(dir: &Path) -> TrainError {
+    let traces = std::fs::read_dir(dir).is_ok_and(|rd| {
+        rd.flatten().any(|e| {
+            let name = e.file_name().to_string_lossy().into_owned();
+            name == integrity::MANIFEST
+                || name == run_folder::COMMAND
+                || name == chronocooked_env::fs::lock::LOCK_FILE
+                || chronocooked_env::fs::is_temp_name(&name)
+        })
+    });
+    let path = dir.display().to_string();
+    if traces {
+        TrainError::NeverStarted { path }
+    } else {
+        TrainError::NotARun { path }
+    }
+}
+
 /// The text of the run folder `dir`'s `config.json` (PPO or timing model), checked against
 /// its SHA-256 record when the folder has one (runs written since records were kept): a
 /// hand-edited config is refused naming the file. A folder without the file is "not a run
@@ -17,9 +38,7 @@ use std::path::{Path, PathBuf};
 pub fn read_config_text(dir: &Path) -> Result<String, TrainError> {
     let p = dir.join(run_folder::CONFIG);
     if !p.is_file() {
-        return Err(TrainError::NotARun {
-            path: dir.display().to_string(),
-        });
+        return Err(not_a_run(dir));
     }
     let bytes = integrity::read_checked(&p)?;
     String::from_utf8(bytes).map_err(|_| TrainError::ConfigFile {

@@ -156,8 +156,23 @@ fn timing_settings(name: &str) -> Vec<Setting> {
 }
 
 fn deep_entry(arch: Architecture) -> ZooEntry {
-    let trunk = "Conv1x1 6->8, ReLU, Conv1x1 8->6, ReLU, flatten, Linear->64, ReLU";
+    let trunk = format!(
+        "Conv1x1 {}->8, ReLU, Conv1x1 8->6, ReLU, flatten, Linear->64, ReLU",
+        6 * arch.frames
+    );
     let (description, mut structure) = match arch.core {
+        None if arch.frames > 1 => (
+            format!(
+                "CNN trunk + heads pi=[64], vf=[64] fed the last {} observations stacked along \
+                 the channel axis (SB3's VecFrameStack); no memory beyond that window",
+                arch.frames
+            ),
+            vec![p(
+                "frames",
+                arch.frames,
+                "observations stacked per input (steps of the window)",
+            )],
+        ),
         None => (
             "CNN trunk + heads pi=[64], vf=[64]; no memory".to_string(),
             vec![],
@@ -206,7 +221,7 @@ fn deep_entry(arch: Architecture) -> ZooEntry {
             "trainable weights on the reference 5x3 grid",
         ),
     );
-    structure.insert(1, p("trunk", "cnn", trunk));
+    structure.insert(1, p("trunk", "cnn", &trunk));
     ZooEntry {
         name: arch.name(),
         family: Family::DeepRl,

@@ -300,7 +300,7 @@ fn same_seed_gives_identical_learning_curves_and_resume_is_exact() {
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
         .join(format!("cc-train-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
-    for model in ["lstm8", "cnn-mlp"] {
+    for model in ["lstm8", "cnn-mlp", "cnn-mlp-stack4"] {
         let strip = |t: &Trainer| -> Vec<String> {
             t.state()
                 .curve

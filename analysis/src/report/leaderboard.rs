@@ -139,12 +139,13 @@ pub struct RunResult {
 /// (the records are the source of truth; metrics JSON writes NaN as null).
 pub fn load_metrics(folder: &Path) -> Result<Metrics, String> {
     let path = folder.join(EVAL_INFO);
-    if !path.is_file() {
+    if !path.is_file() && !folder.join(chronocooked_env::integrity::MANIFEST).is_file() {
         return Err(format!(
             "{}: no such file (not an `eval` output folder)",
             path.display()
         ));
     }
+    crate::records::check_complete_eval(folder)?;
     let info = read_eval_info(folder)?;
     let records = crate::records::read_records(folder)
         .map_err(|e| format!("{e} (not an `eval` output folder)"))?;

@@ -239,7 +239,7 @@ pub fn ensure_not_being_written(dir: &Path) -> Result<(), LockError> {
 
 /// Removes temporary files of interrupted writes in `dir` and, `depth` levels down, in its
 /// real sub-folders that no other process is writing.
-fn remove_temp_files_below(dir: &Path, depth: usize) {
+pub fn remove_temp_files_below(dir: &Path, depth: usize) {
     super::remove_temp_files(dir);
     if depth == 0 {
         return;

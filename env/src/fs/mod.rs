@@ -9,7 +9,7 @@
 pub mod fault;
 pub mod lock;
 
-pub use lock::{FolderLock, LockError, ensure_not_being_written};
+pub use lock::{FolderLock, LockError, ensure_not_being_written, remove_temp_files_below};
 
 use std::io::Write;
 use std::path::{Path, PathBuf};

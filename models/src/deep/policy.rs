@@ -18,7 +18,8 @@ pub const PAPER_SIZES: [usize; 3] = [8, 125, 256];
 
 /// A deep-RL architecture by name: `cnn-mlp`, or a core kind with a hidden size
 /// (`lstm125`, `ctrnn8`, `gru256`, `rnn125`; a bare kind means 125 units), optionally as a
-/// fixed random reservoir (`ctrnn-reservoir125`).
+/// fixed random reservoir (`ctrnn-reservoir125`), and optionally fed the last `k`
+/// observations stacked along the channel axis (`cnn-mlp-stack4`: SB3's `VecFrameStack`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub struct Architecture {
     /// Recurrent core, `None` for the feed-forward CNN-MLP.
@@ -31,6 +32,23 @@ pub struct Architecture {
     /// optimiser was built, so the optimiser never sees it).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub reservoir: bool,
+    /// Observations stacked along the channel axis (1: the current one only). With `k`
+    /// frames the trunk sees the observations of steps `t−k+1 … t` (zeros before the
+    /// episode's first), as Stable-Baselines3's `VecFrameStack(n_stack=k)` gives: a
+    /// memoryless policy with a `k`-step window, the benchmark's control for memory.
+    #[serde(default = "one_frame", skip_serializing_if = "is_one_frame")]
+    pub frames: usize,
+}
+
+/// Largest frame stack an architecture may ask for (steps).
+pub const MAX_FRAMES: usize = 64;
+
+fn one_frame() -> usize {
+    1
+}
+
+fn is_one_frame(k: &usize) -> bool {
+    *k == 1
 }
 
 impl Architecture {
@@ -39,6 +57,7 @@ impl Architecture {
         core: None,
         hidden: 0,
         reservoir: false,
+        frames: 1,
     };
 
     /// A recurrent architecture with a trained core.
@@ -47,7 +66,14 @@ impl Architecture {
             core: Some(kind),
             hidden,
             reservoir: false,
+            frames: 1,
         }
+    }
+
+    /// This architecture fed the last `frames` observations stacked along the channel axis
+    /// (see [`Architecture::frames`]).
+    pub fn stacked(self, frames: usize) -> Self {
+        Architecture { frames, ..self }
     }
 
     /// A recurrent architecture whose core stays at its random initialisation.
@@ -73,12 +99,17 @@ impl Architecture {
         v
     }
 
-    /// Canonical name (`cnn-mlp`, `lstm125`, `ctrnn-reservoir125`, …).
+    /// Canonical name (`cnn-mlp`, `lstm125`, `ctrnn-reservoir125`, `cnn-mlp-stack4`, …).
     pub fn name(&self) -> String {
-        match (self.core, self.reservoir) {
+        let base = match (self.core, self.reservoir) {
             (None, _) => "cnn-mlp".to_string(),
             (Some(k), false) => format!("{}{}", k.name(), self.hidden),
             (Some(k), true) => format!("{}-reservoir{}", k.name(), self.hidden),
+        };
+        if self.frames == 1 {
+            base
+        } else {
+            format!("{base}-stack{}", self.frames)
         }
     }
 
@@ -98,6 +129,16 @@ impl FromStr for Architecture {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         let lower = s.trim().to_ascii_lowercase();
+        if let Some((base, k)) = lower.rsplit_once("-stack") {
+            let frames = k
+                .parse::<usize>()
+                .ok()
+                .filter(|k| (1..=MAX_FRAMES).contains(k))
+                .ok_or_else(|| {
+                    format!("bad frame stack in `{s}` (allowed: -stack1 … -stack{MAX_FRAMES})")
+                })?;
+            return Ok(base.parse::<Architecture>()?.stacked(frames));
+        }
         if matches!(lower.as_str(), "cnn-mlp" | "cnn_mlp" | "cnn" | "mlp") {
             return Ok(Architecture::CNN_MLP);
         }
@@ -110,7 +151,8 @@ impl FromStr for Architecture {
             None => (kind_part, false),
         };
         let allowed = "cnn-mlp, or lstm|gru|rnn|ctrnn (optionally with -reservoir: an untrained \
-             core) followed by a hidden size (e.g. lstm125, ctrnn8, ctrnn-reservoir125)";
+             core) followed by a hidden size (e.g. lstm125, ctrnn8, ctrnn-reservoir125); \
+             any of them may end in -stack<k> (k stacked frames, e.g. cnn-mlp-stack4)";
         let kind: CoreKind = kind_part
             .parse()
             .map_err(|_| format!("unknown model `{s}` (allowed: {allowed})"))?;
@@ -190,6 +232,23 @@ impl PolicyConfig {
                 return Err(err(field, v.to_string(), &dim));
             }
         }
+        if !(1..=MAX_FRAMES).contains(&self.arch.frames) {
+            return Err(err(
+                "arch.frames",
+                self.arch.frames.to_string(),
+                &format!("1..={MAX_FRAMES}"),
+            ));
+        }
+        if t.channels % self.arch.frames != 0 {
+            return Err(err(
+                "trunk.channels",
+                t.channels.to_string(),
+                &format!(
+                    "a multiple of arch.frames = {} (the frames' channels side by side)",
+                    self.arch.frames
+                ),
+            ));
+        }
         match self.arch.core {
             None if self.arch.hidden != 0 => {
                 return Err(err(
@@ -230,11 +289,12 @@ impl PolicyConfig {
         Ok(())
     }
 
-    /// Reference configuration for `arch` on a grid of `cells` cells with `channels` inputs.
+    /// Reference configuration for `arch` on a grid of `cells` cells with `channels` inputs
+    /// per observation (the trunk reads `channels · arch.frames` channels per cell).
     pub fn new(arch: Architecture, cells: usize, channels: usize, actions: usize) -> Self {
         PolicyConfig {
             arch,
-            trunk: TrunkConfig::reference(cells, channels),
+            trunk: TrunkConfig::reference(cells, channels * arch.frames),
             head_hidden: 64,
             actions,
             ctrnn_dt: 0.1,
@@ -323,6 +383,12 @@ pub struct ActorCritic {
 }
 
 impl ActorCritic {
+    /// Input channels per grid cell the trunk reads (an observation's channels times the
+    /// stacked frames).
+    pub fn input_channels(&self) -> usize {
+        self.trunk.conv1.weight.dims()[0]
+    }
+
     /// Zero recurrent state for `batch` envs (`None` for CNN-MLP).
     pub fn zero_state(&self, batch: usize, device: &Device) -> Option<CoreState> {
         self.core.as_ref().map(|c| c.zero_state(batch, device))
@@ -434,5 +500,47 @@ impl ActorCritic {
             }
             None => self.heads(feat, None),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_frame_stack_is_named_parsed_and_widens_only_the_trunk_input() {
+        let a: Architecture = "cnn-mlp-stack4".parse().unwrap();
+        assert_eq!((a.core, a.frames), (None, 4));
+        assert_eq!(a.name(), "cnn-mlp-stack4");
+        let l: Architecture = "lstm125-stack2".parse().unwrap();
+        assert_eq!(
+            (l.hidden, l.frames, l.name().as_str()),
+            (125, 2, "lstm125-stack2")
+        );
+        assert_eq!(
+            "cnn-mlp-stack1".parse::<Architecture>().unwrap(),
+            Architecture::CNN_MLP
+        );
+        for bad in ["cnn-mlp-stack0", "cnn-mlp-stack65", "cnn-mlp-stackx"] {
+            let e = bad.parse::<Architecture>().unwrap_err();
+            assert!(e.contains("-stack64"), "{bad}: {e}");
+        }
+        let cfg = PolicyConfig::new(a, 15, 6, 6);
+        assert_eq!(cfg.trunk.channels, 24);
+        assert_eq!(
+            PolicyConfig::new(Architecture::CNN_MLP, 15, 6, 6)
+                .trunk
+                .channels,
+            6
+        );
+        assert!(cfg.validate().is_ok());
+        let mut odd = cfg;
+        odd.trunk.channels = 23;
+        assert_eq!(odd.validate().unwrap_err().field, "trunk.channels");
+        // One frame is not written, so the policy files of unstacked models do not change.
+        let json = serde_json::to_string(&Architecture::CNN_MLP).unwrap();
+        assert!(!json.contains("frames"), "{json}");
+        let back: Architecture = serde_json::from_str(&json).unwrap();
+        assert_eq!(back.frames, 1);
     }
 }

@@ -72,6 +72,25 @@ fn check_finished(run: &Path, unfinished: bool) -> Result<Option<u64>, PipelineE
     if run.join(chronocooked_models::run_folder::SUMMARY).is_file() {
         return Ok(None);
     }
+    if chronocooked_training::timing_run::is_timing_run(run) {
+        // A timing model has no checkpoints: its learned state is written at the end.
+        let missing: Vec<String> = [
+            chronocooked_models::run_folder::AGENT,
+            chronocooked_models::run_folder::SUMMARY,
+        ]
+        .iter()
+        .filter(|f| !run.join(f).is_file())
+        .map(|f| run.join(f).display().to_string())
+        .collect();
+        return Err(PipelineError::Invalid(format!(
+            "{}: the timing run did not finish: {} missing (stopped, killed or out of disk; a \
+             timing model's learned state is written when its training ends). Complete it with \
+             `chronocooked train --resume {}`",
+            run.display(),
+            missing.join(", "),
+            run.display()
+        )));
+    }
     let step = newest_checkpoint_step(run);
     if unfinished {
         eprintln!(

@@ -50,7 +50,8 @@ pub fn export(
     };
     let records = match eval {
         Some(dir) => Some(
-            chronocooked_analysis::evaluation::protocol::read_records(dir)
+            chronocooked_analysis::records::check_complete_eval(dir)
+                .and_then(|()| chronocooked_analysis::evaluation::protocol::read_records(dir))
                 .map_err(|e| PipelineError::Analysis(format!("{e} (not an eval folder)")))?,
         ),
         None => None,

@@ -156,6 +156,9 @@ pub fn record(req: &RecordRequest) -> Result<RecordOutcome, PipelineError> {
         .map_err(|e| PipelineError::Analysis(e.to_string()))?;
     write(&req.out, &json_bytes(&dataset, false)?)?;
     if let Some(dir) = &req.figures {
+        // What a killed earlier `record` left half-written in its figure folders goes first
+        // (one folder per population below `dir`).
+        chronocooked_env::fs::remove_temp_files_below(dir, 2);
         chronocooked_analysis::figures::neural_figures(&dataset, dir)
             .map_err(|e| PipelineError::Analysis(e.to_string()))?;
     }

@@ -38,7 +38,13 @@ impl PpoAgent {
         config: &TaskConfig,
         encoding: ObsEncoding,
     ) -> Result<Self, TrainError> {
-        let encoder = ObsEncoder::for_config(encoding, config)?;
+        let encoder = ObsEncoder::for_config(encoding, config)?
+            .for_input(policy.input_channels())
+            .map_err(|why| TrainError::InvalidParam {
+                field: "policy".into(),
+                value: name.to_string(),
+                allowed: why,
+            })?;
         Ok(PpoAgent {
             name: name.to_string(),
             obs: vec![0.0; encoder.len()],
@@ -79,13 +85,14 @@ impl Agent for PpoAgent {
 
     fn begin_episode(&mut self, _obs: &[u8], seed: u64) {
         self.state = self.policy.zero_state(1, &chronocooked_models::cpu());
+        self.encoder.reset_all();
         self.rng = Xoshiro256PlusPlus::seed_from_u64(seed);
     }
 
     fn act(&mut self, obs: &[u8]) -> Action {
         let device = chronocooked_models::cpu();
         self.encoder.encode(obs, &mut self.obs);
-        let (cells, ch) = (self.encoder.cells(), self.encoder.channels());
+        let (cells, ch) = (self.encoder.cells(), self.encoder.input_channels());
         let x: Tensor<3> =
             Tensor::from_data(TensorData::new(self.obs.clone(), [1, cells, ch]), &device);
         let out = self.policy.forward_step(x, self.state.take(), None);

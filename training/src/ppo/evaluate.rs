@@ -49,8 +49,14 @@ pub fn evaluate_policy(
         };
         envs.reset_one(i, Some(chronocooked_env::derive_seed(7, i as u64)), &opts)?;
     }
-    let mut encoder = ObsEncoder::new(encoding, &envs);
-    let (cells, ch) = (encoder.cells(), encoder.channels());
+    let mut encoder = ObsEncoder::new(encoding, &envs)
+        .for_input(policy.input_channels())
+        .map_err(|why| EnvError::InvalidParam {
+            field: "policy".into(),
+            value: format!("{} input channels", policy.input_channels()),
+            allowed: why,
+        })?;
+    let (cells, ch) = (encoder.cells(), encoder.input_channels());
     let device = chronocooked_models::cpu();
     let mut state = policy.zero_state(n, &device);
     let mut obs = vec![0f32; n * encoder.len()];

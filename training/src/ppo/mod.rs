@@ -2,7 +2,7 @@
 //!
 //! * [`config`] — settings (`TrainConfig`, `PpoConfig`) and their `key=value` surface;
 //!   [`presets`] — the named presets (reference = the paper's code, fast, …);
-//! * [`obs`] — observation encoding for the networks; [`act`] — batched policy steps,
+//! * [`obs`] — observation encoding for the networks ([`frames`]: stacked observations); [`act`] — batched policy steps,
 //!   sampling and log-probabilities; [`rollout`] — the rollout buffer and its minibatch orders (transitions,
 //!   BPTT chunks, whole sequences);
 //! * [`gae`] — generalised advantage estimation; [`loss`] — the clipped surrogate, value and
@@ -21,6 +21,7 @@ pub mod agent;
 pub mod config;
 pub mod engine;
 pub mod evaluate;
+pub mod frames;
 pub mod gae;
 pub mod loss;
 pub mod minibatch;

@@ -137,9 +137,7 @@ impl RunDir {
     /// Opens an existing run folder (must hold `config.json`).
     pub fn open(path: &Path) -> Result<Self, TrainError> {
         if !path.join(run_folder::CONFIG).is_file() {
-            return Err(TrainError::NotARun {
-                path: path.display().to_string(),
-            });
+            return Err(crate::run_config::not_a_run(path));
         }
         Ok(RunDir {
             path: path.to_path_buf(),

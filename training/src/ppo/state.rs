@@ -118,6 +118,10 @@ pub struct TrainerState {
     pub keep: Vec<f32>,
     /// Recurrent state carried into the next rollout.
     pub core_state: Option<(Vec<f32>, Option<Vec<f32>>)>,
+    /// Stacked-frame policies: every env's last observations carried into the next rollout
+    /// (`[N, frames, cells, channels]`; empty for one frame).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub frame_history: Vec<f32>,
     /// Run RNG (actions, shuffling).
     pub rng: Xoshiro256PlusPlus,
     /// Running return per env.
@@ -240,6 +244,12 @@ impl TrainerState {
                 }
             }
         }
+        check_len(
+            "frame_history",
+            self.frame_history.len(),
+            fresh.frame_history.len(),
+        )?;
+        check_finite("frame_history", &self.frame_history)?;
         if let Some(i) = self.recent.iter().position(|e| !e.ret.is_finite()) {
             return Err(bad(
                 "recent",

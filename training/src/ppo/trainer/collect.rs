@@ -26,6 +26,7 @@ impl Trainer {
             ),
             None => (Vec::new(), None),
         };
+        self.encoder.set_history(&self.state.frame_history);
         self.rollout.chunk_states.clear();
         let obs_tensor_len = n * olen;
         let mut final_buf = vec![0f32; olen];
@@ -62,7 +63,8 @@ impl Trainer {
                 self.state.ep_len[e] += 1;
                 if trunc && !term {
                     // Time-limit bootstrap: r += γ V(final obs), with the state after this step.
-                    self.encoder.encode(
+                    self.encoder.encode_final(
+                        e,
                         &self.envs.final_obs
                             [e * self.envs.obs_len()..(e + 1) * self.envs.obs_len()],
                         &mut final_buf,
@@ -79,10 +81,12 @@ impl Trainer {
                 self.rollout.dones[base + e] = term || trunc;
                 self.state.keep[e] = if term || trunc { 0.0 } else { 1.0 };
                 if term || trunc {
+                    self.encoder.reset_env(e);
                     self.end_episode(e);
                 }
             }
         }
+        let history_before_last = self.encoder.history();
         self.encoder
             .encode_batch(&self.envs.obs, &mut self.scratch_obs);
         let keep = self.state.keep.clone();
@@ -90,6 +94,9 @@ impl Trainer {
             .engine
             .act(&self.state.theta, &self.scratch_obs, &keep, &core);
         self.state.core_state = recurrent.then_some(core);
+        // The last observations were encoded for the bootstrap value only: the next rollout
+        // encodes them again, so the history carried over is the one before them.
+        self.state.frame_history = history_before_last;
         Ok(last.values)
     }
 

@@ -315,6 +315,7 @@ impl Trainer {
         self.state.ep_return.fill(0.0);
         self.state.ep_len.fill(0);
         self.state.core_state = None;
+        self.state.frame_history.fill(0.0);
         self.state.envs = self.envs.snapshot();
         Ok(())
     }

@@ -83,7 +83,10 @@ impl Trainer {
         let task = cfg.task.config()?;
         let p = &cfg.ppo;
         let mut envs = VecEnv::new(&task, p.n_envs, Autoreset::SameStep)?;
-        let encoder = ObsEncoder::new(cfg.obs, &envs);
+        let mut encoder = ObsEncoder::new(cfg.obs, &envs).stacked(cfg.model.frames);
+        if cfg.model.frames > 1 {
+            encoder.set_history(&vec![0.0; p.n_envs * encoder.len()]);
+        }
         let mut policy_cfg = PolicyConfig::new(
             cfg.model,
             encoder.cells(),
@@ -136,6 +139,7 @@ impl Trainer {
             envs: envs.snapshot(),
             keep: vec![0.0; p.n_envs],
             core_state: None,
+            frame_history: encoder.history(),
             rng: Xoshiro256PlusPlus::seed_from_u64(chronocooked_env::derive_seed(cfg.seed, 0xAC7)),
             ep_return: vec![0.0; p.n_envs],
             ep_len: vec![0; p.n_envs],
