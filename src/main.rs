@@ -4,7 +4,7 @@ mod cmd;
 
 use cmd::{
     adapt, bench, demo, env, eval, export, fingerprint, mechanisms, paper, record, report, sweep,
-    train, zoo,
+    train, verify, zoo,
 };
 
 use clap::{Parser, Subcommand};
@@ -60,6 +60,10 @@ enum Command {
     /// TD 12, bisection 4-12) play the mechanisms protocol; its signature is placed among
     /// the committed timing mechanisms, each distance beside that mechanism's own seeds'.
     Fingerprint(fingerprint::FingerprintArgs),
+    /// Re-derives what a run, an evaluation, a sweep's results or a zoo agent claims from
+    /// what determines it (configuration, seed, learned state, records) and names every
+    /// difference: file, field, recorded value, re-derived value.
+    Verify(verify::VerifyArgs),
     /// The paper's study: collect a sweep's compact results, analyse them as the paper does
     /// and compare with the paper's numbers.
     Paper {
@@ -155,6 +159,7 @@ fn main() -> ExitCode {
         Command::Paper { command } => paper::run(command),
         Command::Mechanisms(args) => mechanisms::run(args),
         Command::Fingerprint(args) => fingerprint::run(args),
+        Command::Verify(args) => verify::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

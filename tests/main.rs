@@ -24,5 +24,6 @@ mod sweep;
 mod timing_agents;
 mod timing_defaults;
 mod timing_tasks;
+mod verify;
 mod walks_and_bounds;
 mod zoo_agents;

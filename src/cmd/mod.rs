@@ -14,6 +14,7 @@
 //! * [`mechanisms`] — `mechanisms`: fingerprints and each agent's nearest timing mechanism;
 //! * [`fingerprint`] — `fingerprint`: one agent's runs through the mechanisms protocol,
 //!   placed among the committed mechanisms;
+//! * [`verify`] — `verify`: a folder's claims re-derived, every difference named;
 //! * [`zoo`] — `zoo list | show | add`; [`zoo_agents`] — the trained agents of the zoo
 //!   (`--run zoo:<model>/<task>`);
 //! * [`bench`] — `bench env | train | timing`.
@@ -31,5 +32,6 @@ pub mod record;
 pub mod report;
 pub mod sweep;
 pub mod train;
+pub mod verify;
 pub mod zoo;
 pub mod zoo_agents;

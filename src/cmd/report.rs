@@ -24,6 +24,11 @@ pub struct ReportArgs {
     /// current folder or the program's location, or `$CHRONOCOOKED_BASELINES`).
     #[arg(long, value_name = "DIR", num_args = 0..)]
     pub baselines: Option<Vec<PathBuf>>,
+    /// Take only baselines and evaluations that `chronocooked verify` verifies (metrics
+    /// against their episodes; evaluations in sweep jobs played again from their runs):
+    /// one difference refuses the report, naming it.
+    #[arg(long)]
+    pub verified: bool,
     /// Output folder (report.html, report.md, report.csv, psychometric_grid.svg/png).
     #[arg(long, default_value = "report")]
     pub out: PathBuf,
@@ -60,6 +65,13 @@ pub fn run(args: ReportArgs) -> Result<()> {
                 .join(", ")
         );
     }
+    if args.verified {
+        for f in &folders {
+            // An evaluation inside a sweep job is verified with its job (played again).
+            let job = f.parent().filter(|p| p.join("job.json").is_file());
+            require_verified(job.unwrap_or(f))?;
+        }
+    }
     let mut rows = load_rows(&folders).map_err(anyhow::Error::msg)?;
     if let Some(dirs) = &args.baselines {
         let dirs = if dirs.is_empty() {
@@ -68,6 +80,9 @@ pub fn run(args: ReportArgs) -> Result<()> {
             dirs.clone()
         };
         for d in dirs {
+            if args.verified {
+                require_verified(&d)?;
+            }
             let before = rows.len();
             rows.extend(load_baseline_rows(&d)?);
             let runs: usize = rows[before..].iter().map(|r| r.runs.len()).sum();
@@ -89,5 +104,25 @@ pub fn run(args: ReportArgs) -> Result<()> {
     for f in files {
         println!("{}", f.display());
     }
+    Ok(())
+}
+
+/// Refuses `dir` unless `verify` finds no difference in it.
+fn require_verified(dir: &std::path::Path) -> Result<()> {
+    let v = crate::cmd::verify::verify_any(dir, None, false)?;
+    if let Some(d) = v.differences.first() {
+        bail!(
+            "--verified: {} does not verify: {} difference(s), first {} field `{}`: recorded {}, \
+             re-derived {} (see `chronocooked verify {}`)",
+            dir.display(),
+            v.differences.len(),
+            d.file.display(),
+            d.field,
+            d.recorded,
+            d.recomputed,
+            dir.display()
+        );
+    }
+    eprintln!("verified: {} ({} checks)", dir.display(), v.checked.len());
     Ok(())
 }

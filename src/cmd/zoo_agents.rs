@@ -89,7 +89,7 @@ fn read_json(path: &Path) -> Result<serde_json::Value> {
 }
 
 /// The evaluation record of a metrics file.
-fn evaluation(metrics: &Metrics) -> ZooEvaluation {
+pub fn evaluation(metrics: &Metrics) -> ZooEvaluation {
     ZooEvaluation {
         episodes: metrics.episodes,
         success_rate: metrics.success_rate,

@@ -109,6 +109,38 @@ fn check_finished(run: &Path, unfinished: bool) -> Result<Option<u64>, PipelineE
     )))
 }
 
+/// The agent `subject` names, to play `config`: a trained run's (PPO or timing model) or a
+/// reference agent (oracle, random, a Bayesian observer).
+pub(crate) fn subject_agent(
+    subject: &EvalSubject,
+    config: &chronocooked_env::TaskConfig,
+) -> Result<Box<dyn Agent>, PipelineError> {
+    Ok(match subject {
+        EvalSubject::Run(run) => load_agent(run, Some(config))?,
+        EvalSubject::Reference(name) if name == "oracle" => {
+            Box::new(OracleAgent::new(&ChronoEnv::new(config)?))
+        }
+        EvalSubject::Reference(name) if name == "random" => Box::new(RandomAgent::default()),
+        EvalSubject::Reference(name) if observer_agent(name).is_some() => {
+            let Some(Ok((observer, wm, wp))) = observer_agent(name) else {
+                return Err(PipelineError::Invalid(format!(
+                    "--agent `{name}`: expected bls|map|ml, optionally :WM,WP with Weber fractions in [0.01, 1] (e.g. bls:0.1,0.06)"
+                )));
+            };
+            let env = ChronoEnv::new(config)?;
+            Box::new(
+                chronocooked_analysis::reproduction::ObserverAgent::new(&env, observer, wm, wp)
+                    .map_err(|e| PipelineError::Invalid(format!("--agent `{name}`: {e}")))?,
+            )
+        }
+        EvalSubject::Reference(other) => {
+            return Err(PipelineError::Invalid(format!(
+                "unknown --agent `{other}` (allowed: oracle, random, bls|map|ml[:WM,WP] on the reproduction task; trained models via --run DIR)"
+            )));
+        }
+    })
+}
+
 /// What an evaluation wrote.
 #[derive(Debug, Clone)]
 pub struct EvalOutcome {
@@ -172,30 +204,7 @@ pub fn evaluate(req: &EvalRequest) -> Result<EvalOutcome, PipelineError> {
         EvalSubject::Reference(_) => None,
     };
     let config = task.config()?;
-    let mut agent: Box<dyn Agent> = match &req.subject {
-        EvalSubject::Run(run) => load_agent(run, Some(&config))?,
-        EvalSubject::Reference(name) if name == "oracle" => {
-            Box::new(OracleAgent::new(&ChronoEnv::new(&config)?))
-        }
-        EvalSubject::Reference(name) if name == "random" => Box::new(RandomAgent::default()),
-        EvalSubject::Reference(name) if observer_agent(name).is_some() => {
-            let Some(Ok((observer, wm, wp))) = observer_agent(name) else {
-                return Err(PipelineError::Invalid(format!(
-                    "--agent `{name}`: expected bls|map|ml, optionally :WM,WP with Weber fractions in [0.01, 1] (e.g. bls:0.1,0.06)"
-                )));
-            };
-            let env = ChronoEnv::new(&config)?;
-            Box::new(
-                chronocooked_analysis::reproduction::ObserverAgent::new(&env, observer, wm, wp)
-                    .map_err(|e| PipelineError::Invalid(format!("--agent `{name}`: {e}")))?,
-            )
-        }
-        EvalSubject::Reference(other) => {
-            return Err(PipelineError::Invalid(format!(
-                "unknown --agent `{other}` (allowed: oracle, random, bls|map|ml[:WM,WP] on the reproduction task; trained models via --run DIR)"
-            )));
-        }
-    };
+    let mut agent = subject_agent(&req.subject, &config)?;
     let conditions = reference_conditions(&task)?;
     // One writer per evaluation folder, taken before the protocol is played.
     let _lock = chronocooked_env::fs::FolderLock::acquire(&req.out)?;

@@ -9,7 +9,8 @@
 //!   test setting (the paper's notebooks);
 //! * [`adapt`] — uncertainty adaptation of a trained run;
 //! * [`record`] — the neural activity of a trained run, its summary and figures;
-//! * [`export`] — activity datasets and evaluation records as NPZ + CSV + JSON metadata.
+//! * [`export`] — activity datasets and evaluation records as NPZ + CSV + JSON metadata;
+//! * [`verify`] — what a folder claims, re-derived from what determines it.
 
 pub mod adapt;
 pub mod evaluate;
@@ -19,6 +20,7 @@ pub mod levels;
 pub mod record;
 pub mod scaling;
 pub mod train;
+pub mod verify;
 
 pub use adapt::{AdaptRequest, adapt};
 pub use evaluate::{
@@ -29,3 +31,4 @@ pub use fingerprint::{FingerprintOutcome, FingerprintRequest, fingerprint};
 pub use record::{RecordOutcome, RecordRequest, record};
 pub use scaling::{ScalingJob, ScalingOutcome, record_scaling};
 pub use train::{Quiet, TrainObserver, TrainOutcome, TrainRequest, train};
+pub use verify::{Difference, Verification, VerifyRequest, verify};

@@ -43,8 +43,11 @@ pub const AGENT_FILES: [&str; 5] = [
     run_folder::POLICY,
     run_folder::MODEL,
     run_folder::SUMMARY,
-    "provenance.json",
+    PROVENANCE,
 ];
+
+/// A zoo agent's provenance file ([`Provenance`]).
+pub const PROVENANCE: &str = "provenance.json";
 
 /// Why a zoo agent could not be found or trusted (every variant names the file or name).
 #[derive(Debug, thiserror::Error)]
