@@ -239,7 +239,7 @@ impl PolicyConfig {
                 &format!("1..={MAX_FRAMES}"),
             ));
         }
-        if t.channels % self.arch.frames != 0 {
+        if !t.channels.is_multiple_of(self.arch.frames) {
             return Err(err(
                 "trunk.channels",
                 t.channels.to_string(),

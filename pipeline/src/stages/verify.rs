@@ -439,7 +439,7 @@ pub fn rows_against_metrics(
                 },
             ),
         ] {
-            if !close(claimed, derived) && !(claimed.is_nan() && derived.is_nan()) {
+            if !(close(claimed, derived) || claimed.is_nan() && derived.is_nan()) {
                 push(
                     format!("conditions[{i}].{field}"),
                     claimed.to_string(),

@@ -60,6 +60,7 @@ pub static AGENTS: &[(&str, AgentFiles)] = &[
     zoo_agent!("ctrnn-reservoir125/Bisection-v0"),
     zoo_agent!("lstm125/FixedInterval-v0"),
     zoo_agent!("lstm125/Bisection-v0"),
+    zoo_agent!("cnn-mlp-stack4/FixedInterval-v0"),
 ];
 
 /// Content key of the compiled-in zoo: SHA-256 of the index and every agent's records.

@@ -48,7 +48,7 @@ impl ObsEncoder {
     /// error when that is not a whole number of observations.
     pub fn for_input(self, input_channels: usize) -> Result<Self, String> {
         let ch = self.channels();
-        if input_channels == 0 || input_channels % ch != 0 {
+        if input_channels == 0 || !input_channels.is_multiple_of(ch) {
             return Err(format!(
                 "the policy reads {input_channels} channels per cell, not a multiple of the \
                  observation's {ch}"
