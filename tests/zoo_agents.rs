@@ -33,6 +33,8 @@ fn the_zoo_holds_the_four_paper_models_on_fi_and_bisection_in_a_few_megabytes() 
             want.push(format!("zoo:{m}/{task}"));
         }
     }
+    // The memory control (issue #67): 4 stacked frames, fixed interval at TD 4.
+    want.push("zoo:cnn-mlp-stack4/FixedInterval-v0".into());
     want.sort();
     assert_eq!(names, want);
     for n in &names {
@@ -43,7 +45,12 @@ fn the_zoo_holds_the_four_paper_models_on_fi_and_bisection_in_a_few_megabytes() 
     for a in &agents {
         let p = &a["provenance"];
         assert_eq!(p["preset"], "reference");
-        assert_eq!(p["sweep"], "sweeps/paper-core.toml");
+        let sweep = if p["model"] == "cnn-mlp-stack4" {
+            "sweeps/frame-stack-control.toml"
+        } else {
+            "sweeps/paper-core.toml"
+        };
+        assert_eq!(p["sweep"], sweep);
         assert!(
             p["command"]
                 .as_str()
@@ -123,7 +130,14 @@ fn every_zoo_agent_evaluates_to_its_recorded_success_and_records_activity() {
             .parse()
             .unwrap();
         // Recurrent cores have 125 units; CNN-MLP's latent layer 64 (plus the value).
-        let min_units = if p["model"] == "cnn-mlp" { 64 } else { 125 };
+        let min_units = if p["model"]
+            .as_str()
+            .is_some_and(|m| m.starts_with("cnn-mlp"))
+        {
+            64
+        } else {
+            125
+        };
         assert!(trials >= 12 && units > min_units, "{name}: {line}");
         assert!(act.is_file(), "{name}: activity written");
     }
@@ -257,7 +271,7 @@ fn the_compiled_in_zoo_serves_agents_outside_the_repository_and_is_checked_there
     let o = run(&["zoo", "list"]);
     let text = String::from_utf8_lossy(&o.stdout);
     assert!(
-        o.status.success() && text.contains("Trained agents (8 in"),
+        o.status.success() && text.contains("Trained agents (9 in"),
         "{text}"
     );
     assert!(
