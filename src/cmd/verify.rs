@@ -4,7 +4,8 @@
 
 use anyhow::{Context, Result, bail};
 use chronocooked_analysis::behaviour::metrics::compute_metrics;
-use chronocooked_pipeline::stages::{self, Difference, Verification, VerifyRequest};
+use chronocooked_pipeline::stages::verify::diff_values;
+use chronocooked_pipeline::stages::{self, Verification, VerifyRequest};
 use chronocooked_training::agent_zoo::Provenance;
 use clap::Args;
 use std::path::{Path, PathBuf};
@@ -102,7 +103,7 @@ fn verify_zoo_agent(dir: &Path) -> Result<Verification> {
             "conditions": e.conditions,
         })
     };
-    diff_json(
+    diff_values(
         &path,
         "evaluation",
         &exact(&prov.evaluation),
@@ -115,7 +116,7 @@ fn verify_zoo_agent(dir: &Path) -> Result<Verification> {
     // flat PI curve) is reported, not counted as a forgery.
     for (key, &recorded) in &prov.evaluation.headline {
         match again.headline.get(key) {
-            Some(&x) => diff_json(
+            Some(&x) => diff_values(
                 &path,
                 &format!("evaluation.headline.{key}"),
                 &serde_json::json!(recorded),
@@ -150,56 +151,3 @@ fn verify_zoo_agent(dir: &Path) -> Result<Verification> {
 /// Relative precision of a fitted headline number (the fits stop at a relative change of
 /// about 1e-8; the zoo's agents reproduce theirs to 3e-8).
 const HEADLINE_TOL: f64 = 1e-6;
-
-/// Leaf differences of two JSON values (numbers to `tol` relative).
-fn diff_json(
-    file: &Path,
-    at: &str,
-    a: &serde_json::Value,
-    b: &serde_json::Value,
-    tol: f64,
-    out: &mut Vec<Difference>,
-) {
-    use serde_json::Value;
-    match (a, b) {
-        (Value::Object(x), Value::Object(y)) => {
-            let keys: std::collections::BTreeSet<&String> = x.keys().chain(y.keys()).collect();
-            for k in keys {
-                diff_json(
-                    file,
-                    &format!("{at}.{k}"),
-                    x.get(k).unwrap_or(&Value::Null),
-                    y.get(k).unwrap_or(&Value::Null),
-                    tol,
-                    out,
-                );
-            }
-        }
-        (Value::Array(x), Value::Array(y)) if x.len() == y.len() => {
-            for (i, (p, q)) in x.iter().zip(y).enumerate() {
-                diff_json(file, &format!("{at}[{i}]"), p, q, tol, out);
-            }
-        }
-        (Value::Number(x), Value::Number(y)) => {
-            let (x, y) = (
-                x.as_f64().unwrap_or(f64::NAN),
-                y.as_f64().unwrap_or(f64::NAN),
-            );
-            if x != y && (x - y).abs() > tol * x.abs().max(y.abs()).max(1.0) {
-                out.push(Difference {
-                    file: file.to_path_buf(),
-                    field: at.into(),
-                    recorded: x.to_string(),
-                    recomputed: y.to_string(),
-                });
-            }
-        }
-        (x, y) if x != y => out.push(Difference {
-            file: file.to_path_buf(),
-            field: at.into(),
-            recorded: x.to_string(),
-            recomputed: y.to_string(),
-        }),
-        _ => {}
-    }
-}

@@ -181,7 +181,14 @@ fn verify_eval(
     let recomputed = compute_metrics(&info.model, &records, info.seed);
     let claimed = read_value(&dir.join(METRICS))?;
     let again = serde_json::to_value(&recomputed).map_err(analysis)?;
-    diff_values(&dir.join(METRICS), "", &claimed, &again, &mut v.differences);
+    diff_values(
+        &dir.join(METRICS),
+        "",
+        &claimed,
+        &again,
+        REL_TOL,
+        &mut v.differences,
+    );
     v.checked.push(format!(
         "{}: metrics from {RECORDS} ({} episodes)",
         dir.display(),
@@ -280,6 +287,7 @@ fn verify_run(run: &Path, retrain: bool, v: &mut Verification) -> Result<(), Pip
             "",
             &claimed,
             &derived,
+            REL_TOL,
             &mut v.differences,
         );
         v.checked.push(format!(
@@ -465,8 +473,16 @@ fn read_value(path: &Path) -> Result<Value, PipelineError> {
     })
 }
 
-/// Every leaf where `claimed` and `derived` differ, by JSON path.
-fn diff_values(file: &Path, at: &str, claimed: &Value, derived: &Value, out: &mut Vec<Difference>) {
+/// Every leaf where `claimed` and `derived` differ, by JSON path (`at` the path so far),
+/// numbers equal to the relative tolerance `tol`.
+pub fn diff_values(
+    file: &Path,
+    at: &str,
+    claimed: &Value,
+    derived: &Value,
+    tol: f64,
+    out: &mut Vec<Difference>,
+) {
     let here = |k: &str| {
         if at.is_empty() {
             k.to_string()
@@ -483,13 +499,14 @@ fn diff_values(file: &Path, at: &str, claimed: &Value, derived: &Value, out: &mu
                     &here(k),
                     a.get(k).unwrap_or(&Value::Null),
                     b.get(k).unwrap_or(&Value::Null),
+                    tol,
                     out,
                 );
             }
         }
         (Value::Array(a), Value::Array(b)) if a.len() == b.len() => {
             for (i, (x, y)) in a.iter().zip(b).enumerate() {
-                diff_values(file, &format!("{at}[{i}]"), x, y, out);
+                diff_values(file, &format!("{at}[{i}]"), x, y, tol, out);
             }
         }
         (Value::Number(x), Value::Number(y)) => {
@@ -497,7 +514,7 @@ fn diff_values(file: &Path, at: &str, claimed: &Value, derived: &Value, out: &mu
                 x.as_f64().unwrap_or(f64::NAN),
                 y.as_f64().unwrap_or(f64::NAN),
             );
-            if !close(x, y) {
+            if !(x == y || (x - y).abs() <= tol * x.abs().max(y.abs()).max(1.0)) {
                 out.push(Difference {
                     file: file.to_path_buf(),
                     field: at.to_string(),

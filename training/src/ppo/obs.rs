@@ -138,31 +138,31 @@ impl ObsEncoder {
 
     /// Encodes env `e`'s next observation into `out`, appending it to its history.
     fn encode_env(&mut self, e: usize, codes: &[u8], out: &mut [f32]) {
-        match self.stack.take() {
-            None => self.encode_frame(codes, out),
-            Some(mut stack) => {
-                let mut frame = std::mem::take(&mut self.frame);
-                self.encode_frame(codes, &mut frame);
-                stack.push(e, &frame, out);
-                self.frame = frame;
-                self.stack = Some(stack);
-            }
-        }
+        self.encode_stacked(codes, out, |stack, frame, out| stack.push(e, frame, out));
     }
 
     /// Encodes `codes` as the observation after env `e`'s last one without appending it
     /// (a truncated episode's final observation, valued for the bootstrap).
     pub fn encode_final(&mut self, e: usize, codes: &[u8], out: &mut [f32]) {
-        match self.stack.take() {
-            None => self.encode_frame(codes, out),
-            Some(stack) => {
-                let mut frame = std::mem::take(&mut self.frame);
-                self.encode_frame(codes, &mut frame);
-                stack.peek(e, &frame, out);
-                self.frame = frame;
-                self.stack = Some(stack);
-            }
-        }
+        self.encode_stacked(codes, out, |stack, frame, out| stack.peek(e, frame, out));
+    }
+
+    /// Encodes `codes` alone into `out` without stacking; with stacking, into the frame
+    /// buffer, then `write` puts the stacked input into `out`.
+    fn encode_stacked(
+        &mut self,
+        codes: &[u8],
+        out: &mut [f32],
+        write: impl FnOnce(&mut FrameStack, &[f32], &mut [f32]),
+    ) {
+        let Some(mut stack) = self.stack.take() else {
+            return self.encode_frame(codes, out);
+        };
+        let mut frame = std::mem::take(&mut self.frame);
+        self.encode_frame(codes, &mut frame);
+        write(&mut stack, &frame, out);
+        self.frame = frame;
+        self.stack = Some(stack);
     }
 
     /// Encodes one codes observation alone into `out` (`[cells, channels]`).
