@@ -482,23 +482,23 @@ fn drawn_episodes_use_only_active_anchors_and_the_reference_on_time_range() {
     assert!(max_on >= 10, "the range 0..=6+d0/2 is used up to its top");
 }
 
-/// The README's task-parameter table is the generated one (`chronocooked env list
+/// The guide's task-parameter table (docs/tasks.md) is the generated one (`chronocooked env list
 /// --markdown`), so docs and parser cannot disagree.
 #[test]
-fn the_readme_task_parameter_table_is_generated_from_the_tables() {
+fn the_guide_task_parameter_table_is_generated_from_the_tables() {
     let readme =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../README.md")).unwrap();
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/tasks.md")).unwrap();
     let (open, close) = ("<!-- settings:task -->\n", "<!-- /settings:task -->");
     let start = readme
         .find(open)
-        .expect("README has the task table markers")
+        .expect("docs/tasks.md has the task table markers")
         + open.len();
     let end = readme[start..].find(close).unwrap() + start;
     let generated = chronocooked_env::task::params::markdown();
     assert_eq!(
         readme[start..end],
         generated,
-        "README task table is stale: regenerate with `chronocooked env list --markdown`"
+        "docs/tasks.md's task table is stale: regenerate with `chronocooked env list --markdown`"
     );
     for key in [
         "anchors",

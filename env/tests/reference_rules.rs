@@ -1,4 +1,4 @@
-//! One test per step rule of the original implementation (README "Tasks"), and the typed errors of every invalid input.
+//! One test per step rule of the original implementation (docs/tasks.md), and the typed errors of every invalid input.
 
 use Action::*;
 use chronocooked_env::{

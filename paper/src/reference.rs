@@ -59,7 +59,7 @@ use Source::{Notebook, Paper};
 use serde::{Deserialize, Serialize};
 
 /// The paper's model names and the lab's faithful counterparts (the paper's CTRNN is an
-/// untrained reservoir: see the README).
+/// untrained reservoir: see docs/training.md).
 pub const MODELS: [(&str, &str); 3] = [
     ("CTRNN125", "ctrnn-reservoir125"),
     ("LSTM125", "lstm125"),

@@ -170,9 +170,9 @@ def test_the_readme_fingerprint_block_runs_as_written(tmp_path):
     import subprocess
     import sys
 
-    text = (ROOT / "README.md").read_text()
+    text = (ROOT / "docs" / "python.md").read_text()
     block = re.search(r"<!-- example: fingerprint -->\s*```python\n(.*?)```", text, re.S)
-    assert block, "README has the fingerprint example"
+    assert block, "docs/python.md has the fingerprint example"
     out = subprocess.run([sys.executable, "-c", block.group(1)], cwd=tmp_path,
                          env=_example_env(tmp_path), capture_output=True, text=True)
     assert out.returncode == 0, out.stderr

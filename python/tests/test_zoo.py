@@ -1,5 +1,5 @@
 """The zoo of trained agents and the leaderboard with committed baselines, from Python; the
-README's worked example, run as written."""
+the guide's worked example (docs/your-agent.md), run as written."""
 
 import json
 import os
@@ -70,9 +70,9 @@ def test_report_adds_the_committed_baselines(tmp_path):
 
 
 def readme_example():
-    text = (ROOT / "README.md").read_text()
+    text = (ROOT / "docs" / "your-agent.md").read_text()
     m = re.search(r"<!-- example: my agent -->\s*```python\n(.*?)```", text, re.S)
-    assert m, "README has the worked example"
+    assert m, "docs/your-agent.md has the worked example"
     return m.group(1)
 
 

@@ -195,7 +195,7 @@ impl TimingRunConfig {
         self.validate()
     }
 
-    /// The README's table of timing-model settings: every key, with the training defaults on
+    /// The guide's table of timing-model settings (docs/timing-models.md): every key, with the training defaults on
     /// fixed interval; the agent's parameters default per model (`zoo show MODEL`).
     pub fn settings_markdown() -> String {
         let mut rows: Vec<settings::Setting> = Vec::new();

@@ -1,5 +1,5 @@
 //! Settings: what `zoo show` lists is exactly what `--set` accepts, for every registered
-//! model; errors name the key and what it accepts; the README's tables are the tables the
+//! model; errors name the key and what it accepts; the guide's tables are the tables the
 //! code declares; run folders written before the typed timing settings still load.
 
 use chronocooked_training::settings::ppo::PPO_SETTINGS;
@@ -323,12 +323,12 @@ fn timing_settings_are_typed_per_family_and_old_run_folders_still_load() {
     );
 }
 
-/// The table between `<!-- settings:NAME -->` and `<!-- /settings:NAME -->` in README.md.
+/// The table between `<!-- settings:NAME -->` and `<!-- /settings:NAME -->` in a guide page.
 fn readme_table(readme: &str, name: &str) -> String {
     let open = format!("<!-- settings:{name} -->\n");
     let start = readme
         .find(&open)
-        .unwrap_or_else(|| panic!("README lacks {open}"))
+        .unwrap_or_else(|| panic!("the guide page lacks {open}"))
         + open.len();
     let end = readme[start..]
         .find(&format!("<!-- /settings:{name} -->"))
@@ -338,9 +338,13 @@ fn readme_table(readme: &str, name: &str) -> String {
 }
 
 #[test]
-fn the_readme_settings_tables_are_generated_from_the_settings() {
-    let readme =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../README.md")).unwrap();
+fn the_guide_settings_tables_are_generated_from_the_settings() {
+    let page = |name: &str| {
+        std::fs::read_to_string(
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("../docs/{name}")),
+        )
+        .unwrap()
+    };
     let ppo = chronocooked_training::TrainConfig::settings_markdown();
     let timing = chronocooked_training::TimingRunConfig::settings_markdown();
     for key in ["gamma", "curriculum_window", "never_ready_ramp", "engine"] {
@@ -356,11 +360,14 @@ fn the_readme_settings_tables_are_generated_from_the_settings() {
     ] {
         assert!(timing.contains(&format!("| `{key}` |")), "{key}");
     }
-    for (name, table) in [("ppo", ppo), ("timing", timing)] {
+    for (name, file, table) in [
+        ("ppo", "training.md", ppo),
+        ("timing", "timing-models.md", timing),
+    ] {
         assert_eq!(
-            readme_table(&readme, name),
+            readme_table(&page(file), name),
             table,
-            "README.md's {name} settings table differs from the code's; the table the code declares:\n{table}"
+            "docs/{file}'s {name} settings table differs from the code's; the table the code declares:\n{table}"
         );
     }
 }

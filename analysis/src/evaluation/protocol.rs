@@ -1,4 +1,4 @@
-//! Evaluation protocols (README "Evaluation and metrics"): the conditions each task is tested under and the runner
+//! Evaluation protocols (docs/metrics.md): the conditions each task is tested under and the runner
 //! that plays them with any [`Agent`].
 //!
 //! Reference protocol: greedy policy, one episode per free start cell per condition (for

@@ -61,7 +61,7 @@ pub const COMMON: &[Spec] = &[
         &["reference"],
         &["reference_compat"],
         Rule::Bool,
-        "reference-compatible mode: the time-limit stop is reported as terminated, and the reference's quirks are kept (README, 'Reference quirks')",
+        "reference-compatible mode: the time-limit stop is reported as terminated, and the reference's quirks are kept (docs/tasks.md, 'Reference quirks')",
     ),
     param(
         "debug_timer_channel",
@@ -416,8 +416,8 @@ pub fn rows(config: &super::TaskConfig) -> Vec<ParamRow> {
         .collect()
 }
 
-/// The README's table of every registered task's own parameters, then the common ones
-/// (generated; a test compares it with the README).
+/// The guide's table (docs/tasks.md) of every registered task's own parameters, then the common ones
+/// (generated; a test compares it with docs/tasks.md).
 pub fn markdown() -> String {
     let mut table = Table::new([
         "task",

@@ -158,7 +158,7 @@ pub enum EnvCommand {
         /// Print JSON instead of text.
         #[arg(long)]
         json: bool,
-        /// Print the Markdown table of every task parameter (the README's).
+        /// Print the Markdown table of every task parameter (the one in docs/tasks.md).
         #[arg(long, conflicts_with = "json")]
         markdown: bool,
     },

@@ -469,7 +469,7 @@ impl TrainConfig {
         settings::set_field(self, spec, key, value)
     }
 
-    /// The README's table of PPO settings: every key with its default before any preset (a
+    /// The guide's table of PPO settings (docs/training.md): every key with its default before any preset (a
     /// curriculum's parameters with that curriculum's defaults).
     pub fn settings_markdown() -> String {
         let mut rows: Vec<settings::Setting> = Vec::new();

@@ -7,7 +7,7 @@
 //! the struct's serialised form (`serde_json::Value`) and deserialises it back (the structs
 //! deny unknown fields), [`check`] is the one range check of a configuration however it was
 //! made, [`listing`] is what `zoo show` prints and what error messages offer, and
-//! [`markdown_table`] is the README's table. Keys are flat (`gamma`, not `ppo.gamma`): the
+//! [`markdown_table`] is the guide's table (docs/). Keys are flat (`gamma`, not `ppo.gamma`): the
 //! table maps each to its path.
 //!
 //! Tables: [`ppo::PPO_SETTINGS`] (deep-RL runs, [`crate::TrainConfig`]) and

@@ -1,0 +1,94 @@
+//! The documentation's links: every relative link of README, the guide (`docs/`),
+//! ARCHITECTURE, RESULTS and BENCHMARKS names a file or folder that exists, and every guide
+//! page is reachable from the README.
+
+use std::path::{Path, PathBuf};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The relative link targets `](target)` of a Markdown text (anchors dropped).
+fn relative_links(text: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut rest = text;
+    while let Some(i) = rest.find("](") {
+        rest = &rest[i + 2..];
+        let Some(end) = rest.find(')') else { break };
+        let target = rest[..end].split('#').next().unwrap_or_default();
+        let external = ["http:", "https:", "mailto:"]
+            .iter()
+            .any(|p| target.starts_with(p));
+        if !target.is_empty() && !external && !target.contains(char::is_whitespace) {
+            out.push(target.to_string());
+        }
+        rest = &rest[end..];
+    }
+    out
+}
+
+fn pages() -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = [
+        "README.md",
+        "ARCHITECTURE.md",
+        "RESULTS.md",
+        "BENCHMARKS.md",
+    ]
+    .iter()
+    .map(|f| root().join(f))
+    .collect();
+    let mut guide: Vec<PathBuf> = std::fs::read_dir(root().join("docs"))
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "md"))
+        .collect();
+    guide.sort();
+    v.extend(guide);
+    v
+}
+
+#[test]
+fn every_relative_link_of_the_documentation_resolves() {
+    let mut broken = Vec::new();
+    for page in pages() {
+        let text = std::fs::read_to_string(&page).unwrap();
+        let dir = page.parent().unwrap_or(Path::new("."));
+        for link in relative_links(&text) {
+            if !dir.join(&link).exists() {
+                broken.push(format!("{}: {link}", page.display()));
+            }
+        }
+    }
+    assert!(broken.is_empty(), "broken links: {broken:#?}");
+}
+
+#[test]
+fn every_guide_page_is_linked_from_the_readme_and_the_readme_fits_on_a_few_screens() {
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    assert!(
+        readme.lines().count() <= 250,
+        "README.md has {} lines",
+        readme.lines().count()
+    );
+    let links = relative_links(&readme);
+    for page in pages()
+        .iter()
+        .filter(|p| p.starts_with(root().join("docs")))
+    {
+        let name = page.file_name().unwrap().to_str().unwrap();
+        if name == "README.md" || name == "paper-protocol.md" {
+            continue;
+        }
+        let want = format!("docs/{name}");
+        assert!(links.contains(&want), "README does not link {want}");
+    }
+}
+
+#[test]
+fn the_link_reader_finds_relative_links_only() {
+    let links = relative_links(
+        "[a](docs/x.md) [b](https://e.org) [c](#top) [d](../y.md#s) ![i](img/p.png)",
+    );
+    assert_eq!(links, ["docs/x.md", "../y.md", "img/p.png"]);
+}
