@@ -16,14 +16,18 @@ import chronocooked
 from conftest import ROOT
 
 
-def test_the_zoo_lists_eight_agents_with_provenance():
+def test_the_zoo_lists_the_paper_agents_and_the_memory_control_with_provenance():
     agents = chronocooked.zoo.agents()
     names = sorted(a["name"] for a in agents)
-    assert names == sorted(f"zoo:{m}/{t}" for m in ("cnn-mlp", "lstm125", "ctrnn125", "ctrnn-reservoir125")
-                           for t in ("FixedInterval-v0", "Bisection-v0"))
+    paper = [f"zoo:{m}/{t}" for m in ("cnn-mlp", "lstm125", "ctrnn125", "ctrnn-reservoir125")
+             for t in ("FixedInterval-v0", "Bisection-v0")]
+    # The frame-stack control (4 stacked frames, fixed interval at TD 4; issue #67).
+    assert names == sorted(paper + ["zoo:cnn-mlp-stack4/FixedInterval-v0"])
     for a in agents:
         p = a["provenance"]
-        assert p["seed"] == 4 and p["preset"] == "reference" and len(p["commit"]) == 40
+        control = a["name"] == "zoo:cnn-mlp-stack4/FixedInterval-v0"
+        assert p["seed"] == (1 if control else 4)
+        assert p["preset"] == "reference" and len(p["commit"]) == 40
         assert p["reproduces_study_job"] is True
     assert sum(a["bytes"] for a in agents) < 4_000_000
 
