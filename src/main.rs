@@ -64,6 +64,9 @@ enum Command {
     /// what determines it (configuration, seed, learned state, records) and names every
     /// difference: file, field, recorded value, re-derived value.
     Verify(verify::VerifyArgs),
+    /// Print the command-line reference (Markdown, `docs/cli.md`) generated from this parser.
+    #[command(name = "cli-reference")]
+    CliReference,
     /// The paper's study: collect a sweep's compact results, analyse them as the paper does
     /// and compare with the paper's numbers.
     Paper {
@@ -160,6 +163,11 @@ fn main() -> ExitCode {
         Command::Mechanisms(args) => mechanisms::run(args),
         Command::Fingerprint(args) => fingerprint::run(args),
         Command::Verify(args) => verify::run(args),
+        Command::CliReference => {
+            use clap::CommandFactory;
+            print!("{}", cmd::cli_reference::markdown(&Cli::command()));
+            Ok(())
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

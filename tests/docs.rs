@@ -92,3 +92,26 @@ fn the_link_reader_finds_relative_links_only() {
     );
     assert_eq!(links, ["docs/x.md", "../y.md", "img/p.png"]);
 }
+
+#[test]
+fn the_committed_cli_reference_is_the_one_the_parser_generates() {
+    let out = crate::common::run_ok(&["cli-reference"]);
+    let committed = std::fs::read_to_string(root().join("docs/cli.md")).unwrap();
+    assert!(
+        committed == out,
+        "docs/cli.md is stale: regenerate it with `chronocooked cli-reference > docs/cli.md`"
+    );
+    for command in [
+        "train",
+        "eval",
+        "verify",
+        "mechanisms",
+        "fingerprint",
+        "sweep",
+    ] {
+        assert!(
+            out.contains(&format!("## `chronocooked {command}`")),
+            "{command}"
+        );
+    }
+}

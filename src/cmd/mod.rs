@@ -14,6 +14,7 @@
 //! * [`mechanisms`] — `mechanisms`: fingerprints and each agent's nearest timing mechanism;
 //! * [`fingerprint`] — `fingerprint`: one agent's runs through the mechanisms protocol,
 //!   placed among the committed mechanisms;
+//! * [`cli_reference`] — `cli-reference`: the command line's Markdown reference (`docs/cli.md`);
 //! * [`verify`] — `verify`: a folder's claims re-derived, every difference named;
 //! * [`zoo`] — `zoo list | show | add`; [`zoo_agents`] — the trained agents of the zoo
 //!   (`--run zoo:<model>/<task>`);
@@ -21,6 +22,7 @@
 
 pub mod adapt;
 pub mod bench;
+pub mod cli_reference;
 pub mod demo;
 pub mod env;
 pub mod eval;
