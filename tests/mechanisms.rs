@@ -441,3 +441,34 @@ fn the_reference_study_names_its_held_out_seeds() {
         id.held_out
     );
 }
+
+/// `mechanisms RESULTS --scaling-from SWEEP_OUT` (documented in docs/python.md and RESULTS)
+/// on a sweep written by today's binary: its jobs' typed `job.json` are read, each (row,
+/// seed) with fixed-interval runs at two TDs is recorded together for the scaling feature.
+#[test]
+fn mechanisms_scaling_from_reads_a_fresh_sweep() {
+    let dir = crate::common::temp_dir("mechanisms-scaling-from");
+    let sweep = dir.join("s.toml");
+    std::fs::write(
+        &sweep,
+        "name = \"sc\"\ntasks = [\"FixedInterval-v0\"]\nmodels = [\"ddm\"]\nseeds = [1]\n\
+         episodes = 100\nrecord = true\nexport = false\n\n[task_variants]\n\
+         \"FixedInterval-v0\" = [[\"env.td=6\"], [\"env.td=12\"]]\n",
+    )
+    .unwrap();
+    let (out, res) = (dir.join("out"), dir.join("res"));
+    let p = |p: &std::path::Path| p.to_str().unwrap().to_string();
+    crate::common::run_ok(&["sweep", &p(&sweep), "--out", &p(&out), "--no-report"]);
+    crate::common::run_ok(&["paper", "collect", &p(&out), "--out", &p(&res)]);
+    crate::common::run_ok(&[
+        "mechanisms",
+        &p(&res),
+        "--scaling-from",
+        &p(&out),
+        "--resamples",
+        "20",
+    ]);
+    let scaling = res.join("scaling/ddm/seed1/scaling.json");
+    assert!(scaling.is_file(), "{} missing", scaling.display());
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -60,23 +60,24 @@ fn groups(study: &Path) -> Result<BTreeMap<(String, u64), RunsByTd>, PipelineErr
             if !job_file.is_file() || !run.join(run_folder::SUMMARY).is_file() {
                 continue;
             }
-            let job = read_json(&job_file)?;
-            let field = |k: &str| {
-                PipelineError::Invalid(format!("{}: field `{k}` missing", job_file.display()))
-            };
-            let model = job["row"]
-                .as_str()
-                .or(job["model"].as_str())
-                .ok_or_else(|| field("row"))?
-                .to_string();
-            let seed = job["seed"].as_u64().ok_or_else(|| field("seed"))?;
-            let td = job["env"]
-                .as_array()
-                .into_iter()
-                .flatten()
-                .filter_map(|e| e.as_str()?.strip_prefix("td=")?.parse::<u32>().ok())
-                .next()
-                .ok_or_else(|| field("env (td=N)"))?;
+            let job: crate::sweep::Job =
+                serde_json::from_value(read_json(&job_file)?).map_err(|e| PipelineError::NotA {
+                    path: job_file.clone(),
+                    what: "a sweep job's job.json",
+                    message: e.to_string(),
+                })?;
+            let td = job
+                .task
+                .value_set("td")
+                .and_then(|v| v.as_u64())
+                .and_then(|v| u32::try_from(v).ok())
+                .ok_or_else(|| {
+                    PipelineError::Invalid(format!(
+                        "{}: the job sets no fixed-interval TD (task parameter `td`)",
+                        job_file.display()
+                    ))
+                })?;
+            let (model, seed) = (job.row, job.seed);
             out.entry((model, seed)).or_default().insert(td, run);
         }
     }
