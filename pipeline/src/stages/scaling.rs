@@ -47,6 +47,23 @@ fn read_json(path: &Path) -> Result<serde_json::Value, PipelineError> {
         .map_err(|e| PipelineError::Invalid(format!("{}: {e}", path.display())))
 }
 
+/// What scaling needs of a sweep job's `job.json` (any version: the task's parameters as
+/// today's map or the older `td=N` list, read by [`chronocooked_env::Task`]'s own
+/// deserialiser).
+#[derive(serde::Deserialize)]
+struct JobKey {
+    /// Leaderboard row (older jobs: none, the model is the row).
+    #[serde(default)]
+    row: Option<String>,
+    /// Zoo name.
+    model: String,
+    /// Seed.
+    seed: u64,
+    /// The task with the job's parameters.
+    #[serde(flatten)]
+    task: chronocooked_env::Task,
+}
+
 /// Run folders by TD (steps) of one (row, seed).
 type RunsByTd = BTreeMap<u32, PathBuf>;
 
@@ -60,7 +77,7 @@ fn groups(study: &Path) -> Result<BTreeMap<(String, u64), RunsByTd>, PipelineErr
             if !job_file.is_file() || !run.join(run_folder::SUMMARY).is_file() {
                 continue;
             }
-            let job: crate::sweep::Job =
+            let job: JobKey =
                 serde_json::from_value(read_json(&job_file)?).map_err(|e| PipelineError::NotA {
                     path: job_file.clone(),
                     what: "a sweep job's job.json",
@@ -77,7 +94,7 @@ fn groups(study: &Path) -> Result<BTreeMap<(String, u64), RunsByTd>, PipelineErr
                         job_file.display()
                     ))
                 })?;
-            let (model, seed) = (job.row, job.seed);
+            let (model, seed) = (job.row.unwrap_or(job.model), job.seed);
             out.entry((model, seed)).or_default().insert(td, run);
         }
     }
