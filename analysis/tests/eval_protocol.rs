@@ -415,3 +415,52 @@ fn reproduction_metrics_of_the_oracle_are_veridical_with_the_gain() {
         }
     }
 }
+
+/// Defect (issue #68): human play on a multi-anchor task with non-default anchors was scored
+/// against the registered anchors (4, 8, 12), because the condition was rebuilt from the
+/// task id alone. The oracle plays anchors 3 and 9 exactly as `env play --record` writes
+/// them; the records carry those anchors and every anchor episode counts as right.
+#[test]
+fn recorded_play_is_scored_against_the_parameters_it_was_played_with() {
+    use chronocooked_env::trace::TraceLine;
+    use chronocooked_env::{Oracle, ResetOptions};
+    let mut env = ChronoEnv::from_id("MultiAnchor-v0", &["anchors=3,9"]).unwrap();
+    let oracle = Oracle::new(&env);
+    let mut text = String::new();
+    let mut seed = 0;
+    for td in [3u32, 9, 3, 9] {
+        seed += 1;
+        let opts = ResetOptions {
+            td: Some(td),
+            ..Default::default()
+        };
+        let info = env.reset(Some(seed), &opts).unwrap();
+        text += &TraceLine::reset(&env, info)
+            .with_reset_key(Some(seed), opts)
+            .to_json();
+        text.push('\n');
+        loop {
+            let a = oracle.act(&env.state());
+            let t = env.step(a).unwrap();
+            text += &TraceLine::step(&env, a, &t).to_json();
+            text.push('\n');
+            if t.done() {
+                break;
+            }
+        }
+    }
+    let recs = chronocooked_analysis::behaviour::human::records_from_trace(&text).unwrap();
+    assert_eq!(recs.len(), 4);
+    for r in &recs {
+        let played = r.condition.task.config().unwrap();
+        assert_eq!(played.params.active_anchors(), Some(&[3u32, 9][..]));
+        assert_eq!(
+            r.condition.task.overrides(),
+            vec!["anchors=3,9".to_string()]
+        );
+    }
+    let m = compute_metrics("human", &recs, 0);
+    let ma = m.multi_anchor.expect("multi-anchor metrics");
+    assert_eq!(ma.anchors, vec![3, 9]);
+    assert_eq!(ma.anchor_accuracy, 1.0);
+}

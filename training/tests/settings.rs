@@ -434,3 +434,41 @@ fn the_visit_count_floor_is_a_reproduction_default_of_the_time_cells_only() {
     cfg.set("visit_power=0.7").unwrap();
     assert_eq!(cfg.train.visit_power, 0.7);
 }
+
+/// Defect (issue #68): `train --model ddm --task Bisection-v0 --set env.short=20 --set
+/// env.long=40` failed on the first key, because the timing path checked the anchors across
+/// keys after each one (20 > the default long 12); the PPO path accepted it. Both paths now
+/// apply every key, then check the whole, in either order, and still refuse a bad whole.
+#[test]
+fn overrides_valid_together_are_accepted_whatever_their_order_on_both_paths() {
+    use chronocooked_env::Task;
+    let bisection = || Task::new("Bisection-v0").unwrap();
+    for order in [
+        ["env.short=20", "env.long=40"],
+        ["env.long=40", "env.short=20"],
+    ] {
+        for model in ["ddm", "sbf", "timecells-csc"] {
+            let mut cfg = TimingRunConfig::new(&bisection(), model, 0);
+            for kv in order {
+                cfg.set(kv).unwrap_or_else(|e| panic!("{model} {kv}: {e}"));
+            }
+            cfg.validate()
+                .unwrap_or_else(|e| panic!("{model} {order:?}: {e}"));
+            let text = serde_json::to_string(&cfg.task.config().unwrap()).unwrap();
+            assert!(
+                text.contains("\"short\":20") && text.contains("\"long\":40"),
+                "{text}"
+            );
+        }
+        let mut ppo = TrainConfig::base(bisection(), "cnn-mlp".parse().unwrap());
+        for kv in order {
+            let (k, v) = kv.split_once('=').unwrap();
+            ppo.set(k, v).unwrap();
+        }
+        ppo.validate().unwrap();
+    }
+    let mut bad = TimingRunConfig::new(&bisection(), "ddm", 0);
+    bad.set("env.short=20").unwrap();
+    let msg = bad.validate().unwrap_err().to_string();
+    assert!(msg.contains("short") && msg.contains("long"), "{msg}");
+}

@@ -7,32 +7,28 @@ use chronocooked_env::{Task, TaskConfig, TaskParams};
 use chronocooked_models::EpisodeRecord;
 use chronocooked_models::agent::is_success;
 
-/// Condition kind and task parameters for an episode played on `config` with target `td`.
+/// Condition kind and task (with every parameter it was played with) for an episode played
+/// on `config` with target `td`.
 fn condition_of(config: &TaskConfig, td: u32) -> Result<Condition, String> {
-    let (kind, env, factor) = match &config.params {
-        TaskParams::FixedInterval { td } => (ConditionKind::Fi, vec![format!("td={td}")], None),
-        TaskParams::PeakInterval { td, probe_factor } => (
-            ConditionKind::Pi,
-            vec![format!("td={td}"), format!("probe_factor={probe_factor}")],
-            Some(f64::from(*probe_factor)),
-        ),
-        TaskParams::Bisection { short, long } => (
-            ConditionKind::Bisection,
-            vec![format!("short={short}"), format!("long={long}")],
-            None,
-        ),
-        TaskParams::MultiTimer { .. } => (ConditionKind::MultiTimer, Vec::new(), None),
-        TaskParams::Dual { td, .. } => (ConditionKind::Dual, vec![format!("td={td}")], None),
-        TaskParams::Uncertainty { td, .. } => {
-            (ConditionKind::Uncertainty, vec![format!("td={td}")], None)
+    let (kind, factor) = match &config.params {
+        TaskParams::FixedInterval { .. } => (ConditionKind::Fi, None),
+        TaskParams::PeakInterval { probe_factor, .. } => {
+            (ConditionKind::Pi, Some(f64::from(*probe_factor)))
         }
-        TaskParams::MultiAnchor { .. } => (ConditionKind::MultiAnchor, Vec::new(), None),
-        TaskParams::MultiOven { .. } => (ConditionKind::MultiOven, Vec::new(), None),
-        TaskParams::Reproduction { .. } => (ConditionKind::Reproduction, Vec::new(), None),
+        TaskParams::Bisection { .. } => (ConditionKind::Bisection, None),
+        TaskParams::MultiTimer { .. } => (ConditionKind::MultiTimer, None),
+        TaskParams::Dual { .. } => (ConditionKind::Dual, None),
+        TaskParams::Uncertainty { .. } => (ConditionKind::Uncertainty, None),
+        TaskParams::MultiAnchor { .. } => (ConditionKind::MultiAnchor, None),
+        TaskParams::MultiOven { .. } => (ConditionKind::MultiOven, None),
+        TaskParams::Reproduction { .. } => (ConditionKind::Reproduction, None),
     };
+    // The task as played, every parameter of the recording's reset line (its anchors, its
+    // ovens, its priors), so the metrics score the episode against the rules it was played
+    // under, not the registered defaults.
     Ok(Condition {
         kind,
-        task: Task::parse(&config.id, &env).map_err(|e| e.to_string())?,
+        task: Task::from_config(config).map_err(|e| e.to_string())?,
         td,
         never_ready: None,
         factor,

@@ -107,6 +107,35 @@ impl Task {
         Ok(())
     }
 
+    /// The task a configuration plays, typed: its registry id with every table parameter
+    /// whose value differs from the registered default recorded as set (so
+    /// [`Task::overrides`] and the `env` map name exactly what was changed). A configuration
+    /// with a difference no parameter expresses (a hand-edited layout, say) is refused,
+    /// naming the task, rather than rebuilt as another one.
+    pub fn from_config(config: &TaskConfig) -> Result<Self, EnvError> {
+        let mut task = Self::new(&config.id)?;
+        let table = task.table();
+        let defaults = settings::values(&table, &task.config);
+        let played = settings::values(&table, config);
+        for (spec, (default, value)) in table.iter().zip(defaults.into_iter().zip(played)) {
+            if let Some(value) = value
+                && default.as_ref() != Some(&value)
+            {
+                task.set_value(spec.key, value)?;
+            }
+        }
+        if &task.config != config {
+            return Err(EnvError::BadOverride {
+                text: config.id.clone(),
+                reason: "the configuration differs from the registered task in a field that \
+                         no task parameter sets (its layout or a derived field)"
+                    .into(),
+            });
+        }
+        task.config()?;
+        Ok(task)
+    }
+
     /// The task id as given.
     pub fn id(&self) -> &str {
         &self.id
