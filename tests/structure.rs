@@ -1,6 +1,6 @@
 //! Structure of the workspace: no import cycles inside any crate, between files or between
-//! top-level folders (a file that names an item of another file through `crate::` or
-//! `super::` depends on it; references to a file's own ancestors — its `mod.rs` /
+//! top-level folders (a file that names an item of another file through `crate::`,
+//! `super::`, `self::` or a relative `use child::…` depends on it; references to a file's own ancestors — its `mod.rs` /
 //! `lib.rs` — do not count; a name a module re-exports with `pub use` counts as the file
 //! that defines it), and the sweep pipeline lives in a library, not in the binary.
 
@@ -36,9 +36,29 @@ fn module_of(src: &Path, file: &Path) -> Module {
     parts
 }
 
-/// `crate::a::b` / `super::x` paths named in `text` (comments and test modules dropped);
-/// a brace group (`use super::{a::X, b::{Y, Z}}`) gives one path per item.
-fn paths(text: &str) -> Vec<(bool, Vec<String>)> {
+/// Where a path named in a file starts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Root {
+    /// `crate::…`: from the crate's root.
+    Crate,
+    /// `super::…`: from the parent of the file's module.
+    Super,
+    /// `self::…`, or a relative `use child::…` (2018 paths): from the file's own module.
+    /// A relative path whose first segment is no module of the crate (an external crate,
+    /// `std`) resolves to the module itself and is dropped.
+    Module,
+}
+
+/// Crate roots that are never modules of the crate: a `use` that starts with one is no
+/// relative path.
+const EXTERNAL_ROOTS: [&str; 6] = ["crate", "super", "self", "std", "core", "alloc"];
+
+/// `crate::a::b`, `super::x` and `self::y` paths named in `text`, and the relative paths of
+/// its private `use` declarations (`use params::{X, Y}` in `task/mod.rs` names
+/// `task::params`; a `pub use` re-export is read by [`re_exports`] instead),
+/// comments and test modules dropped; a brace group (`use super::{a::X, b::{Y, Z}}`) gives
+/// one path per item.
+fn paths(text: &str) -> Vec<(Root, Vec<String>)> {
     let code: String = text
         .split("#[cfg(test)]")
         .next()
@@ -48,7 +68,11 @@ fn paths(text: &str) -> Vec<(bool, Vec<String>)> {
         .collect::<Vec<_>>()
         .join("\n");
     let mut out = Vec::new();
-    for root in ["crate::", "super::"] {
+    for (root, kind) in [
+        ("crate::", Root::Crate),
+        ("super::", Root::Super),
+        ("self::", Root::Module),
+    ] {
         for (i, _) in code.match_indices(root) {
             // `x::crate::` is no path root, and `super::super::` is one path, not two.
             let before = code[..i].chars().last();
@@ -57,8 +81,46 @@ fn paths(text: &str) -> Vec<(bool, Vec<String>)> {
             }
             let mut found = vec![];
             use_tree(vec![], &code[i + root.len()..], &mut found);
-            out.extend(found.into_iter().map(|segs| (root == "super::", segs)));
+            out.extend(found.into_iter().map(|segs| (kind, segs)));
         }
+    }
+    for (i, _) in code.match_indices("use ") {
+        // A `use` keyword: at a statement's start (after `;`, `{`, `}`, a newline, or a
+        // visibility such as `pub` / `pub(crate)`), not inside a word.
+        // A `pub use` re-export is no dependency of the module that re-exports: names used
+        // through it count as the file that defines them ([`re_exports`]).
+        let before = code[..i].trim_end();
+        let visibility = match before.strip_suffix(')') {
+            Some(b) => b.rfind('(').map_or(b, |open| &b[..open]).trim_end(),
+            None => before,
+        };
+        let re_export = visibility.ends_with("pub");
+        let keyword = !re_export
+            && (before.is_empty()
+                || before.ends_with([';', '{', '}', ']'])
+                || code[..i].ends_with('\n'));
+        if !keyword
+            || code[..i]
+                .chars()
+                .last()
+                .is_some_and(|c| c.is_alphanumeric() || c == '_')
+        {
+            continue;
+        }
+        let tail = code[i + "use ".len()..].trim_start();
+        let first = tail
+            .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+            .next()
+            .unwrap_or("");
+        if first.is_empty()
+            || EXTERNAL_ROOTS.contains(&first)
+            || !tail[first.len()..].starts_with("::")
+        {
+            continue;
+        }
+        let mut found = vec![];
+        use_tree(vec![], tail, &mut found);
+        out.extend(found.into_iter().map(|segs| (Root::Module, segs)));
     }
     out
 }
@@ -179,8 +241,12 @@ fn import_graph(src: &Path) -> BTreeMap<Module, BTreeSet<Module>> {
     let mut graph = BTreeMap::new();
     for (m, f) in &modules {
         let mut deps = BTreeSet::new();
-        for (is_super, segs) in paths(&std::fs::read_to_string(f).unwrap()) {
-            let mut full: Module = if is_super {
+        for (root, segs) in paths(&std::fs::read_to_string(f).unwrap()) {
+            let mut full: Module = if root == Root::Module {
+                let mut base = m.clone();
+                base.extend(segs.iter().cloned());
+                base
+            } else if root == Root::Super {
                 // `super` is the parent of the module the file defines, whether the file
                 // is a leaf (`a/b.rs` = `a::b`) or a folder's `mod.rs` (`a/mod.rs` = `a`).
                 let mut base = m.clone();
@@ -366,16 +432,30 @@ fn paths_are_read_from_use_trees_and_expressions() {
         "use super::gae::x; fn f() { crate::ppo::loss::y(); } // crate::no\n\
          use super::super::up::Z; use crate::{a::{b, c::D}, e};",
     );
-    let names: Vec<(bool, String)> = p.into_iter().map(|(s, m)| (s, m.join("::"))).collect();
+    let names: Vec<(Root, String)> = p.into_iter().map(|(s, m)| (s, m.join("::"))).collect();
     let expect = [
-        (false, "ppo::loss::y"),
-        (false, "a::b"),
-        (false, "a::c::D"),
-        (false, "e"),
-        (true, "gae::x"),
-        (true, "super::up::Z"),
+        (Root::Crate, "ppo::loss::y"),
+        (Root::Crate, "a::b"),
+        (Root::Crate, "a::c::D"),
+        (Root::Crate, "e"),
+        (Root::Super, "gae::x"),
+        (Root::Super, "super::up::Z"),
     ];
-    let expect: Vec<(bool, String)> = expect.iter().map(|(s, m)| (*s, m.to_string())).collect();
+    let expect: Vec<(Root, String)> = expect.iter().map(|(s, m)| (*s, m.to_string())).collect();
+    assert_eq!(names, expect);
+    // Relative `use` paths and `self::` paths are read too; external crates are not.
+    let p = paths(
+        "mod params;\nuse params::{MAX, MIN};\npub(crate) use self::inner::K;\n\
+         use serde::Serialize; use std::fmt; fn reuse() {}\n",
+    );
+    let names: Vec<(Root, String)> = p.into_iter().map(|(s, m)| (s, m.join("::"))).collect();
+    let expect = [
+        (Root::Module, "inner::K"),
+        (Root::Module, "params::MAX"),
+        (Root::Module, "params::MIN"),
+        (Root::Module, "serde::Serialize"),
+    ];
+    let expect: Vec<(Root, String)> = expect.iter().map(|(s, m)| (*s, m.to_string())).collect();
     assert_eq!(names, expect);
 }
 
@@ -449,6 +529,50 @@ fn a_planted_super_cycle_between_leaf_files_is_caught() {
     let dir = planted(&folders);
     let cycle = cycle_in(dir.path()).expect("the folder cycle is found");
     assert!(cycle.starts_with("folder-level"), "{cycle}");
+}
+
+#[test]
+fn a_planted_cycle_through_a_relative_use_is_caught() {
+    // The shape of the env crate's old cycle: `registry` names `task`, `task/mod.rs` names
+    // its child `params` by a relative `use`, and `params` names `registry`.
+    let tree = [
+        ("lib.rs", "pub mod registry;\npub mod task;\n"),
+        ("registry.rs", "use crate::task::Task;\npub fn all() {}\n"),
+        (
+            "task/mod.rs",
+            "pub mod params;\nuse params::MAX;\npub struct Task;\n",
+        ),
+        (
+            "task/params.rs",
+            "pub const MAX: u8 = 1;\nfn f() { crate::registry::all() }\n",
+        ),
+    ];
+    let dir = planted(&tree);
+    let cycle = cycle_in(dir.path()).expect("the cycle through `use params::` is found");
+    assert!(
+        cycle.contains("task/params") && cycle.contains("registry"),
+        "{cycle}"
+    );
+    // A `pub use` re-export of the child is no dependency of the parent: names used through
+    // it count as the child's, which names nothing here.
+    let mut re_exported = tree;
+    re_exported[2] = (
+        "task/mod.rs",
+        "pub mod params;\npub use params::MAX;\npub struct Task;\n",
+    );
+    assert_eq!(cycle_in(planted(&re_exported).path()), None);
+    // … but a name used through the re-export is the child's: `registry` naming
+    // `crate::task::MAX` depends on `task/params`, which names `registry`.
+    re_exported[1] = ("registry.rs", "use crate::task::MAX;\npub fn all() {}\n");
+    let cycle = cycle_in(planted(&re_exported).path()).expect("the cycle through the re-export");
+    assert!(
+        cycle.contains("task/params") && cycle.contains("registry"),
+        "{cycle}"
+    );
+    // With the table moved to the registry, as in the env crate today, there is none.
+    let mut acyclic = tree;
+    acyclic[3] = ("task/params.rs", "pub const MAX: u8 = 1;\n");
+    assert_eq!(cycle_in(planted(&acyclic).path()), None);
 }
 
 #[test]

@@ -494,7 +494,7 @@ fn the_guide_task_parameter_table_is_generated_from_the_tables() {
         .expect("docs/tasks.md has the task table markers")
         + open.len();
     let end = readme[start..].find(close).unwrap() + start;
-    let generated = chronocooked_env::task::params::markdown();
+    let generated = chronocooked_env::registry::parameters_markdown();
     assert_eq!(
         readme[start..end],
         generated,

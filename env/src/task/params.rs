@@ -12,7 +12,6 @@
 #[cfg(doc)]
 use super::TaskConfig;
 use super::TaskFamily;
-use crate::markdown::Table;
 use crate::settings::{Rule, Spec, UNIT};
 
 /// Largest target duration of any task (steps).
@@ -414,49 +413,4 @@ pub fn rows(config: &super::TaskConfig) -> Vec<ParamRow> {
             }
         })
         .collect()
-}
-
-/// The guide's table (docs/tasks.md) of every registered task's own parameters, then the common ones
-/// (generated; a test compares it with docs/tasks.md).
-pub fn markdown() -> String {
-    let mut table = Table::new([
-        "task",
-        "key (aliases)",
-        "type",
-        "default",
-        "allowed",
-        "meaning",
-    ]);
-    let mut line = |task: &str, r: &ParamRow| {
-        let aliases = if r.aliases.is_empty() {
-            String::new()
-        } else {
-            format!(" ({})", r.aliases.join(", "))
-        };
-        table.row([
-            task.to_string(),
-            format!("`{}`{aliases}", r.key),
-            r.kind.clone(),
-            format!("`{}`", r.default),
-            r.allowed.clone(),
-            r.doc.clone(),
-        ]);
-    };
-    let mut common = Vec::new();
-    for t in crate::registry::all_tasks() {
-        let config = t.default_config();
-        for r in rows(&config) {
-            if COMMON.iter().any(|c| c.key == r.key) {
-                if common.is_empty() || !common.iter().any(|c: &ParamRow| c.key == r.key) {
-                    common.push(r);
-                }
-            } else {
-                line(&format!("`{}`", t.id), &r);
-            }
-        }
-    }
-    for r in &common {
-        line("every task", r);
-    }
-    table.render()
 }

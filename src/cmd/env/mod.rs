@@ -210,7 +210,7 @@ pub enum EnvCommand {
 pub fn run(cmd: EnvCommand) -> Result<()> {
     match cmd {
         EnvCommand::List { markdown: true, .. } => {
-            print!("{}", chronocooked_env::task::params::markdown());
+            print!("{}", chronocooked_env::registry::parameters_markdown());
             Ok(())
         }
         EnvCommand::List { tag, json, .. } => list(tag.as_deref(), json),
