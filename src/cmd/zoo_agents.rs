@@ -3,9 +3,9 @@
 //! `eval`, `record`, `export` and `adapt` ([`resolve_run`]).
 
 use anyhow::{Context, Result, bail};
-use chronocooked_analysis::behaviour::aggregate::headline;
 use chronocooked_analysis::behaviour::metrics::Metrics;
 use chronocooked_analysis::job_folder;
+use chronocooked_analysis::report::columns::headline;
 use chronocooked_env::integrity;
 use chronocooked_models::run_folder;
 use chronocooked_training::agent_zoo::{

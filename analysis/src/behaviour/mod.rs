@@ -11,7 +11,7 @@
 //! * [`reproduction`] — temporal reproduction: tp against ts per prior and gain, the
 //!   regression slope, BIAS, √VAR, and the best Bayesian observer;
 //! * [`metrics`] — the metrics of one evaluation from its per-episode records;
-//! * [`aggregate`] — headline numbers, mean ± SD across seeds, episodes to adapt;
+//! * [`aggregate`] — the spread of a number across seeds ([`aggregate::Spread`]);
 //! * [`human`] — recorded human play (`env play`) as evaluation records.
 
 pub mod aggregate;

@@ -7,7 +7,7 @@
 //! `activity.summary.json` (from `record --summary`), `neural_figures/` (heat maps) and
 //! `run/figures/` (learning curve). A parent folder named `<model>~<variant>` labels the row.
 
-use crate::behaviour::aggregate::{Spread, aggregate, headline};
+use crate::behaviour::aggregate::Spread;
 use crate::behaviour::foc::{FocStats, pool_foc_stats, scalar_property};
 use crate::behaviour::metrics::{BisectionMetrics, Metrics};
 use crate::behaviour::reproduction::ReproductionMetrics;
@@ -15,6 +15,9 @@ use crate::job_folder;
 use crate::neural::production::ProductionSpeed;
 use crate::neural::summary::NeuralSummary;
 use crate::records::{EVAL_INFO, RECORDS, read_eval_info};
+use crate::report::columns::{
+    UNC_ADAPTED, UNC_EPISODES_TO_ADAPT, WF_CV_ANCHORS, aggregate, headline, neural_columns,
+};
 use crate::stats::robust::{BOOTSTRAP_RESAMPLES, iqm, stratified_bootstrap_ci};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -94,11 +97,8 @@ fn robust_columns(
         })
         .collect();
     if neural.iter().any(Option::is_some) {
-        for key in NEURAL_COLUMNS {
-            let v = neural
-                .iter()
-                .map(|s| s.map_or(f64::NAN, |s| neural_value(s, key)))
-                .collect();
+        for (key, value) in neural_columns() {
+            let v = neural.iter().map(|s| s.map_or(f64::NAN, value)).collect();
             columns.push((key.to_string(), v));
         }
     }
@@ -253,48 +253,6 @@ pub fn load_adaptation(folder: &Path) -> Option<Option<usize>> {
     Some(v["episodes_to_adapt"].as_u64().map(|n| n as usize))
 }
 
-/// Neural column keys of the leaderboard (from the primary population's summary: the
-/// longest recorded TD's window of `2 × TD` steps). Category fractions are NaN (shown "–")
-/// for populations under [`crate::neural::summary::MIN_UNITS_FOR_FRACTIONS`] units, whose
-/// counts are in `activity.summary.json`.
-pub const NEURAL_COLUMNS: [&str; 10] = [
-    "neural_units",
-    "frac_ramp",
-    "frac_time_field",
-    "frac_oscillating",
-    "frac_mixed",
-    "frac_untuned",
-    "scaling",
-    "speed_ratio",
-    "sequentiality",
-    "decode_error",
-];
-
-/// Value of neural column `key` in a summary (NaN when undefined).
-fn neural_value(s: &NeuralSummary, key: &str) -> f64 {
-    use crate::neural::categories::Category;
-    use crate::neural::summary::fraction;
-    let nan = f64::NAN;
-    let frac = |c| fraction(s, c).unwrap_or(nan);
-    match key {
-        "neural_units" => s.units as f64,
-        "frac_ramp" => frac(Category::Ramp),
-        "frac_time_field" => frac(Category::TimeField),
-        "frac_oscillating" => frac(Category::Oscillating),
-        "frac_mixed" => frac(Category::Mixed),
-        "frac_untuned" => frac(Category::Untuned),
-        "scaling" => s.scaling.as_ref().and_then(|x| x.median).unwrap_or(nan),
-        "speed_ratio" => s
-            .scaling
-            .as_ref()
-            .and_then(|x| x.speed_ratio)
-            .unwrap_or(nan),
-        "sequentiality" => s.sequentiality.unwrap_or(nan),
-        "decode_error" => s.decode_ridge.unwrap_or(nan),
-        _ => nan,
-    }
-}
-
 /// Coefficient of variation of the mean Weber fraction across anchor pairs (needs runs on
 /// at least two different anchor pairs with a fit; `None` otherwise).
 pub fn wf_constancy(bisection: &[BisectionMetrics]) -> Option<f64> {
@@ -381,8 +339,8 @@ pub fn group_rows(results: Vec<RunResult>) -> Vec<Row> {
                 .collect();
             let robust = robust_columns(&g.metrics, &per_run_neural);
             if !g.neural.is_empty() {
-                for key in NEURAL_COLUMNS {
-                    let v = g.neural.iter().map(|s| neural_value(s, key));
+                for (key, value) in neural_columns() {
+                    let v = g.neural.iter().map(value);
                     values.insert(key.into(), Spread::of(v));
                 }
             }
@@ -407,9 +365,9 @@ pub fn group_rows(results: Vec<RunResult>) -> Vec<Row> {
             }
             if !g.adapt.is_empty() {
                 let eps = g.adapt.iter().map(|a| a.map_or(f64::NAN, |n| n as f64));
-                values.insert("unc_episodes_to_adapt".into(), Spread::of(eps));
+                values.insert(UNC_EPISODES_TO_ADAPT.into(), Spread::of(eps));
                 let adapted = g.adapt.iter().map(|a| f64::from(u8::from(a.is_some())));
-                values.insert("unc_adapted".into(), Spread::of(adapted));
+                values.insert(UNC_ADAPTED.into(), Spread::of(adapted));
             }
             let bisection: Vec<BisectionMetrics> = g
                 .metrics
@@ -417,7 +375,7 @@ pub fn group_rows(results: Vec<RunResult>) -> Vec<Row> {
                 .filter_map(|m| m.bisection.clone())
                 .collect();
             if let Some(c) = wf_constancy(&bisection) {
-                values.insert("wf_cv_anchors".into(), Spread::of([c]));
+                values.insert(WF_CV_ANCHORS.into(), Spread::of([c]));
             }
             let reproduction = g
                 .metrics

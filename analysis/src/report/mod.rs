@@ -7,6 +7,7 @@
 //! templates (maud escapes the text).
 
 pub mod baselines;
+pub mod columns;
 pub mod improvement;
 pub mod leaderboard;
 pub mod mechanisms;
@@ -25,199 +26,11 @@ pub const RUNS_LEGEND: &str = "evaluation folders aggregated in the row (seeds, 
 /// What a row labelled `model (study)` is (rows with [`Row::baseline`]).
 pub const BASELINE_LEGEND: &str = "rows labelled `model (study)` are committed baselines: the compact results of that study in the repository (results/<study>/jobs/, one run per job), grouped exactly as evaluation folders are";
 
-/// What every column means and which direction is better.
-pub const COLUMNS: [(&str, &str); 41] = [
-    (
-        "fi_success",
-        "FI: full-reward deliveries at the trained TD (higher is better)",
-    ),
-    (
-        "bisection_accuracy",
-        "correct counter on the two anchors (higher is better)",
-    ),
-    ("bp", "bisection point of the logistic fit, steps"),
-    (
-        "bp_over_gm",
-        "BP / geometric mean of the anchors (1 = geometric-mean bisection, as in animals)",
-    ),
-    ("bp_over_am", "BP / arithmetic mean of the anchors"),
-    ("wf", "Weber fraction DL/BP (lower = sharper timing)"),
-    (
-        "wf_cv_anchors",
-        "CV of the Weber fraction across anchor pairs (scalar timing: close to 0)",
-    ),
-    (
-        "foc_over_td",
-        "mean first oven check / TD (1 = checks exactly when the soup is ready)",
-    ),
-    (
-        "foc_cv",
-        "CV of the first oven check (scalar timing: constant across TDs)",
-    ),
-    ("r2_mean_vs_td", "R² of mean FOC vs TD (timing: close to 1)"),
-    (
-        "r2_sd_vs_mean",
-        "R² of FOC SD vs mean (scalar property: close to 1)",
-    ),
-    (
-        "pi_peak_over_td",
-        "peak-interval response peak / TD (1 = peaks at the trained time)",
-    ),
-    ("pi_cv", "peak-interval spread / peak (lower = sharper)"),
-    (
-        "mt_reward",
-        "multi-timer mean reward over TDs incl. OOD (higher is better)",
-    ),
-    ("mt_plateaus", "multi-timer timing plateaus (timers stored)"),
-    (
-        "dual_success",
-        "dual task: soup delivered inside the reward window (higher is better)",
-    ),
-    ("dual_reward", "dual-task mean reward (soup + sink)"),
-    (
-        "unc_success",
-        "uncertainty task: success with a normal oven (higher is better)",
-    ),
-    (
-        "unc_button_use",
-        "uncertainty task: button use when the oven never readies",
-    ),
-    (
-        "unc_episodes_to_adapt",
-        "uncertainty adaptation: episodes an agent trained without uncertainty plays until, in the last 100 episodes, 80% of the never-ready ovens are solved with the button and 80% of the normal ones without it (lower is better; runs that adapted)",
-    ),
-    (
-        "unc_adapted",
-        "uncertainty adaptation: fraction of runs that adapted within the budget (higher is better)",
-    ),
-    (
-        "ma_accuracy",
-        "multi-anchor: deliveries to the anchor's own counter at the anchor TDs, among deliveries (higher is better; bounded by the anchors' spacing)",
-    ),
-    (
-        "ma_bp_over_gm",
-        "multi-anchor: boundary between neighbouring anchors / their geometric mean, mean over the fitted boundaries",
-    ),
-    (
-        "ma_wf",
-        "multi-anchor: Weber fraction DL/BP, mean over the fitted boundaries (lower = sharper)",
-    ),
-    (
-        "mo_accuracy",
-        "multi-oven: correct counter at S and L, mean over the ovens (higher is better)",
-    ),
-    (
-        "mo_wf",
-        "multi-oven: Weber fraction of each oven's curve, mean over the ovens",
-    ),
-    (
-        "mo_d_wf",
-        "multi-oven interference: each oven's WF minus the same agent's one-oven WF, mean over the ovens (0 = no interference)",
-    ),
-    (
-        "rp_success",
-        "reproduction: productions inside the reward window (higher is better)",
-    ),
-    (
-        "rp_slope",
-        "reproduction: slope of mean tp against g·ts per prior and gain, mean over contexts (1 = no regression to the mean, < 1 = central tendency)",
-    ),
-    (
-        "rp_bias",
-        "reproduction: BIAS (root mean squared difference of mean tp and g·ts, steps), mean over contexts",
-    ),
-    (
-        "rp_weber",
-        "reproduction: Weber fraction of tp (SD / mean), mean over contexts",
-    ),
-    (
-        "neural_units",
-        "neural: units analysed in the primary population (constant units excluded), window 2 x TD after oven-on at the longest recorded TD",
-    ),
-    (
-        "frac_ramp",
-        "neural: fraction of ramps (time-locked, monotone fit R² ≥ 0.9); – below 10 units (counts in activity.summary.json)",
-    ),
-    (
-        "frac_time_field",
-        "neural: fraction of time fields (time-locked, one interior peak falling by half its range on both sides)",
-    ),
-    (
-        "frac_oscillating",
-        "neural: fraction of oscillating units (significant spectral peak with ≥ 2 cycles in the window, repeating autocorrelation)",
-    ),
-    (
-        "frac_mixed",
-        "neural: fraction of mixed units (time-locked with several or none of the three shapes)",
-    ),
-    (
-        "frac_untuned",
-        "neural: fraction of untuned units (not time-locked: circular-shift surrogate p > 0.05)",
-    ),
-    (
-        "scaling",
-        "neural: median per-unit temporal scaling factor from the shortest to the longest recorded TD (= TD ratio when activity stretches with the interval, 1 for a fixed clock)",
-    ),
-    (
-        "speed_ratio",
-        "neural: population trajectory speed at the longest TD over that at the shortest (= TD_short/TD_long when dynamics stretch)",
-    ),
-    (
-        "sequentiality",
-        "neural: sequentiality index (1 = tiling sequence, 0 = identical units)",
-    ),
-    (
-        "decode_error",
-        "neural: cross-validated ridge decoding error of elapsed time, steps (lower is better)",
-    ),
-];
-
-/// Short, readable header of a headline column (units in parentheses); [`COLUMNS`] holds
-/// the full description, shown as the header's tooltip and in the legend.
+/// Short, readable header of a headline column (units in parentheses); its
+/// [`columns::Column::doc`] is the full description, shown as the header's tooltip and in
+/// the legend.
 pub fn column_title(key: &str) -> &'static str {
-    match key {
-        "fi_success" | "dual_success" => "success",
-        "bisection_accuracy" => "anchor accuracy",
-        "bp" => "BP (steps)",
-        "bp_over_gm" => "BP / GM",
-        "bp_over_am" => "BP / AM",
-        "wf" => "Weber fraction",
-        "wf_cv_anchors" => "WF CV across pairs",
-        "foc_over_td" => "first check / TD",
-        "foc_cv" => "first-check CV",
-        "r2_mean_vs_td" => "R² mean~TD",
-        "r2_sd_vs_mean" => "R² SD~mean",
-        "pi_peak_over_td" => "peak / TD",
-        "pi_cv" => "spread / peak",
-        "mt_reward" => "mean reward",
-        "mt_plateaus" => "timers stored",
-        "dual_reward" => "mean reward",
-        "unc_success" => "success (normal oven)",
-        "unc_button_use" => "button use (never ready)",
-        "unc_episodes_to_adapt" => "episodes to adapt",
-        "unc_adapted" => "runs adapted",
-        "ma_accuracy" => "category accuracy",
-        "ma_bp_over_gm" => "boundary / GM",
-        "ma_wf" => "category WF",
-        "mo_accuracy" => "oven accuracy",
-        "mo_wf" => "oven WF",
-        "mo_d_wf" => "ΔWF vs one oven",
-        "rp_success" => "in window",
-        "rp_slope" => "tp~ts slope",
-        "rp_bias" => "BIAS (steps)",
-        "rp_weber" => "tp Weber fraction",
-        "neural_units" => "units",
-        "frac_ramp" => "ramps",
-        "frac_time_field" => "time fields",
-        "frac_oscillating" => "oscillating",
-        "frac_mixed" => "mixed",
-        "frac_untuned" => "untuned",
-        "scaling" => "scaling (long/short)",
-        "speed_ratio" => "speed ratio",
-        "sequentiality" => "sequentiality",
-        "decode_error" => "decoding error (steps)",
-        _ => "other",
-    }
+    columns::column(key).map_or("other", |c| c.title)
 }
 
 fn cell(s: Option<&Spread>) -> String {
@@ -294,33 +107,18 @@ fn run_caption(folder: &Path) -> String {
     format!("{} — {}", eval_folder_task(folder), folder.display())
 }
 
-/// Columns any row has, in [`COLUMNS`] order.
+/// Columns any row has, in [`columns::COLUMNS`] order: (key, description).
 fn used_columns(rows: &[Row]) -> Vec<(&'static str, &'static str)> {
-    COLUMNS
+    columns::COLUMNS
         .iter()
-        .copied()
+        .map(|c| (c.key, c.doc))
         .filter(|(k, _)| rows.iter().any(|r| r.values.contains_key(*k)))
         .collect()
 }
 
 /// The theme a headline column belongs to (the HTML report shows one table per theme).
 pub fn column_group(key: &str) -> &'static str {
-    match key {
-        k if k == "fi_success" || k.starts_with("foc_") || k.starts_with("r2_") => "Fixed interval",
-        k if k.starts_with("pi_") => "Peak interval",
-        k if k.starts_with("bisection") || k.starts_with("bp") || k.starts_with("wf") => {
-            "Bisection"
-        }
-        k if k.starts_with("mt_") => "Multi-timer",
-        k if k.starts_with("dual_") => "Dual task",
-        k if k.starts_with("unc_") => "Uncertainty",
-        k if k.starts_with("ma_") => "Multi-anchor categorization",
-        k if k.starts_with("mo_") => "Multi-oven bisection",
-        k if k.starts_with("rp_") => "Temporal reproduction",
-        // Two tables, so that each fits a 1366-pixel screen.
-        k if k == "neural_units" || k.starts_with("frac_") => "Neural activity: unit categories",
-        _ => "Neural activity: population",
-    }
+    columns::column(key).map_or(columns::NEURAL_POPULATION, |c| c.group)
 }
 
 /// The used columns grouped by [`column_group`], groups in first-appearance order.
@@ -612,38 +410,4 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
     files.extend(grid);
     files.extend(reproduction);
     Ok(files)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn every_headline_column_has_a_short_distinct_title_within_its_theme() {
-        for (k, _) in COLUMNS {
-            let t = column_title(k);
-            assert_ne!(t, "other", "{k} has no title");
-            assert!(
-                t.chars().count() <= 24,
-                "{k}: title {t:?} too long for the table"
-            );
-            let clash = COLUMNS
-                .iter()
-                .filter(|(o, _)| column_group(o) == column_group(k) && column_title(o) == t)
-                .count();
-            assert_eq!(
-                clash,
-                1,
-                "{k}: title {t:?} repeats within {}",
-                column_group(k)
-            );
-            // Only the neural summary's columns sit under "Neural activity".
-            let neural = leaderboard::NEURAL_COLUMNS.contains(&k);
-            assert_eq!(
-                column_group(k).starts_with("Neural activity"),
-                neural,
-                "{k}"
-            );
-        }
-    }
 }
