@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Prints RESULTS.md's "Committed baselines on the leaderboard" table from the committed
+# Prints results/baselines/README.md's "Committed baselines on the leaderboard" table from the committed
 # results/paper-core jobs, as `chronocooked report --baselines` computes it (tests/baselines.rs
-# checks RESULTS.md against the job files, so rerun this after collecting repeats):
+# checks that README against the job files, so rerun this after collecting repeats):
 #
 #   bash scripts/baseline-table.sh [BIN]
 set -euo pipefail

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Pastes results/mechanisms/mechanisms.md (written by `chronocooked mechanisms
-results/mechanisms`) and the study's job count into RESULTS.md's "Mechanisms" section,
+results/mechanisms`) and the study's job count into results/mechanisms/README.md,
 between the `<!-- mech -->` markers. Run from the repository root after collecting.
 
     python3 scripts/mechanisms-results.py
@@ -15,7 +15,7 @@ status = (f"**Status: {done} of 108 jobs finished** (every timing-mechanism job;
           "`chronocooked mechanisms results/mechanisms`). The agent rows below are preliminary: they rest on "
           "the PPO agents' jobs finished so far (n per model in the table; bisection features only where its jobs "
           "finished), so they are no finding yet.")
-p = pathlib.Path('RESULTS.md'); s = p.read_text()
+p = pathlib.Path('results/mechanisms/README.md'); s = p.read_text()
 s = re.sub(r'(\*\*Status: \d+ of 108 jobs finished\*\*.*?no finding yet\.|MECH_STATUS)', status, s, count=1, flags=re.S)
 s = re.sub(r'(<!-- mech -->.*?<!-- /mech -->|MECH_TABLES)', '<!-- mech -->\n' + tables.strip() + '\n<!-- /mech -->', s, count=1, flags=re.S)
 p.write_text(s)

@@ -1,7 +1,7 @@
 //! The committed baselines on the leaderboard: `report --eval NEW --baselines` writes the
 //! committed paper-core results as marked rows whose numbers equal those computed here,
 //! independently, from the job files (`episodes.csv`, one line per evaluation episode) —
-//! and equal the table of RESULTS.md ("Committed baselines on the leaderboard").
+//! and equal the table of results/baselines/README.md ("Committed baselines on the leaderboard").
 
 use crate::common;
 
@@ -184,11 +184,12 @@ fn committed_baseline_rows_equal_numbers_computed_from_the_job_files_and_results
         (oracle["baseline"].as_str(), oracle["runs"].as_str()),
         ("", "1")
     );
-    let results_md = std::fs::read_to_string(Path::new(ROOT).join("RESULTS.md")).unwrap();
+    let results_md =
+        std::fs::read_to_string(Path::new(ROOT).join("results/baselines/README.md")).unwrap();
     let section = results_md
         .split("## Committed baselines on the leaderboard")
         .nth(1)
-        .expect("RESULTS.md has the baseline section");
+        .expect("results/baselines/README.md has the baseline section");
     for model in MODELS {
         let label = format!("{model} (paper-core)");
         let row = rows
@@ -211,17 +212,17 @@ fn committed_baseline_rows_equal_numbers_computed_from_the_job_files_and_results
                 "{label} {key} SD: report {got_sd}, job files {sd}"
             );
         }
-        // RESULTS.md's table row: `| model | runs | FI success | anchor accuracy | FOC / TD |`
+        // results/baselines/README.md's table row: `| model | runs | FI success | anchor accuracy | FOC / TD |`
         // with mean ± SD to 3 decimals.
         let line = section
             .lines()
             .find(|l| l.starts_with(&format!("| {model} |")))
-            .unwrap_or_else(|| panic!("RESULTS.md: no row for {model}"));
+            .unwrap_or_else(|| panic!("results/baselines/README.md: no row for {model}"));
         let cells: Vec<&str> = line.split('|').map(str::trim).collect();
         assert_eq!(
             cells[2],
             format!("{}", want["runs"].0),
-            "RESULTS.md runs of {model}"
+            "results/baselines/README.md runs of {model}"
         );
         for (i, key) in [
             (3, "fi_success"),
@@ -232,7 +233,7 @@ fn committed_baseline_rows_equal_numbers_computed_from_the_job_files_and_results
             assert_eq!(
                 cells[i],
                 format!("{m:.3} ± {sd:.3}"),
-                "RESULTS.md {model} {key}"
+                "results/baselines/README.md {model} {key}"
             );
         }
     }

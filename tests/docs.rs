@@ -1,6 +1,7 @@
 //! The documentation's links: every relative link of README, the guide (`docs/`),
-//! ARCHITECTURE, RESULTS and BENCHMARKS names a file or folder that exists, and every guide
-//! page is reachable from the README.
+//! ARCHITECTURE, RESULTS, BENCHMARKS and every study's README names a file or folder that
+//! exists, every guide page is reachable from the README, and RESULTS is a findings page that
+//! links every study.
 
 use std::path::{Path, PathBuf};
 
@@ -45,7 +46,41 @@ fn pages() -> Vec<PathBuf> {
         .collect();
     guide.sort();
     v.extend(guide);
+    v.extend(study_pages());
     v
+}
+
+/// The README of every study folder under `results/` (each study's detail).
+fn study_pages() -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(root().join("results"))
+        .unwrap()
+        .flatten()
+        .map(|e| e.path().join("README.md"))
+        .filter(|p| p.is_file())
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn results_is_a_findings_page_that_links_every_study() {
+    let results = std::fs::read_to_string(root().join("RESULTS.md")).unwrap();
+    let lines = results.lines().count();
+    assert!(
+        lines <= 200,
+        "RESULTS.md has {lines} lines (at most 200: detail goes to results/<study>/README.md)"
+    );
+    let links = relative_links(&results);
+    let studies = study_pages();
+    assert!(studies.len() >= 10, "{} study READMEs", studies.len());
+    for page in studies {
+        let rel = page
+            .strip_prefix(root())
+            .unwrap()
+            .to_string_lossy()
+            .replace('\\', "/");
+        assert!(links.contains(&rel), "RESULTS.md does not link {rel}");
+    }
 }
 
 #[test]

@@ -137,7 +137,7 @@ pub fn run_zoo(cmd: ZooCommand) -> Result<()> {
                 println!();
             }
             if !entry.tasks.is_empty() {
-                println!("tasks (measured success: RESULTS.md, \"Timing models\"):");
+                println!("tasks (measured success: results/timing-models/README.md):");
                 for t in &entry.tasks {
                     match &t.limit {
                         None => println!("  {:<34} no mechanistic limit", t.task),
