@@ -46,6 +46,14 @@ fn pages() -> Vec<PathBuf> {
         .collect();
     guide.sort();
     v.extend(guide);
+    let mut tutorials: Vec<PathBuf> = std::fs::read_dir(root().join("docs/tutorials"))
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "md"))
+        .collect();
+    tutorials.sort();
+    v.extend(tutorials);
     v.extend(study_pages());
     v
 }
@@ -115,9 +123,19 @@ fn every_guide_page_is_linked_from_the_readme_and_the_readme_fits_on_a_few_scree
         if name == "README.md" || name == "paper-protocol.md" {
             continue;
         }
-        let want = format!("docs/{name}");
+        let want = page
+            .strip_prefix(root())
+            .unwrap()
+            .to_string_lossy()
+            .replace('\\', "/");
         assert!(links.contains(&want), "README does not link {want}");
     }
+    // The eight journeys, each one click from the README.
+    let tutorials: Vec<&String> = links
+        .iter()
+        .filter(|l| l.starts_with("docs/tutorials/"))
+        .collect();
+    assert_eq!(tutorials.len(), 8, "{tutorials:?}");
 }
 
 #[test]
@@ -149,4 +167,60 @@ fn the_committed_cli_reference_is_the_one_the_parser_generates() {
             "{command}"
         );
     }
+}
+
+/// The repository paths a Markdown text names in backticks (`env/src/registry.rs`,
+/// `results/paper-core/`): tokens whose first folder is one of the repository's own, with any
+/// `:line` or `#anchor` suffix dropped; tokens with placeholders (`<study>`, `*`, `…`) and
+/// output folders (`lab-out/`, `runs/`) are not paths of the repository.
+fn named_paths(text: &str) -> Vec<String> {
+    const ROOTS: [&str; 17] = [
+        "env", "models", "training", "analysis", "paper", "pipeline", "python", "src", "tests",
+        "sweeps", "results", "docs", "scripts", "zoo", "examples", "bench", ".ci",
+    ];
+    let mut out = Vec::new();
+    for token in text.split('`').skip(1).step_by(2) {
+        if token.contains(char::is_whitespace) {
+            continue;
+        }
+        let path = token
+            .split([':', '#'])
+            .next()
+            .unwrap_or_default()
+            .trim_end_matches(['.', ',', ';', ')']);
+        let Some((first, _)) = path.split_once('/') else {
+            continue;
+        };
+        let placeholder = path.contains(['<', '>', '*', '{', '}', '…', '[', ']', '$']);
+        if ROOTS.contains(&first) && !placeholder {
+            out.push(path.to_string());
+        }
+    }
+    out
+}
+
+#[test]
+fn the_path_reader_keeps_repository_paths_only() {
+    let paths = named_paths(
+        "`env/src/registry.rs:73` `results/<study>/` `lab-out/demo` `cargo test` \
+         `analysis/src/report/` `docs/cli.md#train` `x`",
+    );
+    assert_eq!(
+        paths,
+        ["env/src/registry.rs", "analysis/src/report/", "docs/cli.md"]
+    );
+}
+
+#[test]
+fn every_path_the_documentation_names_exists() {
+    let mut stale = Vec::new();
+    for page in pages() {
+        let text = std::fs::read_to_string(&page).unwrap();
+        for path in named_paths(&text) {
+            if !root().join(&path).exists() {
+                stale.push(format!("{}: {path}", page.display()));
+            }
+        }
+    }
+    assert!(stale.is_empty(), "paths that do not exist: {stale:#?}");
 }

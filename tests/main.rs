@@ -13,6 +13,7 @@ mod baselines;
 mod cli;
 mod cli_runs;
 mod corruption_props;
+mod doc_commands;
 mod docs;
 mod dynamics_view;
 mod eval_folders;

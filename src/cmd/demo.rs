@@ -25,6 +25,9 @@ pub struct StudyArgs {
     /// (top-level keys of sweeps/demo.toml; values in TOML syntax).
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub sets: Vec<String>,
+    /// List the demo's jobs and whether each is finished, run nothing (as `sweep --dry-run`).
+    #[arg(long)]
+    pub dry_run: bool,
 }
 
 /// The demo sweep text with `key=value` overrides of top-level keys applied.
@@ -50,13 +53,17 @@ pub fn demo_sweep(sets: &[String]) -> Result<String> {
 pub fn run(args: StudyArgs) -> Result<()> {
     let text = demo_sweep(&args.sets)?;
     let sweep = SweepFile::parse(&text, "demo")?;
+    let workers = args
+        .workers
+        .unwrap_or_else(crate::cmd::sweep::default_workers);
+    if args.dry_run {
+        crate::cmd::sweep::print_dry_run(&sweep, &sweep.jobs()?, &args.out, workers);
+        return Ok(());
+    }
     std::fs::create_dir_all(&args.out)?;
     let file = args.out.join("sweep.toml");
     write_atomic(&file, text.as_bytes())?;
     let file = std::path::absolute(&file)?;
-    let workers = args
-        .workers
-        .unwrap_or_else(crate::cmd::sweep::default_workers);
     let t0 = std::time::Instant::now();
     crate::cmd::sweep::run_sweep(&sweep, &file, &args.out, workers, true)?;
     eprintln!(

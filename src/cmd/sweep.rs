@@ -64,6 +64,38 @@ pub fn default_workers() -> usize {
         .unwrap_or(1)
 }
 
+/// `--dry-run`: every job of `sweep` with whether it is finished under `out`, then the
+/// count and the estimated PPO core-hours with `workers` workers.
+pub fn print_dry_run(sweep: &SweepFile, jobs: &[Job], out: &Path, workers: usize) {
+    let (mut all_s, mut todo_s, mut todo, mut unknown) = (0.0, 0.0, 0, 0);
+    for j in jobs {
+        let done = job_done(&job_dir(out, &j.id));
+        println!("{}  {}", if done { "done" } else { "todo" }, j.id);
+        let est = chronocooked_pipeline::sweep::estimate_seconds(sweep, j);
+        unknown += usize::from(est.is_none() && j.family == Family::DeepRl);
+        let s = est.unwrap_or(0.0);
+        all_s += s;
+        if !done {
+            todo += 1;
+            todo_s += s;
+        }
+    }
+    println!(
+        "{} jobs ({todo} to do); estimated {:.1} core-hours of PPO training ({:.1} to do; \
+         ≈ {:.1} h with {workers} workers) at the reference preset's measured throughput \
+         on the lab's 2-core machine (BENCHMARKS.md){}",
+        jobs.len(),
+        all_s / 3600.0,
+        todo_s / 3600.0,
+        todo_s / 3600.0 / workers as f64,
+        if unknown > 0 {
+            format!("; {unknown} jobs of unmeasured models not counted")
+        } else {
+            String::new()
+        }
+    );
+}
+
 /// Runs `sweep`.
 pub fn run(args: SweepArgs) -> Result<()> {
     let sweep = SweepFile::load(&args.file)?;
@@ -74,34 +106,8 @@ pub fn run(args: SweepArgs) -> Result<()> {
     let file = std::path::absolute(&args.file)?;
     let jobs = sweep.jobs()?;
     if args.dry_run {
-        let (mut all_s, mut todo_s, mut todo, mut unknown) = (0.0, 0.0, 0, 0);
-        for j in &jobs {
-            let done = job_done(&job_dir(&out, &j.id));
-            println!("{}  {}", if done { "done" } else { "todo" }, j.id);
-            let est = chronocooked_pipeline::sweep::estimate_seconds(&sweep, j);
-            unknown += usize::from(est.is_none() && j.family == Family::DeepRl);
-            let s = est.unwrap_or(0.0);
-            all_s += s;
-            if !done {
-                todo += 1;
-                todo_s += s;
-            }
-        }
         let workers = args.workers.unwrap_or_else(default_workers);
-        println!(
-            "{} jobs ({todo} to do); estimated {:.1} core-hours of PPO training ({:.1} to do; \
-             ≈ {:.1} h with {workers} workers) at the reference preset's measured throughput \
-             on the lab's 2-core machine (BENCHMARKS.md){}",
-            jobs.len(),
-            all_s / 3600.0,
-            todo_s / 3600.0,
-            todo_s / 3600.0 / workers as f64,
-            if unknown > 0 {
-                format!("; {unknown} jobs of unmeasured models not counted")
-            } else {
-                String::new()
-            }
-        );
+        print_dry_run(&sweep, &jobs, &out, workers);
         return Ok(());
     }
     if let Some(kind) = &args.emit {
