@@ -49,7 +49,16 @@ where
 {
     root.fill(&WHITE).map_err(err(path))?;
     let (w, h) = root.dim_in_pixel();
-    let (left, top, bottom, right) = (190i32, 48i32, 150i32, 16i32);
+    // Margins fit the longest row name and column name at the fonts below.
+    let longest_row = m.rows.iter().map(|r| r.chars().count()).max().unwrap_or(0) as i32;
+    let longest_col = m
+        .columns
+        .iter()
+        .map(|c| c.chars().count())
+        .max()
+        .unwrap_or(0) as i32;
+    let (left, top, right) = ((longest_row * 9 + 24).max(120), 52i32, 16i32);
+    let bottom = (longest_col * 9 + 24).max(60);
     let ncol = m.columns.len().max(1) as i32;
     let nrow = m.rows.len().max(1) as i32;
     let cw = ((w as i32 - left - right) / ncol).max(1);
@@ -66,7 +75,7 @@ where
         root.draw(&Text::new(
             row.clone(),
             (left - 8, y + ch / 2),
-            text(14).pos(Pos::new(HPos::Right, VPos::Center)),
+            text(16).pos(Pos::new(HPos::Right, VPos::Center)),
         ))
         .map_err(err(path))?;
         for (j, _) in m.columns.iter().enumerate() {
@@ -91,7 +100,7 @@ where
             root.draw(&Text::new(
                 label,
                 (x + cw / 2, y + ch / 2),
-                text(13).pos(Pos::new(HPos::Center, VPos::Center)),
+                text(15).pos(Pos::new(HPos::Center, VPos::Center)),
             ))
             .map_err(err(path))?;
         }
@@ -102,7 +111,7 @@ where
         root.draw(&Text::new(
             col.clone(),
             (x, below),
-            ("sans-serif", 13)
+            ("sans-serif", 16)
                 .into_font()
                 .transform(FontTransform::Rotate90)
                 .color(&BLACK)

@@ -44,9 +44,13 @@ pub use identify::{
     AgentVerdict, HeldOut, Identification, LIMIT_COVERAGE, SeedVerdict, identify, seed_verdicts,
 };
 pub use read::{
-    JobFiles, assemble, geometry_index_of_summary, scaling_index_of_summary, signatures,
+    CategoriesView, DynamicsView, JobFiles, PopulationView, ScalingView, assemble,
+    geometry_index_of_summary, scaling_index_of_summary, signatures,
 };
-pub use tables::{Written, fingerprint_figure, write_tables};
+pub use tables::{
+    PLACED_FINGERPRINT_CAPTION, Written, fingerprint_figure, placed_fingerprint_figure,
+    write_tables,
+};
 
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;

@@ -1,10 +1,11 @@
 //! The fingerprint tables and figure of a study (`chronocooked mechanisms RESULTS`).
 
 use super::{
-    ALL_FEATURES, Comparison, DYNAMICS_NEURAL, FEATURES, MECHANISMS, MechanismError, Signature,
-    View, compare, feature_sds, mean_features, read::signatures,
+    ALL_FEATURES, Comparison, DYNAMICS_NEURAL, FEATURES, MECHANISMS, MechanismError, Scale,
+    Signature, View, compare, feature_sds, mean_features, read::signatures,
 };
 use chronocooked_env::markdown::Table;
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// What [`write_tables`] wrote.
@@ -381,6 +382,99 @@ pub fn identification_markdown(id: &super::Identification) -> String {
     md
 }
 
+/// Caption of [`placed_fingerprint_figure`].
+pub const PLACED_FINGERPRINT_CAPTION: &str = "Each model of this report (bottom rows, seed means) beside the committed timing mechanisms (top rows: seed means of results/mechanisms-reference, 8 seeds each): every feature of both views, in within-mechanism seed SDs from the mechanisms' mean, the units the distances are measured in (colour full at ±2; – a feature the model lacks). The table below gives each model's nearest mechanism, its distance and that mechanism's identification limit, in each view.";
+
+/// The report's fingerprint figure: the committed mechanisms' seed means (`reference`, one
+/// row each, labelled with their seed counts) above the report's models (`sigs`, seed
+/// means), one column per feature of the unit view then the dynamics view's own, each cell
+/// the feature in within-mechanism seed SDs (pooled over the [`MECHANISMS`],
+/// as the distances are) from the mechanisms' mean. SVG and PNG at `stem`, drawn at the
+/// width the report shows it (1300 px), so its text is read at its own size.
+pub fn placed_fingerprint_figure(
+    sigs: &[Signature],
+    reference: &[Signature],
+    stem: &Path,
+) -> Result<Vec<PathBuf>, MechanismError> {
+    use crate::figures::{LabelledMatrix, write_matrix};
+    let refs: Vec<&Signature> = reference.iter().collect();
+    let mut columns: Vec<&'static str> = View::Units.features().to_vec();
+    for f in View::Dynamics.features() {
+        if !columns.contains(f) {
+            columns.push(f);
+        }
+    }
+    let mut sds: BTreeMap<&'static str, f64> = BTreeMap::new();
+    for view in View::ALL {
+        sds.extend(Scale::of(&refs, &MECHANISMS, view).sds);
+    }
+    let group_mean = |model: &str, pool: &[&Signature]| {
+        let mine: Vec<&Signature> = pool.iter().copied().filter(|s| s.model == model).collect();
+        (mine.len(), mean_features(&mine))
+    };
+    let mechanism_means: Vec<(&str, usize, BTreeMap<&'static str, f64>)> = MECHANISMS
+        .iter()
+        .map(|m| {
+            let (n, mean) = group_mean(m, &refs);
+            (*m, n, mean)
+        })
+        .filter(|(_, n, _)| *n > 0)
+        .collect();
+    let centre: BTreeMap<&'static str, f64> = columns
+        .iter()
+        .filter_map(|f| {
+            let v: Vec<f64> = mechanism_means
+                .iter()
+                .filter_map(|m| m.2.get(f).copied())
+                .collect();
+            (!v.is_empty()).then(|| (*f, v.iter().sum::<f64>() / v.len() as f64))
+        })
+        .collect();
+    let z = |mean: &BTreeMap<&'static str, f64>| -> Vec<f64> {
+        columns
+            .iter()
+            .map(|f| {
+                (|| Some((mean.get(f)? - centre.get(f)?) / sds.get(f).filter(|s| **s > 0.0)?))()
+                    .unwrap_or(f64::NAN)
+            })
+            .collect()
+    };
+    let mut rows = Vec::new();
+    let mut values = Vec::new();
+    for (m, n, mean) in &mechanism_means {
+        rows.push(format!("{m} (study, {n} seeds)"));
+        values.push(z(mean));
+    }
+    let own: Vec<&Signature> = sigs.iter().collect();
+    let mut models: Vec<&str> = sigs.iter().map(|s| s.model.as_str()).collect();
+    models.sort_unstable();
+    models.dedup();
+    for m in models {
+        let (n, mean) = group_mean(m, &own);
+        let seeds = if n == 1 {
+            "1 seed".to_string()
+        } else {
+            format!("{n} seeds")
+        };
+        rows.push(format!("{m} (this report, {seeds})"));
+        values.push(z(&mean));
+    }
+    let height = 70 + 34 * rows.len() as u32 + 210;
+    let matrix = LabelledMatrix {
+        title:
+            "Fingerprints beside the committed mechanisms: features in within-mechanism seed SDs"
+                .into(),
+        rows,
+        columns: columns.iter().map(|f| f.to_string()).collect(),
+        values,
+        scale: 2.0,
+    };
+    write_matrix(stem, &matrix, (1300, height)).map_err(|e| MechanismError::File {
+        path: stem.to_path_buf(),
+        message: e.to_string(),
+    })
+}
+
 /// The fingerprints as a heat map: one row per model (seed mean), one column per named
 /// feature, each cell the feature's value in SDs from its mean over all signatures
 /// (diverging colours, full at ±2 SD, the value printed); SVG and PNG at `stem`.
@@ -416,4 +510,54 @@ pub fn fingerprint_figure(sigs: &[Signature], stem: &Path) -> Result<Vec<PathBuf
         path: stem.to_path_buf(),
         message: e.to_string(),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A report model whose seed mean is a mechanism's seed mean is drawn with that
+    /// mechanism's values: the figure places it on the committed study's scale, and the
+    /// mechanisms' rows come first, each with its seed count.
+    #[test]
+    fn the_placed_figure_draws_a_model_on_the_mechanisms_scale() {
+        let reference = crate::fingerprint::reference_signatures();
+        let ddm: Vec<&Signature> = reference.iter().filter(|s| s.model == "ddm").collect();
+        let mean = mean_features(&ddm);
+        let copy = Signature {
+            model: "my-agent".into(),
+            seed: 0,
+            features: mean.iter().map(|(k, v)| (k.to_string(), *v)).collect(),
+        };
+        let dir = tempfile::tempdir().unwrap();
+        let files = placed_fingerprint_figure(&[copy], &reference, &dir.path().join("fp")).unwrap();
+        let svg = std::fs::read_to_string(&files[0]).unwrap();
+        let at = |text: &str| svg.find(text).unwrap_or_else(|| panic!("{text} missing"));
+        assert!(at("ddm (study, 8 seeds)") < at("timecells-laplace (study, 8 seeds)"));
+        assert!(at("timecells-laplace (study, 8 seeds)") < at("my-agent (this report, 1 seed)"));
+        for f in View::Units
+            .features()
+            .iter()
+            .chain(View::Dynamics.features())
+        {
+            at(&format!(">\n{f}\n<"));
+        }
+        // The copy's row repeats the ddm row's printed values, cell for cell.
+        let texts: Vec<&str> = svg
+            .split("</text>")
+            .filter_map(|t| t.rsplit('>').next())
+            .collect();
+        let mut columns: Vec<&str> = View::Units.features().to_vec();
+        columns.extend(
+            View::Dynamics
+                .features()
+                .iter()
+                .filter(|f| !View::Units.features().contains(f)),
+        );
+        let row = |name: &str| {
+            let i = texts.iter().position(|t| t.contains(name)).unwrap();
+            texts[i + 1..i + 1 + columns.len()].to_vec()
+        };
+        assert_eq!(row("ddm (study"), row("my-agent"));
+    }
 }

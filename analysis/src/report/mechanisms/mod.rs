@@ -370,25 +370,24 @@ pub fn mechanisms_section(rows: &[Row], out: &Path) -> Result<(Markup, String), 
         .map(|card| card_html(card, &dir))
         .collect::<Result<Vec<_>, _>>()?;
     let nearest = placement_tables(&sigs);
-    let fig = crate::mechanisms::fingerprint_figure(&sigs, &dir.join("fingerprints"))
-        .map_err(|e| e.to_string())?;
+    // The report's own models beside the committed mechanisms' seeds (never among this
+    // report's one-seed runs of the mechanisms): the same reference the table below places
+    // them against.
+    let fig = crate::mechanisms::placed_fingerprint_figure(
+        &sigs,
+        &crate::fingerprint::reference_signatures(),
+        &dir.join("fingerprints"),
+    )
+    .map_err(|e| e.to_string())?;
     let fingerprint = match fig
         .iter()
         .find(|p| p.extension().is_some_and(|e| e == "svg"))
     {
-        Some(svg) => {
-            let names: Vec<String> = crate::mechanisms::FEATURES
-                .iter()
-                .enumerate()
-                .map(|(i, f)| format!("{i} {f}"))
-                .collect();
-            let caption = format!(
-                "fingerprints: each model's features (seed means) in SDs from the mean of \
-                 all signatures; features: {}",
-                names.join(", ")
-            );
-            Some(figure_file(svg, &caption, Some("half"))?)
-        }
+        Some(svg) => Some(figure_file(
+            svg,
+            crate::mechanisms::PLACED_FINGERPRINT_CAPTION,
+            Some("wide"),
+        )?),
         None => None,
     };
     let html = html! {
