@@ -231,7 +231,10 @@ fn scaling_from_a_sweep_records_each_model_and_seed_at_both_tds_and_enters_the_f
     assert_eq!(acc["scaling"]["td_long"], 12);
     let sig = signatures(&results).unwrap();
     let index = sig[0].features["scaling_index"];
-    let expected = chronocooked_analysis::mechanisms::scaling_index_of_summary(&summary).unwrap();
+    let view =
+        chronocooked_analysis::mechanisms::PopulationView::read(&dir.join("activity.summary.json"))
+            .unwrap();
+    let expected = chronocooked_analysis::mechanisms::scaling_index_of_summary(&view).unwrap();
     assert_eq!(index, expected);
     // A second run finds it recorded.
     assert!(run_ok(&args).contains("0 model x seed groups recorded, 1 already there"));

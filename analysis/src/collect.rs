@@ -237,11 +237,6 @@ pub fn err(path: &Path, e: impl std::fmt::Display) -> CollectError {
     }
 }
 
-fn read_json(path: &Path) -> Result<serde_json::Value, CollectError> {
-    let text = std::fs::read_to_string(path).map_err(|e| err(path, e))?;
-    serde_json::from_str(&text).map_err(|e| err(path, e))
-}
-
 /// Reads a run's `curves.csv` (by column name).
 pub fn read_curve(path: &Path) -> Result<Vec<CurveRow>, CollectError> {
     let mut rd = csv::Reader::from_path(path).map_err(|e| err(path, e))?;
@@ -304,32 +299,31 @@ pub fn summarise_job(dir: &Path) -> Result<Option<CompactJob>, CollectError> {
     if !eval.join(METRICS).is_file() || !eval.join(RECORDS).is_file() {
         return Ok(None);
     }
-    let job = read_json(&dir.join(job_folder::JOB))?;
+    let job = job_folder::read_job(dir).map_err(|e| err(&dir.join(job_folder::JOB), e))?;
     // A reference agent's job (oracle, random) trains nothing: no run folder, no curve.
-    let run_config = dir.join(job_folder::RUN).join(run_folder::CONFIG);
-    let trained = dir.join(job_folder::RUN).is_dir();
+    let run = dir.join(job_folder::RUN);
+    let trained = run.is_dir();
     let cfg = if trained {
-        read_json(&run_config)?
+        run_folder::read_config_header(&run).map_err(|e| err(&run.join(run_folder::CONFIG), e))?
     } else {
-        serde_json::Value::Null
+        run_folder::ConfigHeader::default()
     };
     // A multi-timer curriculum run that kept its levels' policies is evaluated once they are
     // too (the levels stage). The multi-anchor/multi-oven curricula's levels are copied when
     // evaluated (jobs evaluated before that stage covered them have none).
-    let kept_levels = dir.join(job_folder::RUN).join(run_folder::LEVELS).is_dir();
-    let multi_timer = cfg["curriculum"]["kind"].as_str() == Some("multi_timer");
+    let kept_levels = run.join(run_folder::LEVELS).is_dir();
+    let multi_timer = cfg.curriculum_kind() == Some("multi_timer");
     if kept_levels && multi_timer && !eval.join(LEVELS_CSV).is_file() {
         return Ok(None);
     }
     // A timing-model run's curves.csv has its own columns (episodes, not PPO updates): its
     // compact result keeps the evaluation, metrics and neural summary, no PPO curve.
-    let curve = if !trained || cfg["kind"].as_str() == Some("timing") {
+    let curve = if !trained || cfg.is_timing() {
         Vec::new()
     } else {
-        read_curve(&dir.join(job_folder::RUN).join(run_folder::CURVES))?
+        read_curve(&run.join(run_folder::CURVES))?
     };
     let records = read_records(&eval).map_err(|e| err(&eval.join(RECORDS), e))?;
-    let s = |v: &serde_json::Value, k: &str| v[k].as_str().unwrap_or_default().to_string();
     let mut level_steps = vec![0];
     let mut prev = curve.first().map_or(0, |r| r.curriculum_level);
     for w in &curve {
@@ -340,19 +334,19 @@ pub fn summarise_job(dir: &Path) -> Result<Option<CompactJob>, CollectError> {
     }
     let last = curve.last();
     let summary = JobSummary {
-        id: s(&job, "id"),
-        task: Task::deserialize(&job).map_err(|e| err(&dir.join(job_folder::JOB), e))?,
-        model: s(&job, "model"),
-        row: job["row"].as_str().map(String::from),
-        seed: job["seed"].as_u64().unwrap_or(0),
-        preset: s(&cfg, "preset"),
-        total_steps: cfg["total_steps"].as_u64().unwrap_or(0),
+        id: job.id,
+        task: job.task,
+        model: job.model,
+        row: job.row,
+        seed: job.seed,
+        preset: cfg.preset,
+        total_steps: cfg.total_steps,
         steps_done: last.map_or(0, |r| r.env_steps),
         wall_s: last.map_or(f64::NAN, |r| r.wall_s),
         final_ep_len_mean: last.map_or(f64::NAN, |r| r.ep_len_mean),
         final_ep_return_mean: last.map_or(f64::NAN, |r| r.ep_return_mean),
         level_steps,
-        ppo: cfg["ppo"].clone(),
+        ppo: cfg.ppo,
     };
     let episodes = records.iter().map(EpisodeRow::of).collect();
     // Every 10th update, level changes and the last row.
@@ -397,9 +391,7 @@ pub fn check_complete(root: &Path) -> Result<(), CollectError> {
 /// `done`) and no process is writing it now. A job whose record or export stage failed is
 /// not finished, and neither is one a sweep worker is still running.
 pub fn job_finished(dir: &Path) -> bool {
-    let done =
-        read_json(&dir.join(job_folder::PROGRESS)).is_ok_and(|p| p["done"].as_bool() == Some(true));
-    done && chronocooked_env::fs::ensure_not_being_written(dir).is_ok()
+    job_folder::job_done(dir) && chronocooked_env::fs::ensure_not_being_written(dir).is_ok()
 }
 
 /// Writes the compact results of every finished job under `sweep_out` ([`job_finished`];
@@ -414,8 +406,11 @@ pub fn collect(sweep_out: &Path, to: &Path) -> Result<(usize, usize), CollectErr
     }
     let _lock = chronocooked_env::fs::FolderLock::acquire(to).map_err(|e| err(to, e))?;
     let marker = to.join(UNFINISHED_MARKER);
-    let note = serde_json::json!({ "sweep_out": sweep_out.display().to_string() });
-    chronocooked_env::fs::write_atomic(&marker, note.to_string().as_bytes())
+    let note = crate::results_folder::UnfinishedCollect {
+        sweep_out: sweep_out.display().to_string(),
+    };
+    let note = serde_json::to_string(&note).map_err(|e| err(&marker, e))?;
+    chronocooked_env::fs::write_atomic(&marker, note.as_bytes())
         .map_err(|e| err(&marker, e.error))?;
     let (mut written, mut pending) = (0, 0);
     for dir in job_folders(sweep_out) {
@@ -445,11 +440,17 @@ pub fn collect(sweep_out: &Path, to: &Path) -> Result<(usize, usize), CollectErr
         let metrics = dir.join(job_folder::EVAL).join(METRICS);
         let text = std::fs::read(&metrics).map_err(|e| err(&metrics, e))?;
         // Copied as written, but only once it is a metrics object (never a corrupt file).
-        let parsed: serde_json::Value =
-            serde_json::from_slice(&text).map_err(|e| err(&metrics, e))?;
-        if !parsed.get("conditions").is_some_and(|c| c.is_array()) {
-            return Err(err(&metrics, "not a metrics file (no `conditions` list)"));
+        #[derive(serde::Deserialize)]
+        struct MetricsShape {
+            #[allow(dead_code)]
+            conditions: Vec<serde::de::IgnoredAny>,
         }
+        serde_json::from_slice::<MetricsShape>(&text).map_err(|e| {
+            err(
+                &metrics,
+                format!("not a metrics file (a `conditions` list): {e}"),
+            )
+        })?;
         let m_path = out.join(METRICS);
         chronocooked_env::fs::write_atomic(&m_path, &text).map_err(|e| err(&m_path, e.error))?;
         // The curriculum levels' evaluation, copied once it parses as one.
@@ -463,14 +464,12 @@ pub fn collect(sweep_out: &Path, to: &Path) -> Result<(usize, usize), CollectErr
         let neural = dir.join(job_folder::ACTIVITY_SUMMARY);
         if neural.is_file() {
             let text = std::fs::read(&neural).map_err(|e| err(&neural, e))?;
-            let parsed: serde_json::Value =
-                serde_json::from_slice(&text).map_err(|e| err(&neural, e))?;
-            if !parsed.is_array() {
-                return Err(err(
+            serde_json::from_slice::<Vec<serde::de::IgnoredAny>>(&text).map_err(|e| {
+                err(
                     &neural,
-                    "not a neural summary (no list of populations)",
-                ));
-            }
+                    format!("not a neural summary (a list of populations): {e}"),
+                )
+            })?;
             let n_path = out.join(job_folder::ACTIVITY_SUMMARY);
             chronocooked_env::fs::write_atomic(&n_path, &text)
                 .map_err(|e| err(&n_path, e.error))?;
@@ -519,7 +518,8 @@ pub fn read_compact(root: &Path) -> Result<Vec<CompactJob>, CollectError> {
     for dir in job_folders(&root.join("jobs")) {
         let job: JobSummary = {
             let p = dir.join(job_folder::JOB);
-            serde_json::from_value(read_json(&p)?).map_err(|e| err(&p, e))?
+            let text = std::fs::read_to_string(&p).map_err(|e| err(&p, e))?;
+            serde_json::from_str(&text).map_err(|e| err(&p, e))?
         };
         let episodes: Vec<EpisodeRow> = read_rows(&dir.join("episodes.csv"))?;
         let curve: Vec<CurveRow> = read_rows(&dir.join("curve.csv"))?;

@@ -10,6 +10,13 @@ use std::path::Path;
 /// The marker of a results folder that `paper collect` is writing or left unfinished.
 pub const UNFINISHED_MARKER: &str = "collect-unfinished.json";
 
+/// The [`UNFINISHED_MARKER`]'s contents: the sweep output the unfinished collect read.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct UnfinishedCollect {
+    /// The sweep output folder, as given to `paper collect`.
+    pub sweep_out: String,
+}
+
 /// Refuses a results folder that another process is writing, or that a `paper collect`
 /// left unfinished; the error names the marker and the command that completes the folder.
 pub fn check_complete(root: &Path) -> Result<(), String> {
@@ -20,9 +27,8 @@ pub fn check_complete(root: &Path) -> Result<(), String> {
     }
     let from = std::fs::read_to_string(&marker)
         .ok()
-        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
-        .and_then(|v| v["sweep_out"].as_str().map(String::from))
-        .unwrap_or_else(|| "SWEEP_OUT".into());
+        .and_then(|t| serde_json::from_str::<UnfinishedCollect>(&t).ok())
+        .map_or_else(|| "SWEEP_OUT".into(), |m| m.sweep_out);
     Err(format!(
         "{}: this results folder is incomplete: a `paper collect` into it did not finish \
          (killed, or stopped by an error); complete it with `chronocooked paper collect {from} \

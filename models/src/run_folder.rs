@@ -46,6 +46,56 @@ pub const FIGURES: &str = "figures";
 /// The run's summary (JSON), written last: its presence marks a finished run.
 pub const SUMMARY: &str = "summary.json";
 
+/// What readers outside the training crate need of a run's [`CONFIG`], typed (PPO and
+/// timing runs alike; the full configurations are the training crate's `TrainConfig` and
+/// `TimingRunConfig`): which kind of run it is, its preset, budget and curriculum, and the
+/// PPO settings kept verbatim.
+#[derive(Debug, Clone, Default, PartialEq, serde::Deserialize)]
+pub struct ConfigHeader {
+    /// `"timing"` for a timing-model run; absent for PPO runs.
+    #[serde(default)]
+    pub kind: Option<String>,
+    /// PPO preset (`reference`, `fast`); empty for timing runs.
+    #[serde(default)]
+    pub preset: String,
+    /// PPO env-step budget; 0 for timing runs.
+    #[serde(default)]
+    pub total_steps: u64,
+    /// PPO curriculum; `None` for timing runs.
+    #[serde(default)]
+    pub curriculum: Option<CurriculumHeader>,
+    /// The PPO settings as written (`null` for timing runs): copied, never read field by
+    /// field outside the training crate.
+    #[serde(default)]
+    pub ppo: serde_json::Value,
+}
+
+/// A PPO run's curriculum in its [`CONFIG`]: its kind (`none`, `multi_timer`, …).
+#[derive(Debug, Clone, PartialEq, serde::Deserialize)]
+pub struct CurriculumHeader {
+    /// Curriculum kind.
+    pub kind: String,
+}
+
+impl ConfigHeader {
+    /// Whether the run is a timing model's.
+    pub fn is_timing(&self) -> bool {
+        self.kind.as_deref() == Some("timing")
+    }
+
+    /// The curriculum kind (`None` without one).
+    pub fn curriculum_kind(&self) -> Option<&str> {
+        self.curriculum.as_ref().map(|c| c.kind.as_str())
+    }
+}
+
+/// Reads the [`CONFIG`] of the run folder `run`; the error names the file and the field.
+pub fn read_config_header(run: &std::path::Path) -> Result<ConfigHeader, String> {
+    let path = run.join(CONFIG);
+    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
+}
+
 /// A run folder's learning curve ([`CURVES`]) read back, the one reader of that file: its
 /// header and every complete row (a row cut short by a killed writer — fewer fields than
 /// the header — is left out). A field that is not a number (an empty evaluation column)

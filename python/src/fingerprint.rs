@@ -217,30 +217,7 @@ pub fn fingerprint_distance(a: PathBuf, b: PathBuf, view: &str) -> PyResult<f64>
         }
     };
     let read = |dir: &std::path::Path| -> PyResult<Signature> {
-        let path = dir.join("fingerprint.json");
-        let text = std::fs::read_to_string(&path).map_err(|e| {
-            value_err(format!(
-                "{}: {e} (a folder written by `fingerprint`)",
-                path.display()
-            ))
-        })?;
-        let json: serde_json::Value = serde_json::from_str(&text)
-            .map_err(|e| value_err(format!("{}: {e}", path.display())))?;
-        let sig = &json["units"]["signature"];
-        let features = sig
-            .as_object()
-            .ok_or_else(|| value_err(format!("{}: no field `units.signature`", path.display())))?
-            .iter()
-            .filter_map(|(k, v)| v.as_f64().map(|x| (k.clone(), x)))
-            .collect();
-        Ok(Signature {
-            model: json["units"]["model"]
-                .as_str()
-                .unwrap_or("agent")
-                .to_string(),
-            seed: 0,
-            features,
-        })
+        chronocooked_analysis::fingerprint::read_signature(dir).map_err(value_err)
     };
     let reference = chronocooked_analysis::fingerprint::reference_signatures();
     Ok(signature_distance(&read(&a)?, &read(&b)?, &reference, view))

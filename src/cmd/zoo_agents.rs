@@ -83,11 +83,6 @@ pub struct ZooAddArgs {
     pub zoo: PathBuf,
 }
 
-fn read_json(path: &Path) -> Result<serde_json::Value> {
-    let text = std::fs::read_to_string(path).with_context(|| path.display().to_string())?;
-    serde_json::from_str(&text).with_context(|| format!("{}: not JSON", path.display()))
-}
-
 /// The evaluation record of a metrics file.
 pub fn evaluation(metrics: &Metrics) -> ZooEvaluation {
     ZooEvaluation {
@@ -132,16 +127,14 @@ fn same_episodes(eval: &Path, committed: &Path) -> Result<Option<bool>> {
 /// `zoo/<model>/<task>/`, writes its provenance, records every file in `SHA256SUMS` and
 /// adds the agent to the index.
 pub fn add(args: ZooAddArgs) -> Result<()> {
-    let job = read_json(&args.job.join(job_folder::JOB))?;
-    let s = |k: &str| -> Result<String> {
-        job[k].as_str().map(str::to_string).with_context(|| {
-            format!(
-                "{}: field `{k}` missing",
-                args.job.join(job_folder::JOB).display()
-            )
-        })
-    };
-    let (id, task, model) = (s("id")?, s("task")?, s("model")?);
+    let job = job_folder::read_job(&args.job).map_err(anyhow::Error::msg)?;
+    if job.id.is_empty() {
+        bail!(
+            "{}: field `id` missing (a sweep job's job.json)",
+            args.job.join(job_folder::JOB).display()
+        );
+    }
+    let (id, task, model) = (job.id.clone(), job.task.id().to_string(), job.model.clone());
     let run = args.job.join(job_folder::RUN);
     let eval = args.job.join(job_folder::EVAL);
     // The model must load intact before it is copied.

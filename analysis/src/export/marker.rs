@@ -6,11 +6,33 @@
 
 use chronocooked_env::fs::write_atomic;
 use chronocooked_env::integrity::sha256_hex;
-use serde_json::json;
+use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
 /// File name of the marker.
 pub const MARKER: &str = "export.json";
+
+/// The marker's contents (`export.json`), read and written only through this type.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ExportMarker {
+    /// Format version (1).
+    pub format: u32,
+    /// Always `true`: the marker is written after every file.
+    pub complete: bool,
+    /// Every file of the export, in the order written.
+    pub files: Vec<ExportedFile>,
+}
+
+/// One exported file as the marker records it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ExportedFile {
+    /// Path relative to the export folder.
+    pub name: String,
+    /// Size (bytes).
+    pub bytes: u64,
+    /// SHA-256 of the contents, hex.
+    pub sha256: String,
+}
 
 /// Runs `write` (which writes the export's files into `dir` and returns them) between
 /// removing `dir/export.json` and writing it anew; returns the files with the marker last.
@@ -35,17 +57,17 @@ pub fn write_export(
                 dir.display()
             )
         })?;
-        listed.push(json!({
-            "name": name.to_string_lossy(),
-            "bytes": bytes.len(),
-            "sha256": sha256_hex(&bytes),
-        }));
+        listed.push(ExportedFile {
+            name: name.to_string_lossy().into_owned(),
+            bytes: bytes.len() as u64,
+            sha256: sha256_hex(&bytes),
+        });
     }
-    let text = serde_json::to_string_pretty(&json!({
-        "format": 1,
-        "complete": true,
-        "files": listed,
-    }))
+    let text = serde_json::to_string_pretty(&ExportMarker {
+        format: 1,
+        complete: true,
+        files: listed,
+    })
     .map_err(|e| e.to_string())?;
     write_atomic(&marker, text.as_bytes()).map_err(|e| e.to_string())?;
     files.push(marker);
@@ -64,20 +86,12 @@ pub fn check_export(dir: &Path) -> Result<(), String> {
             dir.display()
         )
     })?;
-    let v: serde_json::Value =
+    let record: ExportMarker =
         serde_json::from_str(&text).map_err(|e| format!("{}: {e}", marker.display()))?;
-    let files = v["files"]
-        .as_array()
-        .ok_or_else(|| format!("{}: no `files` list", marker.display()))?;
-    for f in files {
-        let name = f["name"]
-            .as_str()
-            .ok_or_else(|| format!("{}: a file without `name`", marker.display()))?;
-        let path = dir.join(name);
+    for f in &record.files {
+        let path = dir.join(&f.name);
         let bytes = std::fs::read(&path).map_err(|e| format!("{}: {e}", path.display()))?;
-        if f["bytes"].as_u64() != Some(bytes.len() as u64)
-            || f["sha256"].as_str() != Some(sha256_hex(&bytes).as_str())
-        {
+        if f.bytes != bytes.len() as u64 || f.sha256 != sha256_hex(&bytes) {
             return Err(format!(
                 "{}: differs from its record in {} (the folder mixes two exports): rerun \
                  `chronocooked export`",

@@ -8,7 +8,7 @@ use super::play::PROTOCOL;
 use crate::figures::markup::{figure_file, page};
 use crate::figures::{Chart, Series, write_chart_sized, write_panels};
 use crate::job_folder;
-use crate::mechanisms::MechanismError;
+use crate::mechanisms::{MechanismError, Signature};
 use chronocooked_env::markdown::Table;
 use maud::html;
 use std::path::{Path, PathBuf};
@@ -289,4 +289,38 @@ pub fn write_fingerprint(dir: &Path, f: &Fingerprint) -> Result<Vec<PathBuf>, Me
     // The placement last: a folder with `fingerprint.json` is a complete fingerprint.
     files.push(write("fingerprint.json", text.as_bytes())?);
     Ok(files)
+}
+
+/// The agent's signature as a fingerprint folder's `fingerprint.json` records it (its unit
+/// view's model and features; both views place the same signature), read typed: what a
+/// pairwise distance between two recorded agents needs. Errors name the file.
+pub fn read_signature(dir: &Path) -> Result<Signature, String> {
+    #[derive(serde::Deserialize)]
+    struct File {
+        units: Recorded,
+    }
+    #[derive(serde::Deserialize)]
+    struct Recorded {
+        #[serde(default)]
+        model: Option<String>,
+        signature: std::collections::BTreeMap<String, Option<f64>>,
+    }
+    let path = dir.join("fingerprint.json");
+    let text = std::fs::read_to_string(&path).map_err(|e| {
+        format!(
+            "{}: {e} (a folder written by `fingerprint`)",
+            path.display()
+        )
+    })?;
+    let file: File = serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(Signature {
+        model: file.units.model.unwrap_or_else(|| "agent".into()),
+        seed: 0,
+        features: file
+            .units
+            .signature
+            .into_iter()
+            .filter_map(|(k, v)| v.map(|x| (k, x)))
+            .collect(),
+    })
 }

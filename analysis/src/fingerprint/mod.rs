@@ -24,7 +24,7 @@ mod card;
 mod place;
 mod play;
 
-pub use card::{agreement, verdict, write_fingerprint};
+pub use card::{agreement, read_signature, verdict, write_fingerprint};
 pub use place::{
     Fingerprint, MechanismDistance, Placement, REFERENCE_SOURCE, place, reference_signatures,
     signatures_from_csv,

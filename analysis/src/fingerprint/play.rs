@@ -204,11 +204,11 @@ pub fn agent_signature(
         }
         if tds >= 2 {
             let summaries = population_summaries(&merged, units_correspond, seed);
-            let json = serde_json::to_value(&summaries).map_err(|e| MechanismError::at(dir, e))?;
-            if let Some(i) = scaling_index_of_summary(&json).filter(|i| i.is_finite()) {
+            let view = crate::mechanisms::PopulationView::all(&summaries);
+            if let Some(i) = scaling_index_of_summary(&view).filter(|i| i.is_finite()) {
                 scaling.push((model.to_string(), seed, "scaling_index", i));
             }
-            if let Some(i) = geometry_index_of_summary(&json).filter(|i| i.is_finite()) {
+            if let Some(i) = geometry_index_of_summary(&view).filter(|i| i.is_finite()) {
                 scaling.push((model.to_string(), seed, "dyn_scaling", i));
             }
         }

@@ -3,12 +3,15 @@
 
 use super::{MechanismError, READOUTS, Signature};
 use crate::job_folder;
+use crate::neural::categories::CATEGORIES;
+use crate::neural::summary::NeuralSummary;
 use crate::records::METRICS;
-use serde_json::Value;
+use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-fn read(path: &Path) -> Result<Value, MechanismError> {
+/// Reads a JSON file as `T`; errors name the file.
+fn read<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T, MechanismError> {
     let text = std::fs::read_to_string(path).map_err(|e| MechanismError::File {
         path: path.to_path_buf(),
         message: e.to_string(),
@@ -19,8 +22,208 @@ fn read(path: &Path) -> Result<Value, MechanismError> {
     })
 }
 
-pub(crate) fn num(v: &Value) -> Option<f64> {
-    v.as_f64().filter(|x| x.is_finite())
+/// What the signatures read of an evaluation's `metrics.json`, typed and tolerant of every
+/// version the committed studies hold (a field a version lacks reads as absent; the full
+/// type is [`crate::behaviour::metrics::Metrics`]).
+#[derive(Debug, Default, Deserialize)]
+struct MetricsView {
+    #[serde(default)]
+    fi: Option<FiView>,
+    #[serde(default)]
+    pi: Option<Vec<PiView>>,
+    #[serde(default)]
+    bisection: Option<BisectionView>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+struct FiView {
+    #[serde(default)]
+    foc: Option<Vec<FocView>>,
+}
+
+/// One TD's first-oven-check statistics.
+#[derive(Debug, Deserialize)]
+struct FocView {
+    td: u32,
+    mean: Option<f64>,
+    cv: Option<f64>,
+}
+
+/// One peak-interval condition.
+#[derive(Debug, Deserialize)]
+struct PiView {
+    #[serde(default)]
+    factor: Option<f64>,
+    #[serde(default)]
+    td: Option<f64>,
+    #[serde(default)]
+    fit: Option<PiFitView>,
+}
+
+/// A peak-interval fit: its peak, CV and (newer files) its spread σ.
+#[derive(Debug, Default, Deserialize)]
+struct PiFitView {
+    #[serde(default)]
+    peak: Option<f64>,
+    #[serde(default)]
+    cv: Option<f64>,
+    #[serde(default)]
+    spread: Option<f64>,
+}
+
+/// Bisection: the anchors and the psychometric fit.
+#[derive(Debug, Default, Deserialize)]
+struct BisectionView {
+    #[serde(default)]
+    short: Option<f64>,
+    #[serde(default)]
+    long: Option<f64>,
+    #[serde(default)]
+    fit: Option<BisectionFitView>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+struct BisectionFitView {
+    #[serde(default)]
+    bp: Option<f64>,
+    #[serde(default)]
+    wf: Option<f64>,
+}
+
+/// What the signatures read of one population's neural summary (a list of them is an
+/// `activity.summary.json`), typed and tolerant of every version the committed studies
+/// hold; the full type is [`NeuralSummary`].
+#[derive(Debug, Clone, Default, PartialEq, Deserialize)]
+pub struct PopulationView {
+    /// Population name (read-outs are left out of the signatures).
+    #[serde(default)]
+    pub population: String,
+    /// Varying units analysed.
+    #[serde(default)]
+    pub units: f64,
+    /// Constant units (left out of the unit analyses; counted in the population's size).
+    #[serde(default)]
+    pub constant_units: f64,
+    /// TD of the primary window (steps).
+    #[serde(default)]
+    pub td: Option<f64>,
+    /// Unit-category counts, by category name.
+    #[serde(default)]
+    pub categories: Option<CategoriesView>,
+    /// Ridge decoding error of elapsed time (steps).
+    #[serde(default)]
+    pub decode_ridge: Option<f64>,
+    /// The trajectory's basis-free features.
+    #[serde(default)]
+    pub dynamics: Option<DynamicsView>,
+    /// Temporal scaling between the shortest and the longest TD.
+    #[serde(default)]
+    pub scaling: Option<ScalingView>,
+}
+
+/// Unit-category counts.
+#[derive(Debug, Clone, Default, PartialEq, Deserialize)]
+pub struct CategoriesView {
+    /// Count per category name (`ramp`, `time_field`, …).
+    #[serde(default)]
+    pub counts: BTreeMap<String, f64>,
+}
+
+/// The trajectory features of a population ([`crate::neural::dynamics::Dynamics`]).
+#[derive(Debug, Clone, Default, PartialEq, Deserialize)]
+pub struct DynamicsView {
+    /// Participation ratio rescaled to 0 … 1.
+    pub dimension: Option<f64>,
+    /// Log-log slope of speed on time.
+    pub speed_trend: Option<f64>,
+    /// Cosine of successive velocities.
+    pub turning: Option<f64>,
+    /// Net displacement over path length.
+    pub straightness: Option<f64>,
+    /// Speed after the window over speed in it.
+    pub continuation: Option<f64>,
+    /// Spectral radius of the linear fit.
+    pub spectral_radius: Option<f64>,
+    /// Rotation of the linear fit (cycles per TD).
+    pub rotation: Option<f64>,
+}
+
+impl DynamicsView {
+    /// The signature feature `feature` (`dyn_dimension`, …), if the summary has it.
+    fn feature(&self, feature: &str) -> Option<f64> {
+        match feature {
+            "dyn_dimension" => self.dimension,
+            "dyn_speed_trend" => self.speed_trend,
+            "dyn_turning" => self.turning,
+            "dyn_straightness" => self.straightness,
+            "dyn_continuation" => self.continuation,
+            "dyn_spectral_radius" => self.spectral_radius,
+            "dyn_rotation" => self.rotation,
+            _ => None,
+        }
+    }
+}
+
+/// A population's temporal scaling.
+#[derive(Debug, Clone, Default, PartialEq, Deserialize)]
+pub struct ScalingView {
+    /// Longest over shortest TD.
+    #[serde(default)]
+    pub td_ratio: Option<f64>,
+    /// The population geometry's scaling index.
+    #[serde(default)]
+    pub geometry_index: Option<f64>,
+    /// Median per-unit scaling factor.
+    #[serde(default)]
+    pub median: Option<f64>,
+}
+
+impl PopulationView {
+    /// The view of a summary computed now (the fields the signatures read).
+    pub fn of(s: &NeuralSummary) -> Self {
+        PopulationView {
+            population: s.population.clone(),
+            units: s.units as f64,
+            constant_units: s.constant_units as f64,
+            td: Some(f64::from(s.td)),
+            categories: s.categories.as_ref().map(|c| CategoriesView {
+                counts: CATEGORIES
+                    .iter()
+                    .map(|k| (k.name().to_string(), c.counts.get(*k) as f64))
+                    .collect(),
+            }),
+            decode_ridge: s.decode_ridge,
+            dynamics: s.dynamics.as_ref().map(|d| DynamicsView {
+                dimension: d.dimension,
+                speed_trend: d.speed_trend,
+                turning: d.turning,
+                straightness: d.straightness,
+                continuation: d.continuation,
+                spectral_radius: d.spectral_radius,
+                rotation: d.rotation,
+            }),
+            scaling: s.scaling.as_ref().map(|x| ScalingView {
+                td_ratio: Some(x.td_ratio),
+                geometry_index: x.geometry_index,
+                median: x.median,
+            }),
+        }
+    }
+
+    /// Every population of a list of summaries computed now.
+    pub fn all(summaries: &[NeuralSummary]) -> Vec<Self> {
+        summaries.iter().map(Self::of).collect()
+    }
+
+    /// Reads an `activity.summary.json` (a list of population summaries).
+    pub fn read(path: &Path) -> Result<Vec<Self>, MechanismError> {
+        read(path)
+    }
+}
+
+/// A finite value.
+fn finite(v: Option<f64>) -> Option<f64> {
+    v.filter(|x| x.is_finite())
 }
 
 /// What one job contributes: `(feature, value)` pairs and the FI TD with its FOC CV.
@@ -37,64 +240,70 @@ fn job_features(
     summary: &Path,
     probe: bool,
 ) -> Result<JobFeatures, MechanismError> {
-    let metrics = read(metrics)?;
+    let metrics: MetricsView = read(metrics)?;
     let mut out = JobFeatures::default();
-    if let Some(foc) = metrics["fi"]["foc"].as_array() {
-        for f in foc {
-            if let (Some(td), Some(mean), Some(cv)) =
-                (f["td"].as_u64(), num(&f["mean"]), num(&f["cv"]))
-            {
-                out.values.push(("foc_cv", cv));
-                out.values.push(("foc_over_td", mean / td as f64));
-                out.fi_cv = Some((td as u32, cv));
-            }
+    for f in metrics.fi.iter().flat_map(|fi| fi.foc.iter().flatten()) {
+        if let (Some(mean), Some(cv)) = (finite(f.mean), finite(f.cv)) {
+            out.values.push(("foc_cv", cv));
+            out.values.push(("foc_over_td", mean / f64::from(f.td)));
+            out.fi_cv = Some((f.td, cv));
         }
     }
-    if let Some(pi) = metrics["pi"].as_array() {
-        for p in pi.iter().filter(|p| num(&p["factor"]) == Some(2.0)) {
-            let td = p["td"].as_f64().unwrap_or(f64::NAN);
-            let window = 2.0 * td;
-            // A fit wider than the 2 × TD window is not identified (older evaluations
-            // stored such fits; `GaussianFit::identified_within`). Its spread is `σ`, or
-            // `cv · peak` where only those were written.
-            let fit = &p["fit"];
-            let spread = num(&fit["spread"])
-                .or_else(|| num(&fit["cv"]).zip(num(&fit["peak"])).map(|(c, m)| c * m));
-            if spread.is_some_and(|s| s > window) {
-                continue;
-            }
-            if let Some(peak) = num(&p["fit"]["peak"]) {
-                out.values.push(("pi_peak_over_td", peak / td));
-            }
-            if let Some(cv) = num(&p["fit"]["cv"]) {
-                out.values.push(("pi_cv", cv));
-            }
-        }
-    }
-    let b = &metrics["bisection"];
-    if let Some(wf) = num(&b["fit"]["wf"]) {
-        out.values.push(("wf", wf));
-    }
-    if let (Some(bp), Some(s), Some(l)) = (num(&b["fit"]["bp"]), num(&b["short"]), num(&b["long"]))
+    for p in metrics
+        .pi
+        .iter()
+        .flatten()
+        .filter(|p| finite(p.factor) == Some(2.0))
     {
-        out.values.push(("bp_over_gm", bp / (s * l).sqrt()));
+        let td = p.td.unwrap_or(f64::NAN);
+        let window = 2.0 * td;
+        // A fit wider than the 2 × TD window is not identified (older evaluations stored
+        // such fits; `GaussianFit::identified_within`). Its spread is `σ`, or `cv · peak`
+        // where only those were written.
+        let fit = p.fit.as_ref();
+        let (peak, cv) = (
+            finite(fit.and_then(|f| f.peak)),
+            finite(fit.and_then(|f| f.cv)),
+        );
+        let spread =
+            finite(fit.and_then(|f| f.spread)).or_else(|| cv.zip(peak).map(|(c, m)| c * m));
+        if spread.is_some_and(|s| s > window) {
+            continue;
+        }
+        if let Some(peak) = peak {
+            out.values.push(("pi_peak_over_td", peak / td));
+        }
+        if let Some(cv) = cv {
+            out.values.push(("pi_cv", cv));
+        }
+    }
+    if let Some(b) = &metrics.bisection {
+        let fit = b.fit.as_ref();
+        if let Some(wf) = finite(fit.and_then(|f| f.wf)) {
+            out.values.push(("wf", wf));
+        }
+        if let (Some(bp), Some(s), Some(l)) = (
+            finite(fit.and_then(|f| f.bp)),
+            finite(b.short),
+            finite(b.long),
+        ) {
+            out.values.push(("bp_over_gm", bp / (s * l).sqrt()));
+        }
     }
     if probe && summary.is_file() {
-        let pops = read(summary)?;
+        let pops = PopulationView::read(summary)?;
         let (mut counts, mut units) = ([0.0f64; 3], 0.0);
         let mut decode = Vec::new();
         // Dynamics features, weighted by population size (constant units included: how
         // many units vary is itself basis-dependent).
         let mut dynamics: BTreeMap<&'static str, (f64, f64)> = BTreeMap::new();
-        for p in pops.as_array().into_iter().flatten() {
-            let name = p["population"].as_str().unwrap_or_default();
-            if READOUTS.contains(&name) {
+        for p in &pops {
+            if READOUTS.contains(&p.population.as_str()) {
                 continue;
             }
-            let size =
-                p["units"].as_f64().unwrap_or(0.0) + p["constant_units"].as_f64().unwrap_or(0.0);
-            for (feature, key) in DYNAMICS_KEYS {
-                if let Some(v) = num(&p["dynamics"][key])
+            let size = p.units + p.constant_units;
+            for feature in DYNAMICS_FEATURES {
+                if let Some(v) = finite(p.dynamics.as_ref().and_then(|d| d.feature(feature)))
                     && size > 0.0
                 {
                     let slot = dynamics.entry(feature).or_insert((0.0, 0.0));
@@ -102,15 +311,17 @@ fn job_features(
                     slot.1 += size;
                 }
             }
-            let c = &p["categories"]["counts"];
+            let count = |name: &str| {
+                p.categories
+                    .as_ref()
+                    .and_then(|c| c.counts.get(name).copied())
+                    .unwrap_or(0.0)
+            };
             for (k, key) in ["ramp", "time_field", "oscillating"].iter().enumerate() {
-                counts[k] += c[*key].as_f64().unwrap_or(0.0);
+                counts[k] += count(key);
             }
-            units += crate::neural::categories::CATEGORIES
-                .iter()
-                .map(|k| c[k.name()].as_f64().unwrap_or(0.0))
-                .sum::<f64>();
-            if let (Some(err), Some(td)) = (num(&p["decode_ridge"]), num(&p["td"])) {
+            units += CATEGORIES.iter().map(|k| count(k.name())).sum::<f64>();
+            if let (Some(err), Some(td)) = (finite(p.decode_ridge), finite(p.td)) {
                 decode.push(err / td);
             }
         }
@@ -132,39 +343,37 @@ fn job_features(
     Ok(out)
 }
 
-/// Signature feature ← field of a population summary's `dynamics`.
-const DYNAMICS_KEYS: [(&str, &str); 7] = [
-    ("dyn_dimension", "dimension"),
-    ("dyn_speed_trend", "speed_trend"),
-    ("dyn_turning", "turning"),
-    ("dyn_straightness", "straightness"),
-    ("dyn_continuation", "continuation"),
-    ("dyn_spectral_radius", "spectral_radius"),
-    ("dyn_rotation", "rotation"),
+/// The signature's trajectory features, as [`DynamicsView::feature`] reads them.
+const DYNAMICS_FEATURES: [&str; 7] = [
+    "dyn_dimension",
+    "dyn_speed_trend",
+    "dyn_turning",
+    "dyn_straightness",
+    "dyn_continuation",
+    "dyn_spectral_radius",
+    "dyn_rotation",
 ];
 
 /// The scaling index of one model × seed's joint recording (`activity.summary.json` of
 /// `record --summary` over runs at several TDs): per non-read-out population the geometry
 /// index, else the per-unit one; weighted by units. `None` when no population has one.
-pub fn scaling_index_of_summary(summary: &Value) -> Option<f64> {
+pub fn scaling_index_of_summary(summary: &[PopulationView]) -> Option<f64> {
     let (mut sum, mut weight) = (0.0, 0.0);
-    for p in summary.as_array().into_iter().flatten() {
-        let name = p["population"].as_str().unwrap_or_default();
-        let s = &p["scaling"];
-        if READOUTS.contains(&name) || s.is_null() {
+    for p in summary {
+        let Some(s) = &p.scaling else { continue };
+        if READOUTS.contains(&p.population.as_str()) {
             continue;
         }
-        let ratio = num(&s["td_ratio"]).filter(|r| *r > 1.0);
-        let index = num(&s["geometry_index"]).or_else(|| {
-            let m = num(&s["median"]).filter(|m| *m > 0.0)?;
+        let ratio = finite(s.td_ratio).filter(|r| *r > 1.0);
+        let index = finite(s.geometry_index).or_else(|| {
+            let m = finite(s.median).filter(|m| *m > 0.0)?;
             Some(m.ln() / ratio?.ln())
         });
-        let units = p["units"].as_f64().unwrap_or(0.0);
         if let Some(i) = index
-            && units > 0.0
+            && p.units > 0.0
         {
-            sum += units * i;
-            weight += units;
+            sum += p.units * i;
+            weight += p.units;
         }
     }
     (weight > 0.0).then(|| sum / weight)
@@ -173,15 +382,14 @@ pub fn scaling_index_of_summary(summary: &Value) -> Option<f64> {
 /// The geometry scaling index of one model × seed's joint recording alone (no per-unit
 /// fallback: the dynamics view's `dyn_scaling`), units-weighted over the non-read-out
 /// populations that have one (weights: population size, constant units included).
-pub fn geometry_index_of_summary(summary: &Value) -> Option<f64> {
+pub fn geometry_index_of_summary(summary: &[PopulationView]) -> Option<f64> {
     let (mut sum, mut weight) = (0.0, 0.0);
-    for p in summary.as_array().into_iter().flatten() {
-        let name = p["population"].as_str().unwrap_or_default();
-        if READOUTS.contains(&name) {
+    for p in summary {
+        if READOUTS.contains(&p.population.as_str()) {
             continue;
         }
-        let size = p["units"].as_f64().unwrap_or(0.0) + p["constant_units"].as_f64().unwrap_or(0.0);
-        if let Some(i) = num(&p["scaling"]["geometry_index"])
+        let size = p.units + p.constant_units;
+        if let Some(i) = finite(p.scaling.as_ref().and_then(|s| s.geometry_index))
             && size > 0.0
         {
             sum += size * i;
@@ -206,14 +414,12 @@ fn scaling_features(
             if !job.is_file() || !summary.is_file() {
                 continue;
             }
-            let j = read(&job)?;
-            let (Some(model), Some(seed)) = (j["model"].as_str(), j["seed"].as_u64()) else {
-                return Err(MechanismError::File {
-                    path: job,
-                    message: "fields `model` and `seed` required".into(),
-                });
-            };
-            let summary = read(&summary)?;
+            let j = job_folder::read_scaling(&job).map_err(|message| MechanismError::File {
+                path: job.clone(),
+                message,
+            })?;
+            let (model, seed) = (j.model.as_str(), j.seed);
+            let summary = PopulationView::read(&summary)?;
             if let Some(i) = scaling_index_of_summary(&summary) {
                 out.push((model.to_string(), seed, "scaling_index", i));
             }
@@ -262,16 +468,14 @@ pub fn signatures(results: &Path) -> Result<Vec<Signature>, MechanismError> {
     }
     let mut jobs = Vec::new();
     for dir in dirs {
-        let job = read(&dir.join(job_folder::JOB))?;
-        let model = job["row"]
-            .as_str()
-            .or(job["model"].as_str())
-            .unwrap_or("unknown")
-            .to_string();
+        let job = job_folder::read_job(&dir).map_err(|message| MechanismError::File {
+            path: dir.join(job_folder::JOB),
+            message,
+        })?;
         jobs.push(JobFiles {
-            model,
-            seed: job["seed"].as_u64().unwrap_or(0),
-            task: job["task"].as_str().unwrap_or_default().to_string(),
+            model: job.label().to_string(),
+            seed: job.seed,
+            task: job.task.id().to_string(),
             metrics: dir.join(METRICS),
             summary: dir.join(job_folder::ACTIVITY_SUMMARY),
         });
@@ -366,8 +570,9 @@ mod tests {
              "scaling": {"td_ratio": 2.0, "median": 8.0, "geometry_index": 3.0}},
             {"population": "other", "units": 5, "scaling": null}
         ]);
+        let summary: Vec<PopulationView> = serde_json::from_value(summary).unwrap();
         let i = scaling_index_of_summary(&summary).unwrap();
         assert!((i - (30.0 * 0.9 + 10.0 * 1.0) / 40.0).abs() < 1e-12, "{i}");
-        assert_eq!(scaling_index_of_summary(&serde_json::json!([])), None);
+        assert_eq!(scaling_index_of_summary(&[]), None);
     }
 }

@@ -207,8 +207,8 @@ pub fn find_eval_folders(roots: &[PathBuf]) -> Vec<PathBuf> {
 fn row_label(folder: &Path, model: &str) -> String {
     folder
         .parent()
-        .and_then(|p| optional_json::<serde_json::Value>(&p.join(job_folder::JOB)))
-        .and_then(|v| v["row"].as_str().map(str::to_string))
+        .and_then(|p| optional_json::<job_folder::JobRecord>(&p.join(job_folder::JOB)))
+        .and_then(|job| job.row)
         .unwrap_or_else(|| model.to_string())
 }
 
@@ -249,8 +249,15 @@ pub fn load_neural(folder: &Path) -> Option<NeuralSummary> {
 /// Episodes to adapt measured next to an evaluation folder (`../adapt/adapt.json` from
 /// `adapt`): `Some(n)` adapted after n episodes, `None` inside means it never adapted.
 pub fn load_adaptation(folder: &Path) -> Option<Option<usize>> {
-    let v: serde_json::Value = optional_json(&folder.parent()?.join("adapt").join("adapt.json"))?;
-    Some(v["episodes_to_adapt"].as_u64().map(|n| n as usize))
+    /// What the leaderboard reads of an adaptation's `adapt.json` (written by the training
+    /// crate's `AdaptResult`).
+    #[derive(serde::Deserialize)]
+    struct Adapted {
+        /// Episodes until adapted; `null` when the run never adapted.
+        episodes_to_adapt: Option<usize>,
+    }
+    let a: Adapted = optional_json(&folder.parent()?.join("adapt").join("adapt.json"))?;
+    Some(a.episodes_to_adapt)
 }
 
 /// Coefficient of variation of the mean Weber fraction across anchor pairs (needs runs on

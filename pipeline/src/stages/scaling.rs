@@ -19,18 +19,7 @@ use std::path::{Path, PathBuf};
 /// Where a study's fixed-interval jobs are.
 const FI_TASK: &str = "FixedInterval-v0";
 
-/// One recorded group.
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct ScalingJob {
-    /// The sweep row (model name with its variant).
-    pub model: String,
-    /// Training seed.
-    pub seed: u64,
-    /// TDs of the runs recorded together (steps), shortest first.
-    pub tds: Vec<u32>,
-    /// The run folders, relative to the sweep output, in `tds` order.
-    pub runs: Vec<String>,
-}
+pub use chronocooked_analysis::job_folder::ScalingJob;
 
 /// What [`record_scaling`] did.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -39,29 +28,6 @@ pub struct ScalingOutcome {
     pub recorded: Vec<ScalingJob>,
     /// Groups whose summary was already there (skipped).
     pub skipped: usize,
-}
-
-fn read_json(path: &Path) -> Result<serde_json::Value, PipelineError> {
-    let text = std::fs::read_to_string(path).map_err(|e| PipelineError::read(path, e))?;
-    serde_json::from_str(&text)
-        .map_err(|e| PipelineError::Invalid(format!("{}: {e}", path.display())))
-}
-
-/// What scaling needs of a sweep job's `job.json` (any version: the task's parameters as
-/// today's map or the older `td=N` list, read by [`chronocooked_env::Task`]'s own
-/// deserialiser).
-#[derive(serde::Deserialize)]
-struct JobKey {
-    /// Leaderboard row (older jobs: none, the model is the row).
-    #[serde(default)]
-    row: Option<String>,
-    /// Zoo name.
-    model: String,
-    /// Seed.
-    seed: u64,
-    /// The task with the job's parameters.
-    #[serde(flatten)]
-    task: chronocooked_env::Task,
 }
 
 /// Run folders by TD (steps) of one (row, seed).
@@ -77,12 +43,7 @@ fn groups(study: &Path) -> Result<BTreeMap<(String, u64), RunsByTd>, PipelineErr
             if !job_file.is_file() || !run.join(run_folder::SUMMARY).is_file() {
                 continue;
             }
-            let job: JobKey =
-                serde_json::from_value(read_json(&job_file)?).map_err(|e| PipelineError::NotA {
-                    path: job_file.clone(),
-                    what: "a sweep job's job.json",
-                    message: e.to_string(),
-                })?;
+            let job = job_folder::read_job(&job_dir).map_err(PipelineError::Invalid)?;
             let td = job
                 .task
                 .value_set("td")
@@ -94,7 +55,7 @@ fn groups(study: &Path) -> Result<BTreeMap<(String, u64), RunsByTd>, PipelineErr
                         job_file.display()
                     ))
                 })?;
-            let (model, seed) = (job.row.unwrap_or(job.model), job.seed);
+            let (model, seed) = (job.label().to_string(), job.seed);
             out.entry((model, seed)).or_default().insert(td, run);
         }
     }

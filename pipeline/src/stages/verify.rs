@@ -339,7 +339,12 @@ fn verify_run(run: &Path, retrain: bool, v: &mut Verification) -> Result<(), Pip
 /// A compact job: its metrics against its episode lines.
 fn verify_compact_job(job: &Path, v: &mut Verification) -> Result<(), PipelineError> {
     let metrics_path = job.join(METRICS);
-    let metrics = read_value(&metrics_path)?;
+    let metrics: MetricsCounts =
+        serde_json::from_value(read_value(&metrics_path)?).map_err(|e| PipelineError::NotA {
+            path: metrics_path.clone(),
+            what: "a metrics file",
+            message: e.to_string(),
+        })?;
     let episodes_path = job.join("episodes.csv");
     let rows: Vec<EpisodeRow> = csv::Reader::from_path(&episodes_path)
         .and_then(|mut r| r.deserialize().collect::<Result<_, _>>())
@@ -357,9 +362,47 @@ fn verify_compact_job(job: &Path, v: &mut Verification) -> Result<(), PipelineEr
     Ok(())
 }
 
-/// A number of a metrics file (`null`, how JSON writes NaN, reads as NaN).
-fn num(v: &Value, key: &str) -> f64 {
-    v.get(key).and_then(Value::as_f64).unwrap_or(f64::NAN)
+/// What a job's episode lines fix of its `metrics.json`, typed: the totals and, per
+/// condition in protocol order, its counts and means (a `null`, how JSON writes NaN, or a
+/// field an older file lacks reads as NaN).
+#[derive(Debug, Default, serde::Deserialize)]
+pub struct MetricsCounts {
+    /// Episodes evaluated.
+    #[serde(default = "nan", deserialize_with = "nan_if_null")]
+    pub episodes: f64,
+    /// Share of successful episodes.
+    #[serde(default = "nan", deserialize_with = "nan_if_null")]
+    pub success_rate: f64,
+    /// Per condition, in protocol order.
+    #[serde(default)]
+    pub conditions: Vec<ConditionCounts>,
+}
+
+/// One condition's counts in a `metrics.json` ([`MetricsCounts`]).
+#[derive(Debug, Default, serde::Deserialize)]
+pub struct ConditionCounts {
+    /// Episodes of the condition.
+    #[serde(default = "nan", deserialize_with = "nan_if_null")]
+    pub episodes: f64,
+    /// Share of successful episodes.
+    #[serde(default = "nan", deserialize_with = "nan_if_null")]
+    pub success_rate: f64,
+    /// Mean reward.
+    #[serde(default = "nan", deserialize_with = "nan_if_null")]
+    pub mean_reward: f64,
+    /// Mean oven-off time (steps).
+    #[serde(default = "nan", deserialize_with = "nan_if_null")]
+    pub mean_oven_off: f64,
+}
+
+/// A missing number: NaN.
+fn nan() -> f64 {
+    f64::NAN
+}
+
+/// A number, `null` read as NaN.
+fn nan_if_null<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    Ok(<Option<f64> as serde::Deserialize>::deserialize(d)?.unwrap_or(f64::NAN))
 }
 
 /// What a job's episode lines fix of its metrics (`metrics.json` as JSON): episodes,
@@ -367,14 +410,11 @@ fn num(v: &Value, key: &str) -> f64 {
 /// and mean oven-off time.
 pub fn rows_against_metrics(
     file: &Path,
-    metrics: &Value,
+    metrics: &MetricsCounts,
     rows: &[EpisodeRow],
     out: &mut Vec<Difference>,
 ) {
-    let conditions: &[Value] = metrics
-        .get("conditions")
-        .and_then(Value::as_array)
-        .map_or(&[], Vec::as_slice);
+    let conditions = &metrics.conditions;
     let mut push = |field: String, recorded: String, recomputed: String| {
         out.push(Difference {
             file: file.to_path_buf(),
@@ -383,10 +423,10 @@ pub fn rows_against_metrics(
             recomputed,
         })
     };
-    if num(metrics, "episodes") != rows.len() as f64 {
+    if metrics.episodes != rows.len() as f64 {
         push(
             "episodes".into(),
-            num(metrics, "episodes").to_string(),
+            metrics.episodes.to_string(),
             rows.len().to_string(),
         );
     }
@@ -394,10 +434,10 @@ pub fn rows_against_metrics(
         rs.iter().filter(|r| r.success).count() as f64 / rs.len().max(1) as f64
     };
     let all: Vec<&EpisodeRow> = rows.iter().collect();
-    if !close(num(metrics, "success_rate"), rate(&all)) {
+    if !close(metrics.success_rate, rate(&all)) {
         push(
             "success_rate".into(),
-            num(metrics, "success_rate").to_string(),
+            metrics.success_rate.to_string(),
             rate(&all).to_string(),
         );
     }
@@ -434,17 +474,13 @@ pub fn rows_against_metrics(
         // A multi-oven episode has one oven-off time per oven; its line keeps one of them.
         let one_oven = g[0].kind != chronocooked_analysis::ConditionKind::MultiOven;
         for (field, claimed, derived) in [
-            ("episodes", num(c, "episodes"), n as f64),
-            ("success_rate", num(c, "success_rate"), rate(g)),
-            ("mean_reward", num(c, "mean_reward"), reward),
+            ("episodes", c.episodes, n as f64),
+            ("success_rate", c.success_rate, rate(g)),
+            ("mean_reward", c.mean_reward, reward),
             (
                 "mean_oven_off",
-                num(c, "mean_oven_off"),
-                if one_oven {
-                    off
-                } else {
-                    num(c, "mean_oven_off")
-                },
+                c.mean_oven_off,
+                if one_oven { off } else { c.mean_oven_off },
             ),
         ] {
             if !(close(claimed, derived) || claimed.is_nan() && derived.is_nan()) {

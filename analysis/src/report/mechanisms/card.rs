@@ -69,17 +69,15 @@ fn seed_scaling(ds: &ActivityDataset) -> Vec<(&'static str, f64)> {
         .filter(|p| !READOUTS.contains(&p.name.as_str()))
         .filter_map(|p| neural_summary(ds, Some(&p.name), &opts).ok())
         .collect();
-    let Ok(json) = serde_json::to_value(&summaries) else {
-        return Vec::new();
-    };
+    let view = crate::mechanisms::PopulationView::all(&summaries);
     [
         (
             "scaling_index",
-            crate::mechanisms::scaling_index_of_summary(&json),
+            crate::mechanisms::scaling_index_of_summary(&view),
         ),
         (
             "dyn_scaling",
-            crate::mechanisms::geometry_index_of_summary(&json),
+            crate::mechanisms::geometry_index_of_summary(&view),
         ),
     ]
     .into_iter()
