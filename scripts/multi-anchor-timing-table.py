@@ -1,12 +1,12 @@
 #!/usr/bin/env python3
-"""The table of `scripts/multi-anchor-timing-grid.sh`'s lines (RESULTS "Extensions"): per
+"""The table of the multi-anchor timing study's lines (results/extensions): per
 anchor set and model, the anchor accuracy over seeds, each boundary's mean BP with the
 pair's GM and AM, in how many single runs the GM lies inside the run's own 95% interval of
 the boundary, and in how many the model's rule's prediction does (over every boundary of
 every seed).
 
 SBF's and the time cells' predictions, given PREDICTIONS (the output of `cargo run --release
---example predicted_boundaries -- RUNS_DIR/*-sbf-* RUNS_DIR/*-timecells-*`: each run's own
+--example predicted_boundaries -- RUN_DIR …`: each run's own
 timer — its learned anchor memories, clock noise and decision rule, without the task —
 judging 2,000 trials per probe, then the lab's fit; `analysis::behaviour::predicted`), are
 those simulated boundaries; without it, the GM of the anchors (their ratio rule's criterion
@@ -18,7 +18,11 @@ z 1, diffusion m 0.15, memory κ 0.2, "long" iff x_S·x_L ≥ 1), then a
 binomial maximum-likelihood logistic in t over the probes a_i … a_(i+1), as
 `analysis::behaviour::psychometric::fit_logistic` fits the measured curve.
 
-    python3 scripts/multi-anchor-timing-table.py OUT_DIR/lines.txt [PREDICTIONS] > OUT_DIR/summary.md
+    python3 scripts/multi-anchor-timing-table.py LINES [PREDICTIONS] > summary.md
+
+LINES from `scripts/timing-study-lines.py multi-anchor` (the sweep `sweeps/timing-multi-anchor.toml`);
+PREDICTIONS from `cargo run --release --example predicted_boundaries -- SWEEP_OUT/MultiAnchor-v0/
+{sbf,timecells-*}~*/seed*/run` (run folders of the sweep, or of the older grid's `runs/`).
 """
 import math
 import os
@@ -106,13 +110,25 @@ def logistic_bp(ts, ps):
     return -a / b
 
 
+def run_key(path):
+    """`SET-MODEL-SEED` of a run folder: a sweep job's run (`…/MODEL~env.anchors-4_8_16/
+    seedN/run`) or the older grid's `runs/SET-MODEL-SEED`."""
+    path = path.rstrip("/")
+    if os.path.basename(path) != "run":
+        return os.path.basename(path)
+    job = os.path.dirname(path)
+    seed = os.path.basename(job)[len("seed"):]
+    model, _, variant = os.path.basename(os.path.dirname(job)).partition("~env.anchors-")
+    return f"{variant.replace('_', ',')}-{model}-{seed}"
+
+
 # "<run dir> bp1 bp2 …" per run (examples/predicted_boundaries.rs), keyed by the run's name.
 SIMULATED = {}
 if len(sys.argv) > 2:
     for line in open(sys.argv[2]):
         fields = line.split()
         if fields:
-            SIMULATED[os.path.basename(fields[0].rstrip("/"))] = [float(x) for x in fields[1:]]
+            SIMULATED[run_key(fields[0])] = [float(x) for x in fields[1:]]
 
 
 _ddm_cache = {}

@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""The table of `scripts/multi-oven-timing-grid.sh`'s lines (RESULTS "Extensions"): per
+"""The table of the multi-oven timing study's lines (results/extensions; sweeps/timing-multi-oven.toml): per
 oven set-up and model, the one-oven curve (accuracy, WF; means over seeds), each oven's
 accuracy (mean and minimum over ovens and seeds) and the interference against the one-oven
 curve (ΔWF, ΔBP in steps: mean and range over ovens and seeds).
 
-    python3 scripts/multi-oven-timing-table.py OUT_DIR/lines.txt > OUT_DIR/summary.md
+    python3 scripts/multi-oven-timing-table.py LINES > summary.md   (LINES: scripts/timing-study-lines.py multi-oven)
 """
 import re
 import sys

@@ -693,3 +693,66 @@ fn a_failed_report_does_not_hide_the_failed_jobs() {
         "{err}"
     );
 }
+
+/// The committed multi-anchor timing study (results/extensions/timing-multi-anchor/lines.txt)
+/// is its sweep file's output: one job of each model on the first anchor set, rerun here with
+/// `sweep-job` (what a local worker and a Slurm array task run), gives the committed line's
+/// anchor accuracy and every boundary's fitted BP to the printed digits.
+#[test]
+fn the_multi_anchor_timing_study_is_reproduced_by_its_sweep_file() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let sweep = root.join("sweeps/timing-multi-anchor.toml");
+    let lines =
+        std::fs::read_to_string(root.join("results/extensions/timing-multi-anchor/lines.txt"))
+            .unwrap();
+    let dir = temp_dir("timing-multi-anchor");
+    for model in [
+        "ddm",
+        "sbf",
+        "timecells-csc",
+        "timecells-ms",
+        "timecells-laplace",
+    ] {
+        let id = format!("MultiAnchor-v0/{model}~env.anchors-4_8_16/seed1");
+        run_ok(&[
+            "sweep-job",
+            sweep.to_str().unwrap(),
+            "--out",
+            dir.to_str().unwrap(),
+            "--id",
+            &id,
+        ]);
+        let metrics: Value = serde_json::from_str(
+            &std::fs::read_to_string(dir.join(&id).join("eval/metrics.json")).unwrap(),
+        )
+        .unwrap();
+        let ma = &metrics["multi_anchor"];
+        let mut got = format!("acc {:.3}", ma["anchor_accuracy"].as_f64().unwrap());
+        for b in ma["boundaries"].as_array().unwrap() {
+            got += &format!(" {:.2}[", b["fit"]["bp"].as_f64().unwrap());
+        }
+        let line = lines
+            .lines()
+            .find(|l| l.starts_with(&format!("4,8,16 {model} 1 ")))
+            .unwrap_or_else(|| panic!("no committed line for {model}"));
+        let mut want = line.split(" | ").fold(String::new(), |mut acc, part| {
+            let part = part.trim();
+            let fields: Vec<&str> = part.split_whitespace().collect();
+            if acc.is_empty() {
+                acc = format!("acc {}", fields[4]);
+                if let Some(bp) = fields.get(5) {
+                    acc += &format!(" {}[", bp.split('[').next().unwrap());
+                }
+            } else {
+                acc += &format!(" {}[", part.split('[').next().unwrap());
+            }
+            acc
+        });
+        want = want.trim().to_string();
+        assert_eq!(
+            got, want,
+            "{model}: sweep job against the committed line {line}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

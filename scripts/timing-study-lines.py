@@ -1,0 +1,126 @@
+#!/usr/bin/env python3
+"""The lines of a timing-model study, one per job, from its sweep (or its collected results):
+what `scripts/multi-anchor-timing-table.py` and `scripts/multi-oven-timing-table.py`
+tabulate.
+
+    python3 scripts/timing-study-lines.py multi-anchor SWEEP_FILE DIR > lines.txt
+    python3 scripts/timing-study-lines.py multi-oven SWEEP_FILE DIR > lines.txt
+
+* multi-anchor (sweeps/timing-multi-anchor*.toml): anchor set, model, seed, anchor accuracy
+  and each boundary's fit (BP [95% CI], the pair's GM and AM, each marked `*` when inside the
+  interval, WF);
+* multi-oven (sweeps/timing-multi-oven.toml): set-up, model, seed, success, the one-oven
+  curve (accuracy, BP, WF), then per oven its accuracy, BP, WF and the interference against
+  the one-oven curve (ΔWF, ΔBP).
+
+DIR is the sweep's output (`chronocooked sweep SWEEP_FILE --out DIR`) or its compact results
+(`chronocooked paper collect DIR --out RESULTS`). Lines come in the sweep file's order: its
+variants as listed, then models as its `models` list them, then seeds. Standard library only.
+"""
+import json
+import os
+import re
+import sys
+
+
+def listed(text, key):
+    """The items of the sweep file's top-level list `key`."""
+    return re.findall(r'[-\w.]+', re.search(rf"^{key}\s*=\s*\[(.*?)\]", text, re.S | re.M).group(1))
+
+
+def variants(text):
+    """The `task_variants` entries in order, each as `(key, value)` pairs without `env.`."""
+    body = text[text.index("[task_variants]"):]
+    out = []
+    for v in re.findall(r"\[([^\[\]]*\"env\.[^\[\]]*)\]", body):
+        out.append(tuple(tuple(kv[len("env."):].split("=", 1)) for kv in re.findall(r'"(env\.[^"]+)"', v)))
+    return out
+
+
+def jobs(root):
+    """(job.json, metrics.json) of every finished job under `root` (a sweep output or results)."""
+    for dirpath, dirnames, filenames in os.walk(root):
+        dirnames.sort()
+        if "job.json" not in filenames:
+            continue
+        for metrics in (os.path.join(dirpath, "eval", "metrics.json"), os.path.join(dirpath, "metrics.json")):
+            if os.path.isfile(metrics):
+                yield os.path.join(dirpath, "job.json"), metrics
+                break
+
+
+def text_of(v):
+    """A parameter's value as `--set` writes it: lists comma-joined, booleans lower-case."""
+    if isinstance(v, bool):
+        return str(v).lower()
+    if isinstance(v, list):
+        return ",".join(text_of(x) for x in v)
+    return str(v)
+
+
+def anchor_line(all_m):
+    m = all_m["multi_anchor"]
+    out = []
+    for b in m["boundaries"]:
+        f = b["fit"]
+        if f is None or f.get("bp_ci") is None:
+            out.append("nofit")
+            continue
+        lo, hi = f["bp_ci"]
+        g, a = b["gm"], b["am"]
+        out.append(f"{f['bp']:.2f}[{lo:.2f},{hi:.2f}]gm{g:.2f}{'*' if lo <= g <= hi else ' '}"
+                   f"am{a:.1f}{'*' if lo <= a <= hi else ' '}wf{f['wf']:.2f}")
+    return f"acc {m['anchor_accuracy']:.3f} " + " | ".join(out)
+
+
+def oven_line(all_m):
+    m = all_m["multi_oven"]
+    fmt = lambda v, p=2: "na" if v is None else f"{v:.{p}f}"  # noqa: E731
+    single = m["single"]
+    sf = single.get("fit") if isinstance(single, dict) else None
+    out = [f"single acc {fmt(single.get('accuracy'))} bp {fmt(sf and sf['bp'])} wf {fmt(sf and sf['wf'])}"]
+    inter = {i["oven"]: i for i in m["interference"]}
+    for o in m["per_oven"]:
+        f = o.get("fit")
+        i = inter.get(o["oven"], {})
+        out.append(f"oven{o['oven'] + 1} acc {fmt(o['accuracy'])} bp {fmt(f and f['bp'])} wf {fmt(f and f['wf'])}"
+                   f" dwf {fmt(i.get('d_wf'), 3)} dbp {fmt(i.get('d_bp'))}")
+    return f"success {all_m['success_rate']:.3f} " + " | ".join(out)
+
+
+KINDS = {
+    # kind: (task, the line's label of a variant, the line's measures)
+    "multi-anchor": ("MultiAnchor-v0", lambda v: dict(v)["anchors"], anchor_line),
+    "multi-oven": ("MultiOven-v0", lambda v: ",".join(f"{k}={x}" for k, x in v), oven_line),
+}
+
+
+def main():
+    if len(sys.argv) != 4 or sys.argv[1] not in KINDS:
+        sys.exit(__doc__.split("\n\n")[1])
+    task, label, measures = KINDS[sys.argv[1]]
+    text = open(sys.argv[2]).read()
+    setups = variants(text)
+    models, seeds = listed(text, "models"), [int(s) for s in listed(text, "seeds")]
+    found = {}
+    for job_path, metrics_path in jobs(sys.argv[3]):
+        job = json.load(open(job_path))
+        env = job.get("env") or {}
+        if job.get("task") != task or not isinstance(env, dict):
+            continue
+        found[(frozenset((k, text_of(v)) for k, v in env.items()), job["model"], int(job["seed"]))] = metrics_path
+    missing = 0
+    for setup in setups:
+        for model in models:
+            for seed in seeds:
+                path = found.get((frozenset(setup), model, seed))
+                if path is None:
+                    missing += 1
+                    continue
+                print(f"{label(setup)} {model} {seed} {measures(json.load(open(path)))}", flush=True)
+    if missing:
+        print(f"{missing} jobs of the sweep not finished under {sys.argv[3]}", file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()
