@@ -5,13 +5,19 @@ tabulate.
 
     python3 scripts/timing-study-lines.py multi-anchor SWEEP_FILE DIR > lines.txt
     python3 scripts/timing-study-lines.py multi-oven SWEEP_FILE DIR > lines.txt
+    python3 scripts/timing-study-lines.py reproduction SWEEP_FILE DIR > lines.txt
 
 * multi-anchor (sweeps/timing-multi-anchor*.toml): anchor set, model, seed, anchor accuracy
   and each boundary's fit (BP [95% CI], the pair's GM and AM, each marked `*` when inside the
   interval, WF);
 * multi-oven (sweeps/timing-multi-oven.toml): set-up, model, seed, success, the one-oven
   curve (accuracy, BP, WF), then per oven its accuracy, BP, WF and the interference against
-  the one-oven curve (ΔWF, ΔBP).
+  the one-oven curve (ΔWF, ΔBP);
+* reproduction (sweeps/timing-reproduction.toml, with sweeps/timing-reproduction-ddm-memory.toml
+  run into the same DIR): set-up (`default`, `ddm-rate0.5`, `gains`), model, seed, success,
+  then per context (prior, gain) the slope of tp on ts, BIAS, sqrt(VAR), the Weber fraction
+  of tp, the range of mean tp/(g ts) over ts, and the best observer with its wm and wp
+  (fitted at gain 1 only).
 
 DIR is the sweep's output (`chronocooked sweep SWEEP_FILE --out DIR`) or its compact results
 (`chronocooked paper collect DIR --out RESULTS`). Lines come in the sweep file's order: its
@@ -88,6 +94,44 @@ def oven_line(all_m):
     return f"success {all_m['success_rate']:.3f} " + " | ".join(out)
 
 
+def reproduction_line(m):
+    fmt = lambda v: "na" if v is None else f"{v:.2f}"  # noqa: E731
+    out = []
+    for c in m["reproduction"]["contexts"]:
+        r = [x[1] for x in c["ratio"]]
+        o = c.get("observer") or {"best": "na", "wm": None, "wp": None}  # fitted at gain 1 only
+        rng = f"{min(r):.2f}-{max(r):.2f}" if r else "na"
+        out.append(f"prior{c['prior']} g{c['gain']:g} slope {fmt(c['slope'])} bias {fmt(c['bias'])}"
+                   f" sqrtvar {fmt(c['sqrt_var'])} wf {fmt(c['weber'])} ratio {rng}"
+                   f" best {o['best']} wm {fmt(o['wm'])} wp {fmt(o['wp'])}")
+    return f"success {m['success_rate']:.3f} " + " | ".join(out)
+
+
+# The reproduction study's set-ups: (label, the job's settings), in the committed order.
+REPRODUCTION_SETUPS = [("default", ()), ("ddm-rate0.5", ("reproduction_rate=0.5",)), ("gains", ("env.gains=1,1.5",))]
+
+
+def reproduction_main(sweep_file, root):
+    models, seeds = listed(open(sweep_file).read(), "models"), [int(s) for s in listed(open(sweep_file).read(), "seeds")]
+    found = {}
+    for job_path, metrics_path in jobs(root):
+        job = json.load(open(job_path))
+        if job.get("task") != "Reproduction-v0":
+            continue
+        found[(tuple(sorted(job.get("sets") or [])), job["model"], int(job["seed"]))] = metrics_path
+    missing = 0
+    for label, sets in REPRODUCTION_SETUPS:
+        for model in models:
+            for seed in seeds:
+                path = found.get((tuple(sorted(sets)), model, seed))
+                if path is None:
+                    missing += label != "ddm-rate0.5" or model == "ddm"
+                    continue
+                print(f"{label} {model} {seed} {reproduction_line(json.load(open(path)))}", flush=True)
+    if missing:
+        print(f"{missing} jobs of the study not finished under {root}", file=sys.stderr)
+
+
 KINDS = {
     # kind: (task, the line's label of a variant, the line's measures)
     "multi-anchor": ("MultiAnchor-v0", lambda v: dict(v)["anchors"], anchor_line),
@@ -96,6 +140,8 @@ KINDS = {
 
 
 def main():
+    if len(sys.argv) == 4 and sys.argv[1] == "reproduction":
+        return reproduction_main(sys.argv[2], sys.argv[3])
     if len(sys.argv) != 4 or sys.argv[1] not in KINDS:
         sys.exit(__doc__.split("\n\n")[1])
     task, label, measures = KINDS[sys.argv[1]]
