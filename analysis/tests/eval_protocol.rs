@@ -259,34 +259,48 @@ fn multi_timer_dual_and_uncertainty_metrics_on_the_oracle() {
     assert!(d.by_td[0].2 > 0.0 && d.by_td[0].3 > 0.0);
 }
 
-#[test]
-fn recorded_play_goes_through_the_same_metrics() {
+/// Episodes played by the oracle on `env`, one per `(seed, reset options)`, written exactly
+/// as `env play --record` writes them (each reset line with its key, then one line per step).
+fn oracle_recording(
+    env: &mut ChronoEnv,
+    episodes: &[(u64, chronocooked_env::ResetOptions)],
+) -> String {
+    use chronocooked_env::Oracle;
     use chronocooked_env::trace::TraceLine;
-    use chronocooked_env::{Oracle, ResetOptions};
-    // Two FI episodes "played" by the oracle, written exactly like `env play --record`.
-    let mut env = ChronoEnv::from_id("FixedInterval-v0", &["td=6"]).unwrap();
-    let oracle = Oracle::new(&env);
+    let oracle = Oracle::new(env);
     let mut text = String::new();
-    for (seed, start) in [(1, (1, 1)), (2, (4, 2))] {
-        let opts = ResetOptions {
-            start: Some(start),
-            ..Default::default()
-        };
-        let info = env.reset(Some(seed), &opts).unwrap();
-        text += &TraceLine::reset(&env, info)
-            .with_reset_key(Some(seed), opts)
+    for (seed, opts) in episodes {
+        let info = env.reset(Some(*seed), opts).unwrap();
+        text += &TraceLine::reset(env, info)
+            .with_reset_key(Some(*seed), *opts)
             .to_json();
         text.push('\n');
         loop {
             let a = oracle.act(&env.state());
             let t = env.step(a).unwrap();
-            text += &TraceLine::step(&env, a, &t).to_json();
+            text += &TraceLine::step(env, a, &t).to_json();
             text.push('\n');
             if t.done() {
                 break;
             }
         }
     }
+    text
+}
+
+#[test]
+fn recorded_play_goes_through_the_same_metrics() {
+    use chronocooked_env::ResetOptions;
+    // Two FI episodes "played" by the oracle, written exactly like `env play --record`.
+    let mut env = ChronoEnv::from_id("FixedInterval-v0", &["td=6"]).unwrap();
+    let episodes = [(1, (1, 1)), (2, (4, 2))].map(|(seed, start)| {
+        let opts = ResetOptions {
+            start: Some(start),
+            ..Default::default()
+        };
+        (seed, opts)
+    });
+    let text = oracle_recording(&mut env, &episodes);
     let recs = chronocooked_analysis::behaviour::human::records_from_trace(&text).unwrap();
     assert_eq!(recs.len(), 2);
     assert!(
@@ -422,33 +436,20 @@ fn reproduction_metrics_of_the_oracle_are_veridical_with_the_gain() {
 /// them; the records carry those anchors and every anchor episode counts as right.
 #[test]
 fn recorded_play_is_scored_against_the_parameters_it_was_played_with() {
-    use chronocooked_env::trace::TraceLine;
-    use chronocooked_env::{Oracle, ResetOptions};
+    use chronocooked_env::ResetOptions;
     let mut env = ChronoEnv::from_id("MultiAnchor-v0", &["anchors=3,9"]).unwrap();
-    let oracle = Oracle::new(&env);
-    let mut text = String::new();
-    let mut seed = 0;
-    for td in [3u32, 9, 3, 9] {
-        seed += 1;
-        let opts = ResetOptions {
-            td: Some(td),
-            ..Default::default()
-        };
-        let info = env.reset(Some(seed), &opts).unwrap();
-        text += &TraceLine::reset(&env, info)
-            .with_reset_key(Some(seed), opts)
-            .to_json();
-        text.push('\n');
-        loop {
-            let a = oracle.act(&env.state());
-            let t = env.step(a).unwrap();
-            text += &TraceLine::step(&env, a, &t).to_json();
-            text.push('\n');
-            if t.done() {
-                break;
-            }
-        }
-    }
+    let episodes: Vec<(u64, ResetOptions)> = [3u32, 9, 3, 9]
+        .iter()
+        .enumerate()
+        .map(|(i, &td)| {
+            let opts = ResetOptions {
+                td: Some(td),
+                ..Default::default()
+            };
+            (i as u64 + 1, opts)
+        })
+        .collect();
+    let text = oracle_recording(&mut env, &episodes);
     let recs = chronocooked_analysis::behaviour::human::records_from_trace(&text).unwrap();
     assert_eq!(recs.len(), 4);
     for r in &recs {

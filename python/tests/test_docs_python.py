@@ -1,7 +1,8 @@
 """Every Python block of the README and the guide (docs/, docs/tutorials/) runs as written.
 
-Each block runs in a fresh folder holding a link to the repository's `examples/` (the
-blocks import their example agents from `examples/python`), with the installed package.
+Each block runs in a fresh folder holding links to the repository's folders it reads
+(`examples/` for the example agents, `results/` for the leaderboard's committed baselines,
+`zoo/`, `sweeps/`): as from the repository's root, with the installed package.
 A block that imports sb3_contrib runs only where it is installed (as `test_sb3.py`'s tests
 do). The shell blocks are run by the Rust suite (tests/doc_commands.rs).
 """
@@ -51,7 +52,8 @@ def test_the_guide_has_python_blocks_and_the_reader_finds_indented_ones():
 def test_every_documented_python_block_runs(tmp_path, where, code):
     if "sb3_contrib" in code:
         pytest.importorskip("sb3_contrib")
-    (tmp_path / "examples").symlink_to(ROOT / "examples")
+    for folder in ("examples", "results", "zoo", "sweeps"):
+        (tmp_path / folder).symlink_to(ROOT / folder)
     env = dict(os.environ, CHRONOCOOKED_CACHE=str(tmp_path / "cache"), MPLBACKEND="Agg")
     out = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, env=env,
                          capture_output=True, text=True, timeout=900)

@@ -1,7 +1,7 @@
 //! Reading signatures: the behavioural and neural features of every finished job of a
 //! study's compact results, or of a leaderboard's evaluation folders.
 
-use super::{MechanismError, READOUTS, Signature};
+use super::{DYNAMICS_NEURAL, MechanismError, READOUTS, Signature};
 use crate::job_folder;
 use crate::neural::categories::CATEGORIES;
 use crate::neural::summary::NeuralSummary;
@@ -302,7 +302,7 @@ fn job_features(
                 continue;
             }
             let size = p.units + p.constant_units;
-            for feature in DYNAMICS_FEATURES {
+            for feature in DYNAMICS_NEURAL {
                 if let Some(v) = finite(p.dynamics.as_ref().and_then(|d| d.feature(feature)))
                     && size > 0.0
                 {
@@ -342,17 +342,6 @@ fn job_features(
     }
     Ok(out)
 }
-
-/// The signature's trajectory features, as [`DynamicsView::feature`] reads them.
-const DYNAMICS_FEATURES: [&str; 7] = [
-    "dyn_dimension",
-    "dyn_speed_trend",
-    "dyn_turning",
-    "dyn_straightness",
-    "dyn_continuation",
-    "dyn_spectral_radius",
-    "dyn_rotation",
-];
 
 /// The scaling index of one model × seed's joint recording (`activity.summary.json` of
 /// `record --summary` over runs at several TDs): per non-read-out population the geometry
