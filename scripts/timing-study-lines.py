@@ -6,6 +6,7 @@ tabulate.
     python3 scripts/timing-study-lines.py multi-anchor SWEEP_FILE DIR > lines.txt
     python3 scripts/timing-study-lines.py multi-oven SWEEP_FILE DIR > lines.txt
     python3 scripts/timing-study-lines.py reproduction SWEEP_FILE DIR > lines.txt
+    python3 scripts/timing-study-lines.py reproduction-heldout SWEEP_FILE DIR > heldout-priors.txt
 
 * multi-anchor (sweeps/timing-multi-anchor*.toml): anchor set, model, seed, anchor accuracy
   and each boundary's fit (BP [95% CI], the pair's GM and AM, each marked `*` when inside the
@@ -17,7 +18,10 @@ tabulate.
   run into the same DIR): set-up (`default`, `ddm-rate0.5`, `gains`), model, seed, success,
   then per context (prior, gain) the slope of tp on ts, BIAS, sqrt(VAR), the Weber fraction
   of tp, the range of mean tp/(g ts) over ts, and the best observer with its wm and wp
-  (fitted at gain 1 only).
+  (fitted at gain 1 only);
+* reproduction-heldout (sweeps/timing-reproduction-heldout-priors.toml): set-up (`inter`: the
+  intermediate prior alone; `custom`: priors 10-16 and 15-21), run name, evaluation success,
+  then per prior its slope and the mean tp/ts at each ts in order.
 
 DIR is the sweep's output (`chronocooked sweep SWEEP_FILE --out DIR`) or its compact results
 (`chronocooked paper collect DIR --out RESULTS`). Lines come in the sweep file's order: its
@@ -132,10 +136,22 @@ def reproduction_main(sweep_file, root):
         print(f"{missing} jobs of the study not finished under {root}", file=sys.stderr)
 
 
+def heldout_line(m):
+    out = []
+    for c in m["reproduction"]["contexts"]:
+        r = [round(x[1], 2) for x in c["ratio"]]
+        out.append(f"  prior {c['prior']} slope {c['slope']:.2f} {r}")
+    return f"succ {m['success_rate']:.2f} " + " ".join(out)
+
+
+# The held-out priors' set-up labels.
+HELDOUT_PRIORS = {"intermediate": "inter", "10-16,15-21": "custom"}
+
 KINDS = {
     # kind: (task, the line's label of a variant, the line's measures)
     "multi-anchor": ("MultiAnchor-v0", lambda v: dict(v)["anchors"], anchor_line),
     "multi-oven": ("MultiOven-v0", lambda v: ",".join(f"{k}={x}" for k, x in v), oven_line),
+    "reproduction-heldout": ("Reproduction-v0", lambda v: HELDOUT_PRIORS[dict(v)["priors"]], heldout_line),
 }
 
 
@@ -163,7 +179,11 @@ def main():
                 if path is None:
                     missing += 1
                     continue
-                print(f"{label(setup)} {model} {seed} {measures(json.load(open(path)))}", flush=True)
+                name = label(setup)
+                if sys.argv[1] == "reproduction-heldout":  # the run's name, as the first grid named it
+                    print(f"{name} r-{name}-{model}-{seed} {measures(json.load(open(path)))}", flush=True)
+                else:
+                    print(f"{name} {model} {seed} {measures(json.load(open(path)))}", flush=True)
     if missing:
         print(f"{missing} jobs of the sweep not finished under {sys.argv[3]}", file=sys.stderr)
 
