@@ -38,23 +38,21 @@ fn pages() -> Vec<PathBuf> {
     .iter()
     .map(|f| root().join(f))
     .collect();
-    let mut guide: Vec<PathBuf> = std::fs::read_dir(root().join("docs"))
-        .unwrap()
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| p.extension().is_some_and(|x| x == "md"))
-        .collect();
-    guide.sort();
-    v.extend(guide);
-    let mut tutorials: Vec<PathBuf> = std::fs::read_dir(root().join("docs/tutorials"))
-        .unwrap()
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| p.extension().is_some_and(|x| x == "md"))
-        .collect();
-    tutorials.sort();
-    v.extend(tutorials);
+    v.extend(markdown_in("docs"));
+    v.extend(markdown_in("docs/tutorials"));
     v.extend(study_pages());
+    v
+}
+
+/// The Markdown pages directly in the repository folder `dir`, sorted.
+fn markdown_in(dir: &str) -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(root().join(dir))
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "md"))
+        .collect();
+    v.sort();
     v
 }
 

@@ -22,6 +22,7 @@ mod mechanisms;
 mod reliability;
 mod signals;
 mod structure;
+mod studies;
 mod sweep;
 mod timing_agents;
 mod timing_defaults;

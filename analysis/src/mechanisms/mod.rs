@@ -44,8 +44,8 @@ pub use identify::{
     AgentVerdict, HeldOut, Identification, LIMIT_COVERAGE, SeedVerdict, identify, seed_verdicts,
 };
 pub use read::{
-    CategoriesView, DynamicsView, JobFiles, PopulationView, ScalingView, assemble,
-    geometry_index_of_summary, scaling_index_of_summary, signatures,
+    CategoriesView, JobFiles, PopulationView, ScalingView, assemble, geometry_index_of_summary,
+    scaling_index_of_summary, signatures,
 };
 pub use tables::{
     PLACED_FINGERPRINT_CAPTION, Written, fingerprint_figure, placed_fingerprint_figure,

@@ -4,6 +4,7 @@
 use super::{DYNAMICS_NEURAL, MechanismError, READOUTS, Signature};
 use crate::job_folder;
 use crate::neural::categories::CATEGORIES;
+use crate::neural::dynamics::Dynamics;
 use crate::neural::summary::NeuralSummary;
 use crate::records::METRICS;
 use serde::Deserialize;
@@ -113,9 +114,9 @@ pub struct PopulationView {
     /// Ridge decoding error of elapsed time (steps).
     #[serde(default)]
     pub decode_ridge: Option<f64>,
-    /// The trajectory's basis-free features.
+    /// The trajectory's basis-free features (written whole since they exist).
     #[serde(default)]
-    pub dynamics: Option<DynamicsView>,
+    pub dynamics: Option<Dynamics>,
     /// Temporal scaling between the shortest and the longest TD.
     #[serde(default)]
     pub scaling: Option<ScalingView>,
@@ -129,38 +130,18 @@ pub struct CategoriesView {
     pub counts: BTreeMap<String, f64>,
 }
 
-/// The trajectory features of a population ([`crate::neural::dynamics::Dynamics`]).
-#[derive(Debug, Clone, Default, PartialEq, Deserialize)]
-pub struct DynamicsView {
-    /// Participation ratio rescaled to 0 … 1.
-    pub dimension: Option<f64>,
-    /// Log-log slope of speed on time.
-    pub speed_trend: Option<f64>,
-    /// Cosine of successive velocities.
-    pub turning: Option<f64>,
-    /// Net displacement over path length.
-    pub straightness: Option<f64>,
-    /// Speed after the window over speed in it.
-    pub continuation: Option<f64>,
-    /// Spectral radius of the linear fit.
-    pub spectral_radius: Option<f64>,
-    /// Rotation of the linear fit (cycles per TD).
-    pub rotation: Option<f64>,
-}
-
-impl DynamicsView {
-    /// The signature feature `feature` (`dyn_dimension`, …), if the summary has it.
-    fn feature(&self, feature: &str) -> Option<f64> {
-        match feature {
-            "dyn_dimension" => self.dimension,
-            "dyn_speed_trend" => self.speed_trend,
-            "dyn_turning" => self.turning,
-            "dyn_straightness" => self.straightness,
-            "dyn_continuation" => self.continuation,
-            "dyn_spectral_radius" => self.spectral_radius,
-            "dyn_rotation" => self.rotation,
-            _ => None,
-        }
+/// The signature feature `feature` (`dyn_dimension`, …) of a population's trajectory
+/// features, if it has it.
+fn dynamics_feature(d: &Dynamics, feature: &str) -> Option<f64> {
+    match feature {
+        "dyn_dimension" => d.dimension,
+        "dyn_speed_trend" => d.speed_trend,
+        "dyn_turning" => d.turning,
+        "dyn_straightness" => d.straightness,
+        "dyn_continuation" => d.continuation,
+        "dyn_spectral_radius" => d.spectral_radius,
+        "dyn_rotation" => d.rotation,
+        _ => None,
     }
 }
 
@@ -193,15 +174,7 @@ impl PopulationView {
                     .collect(),
             }),
             decode_ridge: s.decode_ridge,
-            dynamics: s.dynamics.as_ref().map(|d| DynamicsView {
-                dimension: d.dimension,
-                speed_trend: d.speed_trend,
-                turning: d.turning,
-                straightness: d.straightness,
-                continuation: d.continuation,
-                spectral_radius: d.spectral_radius,
-                rotation: d.rotation,
-            }),
+            dynamics: s.dynamics,
             scaling: s.scaling.as_ref().map(|x| ScalingView {
                 td_ratio: Some(x.td_ratio),
                 geometry_index: x.geometry_index,
@@ -303,8 +276,11 @@ fn job_features(
             }
             let size = p.units + p.constant_units;
             for feature in DYNAMICS_NEURAL {
-                if let Some(v) = finite(p.dynamics.as_ref().and_then(|d| d.feature(feature)))
-                    && size > 0.0
+                if let Some(v) = finite(
+                    p.dynamics
+                        .as_ref()
+                        .and_then(|d| dynamics_feature(d, feature)),
+                ) && size > 0.0
                 {
                     let slot = dynamics.entry(feature).or_insert((0.0, 0.0));
                     slot.0 += size * v;
