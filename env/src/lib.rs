@@ -31,6 +31,7 @@ pub mod obs;
 pub mod oracle;
 pub mod registry;
 pub mod render;
+mod rules;
 pub mod settings;
 mod spec;
 pub mod task;
@@ -49,5 +50,7 @@ pub use layout::{Layout, ObjectKind};
 pub use obs::{BoxSpace, Discrete, OneHotEncoder};
 pub use oracle::{Oracle, optimal_return};
 pub use registry::{TaskSpec, all_tasks, find_task, tasks_with_tag};
-pub use task::{CueMode, RewardMode, Task, TaskConfig, TaskFamily, TaskParams, make_config};
+pub use task::{
+    CueMode, Growth, RewardMode, Task, TaskConfig, TaskFamily, TaskParams, make_config,
+};
 pub use vec_env::{Autoreset, VecEnv, VecEnvSnapshot};

@@ -30,7 +30,7 @@ use crate::env::ChronoEnv;
 use crate::info::Carry;
 use crate::kitchen::{Kitchen, KitchenState, MultiOvenState, RsgState};
 use crate::layout::{Layout, ObjectKind};
-use crate::task::{RewardMode, TaskParams};
+use crate::task::TaskParams;
 use std::collections::HashMap;
 
 /// Optimal scripted policy for one task instance.
@@ -110,53 +110,14 @@ impl Oracle {
         }
     }
 
+    /// The counter a soup of duration `td` goes to (the family's rule).
     fn delivery_kind(&self, td: u32) -> ObjectKind {
-        let below_gm = |a: u32, b: u32| (td as u64) * (td as u64) < (a as u64) * (b as u64);
-        match &self.params {
-            TaskParams::Bisection { short, long } | TaskParams::MultiOven { short, long, .. } => {
-                if below_gm(*short, *long) {
-                    ObjectKind::ShortCounter
-                } else {
-                    ObjectKind::LongCounter
-                }
-            }
-            TaskParams::MultiAnchor { .. } => {
-                let anchors = self.params.active_anchors().unwrap_or(&[]);
-                let category = anchors
-                    .windows(2)
-                    .position(|w| below_gm(w[0], w[1]))
-                    .unwrap_or(anchors.len().saturating_sub(1));
-                [
-                    ObjectKind::ShortCounter,
-                    ObjectKind::LongCounter,
-                    ObjectKind::Counter3,
-                    ObjectKind::Counter4,
-                ][category.min(3)]
-            }
-            _ => ObjectKind::DeliveryCounter,
-        }
+        crate::task::family::of(self.params.family()).delivery_kind(&self.params, td)
     }
 
     /// Timer (at action time) of the earliest rewarded pickup, `None` if never.
     fn pickup_timer(&self, td: u32) -> Option<i32> {
-        let td = td as i32;
-        match &self.params {
-            TaskParams::FixedInterval { .. } => Some(td),
-            TaskParams::PeakInterval { .. } => Some(td),
-            TaskParams::Bisection { .. }
-            | TaskParams::Uncertainty { .. }
-            | TaskParams::MultiAnchor { .. }
-            | TaskParams::MultiOven { .. }
-            | TaskParams::Reproduction { .. } => Some(td),
-            TaskParams::MultiTimer {
-                mode, under_buffer, ..
-            } => Some(match mode {
-                RewardMode::Exact => (td - *under_buffer as i32).max(1),
-                RewardMode::LowerBounded => td,
-            }),
-            // Latest rewarded pickup: every extra step of cooking is one more sink payment.
-            TaskParams::Dual { over_buffer, .. } => Some(td + *over_buffer as i32),
-        }
+        crate::task::family::of(self.params.family()).paid_pickup_timer(&self.params, td)
     }
 
     /// Dual task: the oven neighbour closest to a sink neighbour. Putting the onion in

@@ -1,40 +1,10 @@
 //! Recorded human play (`env play` JSON lines, the replay trace shape) as evaluation
 //! records, so people and agents go through the same metrics.
 
-use crate::records::{Condition, ConditionKind, EvalRecord};
+use crate::records::EvalRecord;
 use chronocooked_env::trace::TraceLine;
-use chronocooked_env::{Task, TaskConfig, TaskParams};
 use chronocooked_models::EpisodeRecord;
 use chronocooked_models::agent::is_success;
-
-/// Condition kind and task (with every parameter it was played with) for an episode played
-/// on `config` with target `td`.
-fn condition_of(config: &TaskConfig, td: u32) -> Result<Condition, String> {
-    let (kind, factor) = match &config.params {
-        TaskParams::FixedInterval { .. } => (ConditionKind::Fi, None),
-        TaskParams::PeakInterval { probe_factor, .. } => {
-            (ConditionKind::Pi, Some(f64::from(*probe_factor)))
-        }
-        TaskParams::Bisection { .. } => (ConditionKind::Bisection, None),
-        TaskParams::MultiTimer { .. } => (ConditionKind::MultiTimer, None),
-        TaskParams::Dual { .. } => (ConditionKind::Dual, None),
-        TaskParams::Uncertainty { .. } => (ConditionKind::Uncertainty, None),
-        TaskParams::MultiAnchor { .. } => (ConditionKind::MultiAnchor, None),
-        TaskParams::MultiOven { .. } => (ConditionKind::MultiOven, None),
-        TaskParams::Reproduction { .. } => (ConditionKind::Reproduction, None),
-    };
-    // The task as played, every parameter of the recording's reset line (its anchors, its
-    // ovens, its priors), so the metrics score the episode against the rules it was played
-    // under, not the registered defaults.
-    Ok(Condition {
-        kind,
-        task: Task::from_config(config).map_err(|e| e.to_string())?,
-        td,
-        never_ready: None,
-        factor,
-        context: None,
-    })
-}
 
 /// Parses a trace file (one or more episodes, each starting with its reset line) into
 /// records. A recording whose reset lines carry their seed and options (`env play`) is
@@ -61,14 +31,14 @@ pub fn records_from_trace(text: &str) -> Result<Vec<EvalRecord>, String> {
                 config
                     .validate()
                     .map_err(|e| format!("line {n}: config: {e}"))?;
-                let condition = condition_of(&config, t.info.td)?;
-                let never = t.info.never_ready;
+                // The task as played, every parameter of the recording's reset line (its
+                // anchors, its ovens, its priors), so the metrics score the episode against
+                // the rules it was played under, not the registered defaults.
+                let condition = config
+                    .played_condition(t.info.td, t.info.never_ready)
+                    .map_err(|e| format!("line {n}: {e}"))?;
                 out.push(EvalRecord {
-                    condition: Condition {
-                        never_ready: matches!(config.params, TaskParams::Uncertainty { .. })
-                            .then_some(never),
-                        ..condition
-                    },
+                    condition,
                     episode: EpisodeRecord {
                         td: t.info.td,
                         start: (t.info.agent.0 as usize, t.info.agent.1 as usize),

@@ -12,9 +12,7 @@
 //!   exact-timer buffers 0, 25, 50, 75% of TD;
 //! * dual: the trained TD; uncertainty: normal and never-ready episodes.
 
-use chronocooked_env::{
-    ChronoEnv, EnvError, ResetOptions, Task, TaskConfig, TaskParams, derive_seed,
-};
+use chronocooked_env::{ChronoEnv, EnvError, ResetOptions, Task, TaskConfig, derive_seed};
 use chronocooked_models::activity::TrialRecorder;
 use chronocooked_models::{Agent, run_episode};
 use rand::{Rng, SeedableRng};
@@ -22,120 +20,10 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 
 pub use crate::records::{Condition, ConditionKind, EvalRecord, Mode, RECORDS, read_records};
 
-fn cond(kind: ConditionKind, task: &Task, td: u32) -> Condition {
-    Condition {
-        kind,
-        task: task.clone(),
-        td,
-        never_ready: None,
-        factor: None,
-        context: None,
-    }
-}
-
-/// The reference conditions for an agent trained on `task`.
+/// The reference conditions for an agent trained on `task`, as its family declares them
+/// (`chronocooked_env::task::family`; the list per family is in this module's docs).
 pub fn reference_conditions(task: &Task) -> Result<Vec<Condition>, EnvError> {
-    let config = task.config()?;
-    let mut out = Vec::new();
-    match &config.params {
-        TaskParams::FixedInterval { td } => {
-            out.push(cond(ConditionKind::Fi, task, *td));
-            for k in [2u32, 5] {
-                let probe = Task::parse(
-                    "PeakInterval-v0",
-                    &[format!("td={td}"), format!("probe_factor={k}")],
-                )?;
-                let mut c = cond(ConditionKind::Pi, &probe, *td);
-                c.factor = Some(f64::from(k));
-                out.push(c);
-            }
-        }
-        TaskParams::PeakInterval { td, probe_factor } => {
-            let mut c = cond(ConditionKind::Pi, task, *td);
-            c.factor = Some(f64::from(*probe_factor));
-            out.push(c);
-        }
-        TaskParams::Bisection { long, .. } => {
-            for t in 1..=long + 4 {
-                out.push(cond(ConditionKind::Bisection, task, t));
-            }
-        }
-        TaskParams::MultiTimer {
-            tds,
-            num_timers,
-            cue,
-            ..
-        } => {
-            let active = &tds[..(*num_timers).min(tds.len())];
-            let max = active.iter().copied().max().unwrap_or(1);
-            // OOD TDs need the value cue (categorical cues have no code for them).
-            let probe: Vec<u32> = match cue {
-                chronocooked_env::CueMode::Value => (1..=max + 3).collect(),
-                chronocooked_env::CueMode::Categorical => active.to_vec(),
-            };
-            for t in probe {
-                out.push(cond(ConditionKind::MultiTimer, task, t));
-            }
-            for &t in active {
-                for f in [0.0, 0.25, 0.5, 0.75] {
-                    let b = (f * f64::from(t)).round() as u32;
-                    let buffered = task.with(&[
-                        "mode=exact".to_string(),
-                        format!("under_buffer={b}"),
-                        format!("over_buffer={b}"),
-                    ])?;
-                    let mut c = cond(ConditionKind::Buffer, &buffered, t);
-                    c.factor = Some(f);
-                    out.push(c);
-                }
-            }
-        }
-        TaskParams::Dual { td, .. } => out.push(cond(ConditionKind::Dual, task, *td)),
-        // The reference's probes: every integer 1 … (largest active anchor) + 4.
-        TaskParams::MultiAnchor { .. } => {
-            let largest = config.params.active_anchors().map_or(1, |a| a[a.len() - 1]);
-            for t in 1..=largest + 4 {
-                out.push(cond(ConditionKind::MultiAnchor, task, t));
-            }
-        }
-        // Every sample interval of every prior, at every gain (the context set by reset
-        // options, so the cue shows as in training).
-        TaskParams::Reproduction { priors, gains, .. } => {
-            for (p, prior) in priors.iter().enumerate() {
-                let (lo, hi) = chronocooked_env::task::parse_prior(prior)?;
-                for (g, gain) in gains.iter().enumerate() {
-                    for ts in lo..=hi {
-                        let mut c = cond(ConditionKind::Reproduction, task, ts);
-                        c.factor = Some(f64::from(*gain));
-                        c.context = Some([p as u8, g as u8]);
-                        out.push(c);
-                    }
-                }
-            }
-        }
-        // The reference's probes: TD 1 … L + 4, the same duration for every oven; with
-        // several ovens the same probes on one oven too (the agent's own baseline for the
-        // interference between ovens).
-        TaskParams::MultiOven { long, ovens, .. } => {
-            for t in 1..=long + 4 {
-                out.push(cond(ConditionKind::MultiOven, task, t));
-            }
-            if *ovens > 1 {
-                let one = task.with(&["ovens=1"])?;
-                for t in 1..=long + 4 {
-                    out.push(cond(ConditionKind::MultiOven, &one, t));
-                }
-            }
-        }
-        TaskParams::Uncertainty { td, .. } => {
-            for nr in [false, true] {
-                let mut c = cond(ConditionKind::Uncertainty, task, *td);
-                c.never_ready = Some(nr);
-                out.push(c);
-            }
-        }
-    }
-    Ok(out)
+    task.config()?.conditions(task)
 }
 
 /// Plays every condition with `agent`; `seed` makes the run reproducible.

@@ -5,31 +5,13 @@
 //! `key=value` text is read once, where it enters (the CLI, sweep files, Python), by the
 //! table ([`Task::set`]); from there on the task travels typed.
 
-use super::{TaskConfig, TaskFamily, params};
+use super::{Task, TaskConfig, TaskFamily, params};
 use crate::error::EnvError;
 use crate::registry::find_task;
 use crate::settings::{self, Spec};
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
 use std::fmt;
-
-/// A registered task with its parameters: the id as given (`FixedInterval-v0`) and the
-/// parameters set on it, typed (`td` = 6) and each checked against its table entry. The
-/// cross-field rules (S < L, distinct anchors, the layout) are checked as a whole by
-/// [`Task::config`], so parameters can be set in any order.
-///
-/// Serialised as two fields: `task` (the id) and `env` (the parameters set, as a map:
-/// `{"td": 6}`). The older form, `env` as a list of `key=value` texts, still reads.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(try_from = "TaskFields", into = "TaskFields")]
-pub struct Task {
-    /// The id as given (a registry id or an alias of one).
-    id: String,
-    /// The registered defaults with every set parameter applied.
-    config: TaskConfig,
-    /// `(index in the family's table, value)` of every parameter set, in table order.
-    set: Vec<(usize, Value)>,
-}
 
 impl Task {
     /// The registered task `id` (an id or its alias, e.g. `fixedinterval`) with its defaults.
@@ -57,6 +39,20 @@ impl Task {
         task.set_all(overrides)?;
         task.config()?;
         Ok(task)
+    }
+
+    /// This task with its growing parameter at `size` (a curriculum level; see
+    /// [`TaskConfig::growth`]), recorded as the override `key=size`. Errors for a task that
+    /// does not grow.
+    pub fn at_growth_size(&self, size: usize) -> Result<Self, EnvError> {
+        let growth = self.config()?.growth().ok_or_else(|| {
+            EnvError::param(
+                "curriculum",
+                self.to_string(),
+                "a task that grows (multi-anchor counters, multi-oven ovens)",
+            )
+        })?;
+        self.with(&[format!("{}={size}", growth.key)])
     }
 
     /// Applies `key=value` overrides in order; each is checked by its rule, the whole by
@@ -232,7 +228,7 @@ impl fmt::Display for Task {
 
 /// The serialised form of a [`Task`].
 #[derive(Serialize, Deserialize)]
-struct TaskFields {
+pub(super) struct TaskFields {
     task: String,
     #[serde(default)]
     env: EnvFields,

@@ -9,14 +9,20 @@
 //! [`Task::config`] turns into the checked [`TaskConfig`].
 
 mod chosen;
+pub mod condition;
+pub mod family;
 pub mod params;
 
-pub use chosen::{Task, make_config};
+pub use crate::rules::{CueMode, RewardMode};
+use chosen::TaskFields;
+pub use chosen::make_config;
+pub use family::reproduction::{NAMED_PRIORS, parse_prior};
+pub use family::{Growth, TaskSpec};
 
 use crate::error::EnvError;
 use crate::layout::{Layout, ObjectKind};
 use crate::settings::{self, Spec};
-use params::{MAX_ANCHORS, MAX_TD, MAX_TIMESTEPS};
+use params::MAX_TIMESTEPS;
 use serde::{Deserialize, Serialize};
 
 /// Reference FI / multi-timer layout (5×3): onion (0,1), delivery (0,2), oven (2,0).
@@ -31,26 +37,6 @@ pub const UNCERTAINTY_LAYOUT: &str = ".OD/.../V../.../.B.";
 pub const REPRODUCTION_LAYOUT: &str = "..D/.../V../.../...";
 /// Multi-anchor and multi-oven tasks: the layout follows the active counters or ovens.
 pub const AUTO_LAYOUT: &str = "auto";
-
-/// The reference multi-anchor layout (4×3) with `k` counters: counter 1 (0,0), onion (0,1),
-/// counter 2 (0,2), counter 3 (3,0), oven (3,1), counter 4 (3,2).
-pub fn multi_anchor_layout(k: usize) -> &'static str {
-    match k {
-        0..=2 => "SOL/.../.../.V.",
-        3 => "SOL/.../.../3V.",
-        _ => "SOL/.../.../3V4",
-    }
-}
-
-/// The reference multi-oven layout (4×3) with `n` ovens: short counter (0,0), onion (0,1),
-/// long counter (0,2), oven i at (3,i).
-pub fn multi_oven_layout(n: usize) -> &'static str {
-    match n {
-        0 | 1 => "SOL/.../.../V..",
-        2 => "SOL/.../.../VW.",
-        _ => "SOL/.../.../VWX",
-    }
-}
 
 /// The task families of the benchmark.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -74,28 +60,6 @@ pub enum TaskFamily {
     MultiOven,
     /// Temporal reproduction (Ready-Set-Go): reproduce the interval between two oven cues.
     Reproduction,
-}
-
-/// Multi-timer reward rule.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum RewardMode {
-    /// Soup can be taken any time after the onion went in (undercooking possible);
-    /// reward 1 iff `TD − under_buffer ≤ oven_off_time ≤ TD + over_buffer`.
-    Exact,
-    /// Soup can be taken only when timer ≥ TD; reward 1 unless
-    /// `oven_off_time > TD + over_buffer`.
-    LowerBounded,
-}
-
-/// What the oven shows in observation channel 4 while on (multi-timer).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum CueMode {
-    /// The TD value itself (reference behaviour; orders TDs, used for OOD tests).
-    Value,
-    /// `1 + index` of the TD in the trained list (no ordering information).
-    Categorical,
 }
 
 /// Family-specific parameters. Units: durations in env steps.
@@ -203,63 +167,24 @@ pub enum TaskParams {
     },
 }
 
-/// The named priors of the reproduction task: Jazayeri & Shadlen 2010's short
-/// (494–847 ms), intermediate (671–1023 ms) and long (847–1200 ms) priors at 1 step ≈ 59 ms,
-/// 7 whole steps each, overlapping as theirs do (short and long share their end point).
-pub const NAMED_PRIORS: [(&str, u32, u32); 3] =
-    [("short", 8, 14), ("intermediate", 11, 17), ("long", 14, 20)];
-
-/// Parses a prior (`short`, `intermediate`, `long` or `LO-HI`) into its inclusive range of
-/// whole steps.
-pub fn parse_prior(text: &str) -> Result<(u32, u32), EnvError> {
-    let t = text.trim();
-    if let Some(&(_, lo, hi)) = NAMED_PRIORS.iter().find(|(n, ..)| *n == t) {
-        return Ok((lo, hi));
-    }
-    let bad = || {
-        EnvError::param(
-            "priors",
-            t,
-            "short, intermediate, long, or LO-HI with whole steps 1 <= LO < HI <= 1000",
-        )
-    };
-    let (lo, hi) = t.split_once('-').ok_or_else(bad)?;
-    let (lo, hi): (u32, u32) = (
-        lo.trim().parse().map_err(|_| bad())?,
-        hi.trim().parse().map_err(|_| bad())?,
-    );
-    if lo < 1 || hi <= lo || hi > 1000 {
-        return Err(bad());
-    }
-    Ok((lo, hi))
-}
-
-impl TaskParams {
-    /// The single target duration of families that have one (FI, PI, dual, uncertainty).
-    pub fn td(&self) -> Option<u32> {
-        match self {
-            TaskParams::FixedInterval { td }
-            | TaskParams::PeakInterval { td, .. }
-            | TaskParams::Dual { td, .. }
-            | TaskParams::Uncertainty { td, .. } => Some(*td),
-            TaskParams::Bisection { .. }
-            | TaskParams::MultiTimer { .. }
-            | TaskParams::MultiAnchor { .. }
-            | TaskParams::MultiOven { .. }
-            | TaskParams::Reproduction { .. } => None,
-        }
-    }
-
-    /// Multi-anchor: the active anchors (steps), in counter order.
-    pub fn active_anchors(&self) -> Option<&[u32]> {
-        match self {
-            TaskParams::MultiAnchor {
-                anchors,
-                num_anchors,
-            } => Some(&anchors[..num_anchors.unwrap_or(anchors.len()).min(anchors.len())]),
-            _ => None,
-        }
-    }
+// The type a chosen task travels as is declared here, beside the configuration it checks,
+// so that the task families (`family`) can name it; its methods are in `chosen`.
+/// A registered task with its parameters: the id as given (`FixedInterval-v0`) and the
+/// parameters set on it, typed (`td` = 6) and each checked against its table entry. The
+/// cross-field rules (S < L, distinct anchors, the layout) are checked as a whole by
+/// [`Task::config`], so parameters can be set in any order.
+///
+/// Serialised as two fields: `task` (the id) and `env` (the parameters set, as a map:
+/// `{"td": 6}`). The older form, `env` as a list of `key=value` texts, still reads.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "TaskFields", into = "TaskFields")]
+pub struct Task {
+    /// The id as given (a registry id or an alias of one).
+    id: String,
+    /// The registered defaults with every set parameter applied.
+    config: TaskConfig,
+    /// `(index in the family's table, value)` of every parameter set, in table order.
+    set: Vec<(usize, serde_json::Value)>,
 }
 
 /// Everything needed to build an env: task family parameters plus shared settings.
@@ -290,45 +215,21 @@ impl TaskFamily {
         params::table(self)
     }
 
-    /// Objects the family's layout must contain exactly once (every other kind must be
-    /// absent), for the given parameters.
-    fn required_objects(self, params: &TaskParams) -> Vec<ObjectKind> {
-        use ObjectKind::*;
-        match self {
-            TaskFamily::FixedInterval | TaskFamily::PeakInterval | TaskFamily::MultiTimer => {
-                vec![OnionDispenser, DeliveryCounter, Oven]
-            }
-            TaskFamily::Bisection => vec![OnionDispenser, ShortCounter, LongCounter, Oven],
-            TaskFamily::Dual => vec![OnionDispenser, DeliveryCounter, Oven, RewardSink],
-            TaskFamily::Uncertainty => vec![OnionDispenser, DeliveryCounter, Oven, OvenButton],
-            TaskFamily::MultiAnchor => {
-                let k = params.active_anchors().map_or(2, <[u32]>::len);
-                let mut v = vec![OnionDispenser, Oven, ShortCounter, LongCounter];
-                v.extend([Counter3, Counter4].into_iter().take(k.saturating_sub(2)));
-                v
-            }
-            TaskFamily::MultiOven => {
-                let n = match params {
-                    TaskParams::MultiOven { ovens, .. } => *ovens as usize,
-                    _ => 1,
-                };
-                let mut v = vec![OnionDispenser, ShortCounter, LongCounter, Oven];
-                v.extend([Oven2, Oven3].into_iter().take(n.saturating_sub(1)));
-                v
-            }
-            TaskFamily::Reproduction => vec![DeliveryCounter, Oven],
-        }
+    /// The family's own parameters (the common ones are [`common_params`]).
+    pub fn own_params(self) -> &'static [Spec] {
+        family::of(self).params()
     }
 
     /// Whether the oven shows a "ready" state (ch4 = 2) in this family.
     pub fn shows_ready(self) -> bool {
-        matches!(
-            self,
-            TaskFamily::Bisection
-                | TaskFamily::Uncertainty
-                | TaskFamily::MultiAnchor
-                | TaskFamily::MultiOven
-        )
+        family::of(self).shows_ready()
+    }
+}
+
+impl TaskParams {
+    /// The single target duration of families that have one (FI, PI, dual, uncertainty).
+    pub fn td(&self) -> Option<u32> {
+        family::of(self.family()).single_td(self)
     }
 }
 
@@ -350,17 +251,7 @@ impl From<settings::SettingError> for EnvError {
 impl TaskConfig {
     /// The family of this configuration.
     pub fn family(&self) -> TaskFamily {
-        match self.params {
-            TaskParams::FixedInterval { .. } => TaskFamily::FixedInterval,
-            TaskParams::PeakInterval { .. } => TaskFamily::PeakInterval,
-            TaskParams::Bisection { .. } => TaskFamily::Bisection,
-            TaskParams::MultiTimer { .. } => TaskFamily::MultiTimer,
-            TaskParams::Dual { .. } => TaskFamily::Dual,
-            TaskParams::Uncertainty { .. } => TaskFamily::Uncertainty,
-            TaskParams::MultiAnchor { .. } => TaskFamily::MultiAnchor,
-            TaskParams::MultiOven { .. } => TaskFamily::MultiOven,
-            TaskParams::Reproduction { .. } => TaskFamily::Reproduction,
-        }
+        self.params.family()
     }
 
     /// Applies one `key=value` override (canonical key or reference alias), parsed and
@@ -375,15 +266,7 @@ impl TaskConfig {
         })?;
         // Errors name the canonical key (`td` for `oven_duration`).
         settings::set_field(self, spec, spec.key, value)?;
-        // Fewer TDs than active timers: the active count follows the list (as the
-        // reference's curriculum never has more active timers than TDs).
-        if let TaskParams::MultiTimer {
-            tds, num_timers, ..
-        } = &mut self.params
-            && spec.key == "tds"
-        {
-            *num_timers = (*num_timers).min(tds.len()).max(1);
-        }
+        family::of(self.family()).after_set(&mut self.params, spec.key);
         Ok(())
     }
 
@@ -393,24 +276,14 @@ impl TaskConfig {
         if self.layout.trim() != AUTO_LAYOUT {
             return &self.layout;
         }
-        match &self.params {
-            TaskParams::MultiAnchor { .. } => {
-                multi_anchor_layout(self.params.active_anchors().map_or(2, <[u32]>::len))
-            }
-            TaskParams::MultiOven { ovens, .. } => multi_oven_layout(*ovens as usize),
-            TaskParams::Bisection { .. } => BISECTION_LAYOUT,
-            TaskParams::Dual { .. } => DUAL_LAYOUT,
-            TaskParams::Uncertainty { .. } => UNCERTAINTY_LAYOUT,
-            TaskParams::Reproduction { .. } => REPRODUCTION_LAYOUT,
-            _ => FI_LAYOUT,
-        }
+        family::of(self.family()).auto_layout(&self.params)
     }
 
     /// Checks every parameter against its table entry, then the cross-field constraints,
     /// and parses the layout.
     pub fn validate(&self) -> Result<Layout, EnvError> {
-        let family = self.family();
-        settings::check(&params::table(family), self)?;
+        let family = family::of(self.family());
+        settings::check(&params::table(self.family()), self)?;
         let layout = Layout::parse(self.resolved_layout())?;
         let required = family.required_objects(&self.params);
         for &kind in &required {
@@ -445,136 +318,9 @@ impl TaskConfig {
                 format!("integer 0..={MAX_TIMESTEPS}"),
             ));
         }
-        match &self.params {
-            TaskParams::FixedInterval { .. }
-            | TaskParams::PeakInterval { .. }
-            | TaskParams::Dual { .. }
-            | TaskParams::Uncertainty { .. } => {}
-            TaskParams::Bisection { short, long } | TaskParams::MultiOven { short, long, .. } => {
-                if long <= short {
-                    return Err(EnvError::param(
-                        "long",
-                        long,
-                        format!("integer > short ({short}): the anchors need S < L"),
-                    ));
-                }
-            }
-            TaskParams::MultiTimer {
-                tds, num_timers, ..
-            } => {
-                if tds.is_empty() {
-                    return Err(EnvError::param("tds", "[]", "at least one TD in 1..=255"));
-                }
-                if !distinct(tds) {
-                    return Err(EnvError::param(
-                        "tds",
-                        settings::display(&serde_json::json!(tds)),
-                        "distinct integers 1..=255",
-                    ));
-                }
-                if *num_timers == 0 || *num_timers > tds.len() {
-                    return Err(EnvError::param(
-                        "num_timers",
-                        num_timers,
-                        format!("integer 1..={} (the length of tds)", tds.len()),
-                    ));
-                }
-            }
-            TaskParams::Reproduction {
-                priors,
-                gains,
-                foreperiod_min,
-                foreperiod_max,
-                tolerance,
-                tolerance_steps,
-                ..
-            } => {
-                if priors.is_empty() || priors.len() > 3 {
-                    return Err(EnvError::param(
-                        "priors",
-                        priors.join(","),
-                        "1 to 3 priors (short, intermediate, long or LO-HI)",
-                    ));
-                }
-                let mut longest = 0;
-                for p in priors {
-                    longest = longest.max(parse_prior(p)?.1);
-                }
-                if gains.is_empty() || gains.len() > 2 || !distinct_f32(gains) {
-                    return Err(EnvError::param(
-                        "gains",
-                        settings::display(&serde_json::json!(gains)),
-                        "1 or 2 distinct gains in [0.5, 3]",
-                    ));
-                }
-                if foreperiod_min > foreperiod_max {
-                    return Err(EnvError::param(
-                        "foreperiod_max",
-                        foreperiod_max,
-                        format!("integer >= foreperiod_min ({foreperiod_min})"),
-                    ));
-                }
-                // The latest response the window pays must fit in the episode.
-                let g = gains.iter().copied().fold(0.0f32, f32::max) as f64;
-                let target = g * f64::from(longest);
-                let latest = f64::from(*foreperiod_max)
-                    + f64::from(longest)
-                    + target
-                    + f64::from(*tolerance) * target
-                    + f64::from(*tolerance_steps);
-                if latest.ceil() as u64 + 1 > u64::from(self.max_timesteps) {
-                    return Err(EnvError::param(
-                        "max_timesteps",
-                        self.max_timesteps,
-                        format!(
-                            "at least {} (foreperiod + longest ts + the latest paid production)",
-                            latest.ceil() as u64 + 1
-                        ),
-                    ));
-                }
-            }
-            TaskParams::MultiAnchor {
-                anchors,
-                num_anchors,
-            } => {
-                let text = settings::display(&serde_json::json!(anchors));
-                if !(2..=MAX_ANCHORS).contains(&anchors.len()) {
-                    return Err(EnvError::param(
-                        "anchors",
-                        text,
-                        format!("2 to {MAX_ANCHORS} durations (one counter each)"),
-                    ));
-                }
-                if anchors.windows(2).any(|w| w[0] >= w[1]) {
-                    return Err(EnvError::param(
-                        "anchors",
-                        text,
-                        "distinct durations in increasing order (counter i is the i-th shortest)",
-                    ));
-                }
-                if let Some(k) = num_anchors
-                    && !(2..=anchors.len()).contains(k)
-                {
-                    return Err(EnvError::param(
-                        "num_anchors",
-                        k,
-                        format!("none, or 2..={} (the number of anchors)", anchors.len()),
-                    ));
-                }
-            }
-        }
+        family.check(self)?;
         if let Some(td) = self.fixed_td {
-            let fits = match &self.params {
-                TaskParams::MultiTimer { cue, tds, .. } => match cue {
-                    CueMode::Value => (1..=255).contains(&td),
-                    CueMode::Categorical => tds.contains(&td),
-                },
-                TaskParams::Bisection { .. }
-                | TaskParams::MultiAnchor { .. }
-                | TaskParams::MultiOven { .. }
-                | TaskParams::Reproduction { .. } => (1..=MAX_TD as u32).contains(&td),
-                _ => false,
-            };
+            let fits = family.fixed_td_fits(&self.params, td);
             if !fits {
                 return Err(EnvError::param(
                     "td",
@@ -585,18 +331,59 @@ impl TaskConfig {
         }
         Ok(layout)
     }
-}
 
-fn distinct_f32(values: &[f32]) -> bool {
-    values
-        .iter()
-        .enumerate()
-        .all(|(i, a)| values[i + 1..].iter().all(|b| a != b))
-}
+    /// The TDs a deterministic evaluation covers (steps): bisection and multi-oven → both
+    /// anchors; multi-timer → the active TDs; multi-anchor → the active anchors;
+    /// reproduction → every sample interval of its priors; other tasks → their TD.
+    pub fn evaluation_tds(&self) -> Vec<u32> {
+        family::of(self.family()).evaluation_tds(&self.params)
+    }
 
-fn distinct(values: &[u32]) -> bool {
-    let mut sorted = values.to_vec();
-    sorted.sort_unstable();
-    sorted.dedup();
-    sorted.len() == values.len()
+    /// How this task grows during a curriculum (multi-anchor counters, multi-oven ovens);
+    /// `None` for tasks that do not grow.
+    pub fn growth(&self) -> Option<Growth> {
+        family::of(self.family()).growth(&self.params)
+    }
+
+    /// This configuration with its growing parameter at `size` (a typed edit), checked.
+    pub fn at_growth_size(&self, size: usize) -> Result<TaskConfig, EnvError> {
+        let mut level = self.clone();
+        family::of(self.family()).grow(&mut level.params, size);
+        level.validate()?;
+        Ok(level)
+    }
+
+    /// The curriculum's levels, from the first size to the configured one; the
+    /// configuration itself for a task that does not grow (or starts at its first size).
+    pub fn growth_levels(&self) -> Result<Vec<TaskConfig>, EnvError> {
+        match self.growth() {
+            Some(g) if g.last > g.first => {
+                (g.first..=g.last).map(|n| self.at_growth_size(n)).collect()
+            }
+            _ => Ok(vec![self.clone()]),
+        }
+    }
+
+    /// The reference evaluation conditions of an agent trained on `task` (this is its checked
+    /// configuration), as the family declares them.
+    pub fn conditions(&self, task: &Task) -> Result<Vec<condition::Condition>, EnvError> {
+        family::of(self.family()).conditions(task, self)
+    }
+
+    /// The condition of an episode played on this configuration at `td` (human play,
+    /// replays): the family's kind, with every parameter as played.
+    pub fn played_condition(
+        &self,
+        td: u32,
+        never_ready: bool,
+    ) -> Result<condition::Condition, EnvError> {
+        let task = Task::from_config(self)?;
+        Ok(family::of(self.family()).played_condition(task, &self.params, td, never_ready))
+    }
+
+    /// The TDs (steps) and never-ready flags the environment demo plays: every TD a task
+    /// draws (each prior's ends for reproduction; both oven kinds for uncertainty).
+    pub fn demo_conditions(&self) -> Vec<(u32, Option<bool>)> {
+        family::of(self.family()).demo_conditions(&self.params)
+    }
 }

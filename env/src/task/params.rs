@@ -21,12 +21,13 @@ pub const MAX_TIMESTEPS: u64 = 1_000_000;
 /// Largest multiple of TD at which a peak-interval probe releases the soup.
 pub const MAX_PROBE_FACTOR: u64 = 1_000;
 
-const TD_RULE: Rule = Rule::Int { lo: 1, hi: MAX_TD };
-const BUFFER_RULE: Rule = Rule::Int { lo: 0, hi: MAX_TD };
-const CUE_TD_RULE: Rule = Rule::Int { lo: 1, hi: 255 };
-const FIXED_TD_RULE: Rule = Rule::Optional(&TD_RULE);
+pub(crate) const TD_RULE: Rule = Rule::Int { lo: 1, hi: MAX_TD };
+pub(crate) const BUFFER_RULE: Rule = Rule::Int { lo: 0, hi: MAX_TD };
+pub(crate) const CUE_TD_RULE: Rule = Rule::Int { lo: 1, hi: 255 };
+pub(crate) const FIXED_TD_RULE: Rule = Rule::Optional(&TD_RULE);
 
-const fn param(
+/// One parameter entry (no `only_with` condition).
+pub(crate) const fn param(
     key: &'static str,
     aliases: &'static [&'static str],
     path: &'static [&'static str],
@@ -78,49 +79,49 @@ pub const COMMON: &[Spec] = &[
     ),
 ];
 
-const TD: Spec = param(
+pub(crate) const TD: Spec = param(
     "td",
     &["oven_duration"],
     &["params", "td"],
     TD_RULE,
     "target duration (steps)",
 );
-const FIXED_TD: Spec = param(
+pub(crate) const FIXED_TD: Spec = param(
     "td",
     &["oven_duration"],
     &["fixed_td"],
     FIXED_TD_RULE,
     "fix the TD of every episode (probes, OOD tests; every oven of a multi-oven episode); none: drawn per episode",
 );
-const UNDER: Spec = param(
+pub(crate) const UNDER: Spec = param(
     "under_buffer",
     &["undercooked_buffer"],
     &["params", "under_buffer"],
     BUFFER_RULE,
     "early tolerance of the reward window (steps)",
 );
-const OVER: Spec = param(
+pub(crate) const OVER: Spec = param(
     "over_buffer",
     &["overcooked_buffer"],
     &["params", "over_buffer"],
     BUFFER_RULE,
     "late tolerance of the reward window (steps)",
 );
-const REDUCED: Spec = param(
+pub(crate) const REDUCED: Spec = param(
     "reduced_reward",
     &[],
     &["params", "reduced_reward"],
     UNIT,
     "reward for soup outside the window",
 );
-const SHORT: Spec = param(
+pub(crate) const SHORT: Spec = param(
     "short",
     &["short_duration", "s"],
     &["params", "short"],
     TD_RULE,
     "short anchor S (steps), < long",
 );
-const LONG: Spec = param(
+pub(crate) const LONG: Spec = param(
     "long",
     &["long_duration", "l"],
     &["params", "long"],
@@ -128,247 +129,15 @@ const LONG: Spec = param(
     "long anchor L (steps), > short",
 );
 
-const FIXED_INTERVAL: &[Spec] = &[TD];
-
-const PEAK_INTERVAL: &[Spec] = &[
-    TD,
-    param(
-        "probe_factor",
-        &["k"],
-        &["params", "probe_factor"],
-        Rule::Mapped {
-            inner: &Rule::Int {
-                lo: 0,
-                hi: MAX_PROBE_FACTOR,
-            },
-            synonyms: &[("never", "0")],
-        },
-        "the soup becomes available at probe_factor x td; 0 withholds it for the whole episode",
-    ),
-];
-
-const BISECTION: &[Spec] = &[SHORT, LONG, FIXED_TD];
-
-const MULTI_TIMER: &[Spec] = &[
-    param(
-        "tds",
-        &["oven_duration_list"],
-        &["params", "tds"],
-        Rule::List(&CUE_TD_RULE),
-        "TD list (distinct; the value cue is a byte); an episode draws uniformly from the first num_timers",
-    ),
-    param(
-        "num_timers",
-        &[],
-        &["params", "num_timers"],
-        Rule::Int { lo: 1, hi: 255 },
-        "active TDs, at most the length of tds (grows during a curriculum); setting tds lowers it to their count",
-    ),
-    param(
-        "mode",
-        &["undercooked_possible"],
-        &["params", "mode"],
-        Rule::Mapped {
-            inner: &Rule::Choice(&["exact", "lower_bounded"]),
-            synonyms: &[("true", "exact"), ("false", "lower_bounded")],
-        },
-        "exact: take the soup any time, reward 1 inside [TD-under, TD+over]; lower_bounded: take it at timer >= TD, reduced if later than TD+over",
-    ),
-    param(
-        "cue",
-        &[],
-        &["params", "cue"],
-        Rule::Mapped {
-            inner: &Rule::Choice(&["value", "categorical"]),
-            synonyms: &[("cat", "categorical")],
-        },
-        "oven channel-4 cue while on: the TD value (reference) or 1+index of the TD",
-    ),
-    UNDER,
-    OVER,
-    REDUCED,
-    param(
-        "td",
-        &["oven_duration"],
-        &["fixed_td"],
-        FIXED_TD_RULE,
-        "fix the TD of every episode (probes, OOD tests; value cue: at most 255, categorical cue: one of tds); none: drawn per episode",
-    ),
-];
-
-const DUAL: &[Spec] = &[
-    TD,
-    UNDER,
-    OVER,
-    REDUCED,
-    param(
-        "sink_reward",
-        &[],
-        &["params", "sink_reward"],
-        UNIT,
-        "reward per sink interaction while the oven is on",
-    ),
-];
-
-const UNCERTAINTY: &[Spec] = &[
-    TD,
-    param(
-        "never_ready_prob",
-        &["oven_delay_prob"],
-        &["params", "never_ready_prob"],
-        UNIT,
-        "probability that the oven never becomes ready by itself",
-    ),
-    OVER,
-    param(
-        "overcooked_reward",
-        &[],
-        &["params", "overcooked_reward"],
-        UNIT,
-        "reward when a self-readied soup is taken after TD+over_buffer",
-    ),
-    param(
-        "manual_reward",
-        &["undercooked_reward"],
-        &["params", "manual_reward"],
-        UNIT,
-        "reward for soup readied with the manual button",
-    ),
-];
-
 /// Largest number of anchors (counters) of the multi-anchor task.
 pub const MAX_ANCHORS: usize = 4;
 /// Largest number of ovens of the multi-oven task.
 pub const MAX_OVENS: usize = 3;
 
-const MULTI_ANCHOR: &[Spec] = &[
-    param(
-        "anchors",
-        &[],
-        &["params", "anchors"],
-        Rule::List(&TD_RULE),
-        "anchor durations (steps), 2 to 4 distinct values in increasing order; counter i pays 1 iff TD == anchors[i]",
-    ),
-    param(
-        "num_anchors",
-        &[],
-        &["params", "num_anchors"],
-        Rule::Optional(&Rule::Int { lo: 2, hi: 4 }),
-        "active anchors: the first num_anchors of anchors have counters and are drawn (curriculum 2 -> 3 -> 4); none: all",
-    ),
-    FIXED_TD,
-];
-
-const MULTI_OVEN: &[Spec] = &[
-    SHORT,
-    LONG,
-    param(
-        "ovens",
-        &["n_ovens"],
-        &["params", "ovens"],
-        Rule::Int {
-            lo: 1,
-            hi: MAX_OVENS as u64,
-        },
-        "number of ovens (curriculum 1 -> 2 -> 3); only the first takes the onion",
-    ),
-    param(
-        "asynchronous",
-        &["async"],
-        &["params", "asynchronous"],
-        Rule::Bool,
-        "false: the put starts every oven; true: the put starts the first oven and the others start by themselves at drawn on-times",
-    ),
-    FIXED_TD,
-];
-
-const GAIN_RULE: Rule = Rule::Num {
-    ok: gain_ok,
-    allowed: "number in [0.5, 3]",
-};
-fn gain_ok(x: f64) -> bool {
-    (0.5..=3.0).contains(&x)
-}
-const NON_NEGATIVE_STEPS: Rule = Rule::Num {
-    ok: steps_ok,
-    allowed: "number in [0, 100] (steps)",
-};
-fn steps_ok(x: f64) -> bool {
-    (0.0..=100.0).contains(&x)
-}
-
-const REPRODUCTION: &[Spec] = &[
-    param(
-        "priors",
-        &["prior"],
-        &["params", "priors"],
-        Rule::List(&Rule::Text),
-        "priors of the sample interval ts, each drawn with equal probability: short (8-14), intermediate (11-17), long (14-20) — Jazayeri & Shadlen 2010's 494-847, 671-1023, 847-1200 ms at 1 step = 59 ms — or LO-HI (every whole step from LO to HI)",
-    ),
-    param(
-        "prior_cue",
-        &[],
-        &["params", "prior_cue"],
-        Rule::Bool,
-        "the counter shows which prior the episode draws from (true: interleaved priors with a cue; false: no cue, as blocked priors)",
-    ),
-    param(
-        "gains",
-        &["gain"],
-        &["params", "gains"],
-        Rule::List(&GAIN_RULE),
-        "gains g of the production tp = g*ts (Remington et al. 2018: 1 and 1.5); with two, the counter shows the episode's gain",
-    ),
-    param(
-        "tolerance",
-        &[],
-        &["params", "tolerance"],
-        UNIT,
-        "reward window half-width as a fraction of the target g*ts (Jazayeri & Shadlen 2010: a window that scales with ts; NeuroGym ReadySetGo: 0.2)",
-    ),
-    param(
-        "tolerance_steps",
-        &[],
-        &["params", "tolerance_steps"],
-        NON_NEGATIVE_STEPS,
-        "constant part of the window half-width (steps; NeuroGym's + c)",
-    ),
-    param(
-        "foreperiod_min",
-        &[],
-        &["params", "foreperiod_min"],
-        Rule::Int { lo: 1, hi: 1000 },
-        "shortest foreperiod before the Ready cue (steps)",
-    ),
-    param(
-        "foreperiod_max",
-        &[],
-        &["params", "foreperiod_max"],
-        Rule::Int { lo: 1, hi: 1000 },
-        "longest foreperiod before the Ready cue (steps, >= foreperiod_min)",
-    ),
-    param(
-        "td",
-        &["ts", "oven_duration"],
-        &["fixed_td"],
-        FIXED_TD_RULE,
-        "fix the sample interval ts of every episode (probes; may lie outside the priors); none: drawn from the episode's prior",
-    ),
-];
-
-/// The family's own parameters (the common ones are [`COMMON`]).
+/// The family's own parameters (the common ones are [`COMMON`]); declared in the family's
+/// file (`task::family`).
 pub fn family_table(family: TaskFamily) -> &'static [Spec] {
-    match family {
-        TaskFamily::FixedInterval => FIXED_INTERVAL,
-        TaskFamily::PeakInterval => PEAK_INTERVAL,
-        TaskFamily::Bisection => BISECTION,
-        TaskFamily::MultiTimer => MULTI_TIMER,
-        TaskFamily::Dual => DUAL,
-        TaskFamily::Uncertainty => UNCERTAINTY,
-        TaskFamily::MultiAnchor => MULTI_ANCHOR,
-        TaskFamily::MultiOven => MULTI_OVEN,
-        TaskFamily::Reproduction => REPRODUCTION,
-    }
+    family.own_params()
 }
 
 /// Every parameter of `family`: its own, then the common ones.

@@ -3,7 +3,7 @@
 
 use crate::agent::{Agent, evaluate_agent, run_episode, success_rate};
 use crate::timing::agent::TimingAgent;
-use chronocooked_env::{ChronoEnv, EnvError, ResetOptions, TaskConfig, TaskParams, derive_seed};
+use chronocooked_env::{ChronoEnv, EnvError, ResetOptions, TaskConfig, derive_seed};
 use serde::{Deserialize, Serialize};
 
 /// Settings of a timing-agent training run.
@@ -105,26 +105,7 @@ fn training_episode(
 ///
 /// Other tasks: `config` itself.
 pub fn training_levels(config: &TaskConfig) -> Result<Vec<TaskConfig>, EnvError> {
-    let (key, first, last) = match &config.params {
-        TaskParams::MultiAnchor { .. } => (
-            "num_anchors",
-            2,
-            config.params.active_anchors().map_or(0, <[u32]>::len),
-        ),
-        TaskParams::MultiOven { ovens, .. } => ("ovens", 1, *ovens as usize),
-        _ => return Ok(vec![config.clone()]),
-    };
-    if last <= first {
-        return Ok(vec![config.clone()]);
-    }
-    (first..=last)
-        .map(|n| {
-            let mut level = config.clone();
-            level.set(key, &n.to_string())?;
-            level.validate()?;
-            Ok(level)
-        })
-        .collect()
+    config.growth_levels()
 }
 
 /// Trains `agent` on `config` for `train.episodes` episodes from `seed`; evaluates on
@@ -260,7 +241,7 @@ mod tests {
         let ovens: Vec<u32> = levels
             .iter()
             .map(|c| match c.params {
-                TaskParams::MultiOven { ovens, .. } => ovens,
+                chronocooked_env::TaskParams::MultiOven { ovens, .. } => ovens,
                 _ => unreachable!(),
             })
             .collect();

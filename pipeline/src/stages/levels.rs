@@ -124,14 +124,13 @@ pub fn evaluate_levels(run: &Path, out: &Path, seed: u64) -> Result<Option<usize
             curve_path.display()
         )));
     }
-    if let Some(growth) = cfg.curriculum.growth() {
+    if cfg.curriculum.growth().is_some() {
+        let first = cfg.task.config()?.growth().map_or(0, |g| g.first);
         let mut rows = Vec::new();
         for &level in &levels {
             // The level's own task: `first + level` counters or ovens, as the trainer
             // built it, played with that task's reference protocol.
-            let level_task =
-                cfg.task
-                    .with(&[format!("{}={}", growth.key, growth.first + level)])?;
+            let level_task = cfg.task.at_growth_size(first + level)?;
             let config = level_task.config()?;
             let mut agent = PpoAgent::load_level(run, level, &config)?;
             let conditions = reference_conditions(&level_task)?;

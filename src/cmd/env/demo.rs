@@ -4,7 +4,7 @@
 
 use super::{RenderPolicy, play_episode};
 use anyhow::Result;
-use chronocooked_env::{ChronoEnv, ResetOptions, TaskFamily, TaskParams, all_tasks, render};
+use chronocooked_env::{ChronoEnv, ResetOptions, TaskFamily, all_tasks, render};
 use clap::Args;
 use std::path::PathBuf;
 
@@ -19,30 +19,10 @@ pub struct DemoArgs {
     pub seed: u64,
 }
 
-/// TDs (and never-ready flags) a task is evaluated at in the demo.
+/// TDs (and never-ready flags) a task is evaluated at in the demo, as its family declares
+/// them.
 fn conditions(env: &ChronoEnv) -> Vec<(u32, Option<bool>)> {
-    match &env.config().params {
-        TaskParams::Bisection { short, long } => vec![(*short, None), (*long, None)],
-        TaskParams::MultiTimer { tds, .. } => tds.iter().map(|&t| (t, None)).collect(),
-        TaskParams::Uncertainty { td, .. } => vec![(*td, Some(false)), (*td, Some(true))],
-        TaskParams::MultiAnchor { .. } => env
-            .config()
-            .params
-            .active_anchors()
-            .unwrap_or(&[])
-            .iter()
-            .map(|&t| (t, None))
-            .collect(),
-        TaskParams::MultiOven { short, long, .. } => vec![(*short, None), (*long, None)],
-        TaskParams::Reproduction { priors, .. } => priors
-            .iter()
-            .filter_map(|p| chronocooked_env::task::parse_prior(p).ok())
-            .flat_map(|(lo, hi)| [(lo, None), (hi, None)])
-            .collect(),
-        TaskParams::FixedInterval { td }
-        | TaskParams::PeakInterval { td, .. }
-        | TaskParams::Dual { td, .. } => vec![(*td, None)],
-    }
+    env.config().demo_conditions()
 }
 
 /// Runs the demo.

@@ -2,7 +2,7 @@
 
 use crate::error::TrainError;
 use crate::settings::{self, ppo::PPO_SETTINGS};
-use chronocooked_env::Task;
+use chronocooked_env::{Task, TaskFamily};
 use chronocooked_models::Architecture;
 use serde::{Deserialize, Serialize};
 
@@ -272,9 +272,9 @@ impl Curriculum {
         }
     }
 
-    /// Curricula that grow the task (multi-anchor counters, multi-oven ovens): the task
-    /// parameter that grows, its first value, the thresholds, the window and whether a
-    /// change clears Adam.
+    /// Curricula that grow the task (multi-anchor counters, multi-oven ovens): the family
+    /// they grow (the family declares the parameter and its sizes), the thresholds, the
+    /// window and whether a change clears Adam.
     pub fn growth(&self) -> Option<Growth<'_>> {
         match self {
             Curriculum::MultiAnchor {
@@ -282,8 +282,7 @@ impl Curriculum {
                 window,
                 clear_adam,
             } => Some(Growth {
-                key: "num_anchors",
-                first: 2,
+                family: TaskFamily::MultiAnchor,
                 thresholds,
                 window: *window,
                 clear_adam: *clear_adam,
@@ -293,8 +292,7 @@ impl Curriculum {
                 window,
                 clear_adam,
             } => Some(Growth {
-                key: "ovens",
-                first: 1,
+                family: TaskFamily::MultiOven,
                 thresholds,
                 window: *window,
                 clear_adam: *clear_adam,
@@ -353,10 +351,8 @@ fn no_fallback() -> f32 {
 /// A curriculum that grows the task by one counter or oven per level.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Growth<'a> {
-    /// The task parameter that grows (`num_anchors`, `ovens`).
-    pub key: &'static str,
-    /// Its value at level 0.
-    pub first: usize,
+    /// The family whose task grows (its parameter and sizes: [`chronocooked_env::Growth`]).
+    pub family: TaskFamily,
     /// Mean reward that ends each level.
     pub thresholds: &'a [f32],
     /// Episodes averaged.

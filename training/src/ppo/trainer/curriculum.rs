@@ -224,16 +224,51 @@ pub(super) fn set_warmup(
 }
 
 /// The task of growth level `level` (multi-anchor: `2 + level` counters; multi-oven:
-/// `1 + level` ovens); `None` when the curriculum does not grow the task.
+/// `1 + level` ovens, as the family declares its growth); `None` when the curriculum does
+/// not grow the task.
 pub(super) fn growth_task(
     cfg: &crate::ppo::config::TrainConfig,
     level: usize,
 ) -> Result<Option<chronocooked_env::TaskConfig>, TrainError> {
-    let Some(g) = cfg.curriculum.growth() else {
+    if cfg.curriculum.growth().is_none() {
         return Ok(None);
+    }
+    let task = cfg.task.config()?;
+    let first = growth_of(cfg, &task)?.first;
+    Ok(Some(task.at_growth_size(first + level)?))
+}
+
+/// The task's growth, checked against the curriculum's family. Errors when the task does
+/// not grow that way.
+fn growth_of(
+    cfg: &crate::ppo::config::TrainConfig,
+    task: &chronocooked_env::TaskConfig,
+) -> Result<chronocooked_env::Growth, TrainError> {
+    let Some(g) = cfg.curriculum.growth() else {
+        return Err(TrainError::InvalidParam {
+            field: "curriculum".into(),
+            value: format!("{:?}", cfg.curriculum),
+            allowed: "a curriculum that grows the task (multi_anchor, multi_oven)".into(),
+        });
     };
-    let level = format!("{}={}", g.key, g.first + level);
-    Ok(Some(cfg.task.with(&[level])?.config()?))
+    match task.growth() {
+        Some(growth) if task.family() == g.family => Ok(growth),
+        _ => {
+            let key = chronocooked_env::all_tasks()
+                .iter()
+                .find(|t| t.family == g.family)
+                .and_then(|t| t.default_config().growth())
+                .map_or("?", |growth| growth.key);
+            Err(TrainError::InvalidParam {
+                field: "curriculum".into(),
+                value: format!("{:?}", g.family),
+                allowed: format!(
+                    "a curriculum of the task's family (task {} has no growing `{key}`)",
+                    cfg.task
+                ),
+            })
+        }
+    }
 }
 
 /// The last level of a growing curriculum: the configured task's counters (multi-anchor)
@@ -241,27 +276,11 @@ pub(super) fn growth_task(
 pub(super) fn growth_last_level(
     cfg: &crate::ppo::config::TrainConfig,
 ) -> Result<usize, TrainError> {
-    let Some(g) = cfg.curriculum.growth() else {
+    if cfg.curriculum.growth().is_none() {
         return Ok(0);
-    };
-    let task = cfg.task.config()?;
-    let last = match (&task.params, g.key) {
-        (TaskParams::MultiAnchor { .. }, "num_anchors") => {
-            task.params.active_anchors().map_or(2, <[u32]>::len)
-        }
-        (TaskParams::MultiOven { ovens, .. }, "ovens") => *ovens as usize,
-        _ => {
-            return Err(TrainError::InvalidParam {
-                field: "curriculum".into(),
-                value: g.key.into(),
-                allowed: format!(
-                    "a curriculum of the task's family (task {} has no `{}`)",
-                    cfg.task, g.key
-                ),
-            });
-        }
-    };
-    Ok(last - g.first)
+    }
+    let growth = growth_of(cfg, &cfg.task.config()?)?;
+    Ok(growth.last.saturating_sub(growth.first))
 }
 
 impl Trainer {

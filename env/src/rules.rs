@@ -1,0 +1,122 @@
+//! The kitchen's rules of one task configuration, flattened for the hot loop, and the
+//! reward and cue modes they read. Each task family builds them from its parameters
+//! (`task::family`); the kitchen runs them.
+
+use serde::{Deserialize, Serialize};
+
+/// Multi-timer reward rule.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RewardMode {
+    /// Soup can be taken any time after the onion went in (undercooking possible);
+    /// reward 1 iff `TD − under_buffer ≤ oven_off_time ≤ TD + over_buffer`.
+    Exact,
+    /// Soup can be taken only when timer ≥ TD; reward 1 unless
+    /// `oven_off_time > TD + over_buffer`.
+    LowerBounded,
+}
+
+/// What the oven shows in observation channel 4 while on (multi-timer).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CueMode {
+    /// The TD value itself (reference behaviour; orders TDs, used for OOD tests).
+    Value,
+    /// `1 + index` of the TD in the trained list (no ordering information).
+    Categorical,
+}
+
+/// Task rules, flattened to a small `Copy` value for the hot loop.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Rules {
+    Fixed,
+    Probe {
+        factor: u32,
+    },
+    Bisection {
+        short: u32,
+        long: u32,
+    },
+    Window {
+        mode: RewardMode,
+        under: u32,
+        over: u32,
+        reduced: f32,
+    },
+    Dual {
+        under: u32,
+        over: u32,
+        reduced: f32,
+        sink: f32,
+    },
+    Uncertainty {
+        p_never: f32,
+        over: u32,
+        overcooked: f32,
+        manual: f32,
+    },
+    /// Multi-anchor: the first `k` of `anchors` are active (counters 1…k).
+    MultiAnchor {
+        anchors: [u32; 4],
+        k: u8,
+    },
+    /// Temporal reproduction (details in [`Spec::rsg`]).
+    Reproduction,
+    /// Multi-oven: `n` ovens, each soup short or long.
+    MultiOven {
+        short: u32,
+        long: u32,
+        n: u8,
+        asynchronous: bool,
+    },
+}
+
+/// The reproduction task's draws and reward window.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct RsgSpec {
+    /// Each prior's inclusive range of ts (steps).
+    pub(crate) priors: Vec<(u32, u32)>,
+    /// Gains of the production.
+    pub(crate) gains: Vec<f32>,
+    /// Window half-width: `tolerance · target + tolerance_steps` (the decimal values as
+    /// given, to 1e-6: an `f32` 0.2 would widen the window by 3e-9 and pay an edge response).
+    pub(crate) tolerance: f64,
+    /// Constant part of the window (steps).
+    pub(crate) tolerance_steps: f64,
+    /// Foreperiod range (steps).
+    pub(crate) foreperiod: (u32, u32),
+    /// Whether the counter shows the prior.
+    pub(crate) prior_cue: bool,
+    /// Counter cell (where the context cue is shown).
+    pub(crate) counter: usize,
+}
+
+impl RsgSpec {
+    /// Contexts shown on the counter: `prior · gains + gain` (+1 in the observation), or
+    /// none when there is nothing to cue.
+    pub(crate) fn cued_contexts(&self) -> usize {
+        let priors = if self.prior_cue { self.priors.len() } else { 1 };
+        let n = priors * self.gains.len();
+        if n > 1 { n } else { 0 }
+    }
+
+    /// The cue value of `(prior, gain)` (0: no cue).
+    pub(crate) fn cue(&self, prior: u8, gain: u8) -> u8 {
+        if self.cued_contexts() == 0 {
+            return 0;
+        }
+        let p = if self.prior_cue { prior as usize } else { 0 };
+        (1 + p * self.gains.len() + gain as usize) as u8
+    }
+
+    /// The target production `g · ts` and the window half-width (steps).
+    pub(crate) fn target(&self, ts: u32, gain: u8) -> (f64, f64) {
+        let target = decimal(f64::from(self.gains[gain as usize])) * f64::from(ts);
+        (target, self.tolerance * target + self.tolerance_steps)
+    }
+}
+
+/// An `f32` setting as the decimal it was written as (rounded to 1e-6).
+pub(crate) fn decimal(x: f64) -> f64 {
+    (x * 1e6).round() / 1e6
+}
