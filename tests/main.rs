@@ -17,6 +17,7 @@ mod doc_commands;
 mod docs;
 mod dynamics_view;
 mod eval_folders;
+mod external_task;
 mod faults;
 mod mechanisms;
 mod reliability;

@@ -112,12 +112,12 @@ impl Oracle {
 
     /// The counter a soup of duration `td` goes to (the family's rule).
     fn delivery_kind(&self, td: u32) -> ObjectKind {
-        crate::task::family::of(self.params.family()).delivery_kind(&self.params, td)
+        crate::task::family::of_params(&self.params).delivery_kind(&self.params, td)
     }
 
     /// Timer (at action time) of the earliest rewarded pickup, `None` if never.
     fn pickup_timer(&self, td: u32) -> Option<i32> {
-        crate::task::family::of(self.params.family()).paid_pickup_timer(&self.params, td)
+        crate::task::family::of_params(&self.params).paid_pickup_timer(&self.params, td)
     }
 
     /// Dual task: the oven neighbour closest to a sink neighbour. Putting the onion in

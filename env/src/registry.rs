@@ -4,28 +4,26 @@
 use crate::error::EnvError;
 use crate::markdown::Table;
 use crate::task::{family, params};
-use std::sync::LazyLock;
 
 pub use crate::task::TaskSpec;
 
-/// The registered tasks, one per family, in the order of the family registry
-/// (`task::family`).
-static TASKS: LazyLock<Vec<TaskSpec>> = LazyLock::new(|| family::registered().collect());
-
 /// Every registered task.
 pub fn all_tasks() -> &'static [TaskSpec] {
-    &TASKS
+    family::registered_tasks()
 }
 
 /// Tasks carrying `tag`.
 pub fn tasks_with_tag(tag: &str) -> Vec<&'static TaskSpec> {
-    TASKS.iter().filter(|t| t.tags.contains(&tag)).collect()
+    all_tasks()
+        .iter()
+        .filter(|t| t.tags.contains(&tag))
+        .collect()
 }
 
 /// Looks up a task by id (case-insensitive; the `-v0` suffix may be omitted).
 pub fn find_task(id: &str) -> Result<&'static TaskSpec, EnvError> {
     let want = id.trim().to_ascii_lowercase();
-    TASKS
+    all_tasks()
         .iter()
         .find(|t| {
             let tid = t.id.to_ascii_lowercase();
@@ -33,7 +31,11 @@ pub fn find_task(id: &str) -> Result<&'static TaskSpec, EnvError> {
         })
         .ok_or_else(|| EnvError::UnknownTask {
             id: id.to_string(),
-            known: TASKS.iter().map(|t| t.id).collect::<Vec<_>>().join(", "),
+            known: all_tasks()
+                .iter()
+                .map(|t| t.id)
+                .collect::<Vec<_>>()
+                .join(", "),
         })
 }
 

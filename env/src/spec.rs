@@ -17,6 +17,8 @@ pub const CODE_CHANNELS: usize = 6;
 pub(crate) struct Spec {
     pub(crate) config: TaskConfig,
     pub(crate) family: TaskFamily,
+    /// Whether the oven shows a "ready" state (the family's).
+    pub(crate) shows_ready: bool,
     pub(crate) layout: Layout,
     pub(crate) rules: Rules,
     pub(crate) default_td: u32,
@@ -34,7 +36,7 @@ pub(crate) struct Spec {
 impl Spec {
     pub(crate) fn new(config: &TaskConfig) -> Result<Arc<Self>, EnvError> {
         let layout = config.validate()?;
-        let family = crate::task::family::of(config.family());
+        let family = crate::task::family::of_params(&config.params);
         let RuleSet {
             rules,
             default_td,
@@ -61,6 +63,7 @@ impl Spec {
         Ok(Arc::new(Spec {
             config: config.clone(),
             family: config.family(),
+            shows_ready: family.shows_ready(),
             layout,
             rules,
             default_td,

@@ -349,6 +349,8 @@ fn random_config(family_index: usize, knobs: &[u32]) -> TaskConfig {
             sets.push(format!("ovens={}", 1 + k(3) % 3));
             sets.push(format!("asynchronous={}", k(4) % 2 == 0));
         }
+        // No external family is registered in this test binary.
+        TaskFamily::External => {}
     }
     if spec.family == TaskFamily::Uncertainty {
         sets.push(format!("never_ready_prob={}", (k(3) % 11) as f32 / 10.0));

@@ -518,7 +518,7 @@ impl Kitchen {
         let reward = self.act_or_move(action, &mut events, Self::interact);
         if self.timer >= 0 {
             self.timer += 1;
-            if self.spec.family.shows_ready()
+            if self.spec.shows_ready
                 && !self.ready
                 && !self.never_ready
                 && self.timer == self.td as i32

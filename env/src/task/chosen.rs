@@ -5,7 +5,7 @@
 //! `key=value` text is read once, where it enters (the CLI, sweep files, Python), by the
 //! table ([`Task::set`]); from there on the task travels typed.
 
-use super::{Task, TaskConfig, TaskFamily, params};
+use super::{Task, TaskConfig, TaskFamily};
 use crate::error::EnvError;
 use crate::registry::find_task;
 use crate::settings::{self, Spec};
@@ -42,7 +42,7 @@ impl Task {
     }
 
     /// This task with its growing parameter at `size` (a curriculum level; see
-    /// [`TaskConfig::growth`]), recorded as the override `key=size`. Errors for a task that
+    /// [`TaskConfig::growth`]), recorded as set. Errors for a task that
     /// does not grow.
     pub fn at_growth_size(&self, size: usize) -> Result<Self, EnvError> {
         let growth = self.config()?.growth().ok_or_else(|| {
@@ -52,7 +52,7 @@ impl Task {
                 "a task that grows (multi-anchor counters, multi-oven ovens)",
             )
         })?;
-        self.with(&[format!("{}={size}", growth.key)])
+        self.with_values(&[(growth.key, Value::from(size))])
     }
 
     /// Applies `key=value` overrides in order; each is checked by its rule, the whole by
@@ -70,14 +70,28 @@ impl Task {
     }
 
     /// Sets one parameter (key or alias) from its text, parsed and range-checked by its
-    /// table entry. A field that the change moves too (a multi-timer's active count after a
-    /// shorter TD list) is recorded as set, so the recorded values rebuild this task exactly.
+    /// table entry (the edge where `key=value` text enters).
     pub fn set(&mut self, key: &str, value: &str) -> Result<(), EnvError> {
         let table = self.table();
+        let i = index_of(&table, key.trim()).ok_or_else(|| self.unknown(key, &table))?;
+        let spec = &table[i];
+        let parsed = spec
+            .rule
+            .parse(value)
+            .ok_or_else(|| EnvError::param(spec.key, value, spec.rule.allowed()))?;
+        self.set_value(key, parsed)
+    }
+
+    /// Sets one parameter (key or alias) to a typed value (as `env` maps hold them),
+    /// checked by its rule. A field that the change moves too (a multi-timer's active count
+    /// after a shorter TD list) is recorded as set, so the recorded values rebuild this task
+    /// exactly.
+    pub fn set_value(&mut self, key: &str, value: Value) -> Result<(), EnvError> {
+        let table = self.table();
+        let index = index_of(&table, key.trim()).ok_or_else(|| self.unknown(key, &table))?;
         let before = settings::values(&table, &self.config);
-        self.config.set(key, value)?;
+        self.config.set_value(key, value)?;
         let after = settings::values(&table, &self.config);
-        let index = index_of(&table, key.trim()).expect("TaskConfig::set found the key");
         for (i, (was, now)) in before.into_iter().zip(after).enumerate() {
             if let Some(now) = now
                 && (i == index || was.as_ref() != Some(&now))
@@ -88,19 +102,15 @@ impl Task {
         Ok(())
     }
 
-    /// Sets one parameter (key or alias) to a serialised value (as `env` maps hold them),
-    /// checked by its rule.
-    pub fn set_value(&mut self, key: &str, value: Value) -> Result<(), EnvError> {
-        let table = self.table();
-        let i = index_of(&table, key.trim()).ok_or_else(|| self.unknown(key, &table))?;
-        let spec = &table[i];
-        let text = settings::display(&value);
-        if !spec.rule.accepts(&value) {
-            return Err(EnvError::param(spec.key, text, spec.rule.allowed()));
+    /// This task with typed parameter values applied in order (`[("ovens", json!(1))]`),
+    /// checked as a whole: how probes, curricula and human play edit a task.
+    pub fn with_values(&self, values: &[(&str, Value)]) -> Result<Self, EnvError> {
+        let mut task = self.clone();
+        for (key, value) in values {
+            task.set_value(key, value.clone())?;
         }
-        settings::set_value(&mut self.config, spec, spec.key, &text, value.clone())?;
-        self.record(i, value);
-        Ok(())
+        task.config()?;
+        Ok(task)
     }
 
     /// The task a configuration plays, typed: its registry id with every table parameter
@@ -183,7 +193,7 @@ impl Task {
     }
 
     fn table(&self) -> Vec<Spec> {
-        params::table(self.config.family())
+        self.config.params_table()
     }
 
     fn record(&mut self, index: usize, value: Value) {

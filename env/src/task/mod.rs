@@ -60,6 +60,9 @@ pub enum TaskFamily {
     MultiOven,
     /// Temporal reproduction (Ready-Set-Go): reproduce the interval between two oven cues.
     Reproduction,
+    /// A family defined outside this crate and registered at run time
+    /// ([`family::register`]); its parameters are [`TaskParams::External`].
+    External,
 }
 
 /// Family-specific parameters. Units: durations in env steps.
@@ -165,6 +168,18 @@ pub enum TaskParams {
         /// Longest foreperiod before Ready (steps).
         foreperiod_max: u32,
     },
+    /// A family defined outside this crate ([`family::register`]): its task's id and its
+    /// parameters as the family's own table writes them (paths `params.values.<key>`).
+    External(ExternalParams),
+}
+
+/// The parameters of a task of an externally defined family.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ExternalParams {
+    /// The registered task's id (e.g. `IntervalProduction-v0`): which family reads them.
+    pub task: String,
+    /// The values, keyed by the family's parameter keys.
+    pub values: serde_json::Map<String, serde_json::Value>,
 }
 
 // The type a chosen task travels as is declared here, beside the configuration it checks,
@@ -215,12 +230,15 @@ impl TaskFamily {
         params::table(self)
     }
 
-    /// The family's own parameters (the common ones are [`common_params`]).
+    /// The family's own parameters (the common ones are [`common_params`]); none for
+    /// [`TaskFamily::External`], whose table its task's parameters name
+    /// ([`TaskConfig::params_table`]).
     pub fn own_params(self) -> &'static [Spec] {
         family::of(self).params()
     }
 
-    /// Whether the oven shows a "ready" state (ch4 = 2) in this family.
+    /// Whether the oven shows a "ready" state (ch4 = 2) in this family (for an external
+    /// family: [`TaskConfig::shows_ready`]).
     pub fn shows_ready(self) -> bool {
         family::of(self).shows_ready()
     }
@@ -229,7 +247,7 @@ impl TaskFamily {
 impl TaskParams {
     /// The single target duration of families that have one (FI, PI, dual, uncertainty).
     pub fn td(&self) -> Option<u32> {
-        family::of(self.family()).single_td(self)
+        family::of_params(self).single_td(self)
     }
 }
 
@@ -258,15 +276,37 @@ impl TaskConfig {
     /// range-checked by the family's parameter table ([`params`]).
     pub fn set(&mut self, key: &str, value: &str) -> Result<(), EnvError> {
         let key = key.trim();
-        let table = params::table(self.family());
+        let table = self.params_table();
         let spec = settings::find(&table, key).ok_or_else(|| EnvError::UnknownParam {
             key: key.to_string(),
             task: self.id.clone(),
             known: table.iter().map(|p| p.key).collect::<Vec<_>>().join(", "),
         })?;
+        let parsed = spec
+            .rule
+            .parse(value)
+            .ok_or_else(|| EnvError::param(spec.key, value, spec.rule.allowed()))?;
+        self.set_value(key, parsed)
+    }
+
+    /// Sets one parameter (canonical key or reference alias) to a typed value (as `env`
+    /// maps hold them: `json!(3)`, `json!("exact")`, `json!([4, 8])`), checked by its rule in
+    /// the family's parameter table; the family then updates the fields that follow it.
+    pub fn set_value(&mut self, key: &str, value: serde_json::Value) -> Result<(), EnvError> {
+        let key = key.trim();
+        let table = self.params_table();
+        let spec = settings::find(&table, key).ok_or_else(|| EnvError::UnknownParam {
+            key: key.to_string(),
+            task: self.id.clone(),
+            known: table.iter().map(|p| p.key).collect::<Vec<_>>().join(", "),
+        })?;
+        let text = settings::display(&value);
+        if !spec.rule.accepts(&value) {
+            return Err(EnvError::param(spec.key, text, spec.rule.allowed()));
+        }
         // Errors name the canonical key (`td` for `oven_duration`).
-        settings::set_field(self, spec, spec.key, value)?;
-        family::of(self.family()).after_set(&mut self.params, spec.key);
+        settings::set_value(self, spec, spec.key, &text, value)?;
+        family::of_params(&self.params).after_set(&mut self.params, spec.key);
         Ok(())
     }
 
@@ -276,14 +316,14 @@ impl TaskConfig {
         if self.layout.trim() != AUTO_LAYOUT {
             return &self.layout;
         }
-        family::of(self.family()).auto_layout(&self.params)
+        family::of_params(&self.params).auto_layout(&self.params)
     }
 
     /// Checks every parameter against its table entry, then the cross-field constraints,
     /// and parses the layout.
     pub fn validate(&self) -> Result<Layout, EnvError> {
-        let family = family::of(self.family());
-        settings::check(&params::table(self.family()), self)?;
+        let family = family::of_params(&self.params);
+        settings::check(&self.params_table(), self)?;
         let layout = Layout::parse(self.resolved_layout())?;
         let required = family.required_objects(&self.params);
         for &kind in &required {
@@ -332,23 +372,40 @@ impl TaskConfig {
         Ok(layout)
     }
 
+    /// Every parameter of this configuration's family, its own first, then the common ones.
+    pub fn params_table(&self) -> Vec<Spec> {
+        let own = family::of_params(&self.params).params();
+        own.iter().chain(params::COMMON).copied().collect()
+    }
+
+    /// Whether the oven shows a "ready" state (ch4 = 2) in this configuration's family.
+    pub fn shows_ready(&self) -> bool {
+        family::of_params(&self.params).shows_ready()
+    }
+
+    /// What a response is in this configuration's family, for the timing models (`None`:
+    /// they cannot play it).
+    pub fn response_kind(&self) -> Option<family::ResponseKind> {
+        family::of_params(&self.params).response_kind()
+    }
+
     /// The TDs a deterministic evaluation covers (steps): bisection and multi-oven → both
     /// anchors; multi-timer → the active TDs; multi-anchor → the active anchors;
     /// reproduction → every sample interval of its priors; other tasks → their TD.
     pub fn evaluation_tds(&self) -> Vec<u32> {
-        family::of(self.family()).evaluation_tds(&self.params)
+        family::of_params(&self.params).evaluation_tds(&self.params)
     }
 
     /// How this task grows during a curriculum (multi-anchor counters, multi-oven ovens);
     /// `None` for tasks that do not grow.
     pub fn growth(&self) -> Option<Growth> {
-        family::of(self.family()).growth(&self.params)
+        family::of_params(&self.params).growth(&self.params)
     }
 
     /// This configuration with its growing parameter at `size` (a typed edit), checked.
     pub fn at_growth_size(&self, size: usize) -> Result<TaskConfig, EnvError> {
         let mut level = self.clone();
-        family::of(self.family()).grow(&mut level.params, size);
+        family::of_params(&self.params).grow(&mut level.params, size);
         level.validate()?;
         Ok(level)
     }
@@ -367,7 +424,7 @@ impl TaskConfig {
     /// The reference evaluation conditions of an agent trained on `task` (this is its checked
     /// configuration), as the family declares them.
     pub fn conditions(&self, task: &Task) -> Result<Vec<condition::Condition>, EnvError> {
-        family::of(self.family()).conditions(task, self)
+        family::of_params(&self.params).conditions(task, self)
     }
 
     /// The condition of an episode played on this configuration at `td` (human play,
@@ -378,12 +435,12 @@ impl TaskConfig {
         never_ready: bool,
     ) -> Result<condition::Condition, EnvError> {
         let task = Task::from_config(self)?;
-        Ok(family::of(self.family()).played_condition(task, &self.params, td, never_ready))
+        Ok(family::of_params(&self.params).played_condition(task, &self.params, td, never_ready))
     }
 
     /// The TDs (steps) and never-ready flags the environment demo plays: every TD a task
     /// draws (each prior's ends for reproduction; both oven kinds for uncertainty).
     pub fn demo_conditions(&self) -> Vec<(u32, Option<bool>)> {
-        family::of(self.family()).demo_conditions(&self.params)
+        family::of_params(&self.params).demo_conditions(&self.params)
     }
 }

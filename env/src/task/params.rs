@@ -165,7 +165,7 @@ pub struct ParamRow {
 
 /// Every parameter of `config`'s family (its own first) with `config`'s values as defaults.
 pub fn rows(config: &super::TaskConfig) -> Vec<ParamRow> {
-    let table = table(config.family());
+    let table = config.params_table();
     crate::settings::listing(&table, config)
         .into_iter()
         .map(|s| {

@@ -250,7 +250,7 @@ impl TimingAgent {
             learner: SarsaLambda::new(config.sarsa.clone(), Action::COUNT, features),
             timer,
             parser: PerceptParser::new(layout),
-            shows_ready: env.family().shows_ready(),
+            shows_ready: env.config().shows_ready(),
             choice_cells,
             judges,
             categories,

@@ -199,6 +199,14 @@ pub fn make_timing_agent(name: &str, env: &ChronoEnv, seed: u64) -> Result<Timin
             names.join(", ")
         ));
     };
+    if env.config().response_kind().is_none() {
+        return Err(format!(
+            "task {} declares no response the timing models know (produce an interval, \
+             categorise a duration, reproduce one: its family's `response_kind`); \
+             train a PPO model on it instead",
+            env.config().id
+        ));
+    }
     let timer = (spec.build)(&mut rng);
     let mut agent = TimingAgent::new(name, timer, env, TimingAgentConfig::default());
     if name == "timecells-csc" {

@@ -82,6 +82,30 @@ fn section_pairs(
         .collect())
 }
 
+/// The presets shared by every task (`presets/common.toml`).
+fn common_presets() -> &'static str {
+    PRESET_FILES
+        .iter()
+        .find(|(n, _)| *n == "common")
+        .map_or("", |(_, text)| text)
+}
+
+/// The presets of registered task `task` (its id): the training crate's file of that name,
+/// or the presets its family declares
+/// ([`chronocooked_env::task::family::Family::preset`]). A task with neither is an error
+/// naming it, never trained on the common budget alone.
+fn task_presets(task: &str) -> Result<&'static str, TrainError> {
+    if let Some((_, text)) = PRESET_FILES.iter().find(|(n, _)| *n == task) {
+        return Ok(text);
+    }
+    chronocooked_env::task::family::declared_preset(task).ok_or_else(|| TrainError::PresetFile {
+        file: format!("{task}.toml"),
+        message: format!(
+            "task {task} has no presets: add training/presets/{task}.toml or declare them in its family (Family::preset)"
+        ),
+    })
+}
+
 /// The `key=value` settings of `preset` for `task` and `model`, in application order
 /// (per file — common, then the task's: `[preset]`, `[preset.feedforward|recurrent]`,
 /// `[preset.<core kind>]` (e.g. `[fast.ctrnn]`), `[preset.<model name>]` (e.g.
@@ -104,10 +128,7 @@ pub fn preset_settings(
     };
     let name = model.name();
     let mut out = Vec::new();
-    for file in ["common", task] {
-        let Some((f, text)) = PRESET_FILES.iter().find(|(n, _)| *n == file) else {
-            continue;
-        };
+    for (f, text) in [("common", common_presets()), (task, task_presets(task)?)] {
         let core = model.core.map(|k| k.name());
         for path in [
             vec![preset],

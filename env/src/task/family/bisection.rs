@@ -1,7 +1,7 @@
 //! Temporal bisection (paper: Tasks / Bisection task; reference
 //! `ChronoCookedBisectionTask`): deliver to the short or the long counter.
 
-use super::{Family, RuleSet, TaskSpec, probe_range, wrong_family};
+use super::{Family, ResponseKind, RuleSet, TaskSpec, probe_range, wrong_family};
 use crate::error::EnvError;
 use crate::layout::{Layout, ObjectKind};
 use crate::rules::Rules;
@@ -107,6 +107,10 @@ info.counter records the counter. Defaults: short=4, long=12 (paper anchors 6-8,
             short,
             vec![short, long],
         ))
+    }
+
+    fn response_kind(&self) -> Option<ResponseKind> {
+        Some(ResponseKind::Categorise)
     }
 
     fn condition_kind(&self) -> ConditionKind {

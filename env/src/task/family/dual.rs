@@ -1,7 +1,7 @@
 //! Dual task (paper: Dual task and uncertainty task): the fixed-interval task with a
 //! small-reward sink that competes with the oven during the timing phase.
 
-use super::{Family, RuleSet, TaskSpec, condition, wrong_family};
+use super::{Family, ResponseKind, RuleSet, TaskSpec, condition, wrong_family};
 use crate::error::EnvError;
 use crate::layout::{Layout, ObjectKind};
 use crate::rules::Rules;
@@ -99,6 +99,10 @@ buffers 0, reduced_reward=0.1.",
             td,
             vec![td],
         ))
+    }
+
+    fn response_kind(&self) -> Option<ResponseKind> {
+        Some(ResponseKind::Produce)
     }
 
     fn condition_kind(&self) -> ConditionKind {

@@ -1,7 +1,7 @@
 //! Fixed interval (paper: Tasks / Fixed interval timing; reference `TimeProductionBasic`):
 //! the soup is available from oven timer ≥ TD, +1 on delivery.
 
-use super::{Family, RuleSet, TaskSpec, condition, wrong_family};
+use super::{Family, ResponseKind, RuleSet, TaskSpec, condition, wrong_family};
 use crate::error::EnvError;
 use crate::layout::{Layout, ObjectKind};
 use crate::rules::Rules;
@@ -58,6 +58,10 @@ max_timesteps=200.",
             return Err(wrong_family("fixed-interval", &config.params));
         };
         Ok(RuleSet::simple(Rules::Fixed, td, vec![td]))
+    }
+
+    fn response_kind(&self) -> Option<ResponseKind> {
+        Some(ResponseKind::Produce)
     }
 
     fn condition_kind(&self) -> ConditionKind {

@@ -1,5 +1,7 @@
 //! The task families: one file per family, each implementing [`Family`], and the one
-//! registry line per family ([`FAMILIES`]).
+//! registry line per family (`FAMILIES`). A family defined outside this crate implements
+//! the same trait and is added at run time with [`register`] (the `interval_production`
+//! example of the repository does).
 //!
 //! A family's file holds everything the lab knows about it: its registered task and
 //! documentation, its parameter table and defaults, its layout and objects, its
@@ -17,12 +19,13 @@ pub(crate) mod reproduction;
 mod uncertainty;
 
 use super::condition::{Condition, ConditionKind};
-use super::{Task, TaskConfig, TaskFamily, TaskParams};
+use super::{ExternalParams, Task, TaskConfig, TaskFamily, TaskParams};
 use crate::error::EnvError;
 use crate::layout::{Layout, ObjectKind};
-use crate::rules::{CueMode, RsgSpec, Rules};
+use crate::rules::{CueMode, RewardMode, RsgSpec, Rules};
 use crate::settings::Spec;
 use serde::Serialize;
+use std::sync::RwLock;
 
 /// One registered task: id, tags and documentation.
 #[derive(Debug, Clone, Copy, Serialize)]
@@ -46,7 +49,7 @@ impl TaskSpec {
     /// (the paper's), the lab's own semantics (not the reference-compatible mode), no debug
     /// channel and TDs drawn per episode.
     pub fn default_config(&self) -> TaskConfig {
-        let (layout, params) = of(self.family).defaults();
+        let (layout, params) = by_id(self.id).defaults();
         TaskConfig {
             id: self.id.to_string(),
             layout: layout.to_string(),
@@ -70,8 +73,11 @@ pub struct Growth {
     pub last: usize,
 }
 
-/// The kitchen's rules of one configuration, as the hot loop reads them.
-pub(crate) struct RuleSet {
+/// The kitchen's rules of one configuration, as the hot loop reads them. Built-in families
+/// build any of the kitchen's rules; a family defined outside this crate composes its task
+/// from the public constructors ([`RuleSet::fixed`], [`RuleSet::window`],
+/// [`RuleSet::categories`]), which are the kitchen's mechanics.
+pub struct RuleSet {
     /// The flattened rules.
     pub(crate) rules: Rules,
     /// TD of an episode before any draw (steps).
@@ -85,6 +91,61 @@ pub(crate) struct RuleSet {
 }
 
 impl RuleSet {
+    /// Soup available from oven timer ≥ TD; delivery pays 1 (the fixed-interval mechanics).
+    /// `tds`: the durations an episode draws from, uniformly (steps, non-empty).
+    pub fn fixed(tds: Vec<u32>) -> Result<Self, EnvError> {
+        let first = first_td(&tds)?;
+        Ok(RuleSet::simple(Rules::Fixed, first, tds))
+    }
+
+    /// Soup available any time after the onion went in (`exact`) or from timer ≥ TD
+    /// (`lower_bounded`); delivery pays 1 when the oven was turned off inside
+    /// `[TD − under, TD + over]` (steps), `reduced` otherwise (the multi-timer mechanics, no
+    /// cue: the oven shows only on/off). `tds`: the durations drawn uniformly (steps).
+    pub fn window(
+        tds: Vec<u32>,
+        mode: RewardMode,
+        under: u32,
+        over: u32,
+        reduced: f32,
+    ) -> Result<Self, EnvError> {
+        let first = first_td(&tds)?;
+        Ok(RuleSet::simple(
+            Rules::Window {
+                mode,
+                under,
+                over,
+                reduced,
+            },
+            first,
+            tds,
+        ))
+    }
+
+    /// Categorisation by counter: the oven shows ready at TD, the soup can be taken only
+    /// when ready, and delivery to counter `i` pays 1 iff the episode's TD is `anchors[i]`
+    /// (2–4 increasing anchors, steps; drawn uniformly; the layout needs counters `S`, `L`,
+    /// then `3`, `4`). The multi-anchor mechanics.
+    pub fn categories(anchors: &[u32]) -> Result<Self, EnvError> {
+        if !(2..=4).contains(&anchors.len()) || anchors.windows(2).any(|w| w[0] >= w[1]) {
+            return Err(EnvError::param(
+                "anchors",
+                format!("{anchors:?}"),
+                "2 to 4 durations in increasing order",
+            ));
+        }
+        let mut fixed = [0; 4];
+        fixed[..anchors.len()].copy_from_slice(anchors);
+        Ok(RuleSet::simple(
+            Rules::MultiAnchor {
+                anchors: fixed,
+                k: anchors.len() as u8,
+            },
+            anchors[0],
+            anchors.to_vec(),
+        ))
+    }
+
     /// Rules with one TD list and no cue or reproduction part.
     pub(crate) fn simple(rules: Rules, default_td: u32, tds: Vec<u32>) -> Self {
         RuleSet {
@@ -97,8 +158,33 @@ impl RuleSet {
     }
 }
 
-/// Everything a task family defines. One implementation per file of this folder.
-pub(crate) trait Family: Sync {
+/// What an agent's response is in a task, as the timing models read it: they play a family
+/// that declares one of these, and refuse one that declares none.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ResponseKind {
+    /// Produce an interval: take the soup out when the timed duration has elapsed (fixed
+    /// interval, peak interval, multi-timer, dual, uncertainty).
+    Produce,
+    /// Categorise a duration: deliver the soup to the counter of its category (bisection,
+    /// multi-anchor, multi-oven).
+    Categorise,
+    /// Reproduce a measured interval (`tp = g · ts`; Ready-Set-Go).
+    Reproduce,
+}
+
+/// The first of a non-empty TD list.
+fn first_td(tds: &[u32]) -> Result<u32, EnvError> {
+    tds.first()
+        .copied()
+        .ok_or_else(|| EnvError::param("tds", "[]", "at least one duration (steps)"))
+}
+
+/// Everything a task family defines. One implementation per file of this folder; a family
+/// defined elsewhere implements it too and is added with [`register`]. The required methods
+/// are the checklist of a new family; the provided ones are the defaults of a
+/// single-duration production task.
+pub trait Family: Sync + Send {
     /// The registered task of the family (id, tags, documentation).
     fn task(&self) -> TaskSpec;
 
@@ -171,6 +257,10 @@ pub(crate) trait Family: Sync {
     /// What an episode of this family measures, as a condition's kind.
     fn condition_kind(&self) -> ConditionKind;
 
+    /// What a response is in this family, for the timing models; `None` for a task they
+    /// cannot play (they refuse it, naming it).
+    fn response_kind(&self) -> Option<ResponseKind>;
+
     /// The reference evaluation conditions of an agent trained on `task` (`config` is its
     /// checked configuration): the probes docs/metrics.md lists for the family.
     fn conditions(&self, task: &Task, config: &TaskConfig) -> Result<Vec<Condition>, EnvError>;
@@ -185,6 +275,14 @@ pub(crate) trait Family: Sync {
         _never_ready: bool,
     ) -> Condition {
         condition(self.condition_kind(), &task, td)
+    }
+
+    /// The family's training presets, in the lab's preset format (`[fast]`,
+    /// `[reference]`, … with their PPO settings, e.g. `total_steps`). `None`: the presets are
+    /// a file of the training crate named by the task's id (the built-in families'); a task
+    /// with neither is refused by `train --preset`, never trained on another's budget.
+    fn preset(&self) -> Option<&'static str> {
+        None
     }
 
     /// The TDs (and never-ready flags) the environment demo plays (steps).
@@ -204,18 +302,175 @@ static FAMILIES: [&dyn Family; 9] = [
     &reproduction::Reproduction,
 ];
 
-/// Every registered family's task, in registry order.
-pub(crate) fn registered() -> impl Iterator<Item = TaskSpec> {
-    FAMILIES.iter().map(|f| f.task())
+/// Families registered at run time ([`register`]).
+static EXTERNAL: RwLock<Vec<&'static dyn Family>> = RwLock::new(Vec::new());
+
+/// Every registered task (built-in, then registered at run time), refreshed by [`register`].
+static TASKS: RwLock<Option<&'static [TaskSpec]>> = RwLock::new(None);
+
+/// Registers a family defined outside this crate, so that its task id is found by
+/// [`crate::registry::find_task`], listed by `env list` and built into environments.
+/// Its [`TaskSpec::family`] must be [`TaskFamily::External`] and its default parameters
+/// [`TaskParams::External`] naming its own id. Errors when the id is taken (case-insensitive).
+pub fn register(family: &'static dyn Family) -> Result<(), EnvError> {
+    let spec = family.task();
+    let (_, params) = family.defaults();
+    let named = matches!(&params, TaskParams::External(p) if p.task == spec.id);
+    if spec.family != TaskFamily::External || !named {
+        return Err(EnvError::param(
+            "family",
+            spec.id,
+            "an external family: TaskSpec.family = External and default parameters TaskParams::External naming the task's id",
+        ));
+    }
+    if registered_tasks()
+        .iter()
+        .any(|t| t.id.eq_ignore_ascii_case(spec.id))
+    {
+        return Err(EnvError::param(
+            "id",
+            spec.id,
+            "an id no registered task has",
+        ));
+    }
+    EXTERNAL
+        .write()
+        .unwrap_or_else(|e| e.into_inner())
+        .push(family);
+    *TASKS.write().unwrap_or_else(|e| e.into_inner()) = None;
+    Ok(())
 }
 
-/// The implementation of `family`.
-pub(crate) fn of(family: TaskFamily) -> &'static dyn Family {
+/// Every registered task, built-in first, in registry order.
+pub(crate) fn registered_tasks() -> &'static [TaskSpec] {
+    if let Some(tasks) = *TASKS.read().unwrap_or_else(|e| e.into_inner()) {
+        return tasks;
+    }
+    let mut all: Vec<TaskSpec> = FAMILIES.iter().map(|f| f.task()).collect();
+    all.extend(externals().iter().map(|f| f.task()));
+    // Leaked once per registration: the list lives as long as the program.
+    let all: &'static [TaskSpec] = Vec::leak(all);
+    *TASKS.write().unwrap_or_else(|e| e.into_inner()) = Some(all);
+    all
+}
+
+fn externals() -> Vec<&'static dyn Family> {
+    EXTERNAL.read().unwrap_or_else(|e| e.into_inner()).clone()
+}
+
+/// The training presets the registered task `id` declares itself ([`Family::preset`]).
+pub fn declared_preset(id: &str) -> Option<&'static str> {
+    by_id(id).preset()
+}
+
+/// The built-in implementation of `family` (`None` for [`TaskFamily::External`]).
+fn builtin(family: TaskFamily) -> Option<&'static dyn Family> {
+    FAMILIES.iter().copied().find(|f| f.task().family == family)
+}
+
+/// The implementation of the registered task `id` (exact id).
+pub(crate) fn by_id(id: &str) -> &'static dyn Family {
     FAMILIES
         .iter()
         .copied()
-        .find(|f| f.task().family == family)
-        .unwrap_or(FAMILIES[0])
+        .chain(externals())
+        .find(|f| f.task().id == id)
+        .unwrap_or(&Unregistered)
+}
+
+/// The implementation that reads `params`: its built-in family, or the registered
+/// external family its [`ExternalParams::task`] names ([`Unregistered`] when none is).
+pub(crate) fn of_params(params: &TaskParams) -> &'static dyn Family {
+    match params {
+        TaskParams::External(p) => by_id(&p.task),
+        other => builtin(other.family()).unwrap_or(&Unregistered),
+    }
+}
+
+/// The implementation of a built-in family ([`Unregistered`] for an external one, whose
+/// implementation only its parameters name: use [`of_params`]).
+pub(crate) fn of(family: TaskFamily) -> &'static dyn Family {
+    builtin(family).unwrap_or(&Unregistered)
+}
+
+/// The stand-in for a family this program does not know (an external family's task read
+/// by a program that did not register it): every check fails, naming the task.
+struct Unregistered;
+
+impl Unregistered {
+    fn error(params: &TaskParams) -> EnvError {
+        let task = match params {
+            TaskParams::External(ExternalParams { task, .. }) => task.clone(),
+            other => format!("{:?}", other.family()),
+        };
+        EnvError::UnknownTask {
+            id: task,
+            known: "the tasks this program registers (an external family is registered by the program that defines it, e.g. `cargo run --example interval_production`)".into(),
+        }
+    }
+}
+
+impl Family for Unregistered {
+    fn task(&self) -> TaskSpec {
+        TaskSpec {
+            id: "unregistered",
+            family: TaskFamily::External,
+            tags: &[],
+            summary: "a task of a family this program does not register",
+            description: "",
+            source: "",
+        }
+    }
+
+    fn params(&self) -> &'static [Spec] {
+        &[]
+    }
+
+    fn defaults(&self) -> (&'static str, TaskParams) {
+        (
+            "auto",
+            TaskParams::External(ExternalParams {
+                task: "unregistered".into(),
+                values: Default::default(),
+            }),
+        )
+    }
+
+    fn auto_layout(&self, _params: &TaskParams) -> &'static str {
+        super::FI_LAYOUT
+    }
+
+    fn required_objects(&self, _params: &TaskParams) -> Vec<ObjectKind> {
+        Vec::new()
+    }
+
+    fn check(&self, config: &TaskConfig) -> Result<(), EnvError> {
+        Err(Unregistered::error(&config.params))
+    }
+
+    fn rules(&self, config: &TaskConfig, _layout: &Layout) -> Result<RuleSet, EnvError> {
+        Err(Unregistered::error(&config.params))
+    }
+
+    fn response_kind(&self) -> Option<ResponseKind> {
+        None
+    }
+
+    fn condition_kind(&self) -> ConditionKind {
+        ConditionKind::Fi
+    }
+
+    fn conditions(&self, _task: &Task, config: &TaskConfig) -> Result<Vec<Condition>, EnvError> {
+        Err(Unregistered::error(&config.params))
+    }
+
+    fn evaluation_tds(&self, _params: &TaskParams) -> Vec<u32> {
+        Vec::new()
+    }
+
+    fn demo_conditions(&self, _params: &TaskParams) -> Vec<(u32, Option<bool>)> {
+        Vec::new()
+    }
 }
 
 impl TaskParams {
@@ -231,12 +486,13 @@ impl TaskParams {
             TaskParams::MultiAnchor { .. } => TaskFamily::MultiAnchor,
             TaskParams::MultiOven { .. } => TaskFamily::MultiOven,
             TaskParams::Reproduction { .. } => TaskFamily::Reproduction,
+            TaskParams::External(_) => TaskFamily::External,
         }
     }
 }
 
 /// A condition of `kind` on `task` at `td` with no reset option, factor or context.
-pub(crate) fn condition(kind: ConditionKind, task: &Task, td: u32) -> Condition {
+pub fn condition(kind: ConditionKind, task: &Task, td: u32) -> Condition {
     Condition {
         kind,
         task: task.clone(),
@@ -249,7 +505,7 @@ pub(crate) fn condition(kind: ConditionKind, task: &Task, td: u32) -> Condition 
 
 /// Every probe duration `1 ..= longest + 4` (steps): the reference's bisection,
 /// multi-anchor and multi-oven probes.
-pub(crate) fn probe_range(kind: ConditionKind, task: &Task, longest: u32) -> Vec<Condition> {
+pub fn probe_range(kind: ConditionKind, task: &Task, longest: u32) -> Vec<Condition> {
     (1..=longest + 4)
         .map(|t| condition(kind, task, t))
         .collect()

@@ -3,7 +3,7 @@
 //! episode's TD.
 
 use super::bisection::{any_td, below_geometric_mean};
-use super::{Family, Growth, RuleSet, TaskSpec, probe_range, wrong_family};
+use super::{Family, Growth, ResponseKind, RuleSet, TaskSpec, probe_range, wrong_family};
 use crate::error::EnvError;
 use crate::layout::{Layout, ObjectKind};
 use crate::rules::Rules;
@@ -175,6 +175,10 @@ the counter. Defaults: anchors=4,8,12 (the reference class; its scripts train 3,
             active[0],
             active.to_vec(),
         ))
+    }
+
+    fn response_kind(&self) -> Option<ResponseKind> {
+        Some(ResponseKind::Categorise)
     }
 
     fn condition_kind(&self) -> ConditionKind {

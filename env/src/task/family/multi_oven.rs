@@ -2,7 +2,7 @@
 //! the paper): 1–3 ovens, each soup to the short or the long counter.
 
 use super::bisection::{any_td, category_counter, check_anchors};
-use super::{Family, Growth, RuleSet, TaskSpec, probe_range, wrong_family};
+use super::{Family, Growth, ResponseKind, RuleSet, TaskSpec, probe_range, wrong_family};
 use crate::error::EnvError;
 use crate::layout::{Layout, ObjectKind};
 use crate::rules::Rules;
@@ -10,6 +10,7 @@ use crate::settings::{Rule, Spec};
 use crate::task::condition::{Condition, ConditionKind};
 use crate::task::params::{FIXED_TD, LONG, MAX_OVENS, SHORT, param};
 use crate::task::{AUTO_LAYOUT, Task, TaskConfig, TaskFamily, TaskParams};
+use serde_json::json;
 
 /// The multi-oven family.
 pub(crate) struct MultiOven;
@@ -160,6 +161,10 @@ ovens=2, asynchronous=false, max_timesteps=200; curriculum 1 -> 2 -> 3 ovens at 
         ))
     }
 
+    fn response_kind(&self) -> Option<ResponseKind> {
+        Some(ResponseKind::Categorise)
+    }
+
     fn condition_kind(&self) -> ConditionKind {
         ConditionKind::MultiOven
     }
@@ -173,7 +178,7 @@ ovens=2, asynchronous=false, max_timesteps=200; curriculum 1 -> 2 -> 3 ovens at 
         };
         let mut out = probe_range(ConditionKind::MultiOven, task, long);
         if ovens > 1 {
-            let one = task.with(&["ovens=1"])?;
+            let one = task.with_values(&[("ovens", json!(1))])?;
             out.extend(probe_range(ConditionKind::MultiOven, &one, long));
         }
         Ok(out)

@@ -1,7 +1,7 @@
 //! Multi-timer (paper: Tasks / Multi-Timer; reference `MultiTimeProduction`): cued TDs,
 //! reward 1 inside a window around TD, reduced outside.
 
-use super::{Family, RuleSet, TaskSpec, condition, wrong_family};
+use super::{Family, ResponseKind, RuleSet, TaskSpec, condition, wrong_family};
 use crate::error::EnvError;
 use crate::layout::{Layout, ObjectKind};
 use crate::rules::{CueMode, RewardMode, Rules};
@@ -9,6 +9,7 @@ use crate::settings::{self, Rule, Spec};
 use crate::task::condition::{Condition, ConditionKind};
 use crate::task::params::{CUE_TD_RULE, FIXED_TD_RULE, OVER, REDUCED, UNDER, param};
 use crate::task::{FI_LAYOUT, Task, TaskConfig, TaskFamily, TaskParams};
+use serde_json::json;
 
 /// The multi-timer family.
 pub(crate) struct MultiTimer;
@@ -189,6 +190,10 @@ num_timers=1, mode=exact, cue=value, buffers 0, reduced_reward=0.1.",
         })
     }
 
+    fn response_kind(&self) -> Option<ResponseKind> {
+        Some(ResponseKind::Produce)
+    }
+
     fn condition_kind(&self) -> ConditionKind {
         ConditionKind::MultiTimer
     }
@@ -219,10 +224,10 @@ num_timers=1, mode=exact, cue=value, buffers 0, reduced_reward=0.1.",
         for &t in active {
             for f in [0.0, 0.25, 0.5, 0.75] {
                 let b = (f * f64::from(t)).round() as u32;
-                let buffered = task.with(&[
-                    "mode=exact".to_string(),
-                    format!("under_buffer={b}"),
-                    format!("over_buffer={b}"),
+                let buffered = task.with_values(&[
+                    ("mode", json!("exact")),
+                    ("under_buffer", json!(b)),
+                    ("over_buffer", json!(b)),
                 ])?;
                 let mut c = condition(ConditionKind::Buffer, &buffered, t);
                 c.factor = Some(f);

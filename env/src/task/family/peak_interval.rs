@@ -1,7 +1,7 @@
 //! Peak-interval probe (paper: Tasks / Peak interval timing): the fixed-interval task with
 //! the soup withheld until `probe_factor × TD` (or never).
 
-use super::{Family, RuleSet, TaskSpec, condition, wrong_family};
+use super::{Family, ResponseKind, RuleSet, TaskSpec, condition, wrong_family};
 use crate::error::EnvError;
 use crate::layout::{Layout, ObjectKind};
 use crate::rules::Rules;
@@ -87,6 +87,10 @@ agent cannot tell probe from training trials); a released soup pays +1.",
             td,
             vec![td],
         ))
+    }
+
+    fn response_kind(&self) -> Option<ResponseKind> {
+        Some(ResponseKind::Produce)
     }
 
     fn condition_kind(&self) -> ConditionKind {

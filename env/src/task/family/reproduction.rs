@@ -2,7 +2,7 @@
 //! paper names it as future work): reproduce the interval between two oven cues.
 
 use super::bisection::any_td;
-use super::{Family, RuleSet, TaskSpec, condition, wrong_family};
+use super::{Family, ResponseKind, RuleSet, TaskSpec, condition, wrong_family};
 use crate::error::EnvError;
 use crate::layout::{Layout, ObjectKind};
 use crate::rules::{RsgSpec, Rules, decimal};
@@ -285,6 +285,10 @@ reward at delivery.",
     }
 
     /// Every sample interval of the priors, once each, in increasing order.
+    fn response_kind(&self) -> Option<ResponseKind> {
+        Some(ResponseKind::Reproduce)
+    }
+
     fn condition_kind(&self) -> ConditionKind {
         ConditionKind::Reproduction
     }

@@ -1,7 +1,7 @@
 //! Uncertainty (paper: Dual task and uncertainty task; reference training trace): the oven
 //! may never become ready by itself; a manual button readies it at a reduced reward.
 
-use super::{Family, RuleSet, TaskSpec, condition, wrong_family};
+use super::{Family, ResponseKind, RuleSet, TaskSpec, condition, wrong_family};
 use crate::error::EnvError;
 use crate::layout::{Layout, ObjectKind};
 use crate::rules::Rules;
@@ -116,6 +116,10 @@ oven until TD and, if the oven stays dark, presses the button.",
             td,
             vec![td],
         ))
+    }
+
+    fn response_kind(&self) -> Option<ResponseKind> {
+        Some(ResponseKind::Produce)
     }
 
     fn condition_kind(&self) -> ConditionKind {
