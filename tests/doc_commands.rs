@@ -3,7 +3,8 @@
 //!
 //! A fenced block whose info string starts with `bash`, `sh` or `shell` is run by `bash`
 //! (`set -euo pipefail`) with `chronocooked` on the `PATH` (this build's binary) and
-//! `cargo run --release --` read as `chronocooked`. A page's blocks run in order in one
+//! `cargo run --release --` read as `chronocooked` (`cargo run --release --example NAME --` as
+//! the example's binary, `NAME`). A page's blocks run in order in one
 //! scratch folder (so a tutorial's later steps read its earlier outputs) that holds links to
 //! the repository's own folders (`sweeps/`, `results/`, `zoo/`, `examples/`, …). Two words in
 //! the info string say how a long block is run, and nothing else does:
@@ -52,7 +53,7 @@ impl Block {
         let joined = self.text.replace("\\\n", " ");
         let mut out = String::from("set -euo pipefail\n");
         for line in joined.lines() {
-            let mut line = line.replace("cargo run --release --", "chronocooked");
+            let mut line = example_command(line).replace("cargo run --release --", "chronocooked");
             if let Some(extra) = &extra
                 && line.trim_start().starts_with("chronocooked ")
             {
@@ -67,6 +68,20 @@ impl Block {
         }
         out
     }
+}
+
+/// `cargo run --release --example NAME -- ARGS` read as `NAME ARGS` (the example's binary,
+/// built with the tests, is on the `PATH` too); other lines as they are.
+fn example_command(line: &str) -> String {
+    const RUN: &str = "cargo run --release --example ";
+    let Some(at) = line.find(RUN) else {
+        return line.to_string();
+    };
+    let rest = &line[at + RUN.len()..];
+    let name = rest.split_whitespace().next().unwrap_or("");
+    let args = rest[name.len()..].trim_start();
+    let args = args.strip_prefix("--").unwrap_or(args);
+    format!("{}{name}{args}", &line[..at])
 }
 
 /// The fenced shell blocks of `text` (a page named `page`).
@@ -161,6 +176,24 @@ fn bin_dir() -> PathBuf {
     let _ = std::fs::remove_file(&link);
     #[cfg(unix)]
     std::os::unix::fs::symlink(env!("CARGO_BIN_EXE_chronocooked"), &link).unwrap();
+    // The examples' binaries (`cargo run --example NAME`), built next to the lab's.
+    let built = Path::new(env!("CARGO_BIN_EXE_chronocooked"))
+        .parent()
+        .unwrap()
+        .join("examples");
+    for entry in std::fs::read_dir(root().join("examples")).unwrap() {
+        let path = entry.unwrap().path();
+        let Some(name) = path.file_stem().and_then(|n| n.to_str()) else {
+            continue;
+        };
+        let binary = built.join(name);
+        if binary.is_file() {
+            let link = dir.join(name);
+            let _ = std::fs::remove_file(&link);
+            #[cfg(unix)]
+            std::os::unix::fs::symlink(&binary, &link).unwrap();
+        }
+    }
     dir
 }
 
@@ -182,6 +215,16 @@ fn the_block_reader_joins_lines_maps_cargo_run_and_appends_test_arguments() {
         "set -euo pipefail\nchronocooked demo --dry-run # the demo\n\
          chronocooked train      --steps 10 --dry-run\nls out\n"
     );
+}
+
+#[test]
+fn an_example_run_through_cargo_reads_as_the_example_binary() {
+    assert_eq!(
+        example_command("cargo run --release --example interval_production -- env list"),
+        "interval_production env list"
+    );
+    assert_eq!(example_command("  cargo run --release --example x"), "  x");
+    assert_eq!(example_command("chronocooked demo"), "chronocooked demo");
 }
 
 #[test]
