@@ -43,8 +43,8 @@ pub use env::ChronoEnv;
 pub use error::EnvError;
 pub use info::{Carry, Counter, Events, INFO_KEYS, Info, OvenSet};
 pub use kitchen::{
-    CODE_CHANNELS, Kitchen, KitchenSnapshot, KitchenState, MultiOvenState, PerOven, ResetOptions,
-    RsgState, Transition, derive_seed,
+    BASIC_RESET_OPTIONS, CODE_CHANNELS, Kitchen, KitchenSnapshot, KitchenState, MultiOvenState,
+    PerOven, ResetOption, ResetOptions, RsgState, Transition, derive_seed,
 };
 pub use layout::{Layout, ObjectKind};
 pub use obs::{BoxSpace, Discrete, OneHotEncoder};

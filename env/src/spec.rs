@@ -19,6 +19,8 @@ pub(crate) struct Spec {
     pub(crate) family: TaskFamily,
     /// Whether the oven shows a "ready" state (the family's).
     pub(crate) shows_ready: bool,
+    /// The options `reset` takes (the family's).
+    pub(crate) reset_options: &'static [crate::kitchen::ResetOption],
     pub(crate) layout: Layout,
     pub(crate) rules: Rules,
     pub(crate) default_td: u32,
@@ -64,6 +66,7 @@ impl Spec {
             config: config.clone(),
             family: config.family(),
             shows_ready: family.shows_ready(),
+            reset_options: family.reset_options(),
             layout,
             rules,
             default_td,

@@ -257,5 +257,9 @@ fn bad_values_name_the_key_and_the_allowed_values() {
         )
         .unwrap_err()
         .to_string();
-    assert!(e.contains("only the reproduction task"), "{e}");
+    assert!(
+        e.contains("`prior` is an option of Reproduction-v0")
+            && e.contains("FixedInterval-v0 (its options: start, td)"),
+        "{e}"
+    );
 }

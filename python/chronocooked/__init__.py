@@ -23,7 +23,7 @@
 
 from . import _core
 from ._core import EVENT_FLAGS, PolicyError, __version__, reference_conditions
-from .envs import ChronoEnv, ChronoVectorEnv, overrides, register_envs, task_ids
+from .envs import ChronoEnv, ChronoVectorEnv, overrides, register_envs, reset_options, task_ids
 from . import sb3, zoo
 from .evaluation import check_export, evaluate, load_activity, load_eval, record
 from .fingerprint import CONDITIONS, distance, fingerprint, summarize
@@ -138,6 +138,7 @@ __all__ = [
     "iqm",
     "probability_of_improvement",
     "record",
+    "reset_options",
     "reference_conditions",
     "register_envs",
     "sb3",

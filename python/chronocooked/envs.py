@@ -17,9 +17,6 @@ from gymnasium.vector.utils import batch_space
 
 from . import _core
 
-_RESET_OPTIONS = ("start", "td", "never_ready", "oven_tds", "on_times", "prior", "gain")
-
-
 def _value(key, v):
     if isinstance(v, (bool, np.bool_)):
         return "true" if v else "false"
@@ -42,56 +39,14 @@ def task_ids() -> list[str]:
     return [t["id"] for t in _core.tasks()]
 
 
-def _int_list(key, v):
-    if v is None:
-        return None
-    try:
-        items = [int(x) for x in np.asarray(v).reshape(-1)]
-    except (TypeError, ValueError):
-        raise ValueError(f"invalid reset option `{key}`: {v!r} (allowed: a list of integers)")
-    if any(x < 0 for x in items):
-        raise ValueError(f"invalid reset option `{key}`: {v!r} (allowed: integers >= 0)")
-    return items
-
-
-def _index(key, v):
-    if v is None:
-        return None
-    if isinstance(v, (bool, np.bool_)) or not isinstance(v, (int, np.integer)) or not 0 <= v <= 255:
-        raise ValueError(f"invalid reset option `{key}`: {v!r} (allowed: an index 0..=255)")
-    return int(v)
-
-
-def _reset_options(options):
-    """The reset options as the core's arguments: start, td, never_ready, oven_tds, on_times,
-    prior, gain."""
-    if options is None:
-        return None, None, None, None, None, None, None
-    if not isinstance(options, dict):
-        raise ValueError(f"invalid value for `options`: {options!r} (allowed: a dict or None)")
-    unknown = sorted(set(options) - set(_RESET_OPTIONS) - {"reset_mask"})
-    if unknown:
-        raise ValueError(
-            f"unknown reset option(s) {unknown} (allowed: start=(row, col), td=int, "
-            "never_ready=bool, oven_tds=[int per oven], on_times=[int per oven after the first], "
-            "prior=int, gain=int)"
-        )
-    start = options.get("start")
-    if start is not None:
-        start = tuple(int(x) for x in start)
-        if len(start) != 2:
-            raise ValueError(f"invalid reset option `start`: {start} (allowed: (row, col))")
-    td = options.get("td")
-    never_ready = options.get("never_ready")
-    return (
-        start,
-        None if td is None else int(td),
-        None if never_ready is None else bool(never_ready),
-        _int_list("oven_tds", options.get("oven_tds")),
-        _int_list("on_times", options.get("on_times")),
-        _index("prior", options.get("prior")),
-        _index("gain", options.get("gain")),
-    )
+def reset_options(task: str) -> list[dict]:
+    """The options ``reset(options=…)`` takes on ``task``, as its family declares them: a list
+    of dicts with ``key`` and ``doc`` (value and meaning)."""
+    for t in _core.tasks():
+        if t["id"] == task:
+            return t["reset_options"]
+    _core.resolve(task, [])  # raises the registry's error, naming the registered tasks
+    return []
 
 
 def _obs_space(core) -> spaces.Box:
@@ -106,11 +61,10 @@ class ChronoEnv(gymnasium.Env):
 
     Observations: ``obs_mode="codes"`` the reference encoding, ``uint8 [R, C, 6]``;
     ``"onehot"`` the network view, ``float32 [channels, R, C]``. Actions: ``Discrete(6)``
-    (0 wait, 1 down, 2 up, 3 right, 4 left, 5 interact). ``reset(seed, options)`` options:
-    ``start`` (row, col), ``td`` (steps), ``never_ready`` (uncertainty task), ``oven_tds``
-    (multi-oven: one duration per oven) and ``on_times`` (asynchronous multi-oven: the step at
-    whose end each oven after the first starts), ``prior`` and ``gain`` (reproduction: the
-    indices of the episode's prior and gain). ``info`` holds
+    (0 wait, 1 down, 2 up, 3 right, 4 left, 5 interact). ``reset(seed, options)`` options are
+    those the task's family declares (``reset_options(task)``): ``start`` (row, col) and ``td``
+    (steps) on every task, ``never_ready`` (uncertainty), ``oven_tds`` and ``on_times``
+    (multi-oven), ``prior`` and ``gain`` (reproduction). ``info`` holds
     the Rust ``Info`` fields as plain values (timers in steps, −1 = off).
     """
 
@@ -133,7 +87,6 @@ class ChronoEnv(gymnasium.Env):
 
     def reset(self, *, seed: int | None = None, options: dict | None = None):
         super().reset(seed=seed)
-        start, td, never_ready, oven_tds, on_times, prior, gain = _reset_options(options)
         if seed is None and not self._seeded:
             # First reset without a seed: draw one from gymnasium's RNG (itself seeded from
             # entropy), as gymnasium envs do.
@@ -143,7 +96,7 @@ class ChronoEnv(gymnasium.Env):
             if seed < 0:
                 raise ValueError(f"invalid value for `seed`: {seed} (allowed: an integer >= 0)")
         self._seeded = True
-        out = self._core.reset(seed, start, td, never_ready, oven_tds, on_times, prior, gain)
+        out = self._core.reset(seed, options)
         self._needs_reset = False
         return out
 
@@ -229,7 +182,6 @@ class ChronoVectorEnv(VectorEnv):
         elif len(seed) != n:
             raise ValueError(
                 f"invalid value for `seed`: {len(seed)} seeds (allowed: one int, or exactly {n})")
-        start, td, never_ready, oven_tds, on_times, prior, gain = _reset_options(options)
         mask = None
         if options is not None and options.get("reset_mask") is not None:
             mask = [bool(x) for x in np.asarray(options["reset_mask"]).reshape(-1)]
@@ -245,8 +197,7 @@ class ChronoVectorEnv(VectorEnv):
         if any(s is not None and s < 0 for s in seeds):
             raise ValueError(f"invalid value for `seed`: {seed} (allowed: integers >= 0)")
         self._seeded = True
-        return self._core.reset(seeds, mask, start, td, never_ready, oven_tds, on_times,
-                                prior, gain)
+        return self._core.reset(seeds, mask, options)
 
     def step(self, actions):
         return self._core.step(actions)

@@ -79,31 +79,17 @@ impl Env {
         Ok(Env { env, mode, task })
     }
 
-    /// Starts an episode: `(obs, info)`. `seed` reseeds the env's RNG (None continues it).
-    /// Multi-oven: `oven_tds` one duration per oven, `on_times` the asynchronous on-times of
-    /// the ovens after the first (steps).
-    #[pyo3(signature = (seed = None, start = None, td = None, never_ready = None, oven_tds = None, on_times = None, prior = None, gain = None))]
-    #[allow(clippy::too_many_arguments)]
+    /// Starts an episode: `(obs, info)`. `seed` reseeds the env's RNG (None continues it);
+    /// `options` (a dict) fixes what the episode would draw, with the options the task's
+    /// family declares (`reset_options`).
+    #[pyo3(signature = (seed = None, options = None))]
     fn reset<'py>(
         &mut self,
         py: Python<'py>,
         seed: Option<u64>,
-        start: Option<(usize, usize)>,
-        td: Option<u32>,
-        never_ready: Option<bool>,
-        oven_tds: Option<Vec<u32>>,
-        on_times: Option<Vec<u32>>,
-        prior: Option<u8>,
-        gain: Option<u8>,
+        options: Option<Bound<'py, PyAny>>,
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyDict>)> {
-        let options = crate::errors::reset_options(
-            start,
-            td,
-            never_ready,
-            oven_tds,
-            on_times,
-            (prior, gain),
-        )?;
+        let options = crate::errors::reset_options(&self.env.config().id, options.as_ref())?;
         let info = self.env.reset(seed, &options).map_err(env_err)?;
         Ok((
             self.obs(py)?,

@@ -18,8 +18,9 @@ fn param_dict<'py>(py: Python<'py>, p: &ParamRow) -> PyResult<Bound<'py, PyDict>
 }
 
 /// Every registered task: a list of dicts with `id`, `family`, `tags`, `summary`,
-/// `description`, `source` and `params` (key, aliases, type, default, allowed values, doc;
-/// common parameters included), generated from the env crate's parameter tables.
+/// `description`, `source`, `params` (key, aliases, type, default, allowed values, doc;
+/// common parameters included) and `reset_options` (key, doc: what `reset(options=…)`
+/// takes), generated from the task family's declarations.
 #[pyfunction]
 pub fn tasks(py: Python<'_>) -> PyResult<Bound<'_, PyList>> {
     let out = PyList::empty(py);
@@ -36,6 +37,14 @@ pub fn tasks(py: Python<'_>) -> PyResult<Bound<'_, PyList>> {
             params.append(param_dict(py, &p)?)?;
         }
         d.set_item("params", params)?;
+        let resets = PyList::empty(py);
+        for o in chronocooked_env::task::family::reset_options_of(t.id).unwrap_or_default() {
+            let r = PyDict::new(py);
+            r.set_item("key", o.key())?;
+            r.set_item("doc", o.doc())?;
+            resets.append(r)?;
+        }
+        d.set_item("reset_options", resets)?;
         out.append(d)?;
     }
     Ok(out)

@@ -137,21 +137,15 @@ impl VecEnv {
     }
 
     /// Resets the envs whose `mask` entry is true (all when None): env `i` is reseeded
-    /// with `seeds[i]` (None continues its RNG). Returns `(obs [N, …], info)`.
-    #[pyo3(signature = (seeds, mask = None, start = None, td = None, never_ready = None, oven_tds = None, on_times = None, prior = None, gain = None))]
-    #[allow(clippy::too_many_arguments)]
+    /// with `seeds[i]` (None continues its RNG); `options` (a dict) fixes what the episodes
+    /// would draw, with the options the task's family declares. Returns `(obs [N, …], info)`.
+    #[pyo3(signature = (seeds, mask = None, options = None))]
     fn reset<'py>(
         &mut self,
         py: Python<'py>,
         seeds: Vec<Option<u64>>,
         mask: Option<Vec<bool>>,
-        start: Option<(usize, usize)>,
-        td: Option<u32>,
-        never_ready: Option<bool>,
-        oven_tds: Option<Vec<u32>>,
-        on_times: Option<Vec<u32>>,
-        prior: Option<u8>,
-        gain: Option<u8>,
+        options: Option<Bound<'py, PyAny>>,
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyDict>)> {
         let n = self.envs.len();
         if seeds.len() != n {
@@ -168,14 +162,7 @@ impl VecEnv {
                 m.len()
             )));
         }
-        let options = crate::errors::reset_options(
-            start,
-            td,
-            never_ready,
-            oven_tds,
-            on_times,
-            (prior, gain),
-        )?;
+        let options = crate::errors::reset_options(&self.envs.config().id, options.as_ref())?;
         for (i, seed) in seeds.into_iter().enumerate() {
             if mask.as_ref().is_none_or(|m| m[i]) {
                 self.envs.reset_one(i, seed, &options).map_err(env_err)?;

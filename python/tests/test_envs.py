@@ -136,6 +136,34 @@ def test_reference_aliases_and_reset_options():
         env.reset(options={"start": (0, 1)})  # the onion dispenser's cell
 
 
+def test_reset_options_are_the_task_familys_declaration():
+    keys = {t: [o["key"] for o in chronocooked.reset_options(t)] for t in chronocooked.task_ids()}
+    assert keys["FixedInterval-v0"] == ["start", "td"]
+    assert keys["Uncertainty-v0"] == ["start", "td", "never_ready"]
+    assert keys["MultiOven-v0"] == ["start", "td", "oven_tds", "on_times"]
+    assert keys["Reproduction-v0"] == ["start", "td", "prior", "gain"]
+    assert all(o["doc"] for t in keys for o in chronocooked.reset_options(t))
+    fi = gym.make("chronocooked/FixedInterval-v0")
+    # An option of another family: refused, naming this task's options and the tasks that
+    # take it.
+    with pytest.raises(ValueError, match=r"FixedInterval-v0 \(its options: start, td\).*Uncertainty-v0"):
+        fi.reset(seed=0, options={"never_ready": True})
+    # An unknown key: the task's options with their values.
+    with pytest.raises(ValueError, match=r"unknown reset option `speed` for FixedInterval-v0.*td: integer"):
+        fi.reset(seed=0, options={"speed": 2})
+    with pytest.raises(ValueError, match=r"invalid reset option `start`"):
+        fi.reset(seed=0, options={"start": (1, 2, 3)})
+    with pytest.raises(ValueError, match=r"invalid reset option `td`"):
+        fi.reset(seed=0, options={"td": -3})
+    with pytest.raises(ValueError, match=r"invalid value for `options`"):
+        fi.reset(seed=0, options=[("td", 3)])
+    # numpy values read as their Python ones; None means "draw it".
+    _, info = fi.reset(seed=0, options={"start": np.array([0, 0]), "td": np.int64(5), "never_ready": None})
+    assert info["td"] == 5 and info["agent"] == (0, 0)
+    with pytest.raises(ValueError, match="unknown task|registered"):
+        chronocooked.reset_options("NoSuchTask-v0")
+
+
 def test_info_carries_the_rust_fields_as_plain_values():
     env = gym.make("chronocooked/FixedInterval-v0", td=3)
     _, info = env.reset(seed=0, options={"start": (0, 0)})

@@ -26,7 +26,7 @@ mod episode;
 mod multi_oven;
 mod reproduction;
 mod snapshot;
-pub use episode::{PerOven, ResetOptions, Transition};
+pub use episode::{BASIC_RESET_OPTIONS, PerOven, ResetOption, ResetOptions, Transition};
 pub use multi_oven::MultiOvenState;
 pub use reproduction::RsgState;
 pub use snapshot::KitchenSnapshot;
@@ -122,6 +122,34 @@ impl Kitchen {
         self.num_timers
     }
 
+    /// Refuses an option the task's family does not declare, naming the task's own options
+    /// and the tasks that take it.
+    fn check_declared_options(&self, options: &ResetOptions) -> Result<(), EnvError> {
+        let declared = self.spec.reset_options;
+        for option in ResetOption::ALL {
+            if option.is_set(options) && !declared.contains(&option) {
+                let own: Vec<&str> = declared.iter().map(|o| o.key()).collect();
+                let takers = crate::task::family::tasks_with_reset_option(option);
+                return Err(EnvError::reset_option(
+                    option.key(),
+                    "given",
+                    format!(
+                        "an option of {} (its options: {}); `{}` is an option of {}",
+                        self.spec.config.id,
+                        own.join(", "),
+                        option.key(),
+                        if takers.is_empty() {
+                            "no registered task".to_string()
+                        } else {
+                            takers.join(", ")
+                        }
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
     fn check_td_option(&self, td: u32) -> Result<(), EnvError> {
         // Reference-compatible multi-anchor / multi-oven episodes may replay the reference's
         // TD 0, which never becomes ready (the timer is already 1 after the put).
@@ -168,6 +196,7 @@ impl Kitchen {
         options: &ResetOptions,
         obs: &mut [u8],
     ) -> Result<Info, EnvError> {
+        self.check_declared_options(options)?;
         let layout = &self.spec.layout;
         let start = match options.start {
             Some((r, c)) => {
@@ -192,13 +221,6 @@ impl Kitchen {
         };
         if let Some(td) = options.td {
             self.check_td_option(td)?;
-        }
-        if options.never_ready.is_some() && self.spec.family != TaskFamily::Uncertainty {
-            return Err(EnvError::reset_option(
-                "never_ready",
-                options.never_ready.unwrap_or_default(),
-                "only the Uncertainty task has never-ready episodes",
-            ));
         }
         self.check_oven_options(options)?;
         self.check_rsg_options(options)?;

@@ -21,6 +21,7 @@ mod uncertainty;
 use super::condition::{Condition, ConditionKind};
 use super::{ExternalParams, Task, TaskConfig, TaskFamily, TaskParams};
 use crate::error::EnvError;
+use crate::kitchen::{BASIC_RESET_OPTIONS, ResetOption};
 use crate::layout::{Layout, ObjectKind};
 use crate::rules::{CueMode, RewardMode, RsgSpec, Rules};
 use crate::settings::Spec;
@@ -261,6 +262,13 @@ pub trait Family: Sync + Send {
     /// cannot play (they refuse it, naming it).
     fn response_kind(&self) -> Option<ResponseKind>;
 
+    /// The options `reset` takes in this family (what an episode would otherwise draw);
+    /// `reset` refuses any other, naming the task's own, and Python's `reset(options=…)`
+    /// reads this list.
+    fn reset_options(&self) -> &'static [ResetOption] {
+        BASIC_RESET_OPTIONS
+    }
+
     /// The reference evaluation conditions of an agent trained on `task` (`config` is its
     /// checked configuration): the probes docs/metrics.md lists for the family.
     fn conditions(&self, task: &Task, config: &TaskConfig) -> Result<Vec<Condition>, EnvError>;
@@ -356,6 +364,23 @@ pub(crate) fn registered_tasks() -> &'static [TaskSpec] {
 
 fn externals() -> Vec<&'static dyn Family> {
     EXTERNAL.read().unwrap_or_else(|e| e.into_inner()).clone()
+}
+
+/// The reset options of the registered task `id` (exact id or alias; `None` if unknown).
+pub fn reset_options_of(id: &str) -> Option<&'static [ResetOption]> {
+    let spec = crate::registry::find_task(id).ok()?;
+    Some(by_id(spec.id).reset_options())
+}
+
+/// The registered tasks whose episodes take `option`.
+pub fn tasks_with_reset_option(option: ResetOption) -> Vec<&'static str> {
+    FAMILIES
+        .iter()
+        .copied()
+        .chain(externals())
+        .filter(|f| f.reset_options().contains(&option))
+        .map(|f| f.task().id)
+        .collect()
 }
 
 /// The training presets the registered task `id` declares itself ([`Family::preset`]).

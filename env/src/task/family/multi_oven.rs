@@ -4,6 +4,7 @@
 use super::bisection::{any_td, category_counter, check_anchors};
 use super::{Family, Growth, ResponseKind, RuleSet, TaskSpec, probe_range, wrong_family};
 use crate::error::EnvError;
+use crate::kitchen::ResetOption;
 use crate::layout::{Layout, ObjectKind};
 use crate::rules::Rules;
 use crate::settings::{Rule, Spec};
@@ -163,6 +164,16 @@ ovens=2, asynchronous=false, max_timesteps=200; curriculum 1 -> 2 -> 3 ovens at 
 
     fn response_kind(&self) -> Option<ResponseKind> {
         Some(ResponseKind::Categorise)
+    }
+
+    /// The start cell, one duration for every oven or one per oven, and the on-times.
+    fn reset_options(&self) -> &'static [ResetOption] {
+        &[
+            ResetOption::Start,
+            ResetOption::Td,
+            ResetOption::OvenTds,
+            ResetOption::OnTimes,
+        ]
     }
 
     fn condition_kind(&self) -> ConditionKind {

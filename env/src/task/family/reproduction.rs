@@ -4,6 +4,7 @@
 use super::bisection::any_td;
 use super::{Family, ResponseKind, RuleSet, TaskSpec, condition, wrong_family};
 use crate::error::EnvError;
+use crate::kitchen::ResetOption;
 use crate::layout::{Layout, ObjectKind};
 use crate::rules::{RsgSpec, Rules, decimal};
 use crate::settings::{self, Rule, Spec, UNIT};
@@ -287,6 +288,16 @@ reward at delivery.",
     /// Every sample interval of the priors, once each, in increasing order.
     fn response_kind(&self) -> Option<ResponseKind> {
         Some(ResponseKind::Reproduce)
+    }
+
+    /// The start cell, the sample interval ts (`td`), and the prior and gain indices.
+    fn reset_options(&self) -> &'static [ResetOption] {
+        &[
+            ResetOption::Start,
+            ResetOption::Td,
+            ResetOption::Prior,
+            ResetOption::Gain,
+        ]
     }
 
     fn condition_kind(&self) -> ConditionKind {

@@ -3,6 +3,7 @@
 
 use super::{Family, ResponseKind, RuleSet, TaskSpec, condition, wrong_family};
 use crate::error::EnvError;
+use crate::kitchen::ResetOption;
 use crate::layout::{Layout, ObjectKind};
 use crate::rules::Rules;
 use crate::settings::{Spec, UNIT};
@@ -120,6 +121,11 @@ oven until TD and, if the oven stays dark, presses the button.",
 
     fn response_kind(&self) -> Option<ResponseKind> {
         Some(ResponseKind::Produce)
+    }
+
+    /// The start cell, the duration, and whether the episode is never-ready.
+    fn reset_options(&self) -> &'static [ResetOption] {
+        &[ResetOption::Start, ResetOption::Td, ResetOption::NeverReady]
     }
 
     fn condition_kind(&self) -> ConditionKind {
