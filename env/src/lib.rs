@@ -43,13 +43,14 @@ pub use env::ChronoEnv;
 pub use error::EnvError;
 pub use info::{Carry, Counter, Events, INFO_KEYS, Info, OvenSet};
 pub use kitchen::{
-    BASIC_RESET_OPTIONS, CODE_CHANNELS, Kitchen, KitchenSnapshot, KitchenState, MultiOvenState,
-    PerOven, ResetOption, ResetOptions, RsgState, Transition, derive_seed,
+    CODE_CHANNELS, Kitchen, KitchenSnapshot, KitchenState, MultiOvenState, PerOven, ResetOptions,
+    RsgState, Transition, derive_seed,
 };
 pub use layout::{Layout, ObjectKind};
 pub use obs::{BoxSpace, Discrete, OneHotEncoder};
 pub use oracle::{Oracle, optimal_return};
 pub use registry::{TaskSpec, all_tasks, find_task, tasks_with_tag};
+pub use task::reset_option::{BASIC_RESET_OPTIONS, ResetOption};
 pub use task::{
     CueMode, Growth, RewardMode, Task, TaskConfig, TaskFamily, TaskParams, make_config,
 };

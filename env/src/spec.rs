@@ -20,7 +20,7 @@ pub(crate) struct Spec {
     /// Whether the oven shows a "ready" state (the family's).
     pub(crate) shows_ready: bool,
     /// The options `reset` takes (the family's).
-    pub(crate) reset_options: &'static [crate::kitchen::ResetOption],
+    pub(crate) reset_options: &'static [crate::task::reset_option::ResetOption],
     pub(crate) layout: Layout,
     pub(crate) rules: Rules,
     pub(crate) default_td: u32,

@@ -9,6 +9,7 @@ of ``chronocooked --set`` (reference aliases such as ``oven_duration``, ``max_ti
 
 from __future__ import annotations
 
+import json
 import numpy as np
 import gymnasium
 from gymnasium import spaces
@@ -42,11 +43,10 @@ def task_ids() -> list[str]:
 def reset_options(task: str) -> list[dict]:
     """The options ``reset(options=…)`` takes on ``task``, as its family declares them: a list
     of dicts with ``key`` and ``doc`` (value and meaning)."""
-    for t in _core.tasks():
-        if t["id"] == task:
-            return t["reset_options"]
-    _core.resolve(task, [])  # raises the registry's error, naming the registered tasks
-    return []
+    # The registry's id of `task` (an alias such as ``fixedinterval`` included); an unknown
+    # task raises the registry's error, naming the registered ones.
+    canonical = json.loads(_core.resolve(task, []))["id"]
+    return next(t["reset_options"] for t in _core.tasks() if t["id"] == canonical)
 
 
 def _obs_space(core) -> spaces.Box:

@@ -17,6 +17,7 @@ use crate::layout::ObjectKind;
 pub(crate) use crate::rules::Rules;
 pub(crate) use crate::spec::Spec;
 pub use crate::spec::{CODE_CHANNELS, derive_seed};
+use crate::task::reset_option::ResetOption;
 use crate::task::{CueMode, RewardMode, TaskFamily, TaskParams};
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -26,7 +27,7 @@ mod episode;
 mod multi_oven;
 mod reproduction;
 mod snapshot;
-pub use episode::{BASIC_RESET_OPTIONS, PerOven, ResetOption, ResetOptions, Transition};
+pub use episode::{PerOven, ResetOptions, Transition};
 pub use multi_oven::MultiOvenState;
 pub use reproduction::RsgState;
 pub use snapshot::KitchenSnapshot;
@@ -127,7 +128,7 @@ impl Kitchen {
     fn check_declared_options(&self, options: &ResetOptions) -> Result<(), EnvError> {
         let declared = self.spec.reset_options;
         for option in ResetOption::ALL {
-            if option.is_set(options) && !declared.contains(&option) {
+            if options.sets(option) && !declared.contains(&option) {
                 let own: Vec<&str> = declared.iter().map(|o| o.key()).collect();
                 let takers = crate::task::family::tasks_with_reset_option(option);
                 return Err(EnvError::reset_option(

@@ -12,6 +12,7 @@ mod chosen;
 pub mod condition;
 pub mod family;
 pub mod params;
+pub mod reset_option;
 
 pub use crate::rules::{CueMode, RewardMode};
 use chosen::TaskFields;

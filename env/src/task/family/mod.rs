@@ -21,10 +21,10 @@ mod uncertainty;
 use super::condition::{Condition, ConditionKind};
 use super::{ExternalParams, Task, TaskConfig, TaskFamily, TaskParams};
 use crate::error::EnvError;
-use crate::kitchen::{BASIC_RESET_OPTIONS, ResetOption};
 use crate::layout::{Layout, ObjectKind};
 use crate::rules::{CueMode, RewardMode, RsgSpec, Rules};
 use crate::settings::Spec;
+use crate::task::reset_option::{BASIC_RESET_OPTIONS, ResetOption};
 use serde::Serialize;
 use std::sync::RwLock;
 
@@ -366,10 +366,14 @@ fn externals() -> Vec<&'static dyn Family> {
     EXTERNAL.read().unwrap_or_else(|e| e.into_inner()).clone()
 }
 
-/// The reset options of the registered task `id` (exact id or alias; `None` if unknown).
+/// The reset options of the registered task `id` (its exact id; `None` if unknown).
 pub fn reset_options_of(id: &str) -> Option<&'static [ResetOption]> {
-    let spec = crate::registry::find_task(id).ok()?;
-    Some(by_id(spec.id).reset_options())
+    FAMILIES
+        .iter()
+        .copied()
+        .chain(externals())
+        .find(|f| f.task().id == id)
+        .map(|f| f.reset_options())
 }
 
 /// The registered tasks whose episodes take `option`.

@@ -4,12 +4,12 @@
 use super::bisection::{any_td, category_counter, check_anchors};
 use super::{Family, Growth, ResponseKind, RuleSet, TaskSpec, probe_range, wrong_family};
 use crate::error::EnvError;
-use crate::kitchen::ResetOption;
 use crate::layout::{Layout, ObjectKind};
 use crate::rules::Rules;
 use crate::settings::{Rule, Spec};
 use crate::task::condition::{Condition, ConditionKind};
 use crate::task::params::{FIXED_TD, LONG, MAX_OVENS, SHORT, param};
+use crate::task::reset_option::ResetOption;
 use crate::task::{AUTO_LAYOUT, Task, TaskConfig, TaskFamily, TaskParams};
 use serde_json::json;
 

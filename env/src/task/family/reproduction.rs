@@ -4,12 +4,12 @@
 use super::bisection::any_td;
 use super::{Family, ResponseKind, RuleSet, TaskSpec, condition, wrong_family};
 use crate::error::EnvError;
-use crate::kitchen::ResetOption;
 use crate::layout::{Layout, ObjectKind};
 use crate::rules::{RsgSpec, Rules, decimal};
 use crate::settings::{self, Rule, Spec, UNIT};
 use crate::task::condition::{Condition, ConditionKind};
 use crate::task::params::{FIXED_TD_RULE, param};
+use crate::task::reset_option::ResetOption;
 use crate::task::{AUTO_LAYOUT, REPRODUCTION_LAYOUT, Task, TaskConfig, TaskFamily, TaskParams};
 
 /// The reproduction family.

@@ -3,12 +3,12 @@
 
 use super::{Family, ResponseKind, RuleSet, TaskSpec, condition, wrong_family};
 use crate::error::EnvError;
-use crate::kitchen::ResetOption;
 use crate::layout::{Layout, ObjectKind};
 use crate::rules::Rules;
 use crate::settings::{Spec, UNIT};
 use crate::task::condition::{Condition, ConditionKind};
 use crate::task::params::{OVER, TD, param};
+use crate::task::reset_option::ResetOption;
 use crate::task::{Task, TaskConfig, TaskFamily, TaskParams, UNCERTAINTY_LAYOUT};
 
 /// The uncertainty family.
