@@ -273,16 +273,24 @@ impl TaskConfig {
         self.params.family()
     }
 
+    /// The table entry of the parameter `key` (canonical key or reference alias); an unknown
+    /// key is an error naming the task's keys.
+    fn param(&self, key: &str) -> Result<Spec, EnvError> {
+        let key = key.trim();
+        let table = self.params_table();
+        settings::find(&table, key)
+            .copied()
+            .ok_or_else(|| EnvError::UnknownParam {
+                key: key.to_string(),
+                task: self.id.clone(),
+                known: table.iter().map(|p| p.key).collect::<Vec<_>>().join(", "),
+            })
+    }
+
     /// Applies one `key=value` override (canonical key or reference alias), parsed and
     /// range-checked by the family's parameter table ([`params`]).
     pub fn set(&mut self, key: &str, value: &str) -> Result<(), EnvError> {
-        let key = key.trim();
-        let table = self.params_table();
-        let spec = settings::find(&table, key).ok_or_else(|| EnvError::UnknownParam {
-            key: key.to_string(),
-            task: self.id.clone(),
-            known: table.iter().map(|p| p.key).collect::<Vec<_>>().join(", "),
-        })?;
+        let spec = self.param(key)?;
         let parsed = spec
             .rule
             .parse(value)
@@ -294,19 +302,13 @@ impl TaskConfig {
     /// maps hold them: `json!(3)`, `json!("exact")`, `json!([4, 8])`), checked by its rule in
     /// the family's parameter table; the family then updates the fields that follow it.
     pub fn set_value(&mut self, key: &str, value: serde_json::Value) -> Result<(), EnvError> {
-        let key = key.trim();
-        let table = self.params_table();
-        let spec = settings::find(&table, key).ok_or_else(|| EnvError::UnknownParam {
-            key: key.to_string(),
-            task: self.id.clone(),
-            known: table.iter().map(|p| p.key).collect::<Vec<_>>().join(", "),
-        })?;
+        let spec = self.param(key)?;
         let text = settings::display(&value);
         if !spec.rule.accepts(&value) {
             return Err(EnvError::param(spec.key, text, spec.rule.allowed()));
         }
         // Errors name the canonical key (`td` for `oven_duration`).
-        settings::set_value(self, spec, spec.key, &text, value)?;
+        settings::set_value(self, &spec, spec.key, &text, value)?;
         family::of_params(&self.params).after_set(&mut self.params, spec.key);
         Ok(())
     }
