@@ -1,5 +1,5 @@
-"""Which timing mechanism does your agent use? Fingerprint the example pacemaker agent of
-``my_agent_on_the_leaderboard.py`` and a trained LSTM125 from the zoo.
+"""Which timing mechanism does your agent use? Fingerprint the example pacemaker agent
+(``chronocooked.examples``) and a trained LSTM125 from the zoo.
 
     python examples/python/fingerprint_my_agent.py [OUT]     # default: lab-out/fingerprint
 
@@ -15,15 +15,7 @@ import sys
 from pathlib import Path
 
 import chronocooked
-from my_agent_on_the_leaderboard import PacemakerAgent
-
-
-def make_pacemaker(task, params):
-    """``make_policy(task, params)``: one pacemaker agent per condition, built for its
-    interval (bisection: the criterion between the anchors is their geometric mean)."""
-    if task == "Bisection-v0":
-        return PacemakerAgent(criterion=(params["short"] * params["long"]) ** 0.5)
-    return PacemakerAgent(params["td"])
+from chronocooked.examples import make_pacemaker
 
 
 def show(result):

@@ -45,8 +45,9 @@ def report(evals, out, baselines=True, improvement=None):
     """Writes the leaderboard (``report.html``, ``report.md``, ``report.csv``) of the
     evaluation folders ``evals`` (a path or a list of paths, from :func:`chronocooked.evaluate`
     or ``chronocooked eval``) into ``out``, with committed baselines: ``True`` (default) the
-    repository's ``results/paper-core`` (found from the current folder upwards, or
-    ``$CHRONOCOOKED_BASELINES``), a path or list of compact study results folders, or
+    repository's ``results/paper-core`` (``$CHRONOCOOKED_BASELINES``, else found from the
+    current folder upwards or from the installed package's folder upwards, as for a
+    virtual environment inside the clone), a path or list of compact study results folders, or
     ``False``/``None`` for none. Baseline rows are labelled ``model (study)``. Multi-run
     cells show mean ± SD and the interquartile mean with its stratified bootstrap 95%
     interval (CSV columns ``<metric>_iqm``, ``_iqm_lo``, ``_iqm_hi``). ``improvement``: a
@@ -55,7 +56,8 @@ def report(evals, out, baselines=True, improvement=None):
     if isinstance(evals, (str, os.PathLike)):
         evals = [evals]
     if baselines is True:
-        extra, default = [], True
+        found = _find_default_baselines()
+        extra, default = ([str(found)], False) if found else ([], True)
     elif not baselines:
         extra, default = [], False
     elif isinstance(baselines, (str, os.PathLike)):
@@ -64,3 +66,17 @@ def report(evals, out, baselines=True, improvement=None):
         extra, default = [str(b) for b in baselines], False
     files = _core.report([str(e) for e in evals], str(out), extra, default, improvement)
     return [Path(f) for f in files]
+
+
+def _find_default_baselines():
+    """``results/paper-core`` of the clone this package runs from: ``None`` when
+    ``$CHRONOCOOKED_BASELINES`` is set (the core reads it) or no ancestor of the current
+    folder or of this file holds one (the core then says where it looked)."""
+    if os.environ.get("CHRONOCOOKED_BASELINES"):
+        return None
+    for start in (Path.cwd(), Path(__file__).resolve().parent):
+        for folder in (start, *start.parents):
+            candidate = folder / "results" / "paper-core"
+            if (candidate / "jobs").is_dir():
+                return candidate
+    return None

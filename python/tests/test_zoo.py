@@ -8,6 +8,7 @@ import shutil
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -71,6 +72,26 @@ def test_report_adds_the_committed_baselines(tmp_path):
     assert {"lstm125 (paper-core)", "cnn-mlp (paper-core)"} <= set(models)
     chronocooked.report(tmp_path / "mine", tmp_path / "r2", baselines=False)
     assert len((tmp_path / "r2" / "report.csv").read_text().splitlines()) == 2
+
+
+def test_the_default_baselines_are_found_from_the_current_folder_or_the_package(tmp_path, monkeypatch):
+    from chronocooked import zoo
+
+    monkeypatch.delenv("CHRONOCOOKED_BASELINES", raising=False)
+    clone = tmp_path / "clone"
+    (clone / "results" / "paper-core" / "jobs").mkdir(parents=True)
+    (clone / "deep" / "folder").mkdir(parents=True)
+    monkeypatch.chdir(clone / "deep" / "folder")
+    assert zoo._find_default_baselines() == clone / "results" / "paper-core"
+    # Outside any clone: the package's own ancestors (a virtual environment inside the
+    # clone) or nothing, never a folder without jobs.
+    monkeypatch.chdir(tmp_path)
+    (clone / "results" / "paper-core" / "jobs").rmdir()
+    found = zoo._find_default_baselines()
+    package = Path(zoo.__file__).resolve()
+    assert found is None or (found / "jobs").is_dir() and found.parent.parent in package.parents
+    monkeypatch.setenv("CHRONOCOOKED_BASELINES", str(tmp_path))
+    assert zoo._find_default_baselines() is None  # the core reads the variable
 
 
 def readme_example():

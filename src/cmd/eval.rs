@@ -58,15 +58,29 @@ pub struct EvalArgs {
 }
 
 fn report(out: &Path, outcome: &EvalOutcome) {
+    use chronocooked_analysis::report::columns::{COLUMNS, Value};
     let m = &outcome.metrics;
     println!(
-        "{}: {} episodes, success {:.1}% → {} ({} figure files)",
+        "{}: {} episodes → {} ({} figure files)",
         m.model,
         m.episodes,
-        m.success_rate * 100.0,
         out.join(chronocooked_analysis::evaluation::folder::METRICS)
             .display(),
         outcome.figures.len()
+    );
+    // The task's own measures: the leaderboard's columns this evaluation has.
+    for c in &COLUMNS {
+        if let Value::Run(f) = c.value
+            && let Some(v) = f(m)
+        {
+            println!("  {}, {}: {v:.3}  ({})", c.group, c.title, c.doc);
+        }
+    }
+    println!(
+        "  rewarded episodes: {:.1}% of all {} (every condition of the protocol pooled, \
+         probes included; the lines above are the task's measures)",
+        m.success_rate * 100.0,
+        m.episodes
     );
     if let Some((trials, units, file)) = &outcome.activity {
         println!(

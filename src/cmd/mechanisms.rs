@@ -86,6 +86,36 @@ pub fn run(args: MechanismsArgs) -> Result<()> {
     for id in &w.identifications {
         println!("{}:", id.view.title());
         print_identification(id);
+        let unplaced = w.agents.saturating_sub(id.agents.len());
+        if unplaced > 0 {
+            println!(
+                "  {unplaced} of {} agents: no verdict: they share no feature with the \
+                 mechanisms (every feature is measured on timed responses, which an agent \
+                 trained on a short budget does not make yet)",
+                w.agents
+            );
+        }
+    }
+    let mut mechanisms: Vec<&str> = w
+        .identifications
+        .first()
+        .map(|id| id.held_out.iter().map(|h| h.mechanism.as_str()).collect())
+        .unwrap_or_default();
+    mechanisms.sort_unstable();
+    mechanisms.dedup();
+    if mechanisms.len() < 2 {
+        println!(
+            "note: this study has {} timing mechanism(s) ({}): naming a held-out seed needs \
+             two or more, with several seeds each. To place an agent among the committed \
+             mechanisms ({}), fingerprint its run: chronocooked fingerprint --run DIR",
+            mechanisms.len(),
+            if mechanisms.is_empty() {
+                "none".to_string()
+            } else {
+                mechanisms.join(", ")
+            },
+            chronocooked_analysis::fingerprint::REFERENCE_SOURCE
+        );
     }
     Ok(())
 }

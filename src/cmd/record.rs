@@ -83,10 +83,16 @@ pub fn record(args: RecordArgs) -> Result<()> {
         summary: args.summary,
         figures: args.figures.clone(),
     })?;
+    let populations: Vec<String> = r
+        .populations
+        .iter()
+        .map(|(name, size)| format!("{name} {size}"))
+        .collect();
     println!(
-        "{} trials × {} units of {} on {} → {}",
+        "{} trials × {} units ({}) of {} on {} → {}",
         r.trials,
         r.units,
+        populations.join(" + "),
         r.model,
         r.task,
         args.out.display()

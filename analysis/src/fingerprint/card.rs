@@ -71,7 +71,11 @@ fn bare_verdict(p: &Placement) -> String {
             range(d.self_range)
         ),
         _ => format!(
-            "{} shares no feature with the mechanisms: nothing to compare",
+            "{} shares no feature with the mechanisms: nothing to compare. Every feature is \
+             measured on timed responses (the oven started, then a check, a delivery or a \
+             choice) and on the activity of trials that have them; an agent that never starts \
+             the timer, such as one trained on a short budget, has none (the zoo's and the \
+             reference preset's agents do)",
             p.model
         ),
     }

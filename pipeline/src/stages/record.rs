@@ -58,6 +58,9 @@ pub struct RecordOutcome {
     pub trials: usize,
     /// Units per step.
     pub units: usize,
+    /// The populations those units belong to, in column order: (name, units), e.g. an
+    /// LSTM's `latent` 125, `cell` 125 and `value` 1.
+    pub populations: Vec<(String, usize)>,
 }
 
 fn json_bytes<T: serde::Serialize>(value: &T, pretty: bool) -> Result<Vec<u8>, PipelineError> {
@@ -171,5 +174,11 @@ pub fn record(req: &RecordRequest) -> Result<RecordOutcome, PipelineError> {
         task: task.id().to_string(),
         trials: dataset.trials.len(),
         units: dataset.meta.n_units(),
+        populations: dataset
+            .meta
+            .populations
+            .iter()
+            .map(|p| (p.name.clone(), p.size))
+            .collect(),
     })
 }

@@ -99,7 +99,22 @@ impl SweepFile {
 
     /// Reads and parses a sweep file.
     pub fn load(path: &Path) -> Result<Self, TrainError> {
-        let text = std::fs::read_to_string(path).map_err(|e| TrainError::io(path, e))?;
+        let text = std::fs::read_to_string(path).map_err(|e| {
+            if e.kind() == std::io::ErrorKind::NotFound && path.starts_with("sweeps") {
+                // The guide's study files are the clone's: say where they are looked for.
+                let cwd = std::env::current_dir().unwrap_or_default();
+                TrainError::io(
+                    &cwd.join(path),
+                    std::io::Error::new(
+                        e.kind(),
+                        "no such file (the lab's study files are in the sweeps/ folder of \
+                         its clone: run from the clone's root)",
+                    ),
+                )
+            } else {
+                TrainError::io(path, e)
+            }
+        })?;
         Self::parse(&text, &path.display().to_string())
     }
 }
