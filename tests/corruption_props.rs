@@ -370,12 +370,12 @@ proptest! {
         let file = dir.join(name);
         let bad = mutate(&std::fs::read(&file).unwrap(), &m);
         std::fs::write(&file, &bad).unwrap();
-        let r = chronocooked_analysis::report::leaderboard::load_metrics(&dir);
+        let r = chronocooked_present::report::leaderboard::load_metrics(&dir);
         judge(r, name, true, false);
         if which == 0 {
             // Export and the figures read the same records.
             let r = chronocooked_analysis::evaluation::protocol::read_records(&dir).and_then(|recs| {
-                chronocooked_analysis::export::export_eval(&recs, &dir.join("export"))
+                chronocooked_present::export::export_eval(&recs, &dir.join("export"))
             });
             judge(r, name, true, false);
         }
@@ -388,7 +388,7 @@ proptest! {
         let bad = mutate(&orig, &m);
         let out = case_dir("activity");
         let r = chronocooked_models::ActivityDataset::from_json(&bad).and_then(|ds| {
-            chronocooked_analysis::export::export_activity(&ds, &out, 50).map(|_| ())
+            chronocooked_present::export::export_activity(&ds, &out, 50).map(|_| ())
         });
         // The reader names no file (the caller adds it); it must not panic.
         let _ = r;
@@ -402,10 +402,10 @@ proptest! {
             &std::fs::read(f.eval.join("activity.json")).unwrap(),
         )
         .unwrap();
-        let files = chronocooked_analysis::export::export_activity(&ds, &dir, 50).unwrap();
+        let files = chronocooked_present::export::export_activity(&ds, &dir, 50).unwrap();
         let npz = files.iter().find(|p| p.extension().is_some_and(|e| e == "npz")).unwrap();
         let bad = mutate(&std::fs::read(npz).unwrap(), &m);
-        let _ = chronocooked_analysis::export::npz::read_npz(&bad);
+        let _ = chronocooked_present::export::npz::read_npz(&bad);
     }
 
     #[test]

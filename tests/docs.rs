@@ -172,9 +172,9 @@ fn the_committed_cli_reference_is_the_one_the_parser_generates() {
 /// `:line` or `#anchor` suffix dropped; tokens with placeholders (`<study>`, `*`, `…`) and
 /// output folders (`lab-out/`, `runs/`) are not paths of the repository.
 fn named_paths(text: &str) -> Vec<String> {
-    const ROOTS: [&str; 17] = [
-        "env", "models", "training", "analysis", "paper", "pipeline", "python", "src", "tests",
-        "sweeps", "results", "docs", "scripts", "zoo", "examples", "bench", ".ci",
+    const ROOTS: [&str; 18] = [
+        "env", "models", "training", "analysis", "present", "paper", "pipeline", "python", "src",
+        "tests", "sweeps", "results", "docs", "scripts", "zoo", "examples", "bench", ".ci",
     ];
     let mut out = Vec::new();
     for token in text.split('`').skip(1).step_by(2) {
@@ -201,11 +201,11 @@ fn named_paths(text: &str) -> Vec<String> {
 fn the_path_reader_keeps_repository_paths_only() {
     let paths = named_paths(
         "`env/src/registry.rs:73` `results/<study>/` `lab-out/demo` `cargo test` \
-         `analysis/src/report/` `docs/cli.md#train` `x`",
+         `present/src/report/` `docs/cli.md#train` `x`",
     );
     assert_eq!(
         paths,
-        ["env/src/registry.rs", "analysis/src/report/", "docs/cli.md"]
+        ["env/src/registry.rs", "present/src/report/", "docs/cli.md"]
     );
 }
 

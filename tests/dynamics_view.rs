@@ -11,9 +11,9 @@
 
 use crate::common::{self, run_ok};
 use crate::mechanisms::copy_tree;
-use chronocooked_analysis::fingerprint::{Fingerprint, agent_signature, reference_signatures};
 use chronocooked_analysis::neural::probe::summarize_file;
 use chronocooked_models::ActivityDataset;
+use chronocooked_present::fingerprint::{Fingerprint, agent_signature, reference_signatures};
 use nalgebra::DMatrix;
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
@@ -172,7 +172,7 @@ fn every_mechanism_mixed_by_an_orthogonal_matrix_keeps_its_dynamics_view_verdict
         let dm = &mixed.dynamics;
         assert_eq!(dm.nearest.as_deref(), Some(*m), "{m} mixed: {dm:?}");
         assert!(dm.identified, "{m} mixed: {dm:?}");
-        let own = |p: &chronocooked_analysis::fingerprint::Placement| {
+        let own = |p: &chronocooked_present::fingerprint::Placement| {
             p.distances
                 .iter()
                 .find(|d| d.mechanism == *m)

@@ -289,7 +289,7 @@ fn cases() -> Vec<Case> {
             resume: None,
             compare: &["episodes.csv", "export.json"],
             passes_for_complete: |out| {
-                chronocooked_analysis::export::marker::check_export(out)
+                chronocooked_present::export::marker::check_export(out)
                     .is_ok()
                     .then(|| "an interrupted export passes its completeness check".into())
             },

@@ -2,7 +2,8 @@
 //! top-level folders (a file that names an item of another file through `crate::`,
 //! `super::`, `self::` or a relative `use child::…` depends on it; references to a file's own ancestors — its `mod.rs` /
 //! `lib.rs` — do not count; a name a module re-exports with `pub use` counts as the file
-//! that defines it), and the sweep pipeline lives in a library, not in the binary.
+//! that defines it), no crate over 12,000 lines, and the sweep pipeline lives in a library,
+//! not in the binary.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -378,8 +379,8 @@ fn cyclic_edges(graph: &BTreeMap<Module, BTreeSet<Module>>) -> BTreeSet<String> 
     out
 }
 
-const CRATES: [&str; 8] = [
-    "env", "models", "training", "analysis", "paper", "pipeline", "python", ".",
+const CRATES: [&str; 9] = [
+    "env", "models", "training", "analysis", "present", "paper", "pipeline", "python", ".",
 ];
 
 #[test]
@@ -411,6 +412,29 @@ fn no_import_cycle_between_top_level_folders() {
         "folder edges on cycles: {}",
         cyclic.join(", ")
     );
+}
+
+/// The most lines of Rust a crate's `src/` may hold (ARCHITECTURE, "One purpose per crate"):
+/// a crate that grows past it has taken a second job.
+const MAX_CRATE_LINES: usize = 12_000;
+
+#[test]
+fn no_crate_holds_more_than_its_share_of_lines() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut over = Vec::new();
+    for krate in CRATES {
+        let mut files = Vec::new();
+        rust_files(&root.join(krate).join("src"), &mut files);
+        let lines: usize = files
+            .iter()
+            .map(|f| std::fs::read_to_string(f).unwrap().lines().count())
+            .sum();
+        assert!(lines > 1000, "{krate}: only {lines} lines found");
+        if lines > MAX_CRATE_LINES {
+            over.push(format!("{krate}: {lines} lines"));
+        }
+    }
+    assert!(over.is_empty(), "over {MAX_CRATE_LINES} lines: {over:?}");
 }
 
 #[test]

@@ -398,7 +398,7 @@ set = ["checkpoint_every=4000", "eval_every=0"]
 
 #[test]
 fn train_eval_record_export_report_end_to_end() {
-    use chronocooked_analysis::export::npz::{NpyData, read_npz};
+    use chronocooked_present::export::npz::{NpyData, read_npz};
     let dir = temp_dir("e2e");
     let p = |rel: &str| dir.join(rel).to_str().unwrap().to_string();
     // A PPO agent (tiny budget) and a timing model, each in the layout `sweep` uses.

@@ -439,8 +439,8 @@ fn neural_summaries_tell_ramps_sequences_and_oscillations_apart() {
 
 #[test]
 fn exported_npz_matches_the_dataset_array_by_array() {
-    use chronocooked_analysis::export::export_activity;
-    use chronocooked_analysis::export::npz::{NpyData, read_npz};
+    use chronocooked_present::export::export_activity;
+    use chronocooked_present::export::npz::{NpyData, read_npz};
     let config = make_config("FixedInterval-v0", &["td=6"]).unwrap();
     let env = chronocooked_env::ChronoEnv::new(&config).unwrap();
     let mut agent =

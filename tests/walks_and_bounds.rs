@@ -34,10 +34,10 @@ fn symlink_loops_are_not_followed_and_each_folder_counts_once() {
     std::os::unix::fs::symlink(root.join("runs"), eval.join("up")).unwrap();
     std::os::unix::fs::symlink(&eval, root.join("runs").join("alias")).unwrap();
     let started = Instant::now();
-    let found = chronocooked_analysis::report::leaderboard::find_eval_folders(&[root.join("runs")]);
+    let found = chronocooked_present::report::leaderboard::find_eval_folders(&[root.join("runs")]);
     assert_eq!(found, vec![eval.clone()]);
     // Two roots that reach the same folder count it once.
-    let both = chronocooked_analysis::report::leaderboard::find_eval_folders(&[
+    let both = chronocooked_present::report::leaderboard::find_eval_folders(&[
         root.join("runs"),
         root.join("runs").join("."),
     ]);

@@ -1,6 +1,8 @@
 //! Chronocooked Lab analysis: behavioural and neural metrics of recorded episodes and
-//! activity, the evaluation protocol, reports, exports and the compact results folder of a
-//! study (the paper's own analyses are the `chronocooked-paper` crate above this one).
+//! activity, the evaluation protocol, the mechanism fingerprints and the compact results
+//! folder of a study. It computes and reads; what is drawn and laid out for people (figures,
+//! the report, cards, evaluation folders, exports) is `chronocooked-present` above it, and
+//! the paper's own analyses are `chronocooked-paper`.
 //!
 //! * [`stats`] — small statistics shared by the analyses (`Spread`: mean, SD, n across runs);
 //! * [`behaviour`] — behavioural metrics: first oven check and the scalar property (`foc`),
@@ -19,16 +21,12 @@
 //!   ML; Jazayeri & Shadlen 2010) as simulators and as a fitting tool, and the standard
 //!   summaries (regression slope, BIAS, √VAR, RMSE, Weber fraction);
 //! * [`evaluation`] — the evaluation protocol (`protocol`: conditions per task, the runner
-//!   for any agent) and the evaluation folder it writes (`folder`);
-//! * [`figures`] — the drawing kit every report uses: SVG/PNG charts, heat maps and the
-//!   standard figures of evaluations, recordings and runs, and the HTML page kit
-//!   (`markup`);
-//! * [`report`] — the leaderboard (HTML with inline SVG, Markdown, CSV; `leaderboard`) and
-//!   the mechanism cards;
-//! * [`export`] — NPZ (numpy) + CSV + JSON-metadata export of activity and evaluation
-//!   records (`npz`: the NPZ format);
+//!   for any agent);
 //! * [`mechanisms`] — mechanism fingerprints: each model's behavioural and neural
 //!   signatures, and which timing mechanism each trained agent is nearest to;
+//! * [`fingerprint`] — one agent's signature placed among the committed mechanisms;
+//! * [`columns`] — the table of the metrics an evaluation reports: each one's key, theme,
+//!   title, description and how it is read from the metrics (the leaderboard's columns);
 //! * [`collect`] — a study's compact results: a sweep's output folder → per job a summary,
 //!   one line per evaluation episode, a thinned learning curve and the metrics, which a
 //!   repository can keep (`paper collect`).
@@ -37,15 +35,13 @@
 
 pub mod behaviour;
 pub mod collect;
+pub mod columns;
 pub mod evaluation;
-pub mod export;
-pub mod figures;
 pub mod fingerprint;
 pub mod job_folder;
 pub mod mechanisms;
 pub mod neural;
 pub mod records;
-pub mod report;
 pub mod reproduction;
 pub mod results_folder;
 pub mod stats;

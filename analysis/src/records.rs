@@ -48,7 +48,7 @@ impl EvalRecord {
 }
 
 /// File name of an evaluation folder's per-episode records (JSON lines of [`EvalRecord`];
-/// the folder's other files are named in `evaluation/folder.rs`).
+/// the folder's other files are named in `chronocooked_present::eval_folder`).
 pub const RECORDS: &str = "records.jsonl";
 
 /// Reads the per-episode records (`records.jsonl`) of an `eval` output folder, each checked

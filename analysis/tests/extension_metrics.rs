@@ -342,7 +342,7 @@ fn multi_oven_curves_interference_offsets_and_orders_match_the_generator() {
     );
     // The leaderboard's columns: the mean accuracy and WF over the ovens, and the mean
     // interference, which oven 3's wider judgment makes positive.
-    let h = chronocooked_analysis::report::columns::headline(
+    let h = chronocooked_analysis::columns::headline(
         &chronocooked_analysis::behaviour::metrics::compute_metrics("scripted", &recs, 1),
     );
     let mean = |v: Vec<f64>| v.iter().sum::<f64>() / v.len() as f64;
@@ -366,7 +366,7 @@ fn the_leaderboard_columns_of_a_categorizer_are_its_known_boundary_and_weber_fra
     let sigma = [0.1];
     let recs = categorize(&[5, 11, 23], &sigma, gm, 300, 21);
     let m = chronocooked_analysis::behaviour::metrics::compute_metrics("scripted", &recs, 3);
-    let h = chronocooked_analysis::report::columns::headline(&m);
+    let h = chronocooked_analysis::columns::headline(&m);
     let ma = m.multi_anchor.as_ref().expect("multi-anchor metrics");
     assert_eq!(h["ma_accuracy"], ma.anchor_accuracy);
     assert!(

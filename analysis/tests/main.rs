@@ -9,7 +9,6 @@ mod dynamics_known_answers;
 mod eval_protocol;
 mod extension_metrics;
 mod fingerprint_reference;
-mod leaderboard_robust;
 mod neural_categories;
 mod neural_categories_edges;
 mod neural_known_answers;

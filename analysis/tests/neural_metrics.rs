@@ -149,40 +149,6 @@ fn a_unit_constant_on_the_training_trials_does_not_break_the_ridge_read_out() {
 }
 
 #[test]
-fn heat_map_and_chart_figures_are_written_and_non_empty() {
-    use chronocooked_analysis::figures::{Chart, Series, write_chart, write_heatmap};
-    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("cc-figs-{}", std::process::id()));
-    let c = cube(1, 12, 12, |_, t, i| if t == i { 1.0 } else { 0.0 });
-    let files = write_heatmap(&dir.join("seq"), "sequence", &c.average(), 12).unwrap();
-    let chart = Chart {
-        title: "learning curve".into(),
-        x_label: "env steps".into(),
-        y_label: "success".into(),
-        series: vec![Series {
-            label: "seed 0".into(),
-            points: (0..10)
-                .map(|k| (k as f64, (k as f64 / 9.0).powi(2)))
-                .collect(),
-            line: true,
-            color: 0,
-        }],
-        markers: vec![(5.0, "half".into())],
-        y_range: Some((0.0, 1.0)),
-    };
-    let more = write_chart(&dir.join("curve"), &chart).unwrap();
-    for f in files.iter().chain(&more) {
-        let len = std::fs::metadata(f).unwrap().len();
-        assert!(len > 2000, "{}: {len} bytes", f.display());
-    }
-    let svg = std::fs::read_to_string(dir.join("curve.svg")).unwrap();
-    assert!(svg.contains("learning curve") && svg.contains("seed 0"));
-    let png = std::fs::read(dir.join("seq.png")).unwrap();
-    assert_eq!(&png[..4], b"\x89PNG");
-    let _ = std::fs::remove_dir_all(&dir);
-}
-
-#[test]
 fn scaling_factor_recovers_a_known_stretch() {
     use chronocooked_analysis::neural::scaling_factor;
     // A time field at 5 of a 12-step interval, and the same field stretched for 24 steps.

@@ -69,7 +69,7 @@ fn a_gain_contexts_bias_is_measured_against_its_target() {
     let all = compute_metrics("oracle", &recs, 0);
     // The leaderboard's columns: every production in its window, slope per unit of g·ts 1
     // at both gains.
-    let h = chronocooked_analysis::report::columns::headline(&all);
+    let h = chronocooked_analysis::columns::headline(&all);
     assert_eq!(h["rp_success"], 1.0);
     assert!((h["rp_slope"] - 1.0).abs() < 0.07, "{h:?}");
     assert!(h["rp_bias"] < 0.5, "{h:?}");

@@ -5,6 +5,8 @@
 //!   (`deep::spec`) and their native twin (`deep::native`);
 //! * [`timing`] — the biologically plausible timing models (drift-diffusion, striatal beat
 //!   frequency, time cells, TD), the agents that play the tasks with them and their zoo;
+//! * [`bayes`] — the Bayesian observers of temporal reproduction (BLS, MAP, ML; Jazayeri &
+//!   Shadlen 2010) and the agent that plays the task with them;
 //! * [`agent`] — the one agent interface every model plays through, episodes and the
 //!   deterministic evaluation loop; [`activity`] — recording of neural activity;
 //! * [`run_folder`] — the file names of a run folder (a trained agent), shared by the
@@ -14,6 +16,7 @@
 
 pub mod activity;
 pub mod agent;
+pub mod bayes;
 pub mod deep;
 pub mod run_folder;
 pub mod timing;

@@ -9,7 +9,7 @@ use super::fi::FiModel;
 use super::multitimer::LEVELS;
 use super::study::PaperStudy;
 use chronocooked_analysis::behaviour::foc::linear_fit;
-use chronocooked_analysis::figures::{Chart, FigureError, Series, write_chart, write_panels};
+use chronocooked_present::figures::{Chart, FigureError, Series, write_chart, write_panels};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 

@@ -8,7 +8,7 @@ use super::study::PaperStudy;
 use crate::agreement::Counts;
 use crate::reference::APPENDIX_PREFIX;
 use chronocooked_analysis::collect::{CollectError, err};
-use chronocooked_analysis::figures::markup::{figure, inline_svg, page};
+use chronocooked_present::figures::markup::{figure, inline_svg, page};
 use maud::{Markup, html};
 use std::path::{Path, PathBuf};
 

@@ -134,7 +134,7 @@ fn run_stage(
                 // temporary files), so the folder equals an uninterrupted run's.
                 let _lock = chronocooked_env::fs::FolderLock::acquire(&run)?;
                 chronocooked_env::fs::remove_temp_files(&run.join(run_folder::FIGURES));
-                chronocooked_analysis::figures::learning_curve(&run)
+                chronocooked_present::figures::learning_curve(&run)
                     .map_err(|e| PipelineError::Analysis(e.to_string()))?;
                 return Ok("already trained (learning-curve figure drawn)".into());
             }

@@ -1,7 +1,7 @@
 //! Corrupt input files are errors naming the problem, never panics: truncated and garbage
 //! NPZ archives, activity datasets, evaluation records, sweep files.
 
-use chronocooked_analysis::export::npz::{NpyArray, NpyData, npz_bytes, read_npz};
+use chronocooked_present::export::npz::{NpyArray, NpyData, npz_bytes, read_npz};
 
 fn arrays() -> Vec<NpyArray> {
     vec![
@@ -92,10 +92,10 @@ fn corrupt_eval_records_name_the_file_and_line() {
     write_recorded(&dir.path().join("records.jsonl"), b"{\"condition\": 3}\n").unwrap();
     let e = chronocooked_analysis::evaluation::protocol::read_records(dir.path()).unwrap_err();
     assert!(e.contains("records.jsonl") && e.contains("line 1"), "{e}");
-    let e = chronocooked_analysis::evaluation::folder::read_eval_info(dir.path()).unwrap_err();
+    let e = chronocooked_present::eval_folder::read_eval_info(dir.path()).unwrap_err();
     assert!(e.contains("eval.json"), "{e}");
     write_recorded(&dir.path().join("eval.json"), b"{\"model\": ").unwrap();
-    let e = chronocooked_analysis::evaluation::folder::read_eval_info(dir.path()).unwrap_err();
+    let e = chronocooked_present::eval_folder::read_eval_info(dir.path()).unwrap_err();
     assert!(e.contains("eval.json"), "{e}");
 }
 

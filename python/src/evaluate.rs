@@ -6,10 +6,10 @@
 
 use crate::agent::PyAgent;
 use crate::errors::{env_err, runtime_err, value_err};
-use chronocooked_analysis::evaluation::folder::{EvalInfo, write_eval_folder};
 use chronocooked_analysis::{Mode, run_protocol_recorded};
 use chronocooked_env::Task;
 use chronocooked_models::activity::{ActivityMeta, TrialRecorder};
+use chronocooked_present::eval_folder::{EvalInfo, write_eval_folder};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use std::path::PathBuf;
@@ -77,11 +77,11 @@ pub fn evaluate<'py>(
     // metrics is a complete one.
     let _lock = chronocooked_env::fs::FolderLock::acquire(&out)
         .map_err(|e| pyo3::exceptions::PyOSError::new_err(e.to_string()))?;
-    chronocooked_analysis::evaluation::folder::begin_evaluation(&out).map_err(runtime_err)?;
+    chronocooked_present::eval_folder::begin_evaluation(&out).map_err(runtime_err)?;
     let summary = PyDict::new(py);
     let dataset = recorder.finish();
     if dataset.meta.n_units() > 0 {
-        let files = chronocooked_analysis::evaluation::folder::write_activity(&out, &dataset)
+        let files = chronocooked_present::eval_folder::write_activity(&out, &dataset)
             .map_err(runtime_err)?;
         summary.set_item("activity", &files[0])?;
         summary.set_item("activity_export", &files[1..])?;

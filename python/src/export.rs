@@ -1,6 +1,6 @@
 //! `export` from Python: an activity dataset and/or an evaluation folder's records as NPZ,
 //! CSV and JSON metadata, closed by the completeness marker — what `chronocooked export`
-//! writes (`chronocooked_analysis::export::export_folder`).
+//! writes (`chronocooked_present::export::export_folder`).
 
 use crate::errors::value_err;
 use chronocooked_models::ActivityDataset;
@@ -61,6 +61,6 @@ pub fn export(
         .transpose()?;
     let _lock = chronocooked_env::fs::FolderLock::acquire(&out)
         .map_err(|e| PyOSError::new_err(e.to_string()))?;
-    chronocooked_analysis::export::export_folder(&out, ds.as_ref(), records.as_deref(), window)
+    chronocooked_present::export::export_folder(&out, ds.as_ref(), records.as_deref(), window)
         .map_err(|e| PyOSError::new_err(format!("{}: {e}", out.display())))
 }

@@ -1,15 +1,15 @@
 //! `fingerprint`: which timing mechanism does a Python agent resemble? The agent's policies
 //! play the mechanisms protocol ([`PROTOCOL`]); its signature is placed among the
-//! committed mechanism signatures (see `chronocooked_analysis::fingerprint`).
+//! committed mechanism signatures (see `chronocooked_present::fingerprint`).
 
 use crate::agent::PyAgent;
 use crate::errors::{env_err, runtime_err, value_err};
-use chronocooked_analysis::fingerprint::{
-    ConditionPlay, PROTOCOL, ProtocolCondition, play_condition, write_and_place,
-};
 use chronocooked_analysis::neural::probe::probe_task;
 use chronocooked_env::Task;
 use chronocooked_models::timing::agent::NOISE_DRAWS;
+use chronocooked_present::fingerprint::{
+    ConditionPlay, PROTOCOL, ProtocolCondition, play_condition, write_and_place,
+};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyMapping};
 use std::path::PathBuf;
@@ -151,13 +151,13 @@ pub fn fingerprint<'py>(
     let (fingerprint, files) =
         write_and_place(&out, &plays, name, units_correspond, seed, resamples)
             .map_err(|e| pyo3::exceptions::PyOSError::new_err(e.to_string()))?;
-    let view = |p: &chronocooked_analysis::fingerprint::Placement| {
+    let view = |p: &chronocooked_present::fingerprint::Placement| {
         serde_json::json!({
             "missing": p.missing,
             "distances": p.distances,
             "nearest": p.nearest,
             "identified": p.identified,
-            "verdict": chronocooked_analysis::fingerprint::verdict(p),
+            "verdict": chronocooked_present::fingerprint::verdict(p),
             "reference_identification": p.reference_identification,
         })
     };
@@ -173,12 +173,12 @@ pub fn fingerprint<'py>(
         "distances": units.distances,
         "nearest": units.nearest,
         "identified": units.identified,
-        "verdict": chronocooked_analysis::fingerprint::verdict(units),
+        "verdict": chronocooked_present::fingerprint::verdict(units),
         "reference_identification": units.reference_identification,
         "units": view(units),
         "dynamics": view(&fingerprint.dynamics),
         "views_agree": fingerprint.views_agree(),
-        "agreement": chronocooked_analysis::fingerprint::agreement(&fingerprint),
+        "agreement": chronocooked_present::fingerprint::agreement(&fingerprint),
         "files": files,
     });
     crate::info::to_py(py, &json)
@@ -217,8 +217,8 @@ pub fn fingerprint_distance(a: PathBuf, b: PathBuf, view: &str) -> PyResult<f64>
         }
     };
     let read = |dir: &std::path::Path| -> PyResult<Signature> {
-        chronocooked_analysis::fingerprint::read_signature(dir).map_err(value_err)
+        chronocooked_present::fingerprint::read_signature(dir).map_err(value_err)
     };
-    let reference = chronocooked_analysis::fingerprint::reference_signatures();
+    let reference = chronocooked_present::fingerprint::reference_signatures();
     Ok(signature_distance(&read(&a)?, &read(&b)?, &reference, view))
 }

@@ -104,7 +104,7 @@ pub fn record<'py>(
         chronocooked_env::fs::FolderLock::acquire(&out).map_err(|e| os_err(e.to_string()))?;
     let summary_path = out.join(chronocooked_analysis::job_folder::ACTIVITY_SUMMARY);
     remove_recorded(&summary_path).map_err(|e| os_err(e.to_string()))?;
-    let mut files = chronocooked_analysis::evaluation::folder::write_activity(&out, &dataset)
+    let mut files = chronocooked_present::eval_folder::write_activity(&out, &dataset)
         .map_err(|e| os_err(format!("{}: {e}", out.display())))?;
     let result = PyDict::new(py);
     if summary {

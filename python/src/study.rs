@@ -47,7 +47,7 @@ pub fn mechanisms<'py>(
         )));
     }
     let out = out.unwrap_or_else(|| results.clone());
-    let w = chronocooked_analysis::mechanisms::write_tables(
+    let w = chronocooked_present::mechanisms::write_tables(
         &results,
         &out,
         resamples,

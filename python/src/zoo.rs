@@ -116,8 +116,8 @@ pub fn report(
     default_baselines: bool,
     improvement: Option<String>,
 ) -> PyResult<Vec<PathBuf>> {
-    use chronocooked_analysis::report::baselines::{load_baseline_rows, locate_default_baselines};
-    let mut rows = chronocooked_analysis::report::load_rows(&evals).map_err(value_err)?;
+    use chronocooked_present::report::baselines::{load_baseline_rows, locate_default_baselines};
+    let mut rows = chronocooked_present::report::load_rows(&evals).map_err(value_err)?;
     let mut dirs = baselines;
     if default_baselines {
         dirs.insert(
@@ -133,11 +133,10 @@ pub fn report(
             "nothing to report: no evaluation folder and no baselines",
         ));
     }
-    let mut files =
-        chronocooked_analysis::report::write_report(&rows, &out).map_err(runtime_err)?;
+    let mut files = chronocooked_present::report::write_report(&rows, &out).map_err(runtime_err)?;
     if let Some(metric) = improvement {
         files.extend(
-            chronocooked_analysis::report::write_improvement(&rows, &metric, &out)
+            chronocooked_present::report::write_improvement(&rows, &metric, &out)
                 .map_err(value_err)?,
         );
     }

@@ -58,13 +58,13 @@ pub struct EvalArgs {
 }
 
 fn report(out: &Path, outcome: &EvalOutcome) {
-    use chronocooked_analysis::report::columns::{COLUMNS, Value};
+    use chronocooked_analysis::columns::{COLUMNS, Value};
     let m = &outcome.metrics;
     println!(
         "{}: {} episodes → {} ({} figure files)",
         m.model,
         m.episodes,
-        out.join(chronocooked_analysis::evaluation::folder::METRICS)
+        out.join(chronocooked_present::eval_folder::METRICS)
             .display(),
         outcome.figures.len()
     );

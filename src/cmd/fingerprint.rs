@@ -51,7 +51,7 @@ pub fn run(args: FingerprintArgs) -> Result<()> {
     let f = &r.placement;
     println!("{} ({})", f.model(), r.conditions.join(", "));
     for p in f.views() {
-        println!("  {}", chronocooked_analysis::fingerprint::verdict(p));
+        println!("  {}", chronocooked_present::fingerprint::verdict(p));
         for d in &p.distances {
             println!(
                 "    {:<18} distance {:5.2}  its own seeds {}  limit {}  bootstrap share {:.2}",
@@ -67,7 +67,7 @@ pub fn run(args: FingerprintArgs) -> Result<()> {
             println!("    missing features: {}", p.missing.join(", "));
         }
     }
-    println!("  {}.", chronocooked_analysis::fingerprint::agreement(f));
+    println!("  {}.", chronocooked_present::fingerprint::agreement(f));
     println!("wrote {}", args.out.join("fingerprint.html").display());
     Ok(())
 }

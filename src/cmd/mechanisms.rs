@@ -66,7 +66,7 @@ pub fn run(args: MechanismsArgs) -> Result<()> {
             s.skipped
         );
     }
-    let w = chronocooked_analysis::mechanisms::write_tables(
+    let w = chronocooked_present::mechanisms::write_tables(
         &args.results,
         &out,
         args.resamples as usize,
@@ -114,7 +114,7 @@ pub fn run(args: MechanismsArgs) -> Result<()> {
             } else {
                 mechanisms.join(", ")
             },
-            chronocooked_analysis::fingerprint::REFERENCE_SOURCE
+            chronocooked_present::fingerprint::REFERENCE_SOURCE
         );
     }
     Ok(())

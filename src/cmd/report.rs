@@ -41,8 +41,8 @@ pub struct ReportArgs {
 
 /// Runs `report`.
 pub fn run(args: ReportArgs) -> Result<()> {
-    use chronocooked_analysis::report::baselines::{load_baseline_rows, locate_default_baselines};
-    use chronocooked_analysis::report::leaderboard::{find_eval_folders, load_rows};
+    use chronocooked_present::report::baselines::{load_baseline_rows, locate_default_baselines};
+    use chronocooked_present::report::leaderboard::{find_eval_folders, load_rows};
     if args.evals.is_empty() && args.runs.is_empty() && args.baselines.is_none() {
         bail!(
             "say what to compare: --eval DIR [DIR ...] (from `eval`), --runs DIR [DIR ...] (run or sweep folders) and/or --baselines [DIR ...] (committed study results)"
@@ -93,11 +93,11 @@ pub fn run(args: ReportArgs) -> Result<()> {
             );
         }
     }
-    let mut files = chronocooked_analysis::report::write_report(&rows, &args.out)
-        .map_err(anyhow::Error::msg)?;
+    let mut files =
+        chronocooked_present::report::write_report(&rows, &args.out).map_err(anyhow::Error::msg)?;
     if let Some(metric) = &args.improvement {
         files.extend(
-            chronocooked_analysis::report::write_improvement(&rows, metric, &args.out)
+            chronocooked_present::report::write_improvement(&rows, metric, &args.out)
                 .map_err(anyhow::Error::msg)?,
         );
     }

@@ -332,13 +332,13 @@ fn start_worker(exe: &Path, file: &Path, out: &Path, id: &str) -> Result<Child> 
 /// Writes the sweep's leaderboard to `out/report` from its finished evaluations.
 fn write_sweep_report(out: &Path) -> Result<()> {
     let report_dir = out.join("report");
-    let rows = chronocooked_analysis::report::load_rows_from_runs(&[out.to_path_buf()])
+    let rows = chronocooked_present::report::load_rows_from_runs(&[out.to_path_buf()])
         .map_err(anyhow::Error::msg)?;
     if rows.is_empty() {
         eprintln!("no finished evaluation to report");
         return Ok(());
     }
-    for f in chronocooked_analysis::report::write_report(&rows, &report_dir)
+    for f in chronocooked_present::report::write_report(&rows, &report_dir)
         .map_err(anyhow::Error::msg)?
     {
         println!("{}", f.display());

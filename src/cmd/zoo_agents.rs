@@ -4,8 +4,8 @@
 
 use anyhow::{Context, Result, bail};
 use chronocooked_analysis::behaviour::metrics::Metrics;
+use chronocooked_analysis::columns::headline;
 use chronocooked_analysis::job_folder;
-use chronocooked_analysis::report::columns::headline;
 use chronocooked_env::integrity;
 use chronocooked_models::run_folder;
 use chronocooked_training::agent_zoo::{
@@ -139,7 +139,7 @@ pub fn add(args: ZooAddArgs) -> Result<()> {
     let eval = args.job.join(job_folder::EVAL);
     // The model must load intact before it is copied.
     let (_, _, cfg) = chronocooked_training::load_policy(&run)?;
-    let metrics_path = eval.join(chronocooked_analysis::evaluation::folder::METRICS);
+    let metrics_path = eval.join(chronocooked_present::eval_folder::METRICS);
     let metrics_text = std::fs::read_to_string(&metrics_path)
         .with_context(|| metrics_path.display().to_string())?;
     let metrics: Metrics = chronocooked_analysis::stats::nan_json::from_str_nan(&metrics_text)

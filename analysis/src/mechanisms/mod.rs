@@ -38,7 +38,6 @@
 
 mod identify;
 mod read;
-mod tables;
 
 pub use identify::{
     AgentVerdict, HeldOut, Identification, LIMIT_COVERAGE, SeedVerdict, identify, seed_verdicts,
@@ -46,10 +45,6 @@ pub use identify::{
 pub use read::{
     CategoriesView, JobFiles, PopulationView, ScalingView, assemble, geometry_index_of_summary,
     scaling_index_of_summary, signatures,
-};
-pub use tables::{
-    PLACED_FINGERPRINT_CAPTION, Written, fingerprint_figure, placed_fingerprint_figure,
-    write_tables,
 };
 
 use rand::{Rng, SeedableRng};
@@ -185,7 +180,7 @@ impl View {
 
 /// Populations that read the model's timing out rather than keep time (excluded from the
 /// unit categories): the learner's value and reward-prediction error, the learned drift.
-pub(crate) const READOUTS: [&str; 3] = ["value", "rpe", "drift"];
+pub const READOUTS: [&str; 3] = ["value", "rpe", "drift"];
 
 /// Why the fingerprints could not be made.
 #[derive(Debug, thiserror::Error)]
@@ -241,14 +236,14 @@ fn per_feature<'a>(
 }
 
 /// SD of each feature over `sigs` (features with fewer than 2 values or no spread left out).
-pub(crate) fn feature_sds<'a>(
+pub fn feature_sds<'a>(
     sigs: impl Iterator<Item = &'a Signature> + Clone,
 ) -> BTreeMap<&'static str, f64> {
     per_feature(sigs, |s| (s.sd.is_finite() && s.sd > 0.0).then_some(s.sd))
 }
 
 /// Mean of each feature over `sigs` (features no signature has are absent).
-pub(crate) fn mean_features(sigs: &[&Signature]) -> BTreeMap<&'static str, f64> {
+pub fn mean_features(sigs: &[&Signature]) -> BTreeMap<&'static str, f64> {
     per_feature(sigs.iter().copied(), |s| (s.n > 0).then_some(s.mean))
 }
 
@@ -296,14 +291,19 @@ fn within_sds(mechs: &[&Signature]) -> BTreeMap<&'static str, f64> {
 /// The scale of a distance in one view: the pooled within-mechanism SD of each of the
 /// view's features.
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Scale {
+pub struct Scale {
     sds: BTreeMap<&'static str, f64>,
 }
 
 impl Scale {
+    /// The pooled within-mechanism SD of each of the view's features (the distance's units).
+    pub fn sds(&self) -> &BTreeMap<&'static str, f64> {
+        &self.sds
+    }
+
     /// The within-mechanism SDs of `view`'s features over the signatures of the
     /// `mechanisms` among `sigs`.
-    pub(crate) fn of(sigs: &[&Signature], mechanisms: &[&str], view: View) -> Self {
+    pub fn of(sigs: &[&Signature], mechanisms: &[&str], view: View) -> Self {
         let mechs: Vec<&Signature> = sigs
             .iter()
             .copied()

@@ -4,7 +4,6 @@
 //! its curriculum levels' policies adds `levels.csv`, see [`super::levels`]).
 
 use crate::PipelineError;
-use chronocooked_analysis::evaluation::folder::{self as eval_folder, EvalInfo};
 use chronocooked_analysis::{
     EvalRecord, Metrics, Mode, reference_conditions, run_protocol_recorded,
 };
@@ -12,6 +11,7 @@ use chronocooked_env::{ChronoEnv, Task};
 use chronocooked_models::Agent;
 use chronocooked_models::activity::{ActivityMeta, TrialRecorder};
 use chronocooked_models::agent::{OracleAgent, RandomAgent};
+use chronocooked_present::eval_folder::{self as eval_folder, EvalInfo};
 use chronocooked_training::RunFolder;
 use chronocooked_training::timing_run::load_agent;
 use std::path::{Path, PathBuf};
@@ -129,7 +129,7 @@ pub(crate) fn subject_agent(
             };
             let env = ChronoEnv::new(config)?;
             Box::new(
-                chronocooked_analysis::reproduction::ObserverAgent::new(&env, observer, wm, wp)
+                chronocooked_models::bayes::ObserverAgent::new(&env, observer, wm, wp)
                     .map_err(|e| PipelineError::Invalid(format!("--agent `{name}`: {e}")))?,
             )
         }

@@ -57,7 +57,7 @@ pub fn export(
         None => None,
     };
     let files =
-        chronocooked_analysis::export::export_folder(out, ds.as_ref(), records.as_deref(), window)
+        chronocooked_present::export::export_folder(out, ds.as_ref(), records.as_deref(), window)
             .map_err(PipelineError::Analysis)?;
     Ok(files)
 }

@@ -1,14 +1,14 @@
 //! The fingerprint stage: which timing mechanism do the lab's own trained runs resemble?
 //! Each run folder (or zoo agent) plays the fingerprint protocol's condition it was trained
 //! for (matched by its task and settings), and the agent's signature is placed among the
-//! committed mechanism signatures (`chronocooked_analysis::fingerprint`).
+//! committed mechanism signatures (`chronocooked_present::fingerprint`).
 
 use crate::PipelineError;
 use crate::stages::record::units_correspond;
-use chronocooked_analysis::fingerprint::{
+use chronocooked_env::TaskParams;
+use chronocooked_present::fingerprint::{
     Fingerprint, PROTOCOL, ProtocolCondition, play_condition, write_and_place,
 };
-use chronocooked_env::TaskParams;
 use chronocooked_training::RunFolder;
 use chronocooked_training::timing_run::load_agent;
 use std::path::{Path, PathBuf};

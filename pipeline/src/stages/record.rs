@@ -162,7 +162,7 @@ pub fn record(req: &RecordRequest) -> Result<RecordOutcome, PipelineError> {
         // What a killed earlier `record` left half-written in its figure folders goes first
         // (one folder per population below `dir`).
         chronocooked_env::fs::remove_temp_files_below(dir, 2);
-        chronocooked_analysis::figures::neural_figures(&dataset, dir)
+        chronocooked_present::figures::neural_figures(&dataset, dir)
             .map_err(|e| PipelineError::Analysis(e.to_string()))?;
     }
     if req.summary {

@@ -99,7 +99,7 @@ pub fn train(
     chronocooked_env::fs::remove_temp_files(
         &outcome.dir().join(chronocooked_models::run_folder::FIGURES),
     );
-    let figure_error = chronocooked_analysis::figures::learning_curve(outcome.dir())
+    let figure_error = chronocooked_present::figures::learning_curve(outcome.dir())
         .err()
         .map(|e| e.to_string());
     Ok((outcome, figure_error))

@@ -26,10 +26,10 @@ use crate::PipelineError;
 use crate::stages::evaluate::{EvalSubject, subject_agent};
 use chronocooked_analysis::behaviour::metrics::compute_metrics;
 use chronocooked_analysis::collect::EpisodeRow;
-use chronocooked_analysis::evaluation::folder::{EVAL_INFO, METRICS, RECORDS};
 use chronocooked_analysis::records::{check_complete_eval, read_eval_info, read_records};
 use chronocooked_analysis::{job_folder, reference_conditions, run_protocol_recorded};
 use chronocooked_models::run_folder;
+use chronocooked_present::eval_folder::{EVAL_INFO, METRICS, RECORDS};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 

@@ -7,18 +7,18 @@
 //! `activity.summary.json` (from `record --summary`), `neural_figures/` (heat maps) and
 //! `run/figures/` (learning curve). A parent folder named `<model>~<variant>` labels the row.
 
-use crate::behaviour::aggregate::Spread;
-use crate::behaviour::foc::{FocStats, pool_foc_stats, scalar_property};
-use crate::behaviour::metrics::{BisectionMetrics, Metrics};
-use crate::behaviour::reproduction::ReproductionMetrics;
-use crate::job_folder;
-use crate::neural::production::ProductionSpeed;
-use crate::neural::summary::NeuralSummary;
-use crate::records::{EVAL_INFO, RECORDS, read_eval_info};
-use crate::report::columns::{
+use chronocooked_analysis::behaviour::aggregate::Spread;
+use chronocooked_analysis::behaviour::foc::{FocStats, pool_foc_stats, scalar_property};
+use chronocooked_analysis::behaviour::metrics::{BisectionMetrics, Metrics};
+use chronocooked_analysis::behaviour::reproduction::ReproductionMetrics;
+use chronocooked_analysis::columns::{
     UNC_ADAPTED, UNC_EPISODES_TO_ADAPT, WF_CV_ANCHORS, aggregate, headline, neural_columns,
 };
-use crate::stats::robust::{BOOTSTRAP_RESAMPLES, iqm, stratified_bootstrap_ci};
+use chronocooked_analysis::job_folder;
+use chronocooked_analysis::neural::production::ProductionSpeed;
+use chronocooked_analysis::neural::summary::NeuralSummary;
+use chronocooked_analysis::records::{EVAL_INFO, RECORDS, read_eval_info};
+use chronocooked_analysis::stats::robust::{BOOTSTRAP_RESAMPLES, iqm, stratified_bootstrap_ci};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -145,11 +145,11 @@ pub fn load_metrics(folder: &Path) -> Result<Metrics, String> {
             path.display()
         ));
     }
-    crate::records::check_complete_eval(folder)?;
+    chronocooked_analysis::records::check_complete_eval(folder)?;
     let info = read_eval_info(folder)?;
-    let records = crate::records::read_records(folder)
+    let records = chronocooked_analysis::records::read_records(folder)
         .map_err(|e| format!("{e} (not an `eval` output folder)"))?;
-    Ok(crate::behaviour::metrics::compute_metrics(
+    Ok(chronocooked_analysis::behaviour::metrics::compute_metrics(
         &info.model,
         &records,
         info.seed,

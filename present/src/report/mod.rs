@@ -7,15 +7,15 @@
 //! templates (maud escapes the text).
 
 pub mod baselines;
-pub mod columns;
+pub use chronocooked_analysis::columns;
 pub mod improvement;
 pub mod leaderboard;
 pub mod mechanisms;
 
-use crate::behaviour::aggregate::Spread;
 use crate::figures::markup::{figure, figure_file, inline_svg};
 pub use crate::report::improvement::write_improvement;
 pub use crate::report::leaderboard::{Robust, Row, load_metrics, load_rows, load_rows_from_runs};
+use chronocooked_analysis::behaviour::aggregate::Spread;
 use chronocooked_env::markdown::Table;
 use maud::{Markup, html};
 use std::path::{Path, PathBuf};
@@ -97,7 +97,7 @@ fn row_figures_html(r: &Row) -> Result<Markup, String> {
 
 /// Task of an evaluation folder (from `eval.json`).
 fn eval_folder_task(folder: &Path) -> String {
-    crate::records::read_eval_info(folder)
+    chronocooked_analysis::records::read_eval_info(folder)
         .map(|info| info.task.id().to_string())
         .unwrap_or_else(|_| "unknown task".into())
 }
@@ -344,7 +344,10 @@ pub fn write_report(rows: &[Row], out: &Path) -> Result<Vec<PathBuf>, String> {
     let (mech_html, mech_md) = mechanisms::mechanisms_section(rows, out)?;
     md += &fi_by_td_markdown(rows);
     md += &mech_md;
-    let grid_rows: Vec<(String, Vec<crate::behaviour::metrics::BisectionMetrics>)> = rows
+    let grid_rows: Vec<(
+        String,
+        Vec<chronocooked_analysis::behaviour::metrics::BisectionMetrics>,
+    )> = rows
         .iter()
         .map(|r| (r.model.clone(), r.bisection.clone()))
         .collect();

@@ -1,14 +1,14 @@
 //! What a signature card shows, computed from a model's recorded fixed-interval runs.
 
 use super::RunInfo;
-use crate::job_folder;
-use crate::mechanisms::{MECHANISMS, READOUTS};
-use crate::neural::categories::{Category, UnitTests};
-use crate::neural::oscillation::welch;
-use crate::neural::summary::{
+use crate::report::leaderboard::Row;
+use chronocooked_analysis::job_folder;
+use chronocooked_analysis::mechanisms::{MECHANISMS, READOUTS};
+use chronocooked_analysis::neural::categories::{Category, UnitTests};
+use chronocooked_analysis::neural::oscillation::welch;
+use chronocooked_analysis::neural::summary::{
     SummaryOptions, TdClassification, classify_td, neural_summary, recorded_tds,
 };
-use crate::report::leaderboard::Row;
 use chronocooked_models::ActivityDataset;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -69,15 +69,15 @@ fn seed_scaling(ds: &ActivityDataset) -> Vec<(&'static str, f64)> {
         .filter(|p| !READOUTS.contains(&p.name.as_str()))
         .filter_map(|p| neural_summary(ds, Some(&p.name), &opts).ok())
         .collect();
-    let view = crate::mechanisms::PopulationView::all(&summaries);
+    let view = chronocooked_analysis::mechanisms::PopulationView::all(&summaries);
     [
         (
             "scaling_index",
-            crate::mechanisms::scaling_index_of_summary(&view),
+            chronocooked_analysis::mechanisms::scaling_index_of_summary(&view),
         ),
         (
             "dyn_scaling",
-            crate::mechanisms::geometry_index_of_summary(&view),
+            chronocooked_analysis::mechanisms::geometry_index_of_summary(&view),
         ),
     ]
     .into_iter()

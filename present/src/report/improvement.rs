@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 /// counting one half (rliable's probability of improvement for one task). For a metric
 /// where lower is better (a CV, an error), read `1 − P`. Returns the files.
 pub fn write_improvement(rows: &[Row], metric: &str, out: &Path) -> Result<Vec<PathBuf>, String> {
-    use crate::stats::robust::probability_of_improvement;
+    use chronocooked_analysis::stats::robust::probability_of_improvement;
     let with: Vec<(&str, Vec<f64>)> = rows
         .iter()
         .filter_map(|r| {

@@ -9,7 +9,7 @@ pub mod marker;
 pub mod npz;
 
 use crate::export::npz::{NpyArray, NpyData, npz_bytes};
-use crate::records::{ConditionKind, EvalRecord};
+use chronocooked_analysis::records::{ConditionKind, EvalRecord};
 use chronocooked_env::fs::write_atomic;
 use chronocooked_models::{ActivityDataset, Marker};
 use serde_json::{Value, json};
@@ -314,7 +314,10 @@ pub fn export_eval(records: &[EvalRecord], dir: &Path) -> Result<Vec<PathBuf>, S
     };
     let foc: Vec<f64> = records
         .iter()
-        .map(|r| crate::behaviour::foc::episode_foc(&r.episode).map_or(f64::NAN, f64::from))
+        .map(|r| {
+            chronocooked_analysis::behaviour::foc::episode_foc(&r.episode)
+                .map_or(f64::NAN, f64::from)
+        })
         .collect();
     let counter: Vec<i64> = records
         .iter()

@@ -51,12 +51,12 @@ pub fn ml_gain(wm: f64) -> Result<f64, ReproductionError> {
 }
 
 /// [`ml_gain`] without the range check.
-pub(crate) fn gain(wm: f64) -> f64 {
+pub fn gain(wm: f64) -> f64 {
     2.0 / (1.0 + (1.0 + 4.0 * wm * wm).sqrt())
 }
 
 /// An observer's estimator with its per-`wm` constants precomputed.
-pub(crate) struct Estimator<'a> {
+pub struct Estimator<'a> {
     observer: Observer,
     wm: f64,
     values: &'a [f64],
@@ -65,7 +65,7 @@ pub(crate) struct Estimator<'a> {
 
 impl<'a> Estimator<'a> {
     /// The estimator of `observer` at `wm` over the prior's values (unchecked).
-    pub(crate) fn new(observer: Observer, wm: f64, values: &'a [f64]) -> Self {
+    pub fn new(observer: Observer, wm: f64, values: &'a [f64]) -> Self {
         Estimator {
             observer,
             wm,
@@ -82,7 +82,7 @@ impl<'a> Estimator<'a> {
     }
 
     /// `te = f(tm)` (steps).
-    pub(crate) fn estimate(&self, tm: f64) -> f64 {
+    pub fn estimate(&self, tm: f64) -> f64 {
         match self.observer {
             Observer::Bls => self.bls(tm).0,
             Observer::Map => self.values[self.map_index(tm)],
@@ -92,7 +92,7 @@ impl<'a> Estimator<'a> {
 
     /// The BLS estimate and its exact derivative `(f(tm), f′(tm))`:
     /// `f′ = Cov_post(s, ∂ ln λ/∂tm)` with `∂ ln λ(s|tm)/∂tm = (s − tm)/(wm² s²)`.
-    pub(crate) fn bls(&self, tm: f64) -> (f64, f64) {
+    pub fn bls(&self, tm: f64) -> (f64, f64) {
         let k_max = (0..self.values.len())
             .map(|k| self.log_lik(k, tm))
             .fold(f64::NEG_INFINITY, f64::max);
@@ -110,7 +110,7 @@ impl<'a> Estimator<'a> {
     }
 
     /// Index of the MAP estimate: the prior value of largest likelihood (first on ties).
-    pub(crate) fn map_index(&self, tm: f64) -> usize {
+    pub fn map_index(&self, tm: f64) -> usize {
         let mut best = 0;
         let mut best_l = self.log_lik(0, tm);
         for k in 1..self.values.len() {
@@ -129,7 +129,7 @@ impl<'a> Estimator<'a> {
     /// `B = −(1/s_j − 1/s_k)/wm²`, `C = −ln(s_k/s_j) < 0`, so it has one negative and one
     /// positive root. Between consecutive roots the winner is constant; each interval
     /// contributes its normal mass under `tm ~ N(ts, (wm·ts)²)`.
-    pub(crate) fn map_masses(&self, ts: f64) -> Vec<f64> {
+    pub fn map_masses(&self, ts: f64) -> Vec<f64> {
         let (v, wm2) = (self.values, self.wm * self.wm);
         let mut roots = Vec::with_capacity(v.len() * v.len());
         for j in 0..v.len() {

@@ -14,8 +14,8 @@
 //! those are the defaults.
 
 use super::{Observer, Prior, ReproductionError};
+use crate::Agent;
 use chronocooked_env::{Action, ChronoEnv, KitchenState, Oracle, TaskParams};
-use chronocooked_models::Agent;
 use rand::SeedableRng;
 use rand_distr::{Distribution, StandardNormal};
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -197,7 +197,7 @@ impl Agent for ObserverAgent {
     }
 
     fn noise_draws(&self) -> usize {
-        chronocooked_models::timing::agent::NOISE_DRAWS
+        crate::timing::agent::NOISE_DRAWS
     }
 
     /// Only the agent's cell and what it carries are read (both visible in the

@@ -6,9 +6,9 @@
 //! context, with the two known answers drawn as lines.
 
 use super::draw::{Chart, Series};
-use crate::behaviour::reproduction::{ContextSummary, ReproductionMetrics};
-use crate::neural::production::ProductionSpeed;
-use crate::reproduction::{Observer, Prior, Rounding, predict};
+use chronocooked_analysis::behaviour::reproduction::{ContextSummary, ReproductionMetrics};
+use chronocooked_analysis::neural::production::ProductionSpeed;
+use chronocooked_analysis::reproduction::{Observer, Prior, Rounding, predict};
 
 /// The fitted observer's predicted mean `tp` at each of the context's sample intervals
 /// (whole-step productions, as the fit assumes); empty without a fit.
@@ -198,7 +198,7 @@ pub fn pool_reproduction(runs: &[&ReproductionMetrics]) -> Option<ReproductionMe
                 })
                 .collect();
             pooled.slope = mean(same.iter().filter_map(|c| c.slope).collect());
-            let choices: Vec<&crate::behaviour::reproduction::ObserverChoice> =
+            let choices: Vec<&chronocooked_analysis::behaviour::reproduction::ObserverChoice> =
                 same.iter().filter_map(|c| c.observer.as_ref()).collect();
             let mut names: Vec<&str> = choices.iter().map(|o| o.best.as_str()).collect();
             names.sort_unstable();
@@ -208,7 +208,7 @@ pub fn pool_reproduction(runs: &[&ReproductionMetrics]) -> Option<ReproductionMe
                 .map(|n| n.to_string());
             pooled.observer = best.map(|best| {
                 let of_best: Vec<_> = choices.iter().filter(|o| o.best == best).collect();
-                crate::behaviour::reproduction::ObserverChoice {
+                chronocooked_analysis::behaviour::reproduction::ObserverChoice {
                     wm: mean(of_best.iter().map(|o| o.wm).collect()).unwrap_or(f64::NAN),
                     wp: mean(of_best.iter().map(|o| o.wp).collect()).unwrap_or(f64::NAN),
                     log_likelihoods: Vec::new(),
@@ -296,7 +296,7 @@ pub fn reproduction_grid(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::behaviour::reproduction::ObserverChoice;
+    use chronocooked_analysis::behaviour::reproduction::ObserverChoice;
 
     fn context(prior: u8, gain: f64, observer: Option<ObserverChoice>) -> ContextSummary {
         ContextSummary {
@@ -378,8 +378,11 @@ mod tests {
         assert_eq!(c.series[4].points, vec![(8.0, 12.0), (12.0, 18.0)]);
     }
 
-    fn condition(ts: u32, speed: Option<f64>) -> crate::neural::production::ProductionCondition {
-        crate::neural::production::ProductionCondition {
+    fn condition(
+        ts: u32,
+        speed: Option<f64>,
+    ) -> chronocooked_analysis::neural::production::ProductionCondition {
+        chronocooked_analysis::neural::production::ProductionCondition {
             ts,
             trials: 4,
             steps: ts as usize,

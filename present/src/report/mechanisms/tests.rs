@@ -2,7 +2,7 @@
 
 use super::card::card_and_scaling;
 use super::*;
-use crate::neural::categories::Category;
+use chronocooked_analysis::neural::categories::Category;
 use chronocooked_models::ActivityDataset;
 use chronocooked_models::Marker;
 use chronocooked_models::activity::{ActivityMeta, Event, Population, Trial};
@@ -75,10 +75,10 @@ fn row(root: &Path, model: &str, sets: Vec<ActivityDataset>) -> Row {
     for ds in sets {
         let job = root.join(format!("{model}-{}", ds.trials[0].td));
         std::fs::create_dir_all(job.join("eval")).unwrap();
-        let info = crate::records::EvalInfo {
+        let info = chronocooked_analysis::records::EvalInfo {
             model: model.into(),
             task: chronocooked_env::Task::new("FixedInterval-v0").unwrap(),
-            mode: crate::records::Mode::Reference,
+            mode: chronocooked_analysis::records::Mode::Reference,
             seed: 0,
             unfinished_at_step: None,
             episodes: None,

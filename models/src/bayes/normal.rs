@@ -4,7 +4,7 @@ use statrs::function::erf::erfc;
 use std::f64::consts::{PI, SQRT_2};
 
 /// `P(Z > x)` for a standard normal `Z` (accurate far into the upper tail; ±∞ allowed).
-pub(crate) fn upper_tail(x: f64) -> f64 {
+pub fn upper_tail(x: f64) -> f64 {
     if x == f64::INFINITY {
         0.0
     } else if x == f64::NEG_INFINITY {
@@ -15,12 +15,12 @@ pub(crate) fn upper_tail(x: f64) -> f64 {
 }
 
 /// `Φ(x) = P(Z ≤ x)` (accurate far into the lower tail; ±∞ allowed).
-pub(crate) fn cdf(x: f64) -> f64 {
+pub fn cdf(x: f64) -> f64 {
     upper_tail(-x)
 }
 
 /// `P(lo < Z ≤ hi)` without cancellation in either tail; 0 when `hi ≤ lo` (±∞ allowed).
-pub(crate) fn interval_mass(lo: f64, hi: f64) -> f64 {
+pub fn interval_mass(lo: f64, hi: f64) -> f64 {
     if hi <= lo || lo.is_nan() || hi.is_nan() {
         return 0.0;
     }
@@ -35,7 +35,7 @@ pub(crate) fn interval_mass(lo: f64, hi: f64) -> f64 {
 }
 
 /// Standard normal density `φ(z)`.
-pub(crate) fn pdf(z: f64) -> f64 {
+pub fn pdf(z: f64) -> f64 {
     (-0.5 * z * z).exp() / (2.0 * PI).sqrt()
 }
 

@@ -4,8 +4,8 @@
 //! multi-oven bisection (one curve per oven beside the same agent's one-oven curve).
 
 use super::draw::{Chart, Series};
-use crate::behaviour::categorization::MultiAnchorMetrics;
-use crate::behaviour::concurrent::MultiOvenMetrics;
+use chronocooked_analysis::behaviour::categorization::MultiAnchorMetrics;
+use chronocooked_analysis::behaviour::concurrent::MultiOvenMetrics;
 
 /// Multi-anchor: per counter (anchor) the share of the episodes at each probe duration
 /// that delivered to it (failed episodes count in the denominator), the anchors as
@@ -60,7 +60,7 @@ pub fn multi_anchor_chart(model: &str, m: &MultiAnchorMetrics) -> Chart {
 /// episodes failed, are gaps), one colour per oven, then the same agent's one-oven curve,
 /// with S, L and their geometric mean marked.
 pub fn multi_oven_chart(model: &str, m: &MultiOvenMetrics) -> Chart {
-    let curve = |c: &crate::behaviour::concurrent::OvenCurve| -> Vec<(f64, f64)> {
+    let curve = |c: &chronocooked_analysis::behaviour::concurrent::OvenCurve| -> Vec<(f64, f64)> {
         c.probes
             .iter()
             .zip(&c.p_long)
@@ -113,9 +113,9 @@ pub fn multi_oven_chart(model: &str, m: &MultiOvenMetrics) -> Chart {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::behaviour::categorization::CategoryCounts;
-    use crate::behaviour::concurrent::OvenCurve;
-    use crate::behaviour::psychometric::ProbeCounts;
+    use chronocooked_analysis::behaviour::categorization::CategoryCounts;
+    use chronocooked_analysis::behaviour::concurrent::OvenCurve;
+    use chronocooked_analysis::behaviour::psychometric::ProbeCounts;
 
     /// Anchors 4, 8, 12; at t = 4 three of four episodes chose counter 1 and one failed; at
     /// t = 8 all chose counter 2: the curves are those shares, the anchors are marked.

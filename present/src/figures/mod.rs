@@ -12,7 +12,7 @@ pub mod markup;
 mod matrix;
 pub mod reproduction;
 
-use crate::records::ConditionKind;
+use chronocooked_analysis::records::ConditionKind;
 use chronocooked_models::run_folder;
 use draw::err;
 pub use draw::{
@@ -29,8 +29,8 @@ use std::path::{Path, PathBuf};
 /// against ts with the fitted observer (reproduction). Returns the files written.
 pub fn eval_figures(
     dir: &Path,
-    metrics: &crate::behaviour::metrics::Metrics,
-    records: &[crate::records::EvalRecord],
+    metrics: &chronocooked_analysis::behaviour::metrics::Metrics,
+    records: &[chronocooked_analysis::records::EvalRecord],
 ) -> Result<Vec<PathBuf>, FigureError> {
     let mut out = Vec::new();
     let model = &metrics.model;
@@ -86,7 +86,7 @@ pub fn eval_figures(
         .iter()
         .filter(|r| r.condition.kind == ConditionKind::Fi)
         .filter_map(|r| {
-            crate::behaviour::foc::episode_foc(&r.episode)
+            chronocooked_analysis::behaviour::foc::episode_foc(&r.episode)
                 .map(|f| (f64::from(r.condition.td), f64::from(f)))
         })
         .collect();
@@ -198,7 +198,7 @@ pub fn eval_figures(
             },
         )?);
     }
-    let mt: Vec<&crate::behaviour::metrics::ConditionSummary> = metrics
+    let mt: Vec<&chronocooked_analysis::behaviour::metrics::ConditionSummary> = metrics
         .conditions
         .iter()
         .filter(|c| c.kind == ConditionKind::MultiTimer)
@@ -257,13 +257,13 @@ pub fn eval_figures(
 pub fn population_figures(
     dir: &Path,
     title: &str,
-    cube: &crate::neural::Cube,
+    cube: &chronocooked_analysis::neural::Cube,
 ) -> Result<Vec<PathBuf>, FigureError> {
-    use crate::neural::decode::{Decoder, decode_time};
+    use chronocooked_analysis::neural::decode::{Decoder, decode_time};
     let u = cube.units();
     let avg = cube.average();
     let mut out = Vec::new();
-    let mut ramps = crate::neural::classify_ramps(&avg, u, 0.9, 0.05);
+    let mut ramps = chronocooked_analysis::neural::classify_ramps(&avg, u, 0.9, 0.05);
     ramps.sort_by(|a, b| b.r.abs().total_cmp(&a.r.abs()));
     let series = ramps
         .iter()
@@ -299,7 +299,11 @@ pub fn population_figures(
             if x.len() < 8 {
                 continue;
             }
-            let s = crate::neural::oscillation::welch(&x, x.len().min(cube.time()), 1.0);
+            let s = chronocooked_analysis::neural::oscillation::welch(
+                &x,
+                x.len().min(cube.time()),
+                1.0,
+            );
             if mean_power.is_empty() {
                 mean_power = vec![0.0; s.power.len()];
                 freqs = s.freqs.clone();
@@ -366,7 +370,7 @@ pub fn neural_figures(
     dataset: &chronocooked_models::ActivityDataset,
     dir: &Path,
 ) -> Result<(), FigureError> {
-    use crate::neural::Cube;
+    use chronocooked_analysis::neural::Cube;
     use chronocooked_models::Marker;
     speed_figures(dataset, dir)?;
     let window = dataset
@@ -430,7 +434,8 @@ fn speed_figures(
         if LEARNER_SIGNALS.contains(&p.name.as_str()) {
             continue;
         }
-        let speeds = crate::neural::production::production_speed(dataset, Some(&p.name));
+        let speeds =
+            chronocooked_analysis::neural::production::production_speed(dataset, Some(&p.name));
         let title = format!(
             "{} {}: speed after Set (KiNeT, Remington et al. 2018)",
             dataset.meta.model, p.name
@@ -565,7 +570,11 @@ pub fn run_label(run_dir: &Path) -> String {
             _ => None,
         })
         .collect();
-    if parts.len() > 1 && parts.last().is_some_and(|p| p == crate::job_folder::RUN) {
+    if parts.len() > 1
+        && parts
+            .last()
+            .is_some_and(|p| p == chronocooked_analysis::job_folder::RUN)
+    {
         parts.pop();
     }
     let mut parts = parts.split_off(parts.len().saturating_sub(3));

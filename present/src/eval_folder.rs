@@ -2,7 +2,7 @@
 //! writes and what `report --eval DIR` reads.
 //!
 //! * [`RECORDS`] `records.jsonl` — one [`EvalRecord`] per episode (condition + actions +
-//!   infos; read by [`crate::evaluation::protocol::read_records`]);
+//!   infos; read by [`chronocooked_analysis::evaluation::protocol::read_records`]);
 //! * [`EVAL_INFO`] `eval.json` — [`EvalInfo`]: model, task, overrides, protocol mode, seed
 //!   ([`read_eval_info`]);
 //! * [`METRICS`] `metrics.json` — [`Metrics`] computed from the records;
@@ -14,13 +14,13 @@
 //! metrics is a complete one. Every crate names these files through the constants here and
 //! reads `eval.json` through [`read_eval_info`].
 
-use crate::behaviour::metrics::{Metrics, compute_metrics};
-use crate::evaluation::protocol::EvalRecord;
-use crate::job_folder;
+use chronocooked_analysis::behaviour::metrics::{Metrics, compute_metrics};
+use chronocooked_analysis::evaluation::protocol::EvalRecord;
+use chronocooked_analysis::job_folder;
 use chronocooked_env::integrity::write_recorded;
 use std::path::{Path, PathBuf};
 
-pub use crate::records::{EVAL_INFO, EvalInfo, METRICS, RECORDS, read_eval_info};
+pub use chronocooked_analysis::records::{EVAL_INFO, EvalInfo, METRICS, RECORDS, read_eval_info};
 
 /// `out` must be a folder (or not exist yet): a file there is named in the error.
 fn check_out(out: &Path) -> Result<(), String> {
@@ -68,7 +68,7 @@ pub fn begin_evaluation(out: &Path) -> Result<(), String> {
     for file in [
         job_folder::ACTIVITY,
         job_folder::ACTIVITY_SUMMARY,
-        crate::collect::LEVELS_CSV,
+        chronocooked_analysis::collect::LEVELS_CSV,
     ] {
         chronocooked_env::integrity::remove_recorded(&out.join(file)).map_err(|e| e.to_string())?;
     }

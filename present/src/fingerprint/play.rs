@@ -1,15 +1,15 @@
 //! The fingerprint protocol: the conditions an agent plays, the folders they leave, and the
 //! agent's signature read back from them.
 
-use crate::evaluation::folder::{EvalInfo, begin_evaluation, write_eval_folder};
-use crate::evaluation::protocol::{EvalRecord, reference_conditions, run_protocol};
-use crate::job_folder;
-use crate::mechanisms::{
+use crate::eval_folder::{EvalInfo, begin_evaluation, write_eval_folder};
+use chronocooked_analysis::evaluation::protocol::{EvalRecord, reference_conditions, run_protocol};
+use chronocooked_analysis::job_folder;
+use chronocooked_analysis::mechanisms::{
     JobFiles, MechanismError, Signature, assemble, geometry_index_of_summary,
     scaling_index_of_summary,
 };
-use crate::neural::probe::{population_summaries, probe_task};
-use crate::records::{METRICS, Mode};
+use chronocooked_analysis::neural::probe::{population_summaries, probe_task};
+use chronocooked_analysis::records::{METRICS, Mode};
 use chronocooked_env::integrity::write_recorded;
 use chronocooked_env::{EnvError, Task};
 use chronocooked_models::agent::record_dataset;
@@ -204,7 +204,7 @@ pub fn agent_signature(
         }
         if tds >= 2 {
             let summaries = population_summaries(&merged, units_correspond, seed);
-            let view = crate::mechanisms::PopulationView::all(&summaries);
+            let view = chronocooked_analysis::mechanisms::PopulationView::all(&summaries);
             if let Some(i) = scaling_index_of_summary(&view).filter(|i| i.is_finite()) {
                 scaling.push((model.to_string(), seed, "scaling_index", i));
             }

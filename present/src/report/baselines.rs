@@ -11,11 +11,11 @@
 //! (`lstm125 (paper-core)`), so a user's run of the same model (e.g. a zoo agent) keeps
 //! its own row, and [`Row::baseline`] names the study.
 
-use crate::behaviour::metrics::Metrics;
-use crate::collect::{JobSummary, job_folders};
-use crate::job_folder;
-use crate::neural::summary::NeuralSummary;
 use crate::report::leaderboard::{Row, RunResult, group_rows};
+use chronocooked_analysis::behaviour::metrics::Metrics;
+use chronocooked_analysis::collect::{JobSummary, job_folders};
+use chronocooked_analysis::job_folder;
+use chronocooked_analysis::neural::summary::NeuralSummary;
 use std::path::{Path, PathBuf};
 
 /// The committed study whose results are the default baseline, relative to the
@@ -89,16 +89,16 @@ pub fn read_job(dir: &Path) -> Result<RunResult, BaselineError> {
             field: "-".into(),
             message: format!("not a compact job summary: {e}"),
         })?;
-    let m_path = dir.join(crate::records::METRICS);
+    let m_path = dir.join(chronocooked_analysis::records::METRICS);
     // Undefined statistics were written as `null`: read back as NaN, as they were computed.
-    let metrics: Metrics =
-        crate::stats::nan_json::from_str_nan(&read_text(&m_path)?).map_err(|e| {
-            BaselineError::Field {
-                path: m_path.display().to_string(),
-                field: "-".into(),
-                message: format!("not a metrics file: {e}"),
-            }
-        })?;
+    let metrics: Metrics = chronocooked_analysis::stats::nan_json::from_str_nan(&read_text(
+        &m_path,
+    )?)
+    .map_err(|e| BaselineError::Field {
+        path: m_path.display().to_string(),
+        field: "-".into(),
+        message: format!("not a metrics file: {e}"),
+    })?;
     if metrics.model != job.model {
         return Err(BaselineError::Field {
             path: m_path.display().to_string(),
@@ -135,7 +135,7 @@ pub fn read_job(dir: &Path) -> Result<RunResult, BaselineError> {
 /// Every job of a compact results folder (`root/jobs/...`, sorted by path) as leaderboard
 /// runs; an error names the first file that is missing or malformed.
 pub fn read_jobs(root: &Path) -> Result<Vec<RunResult>, BaselineError> {
-    crate::results_folder::check_complete(root).map_err(|message| {
+    chronocooked_analysis::results_folder::check_complete(root).map_err(|message| {
         BaselineError::NotStudyResults {
             path: root.display().to_string(),
             message,

@@ -74,7 +74,7 @@ fn color(i: usize) -> RGBColor {
 }
 
 fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
-    let (lo, hi) = crate::neural::finite_range(values);
+    let (lo, hi) = chronocooked_analysis::neural::finite_range(values);
     if !lo.is_finite() {
         return (0.0, 1.0);
     }
@@ -392,12 +392,12 @@ pub fn write_heatmap_sized(
     let mut rows: Vec<(usize, Vec<f64>)> = (0..units)
         .map(|i| {
             let col: Vec<f64> = (0..time).map(|t| avg[t * units + i]).collect();
-            let (lo, hi) = crate::neural::finite_range(col.iter().copied());
+            let (lo, hi) = chronocooked_analysis::neural::finite_range(col.iter().copied());
             let norm: Vec<f64> = col
                 .iter()
                 .map(|&v| if hi > lo { (v - lo) / (hi - lo) } else { 0.0 })
                 .collect();
-            (crate::neural::argmax(&norm), norm)
+            (chronocooked_analysis::neural::argmax(&norm), norm)
         })
         .collect();
     rows.sort_by_key(|r| r.0);

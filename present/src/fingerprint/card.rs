@@ -3,12 +3,12 @@
 //! style of the report's mechanism cards) and `fingerprint.png` (the distance panels of
 //! both views beside the card's panels).
 
-use super::place::{Fingerprint, Placement, REFERENCE_SOURCE};
 use super::play::PROTOCOL;
 use crate::figures::markup::{figure_file, page};
 use crate::figures::{Chart, Series, write_chart_sized, write_panels};
-use crate::job_folder;
-use crate::mechanisms::{MechanismError, Signature};
+use chronocooked_analysis::fingerprint::{Fingerprint, Placement, REFERENCE_SOURCE};
+use chronocooked_analysis::job_folder;
+use chronocooked_analysis::mechanisms::{MechanismError, Signature};
 use chronocooked_env::markdown::Table;
 use maud::html;
 use std::path::{Path, PathBuf};
@@ -208,8 +208,8 @@ pub fn write_fingerprint(dir: &Path, f: &Fingerprint) -> Result<Vec<PathBuf>, Me
         "agreement": agreement(f),
         "reference": REFERENCE_SOURCE,
         "features": {
-            "units": crate::mechanisms::View::Units.features(),
-            "dynamics": crate::mechanisms::View::Dynamics.features(),
+            "units": chronocooked_analysis::mechanisms::View::Units.features(),
+            "dynamics": chronocooked_analysis::mechanisms::View::Dynamics.features(),
         },
     });
     let text = serde_json::to_string_pretty(&json).map_err(|e| MechanismError::at(dir, e))? + "\n";

@@ -1,8 +1,8 @@
 //! The fingerprint tables and figure of a study (`chronocooked mechanisms RESULTS`).
 
-use super::{
+use chronocooked_analysis::mechanisms::{
     ALL_FEATURES, Comparison, DYNAMICS_NEURAL, FEATURES, MECHANISMS, MechanismError, Scale,
-    Signature, View, compare, feature_sds, mean_features, read::signatures,
+    Signature, View, compare, feature_sds, mean_features, signatures,
 };
 use chronocooked_env::markdown::Table;
 use std::collections::BTreeMap;
@@ -20,7 +20,7 @@ pub struct Written {
     pub agents: usize,
     /// The leave-one-seed-out identification in each view, unit view first (also in
     /// `mechanisms.md`).
-    pub identifications: Vec<super::Identification>,
+    pub identifications: Vec<chronocooked_analysis::mechanisms::Identification>,
 }
 
 fn fmt(x: f64, digits: usize) -> String {
@@ -138,18 +138,18 @@ pub fn write_tables(
                         .map_or("–".into(), |c| fmt(c.distance, 2))
                 })
                 .collect();
-            let nearest = crate::mechanisms::nearest_label(&mine);
+            let nearest = chronocooked_analysis::mechanisms::nearest_label(&mine);
             table.row(std::iter::once(a.to_string()).chain(cells).chain([nearest]));
         }
         md.push_str(&table.render());
-        let identification = super::identify(&sigs, view);
+        let identification = chronocooked_analysis::mechanisms::identify(&sigs, view);
         md.push_str(&identification_markdown(&identification));
         md.push_str(&seed_verdicts_markdown(&sigs, &identification));
         identifications.push(identification);
     }
     let mut pairs = String::from("view,model_a,seed_a,model_b,seed_b,distance\n");
     for &view in views {
-        for p in super::pairwise(&sigs, view) {
+        for p in chronocooked_analysis::mechanisms::pairwise(&sigs, view) {
             pairs.push_str(&format!(
                 "{},{},{},{},{},{}\n",
                 view.key(),
@@ -196,7 +196,7 @@ fn spread_table(sigs: &[Signature], models: &[&str], features: &[&str]) -> Strin
         let cells: Vec<String> = features
             .iter()
             .map(|f| {
-                let sp = crate::stats::Spread::of(
+                let sp = chronocooked_analysis::stats::Spread::of(
                     mine.iter().filter_map(|s| s.features.get(*f).copied()),
                 );
                 if sp.n == 0 {
@@ -218,8 +218,11 @@ fn spread_table(sigs: &[Signature], models: &[&str], features: &[&str]) -> Strin
 /// Every agent seed's own verdict (a verdict per model hides seeds that differ: Eissa et
 /// al. 2025): its nearest mechanism, distance and that mechanism's limit, then per agent
 /// how many seeds are nearest which mechanism and how many are identified.
-pub fn seed_verdicts_markdown(sigs: &[Signature], id: &super::Identification) -> String {
-    let verdicts = super::seed_verdicts(sigs, id);
+pub fn seed_verdicts_markdown(
+    sigs: &[Signature],
+    id: &chronocooked_analysis::mechanisms::Identification,
+) -> String {
+    let verdicts = chronocooked_analysis::mechanisms::seed_verdicts(sigs, id);
     if verdicts.is_empty() {
         return String::new();
     }
@@ -306,7 +309,7 @@ pub fn seed_verdicts_markdown(sigs: &[Signature], id: &super::Identification) ->
 
 /// The leave-one-seed-out identification as Markdown: the confusion matrix, each
 /// mechanism's self-distance range, and each agent's verdict on that scale.
-pub fn identification_markdown(id: &super::Identification) -> String {
+pub fn identification_markdown(id: &chronocooked_analysis::mechanisms::Identification) -> String {
     let mut md = String::from(
         "\n## Identification (leave one seed out)\n\nEach mechanism seed held out in turn, the \
          fingerprints rebuilt from the other mechanism signatures (features in units of their \
@@ -324,7 +327,8 @@ pub fn identification_markdown(id: &super::Identification) -> String {
         "nearest other",
     ]));
     for m in MECHANISMS {
-        let mine: Vec<&super::HeldOut> = id.held_out.iter().filter(|h| h.mechanism == m).collect();
+        let mine: Vec<&chronocooked_analysis::mechanisms::HeldOut> =
+            id.held_out.iter().filter(|h| h.mechanism == m).collect();
         if mine.is_empty() {
             continue;
         }
@@ -406,7 +410,7 @@ pub fn placed_fingerprint_figure(
     }
     let mut sds: BTreeMap<&'static str, f64> = BTreeMap::new();
     for view in View::ALL {
-        sds.extend(Scale::of(&refs, &MECHANISMS, view).sds);
+        sds.extend(Scale::of(&refs, &MECHANISMS, view).sds().clone());
     }
     let group_mean = |model: &str, pool: &[&Signature]| {
         let mine: Vec<&Signature> = pool.iter().copied().filter(|s| s.model == model).collect();
@@ -514,7 +518,8 @@ pub fn fingerprint_figure(sigs: &[Signature], stem: &Path) -> Result<Vec<PathBuf
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use super::placed_fingerprint_figure;
+    use chronocooked_analysis::mechanisms::*;
 
     /// A report model whose seed mean is a mechanism's seed mean is drawn with that
     /// mechanism's values: the figure places it on the committed study's scale, and the

@@ -3,9 +3,9 @@
 use super::card::{Card, examples, population_spectrum, varying_average};
 use crate::figures::markup::figure_file;
 use crate::figures::{Chart, Series, write_chart_sized, write_heatmap_sized};
-use crate::neural::categories::CATEGORIES;
-use crate::neural::geometry::{geometry_profile, geometry_scaling};
-use crate::neural::summary::{TdClassification, WINDOW_ORIGIN};
+use chronocooked_analysis::neural::categories::CATEGORIES;
+use chronocooked_analysis::neural::geometry::{geometry_profile, geometry_scaling};
+use chronocooked_analysis::neural::summary::{TdClassification, WINDOW_ORIGIN};
 use maud::{Markup, html};
 use std::path::Path;
 

@@ -3,7 +3,7 @@
 //! (read from the job files here, strata = the TD each run was trained at), and its
 //! stratified bootstrap interval recomputed here with a generator of the test's own.
 
-use chronocooked_analysis::report::baselines::load_baseline_rows;
+use chronocooked_present::report::baselines::load_baseline_rows;
 use rand::{Rng, SeedableRng};
 use std::collections::BTreeMap;
 use std::path::Path;

@@ -4,8 +4,8 @@
 //! bisection point.
 
 use super::draw::{Chart, FigureError, Series, atomic, draw_chart, err, figure_paths};
-use crate::behaviour::metrics::BisectionMetrics;
-use crate::behaviour::psychometric::{ProbeCounts, check_transition, fit_logistic};
+use chronocooked_analysis::behaviour::metrics::BisectionMetrics;
+use chronocooked_analysis::behaviour::psychometric::{ProbeCounts, check_transition, fit_logistic};
 use plotters::prelude::*;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

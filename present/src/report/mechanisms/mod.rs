@@ -12,7 +12,7 @@
 //!   unit power without the mean, then averaged);
 //! * the temporal scaling between the shortest and the longest TD: the fit of the
 //!   population geometry read at stretched times against the stretch factor
-//!   ([`crate::neural::geometry`]; a peak at 1 = a fixed clock, at the TD ratio = activity
+//!   ([`chronocooked_analysis::neural::geometry`]; a peak at 1 = a fixed clock, at the TD ratio = activity
 //!   that stretches with the interval);
 //! * the unit categories as a bar (counts of the five exclusive categories).
 //!
@@ -26,11 +26,11 @@ mod card_html;
 mod tests;
 
 use crate::figures::markup::figure_file;
-use crate::mechanisms::{JobFiles, Signature, View, assemble};
-use crate::records::{METRICS, read_eval_info};
 use crate::report::leaderboard::Row;
 use card::card_and_scaling;
 use card_html::{card_charts, card_html};
+use chronocooked_analysis::mechanisms::{JobFiles, Signature, View, assemble};
+use chronocooked_analysis::records::{METRICS, read_eval_info};
 use chronocooked_env::markdown::Table;
 use maud::{Markup, html};
 use std::path::{Path, PathBuf};
@@ -67,7 +67,7 @@ fn job_files(rows: &[Row]) -> (Vec<JobFiles>, Vec<Vec<RunInfo>>) {
                 task: r.task.clone(),
                 metrics: r.eval.join(METRICS),
                 summary: r.eval.parent().map_or_else(PathBuf::new, |p| {
-                    p.join(crate::job_folder::ACTIVITY_SUMMARY)
+                    p.join(chronocooked_analysis::job_folder::ACTIVITY_SUMMARY)
                 }),
             });
         }
@@ -108,7 +108,7 @@ fn placed_rows(sigs: &[Signature]) -> Vec<PlacedRow> {
         let mean = Signature {
             model: m.to_string(),
             seed: 0,
-            features: crate::mechanisms::mean_features(&mine)
+            features: chronocooked_analysis::mechanisms::mean_features(&mine)
                 .into_iter()
                 .map(|(k, v)| (k.to_string(), v))
                 .collect(),
@@ -337,7 +337,7 @@ fn nearest_legend() -> String {
         crate::fingerprint::REFERENCE_SOURCE,
         View::Units.features().join(", "),
         View::Dynamics.features().join(", "),
-        100.0 * crate::mechanisms::LIMIT_COVERAGE,
+        100.0 * chronocooked_analysis::mechanisms::LIMIT_COVERAGE,
         REPORT_RESAMPLES
     )
 }
