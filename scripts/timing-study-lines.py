@@ -7,6 +7,8 @@ tabulate.
     python3 scripts/timing-study-lines.py multi-oven SWEEP_FILE DIR > lines.txt
     python3 scripts/timing-study-lines.py reproduction SWEEP_FILE DIR > lines.txt
     python3 scripts/timing-study-lines.py reproduction-heldout SWEEP_FILE DIR > heldout-priors.txt
+    python3 scripts/timing-study-lines.py categories SWEEP_FILE DIR > lines.txt
+    python3 scripts/timing-study-lines.py reproduction-speed SWEEP_FILE DIR > lines.jsonl
 
 * multi-anchor (sweeps/timing-multi-anchor*.toml): anchor set, model, seed, anchor accuracy
   and each boundary's fit (BP [95% CI], the pair's GM and AM, each marked `*` when inside the
@@ -22,6 +24,12 @@ tabulate.
 * reproduction-heldout (sweeps/timing-reproduction-heldout-priors.toml): set-up (`inter`: the
   intermediate prior alone; `custom`: priors 10-16 and 15-21), run name, evaluation success,
   then per prior its slope and the mean tp/ts at each ts in order.
+
+* categories (sweeps/categories-range.toml): per model, seed and TD, each recorded
+  population's unit categories on probe trials (`model seed S TD T population: N units:
+  counts`; readouts left out);
+* reproduction-speed (sweeps/reproduction-speed.toml): one JSON line per run, population and
+  prior with the recorded summary's `production_speed` (KiNeT after Set).
 
 DIR is the sweep's output (`chronocooked sweep SWEEP_FILE --out DIR`) or its compact results
 (`chronocooked paper collect DIR --out RESULTS`). Lines come in the sweep file's order: its
@@ -155,9 +163,75 @@ KINDS = {
 }
 
 
+def summaries(task, sweep_file, root):
+    """`(setup, model, seed) -> activity.summary.json` of the sweep's finished, recorded jobs
+    of `task`, and the sweep file's variants, models and seeds."""
+    text = open(sweep_file).read()
+    found = {}
+    for dirpath, dirnames, filenames in os.walk(root):
+        dirnames.sort()
+        if "job.json" not in filenames or "activity.summary.json" not in filenames:
+            continue
+        job = json.load(open(os.path.join(dirpath, "job.json")))
+        env = job.get("env") or {}
+        if job.get("task") != task or not isinstance(env, dict):
+            continue
+        key = (frozenset((k, text_of(v)) for k, v in env.items()), job["model"], int(job["seed"]))
+        found[key] = os.path.join(dirpath, "activity.summary.json")
+    models, seeds = listed(text, "models"), [int(s) for s in listed(text, "seeds")]
+    setups = variants(text) if "[task_variants]" in text else [()]
+    return found, setups, models, seeds
+
+
+def categories_main(sweep_file, root):
+    """Unit categories of each recorded population, model by model, seed by seed, TD by TD
+    (the sweep's variants in order); readouts (value, rpe, drift) left out."""
+    found, setups, models, seeds = summaries("FixedInterval-v0", sweep_file, root)
+    missing = 0
+    for model in models:
+        for seed in seeds:
+            for setup in setups:
+                path = found.get((frozenset(setup), model, seed))
+                if path is None:
+                    missing += 1
+                    continue
+                td = dict(setup)["td"]
+                for pop in json.load(open(path)):
+                    if pop["population"] in ("value", "rpe", "drift"):
+                        continue
+                    for t in pop["by_td"]:
+                        c = t["categories"]
+                        counts = " ".join(f"{k} {v}" for k, v in c["counts"].items() if v) if c else t["undefined"]
+                        print(f"{model} seed {seed} TD {td} {pop['population']}: {t['units']} units: {counts}")
+    if missing:
+        print(f"{missing} jobs of the sweep not finished under {root}", file=sys.stderr)
+
+
+def speed_main(sweep_file, root):
+    """KiNeT's speed after Set: one JSON line per run, population and prior, runs in the
+    order of their names `<model>-s<seed>`."""
+    found, setups, models, seeds = summaries("Reproduction-v0", sweep_file, root)
+    runs = sorted(((f"{m}-s{s}", m, s) for m in models for s in seeds), key=lambda r: r[0])
+    missing = 0
+    for _, model, seed in runs:
+        path = found.get((frozenset(setups[0]), model, seed))
+        if path is None:
+            missing += 1
+            continue
+        for p in json.load(open(path)):
+            for c in p.get("production_speed", []):
+                print(json.dumps({"model": model, "seed": seed, "population": p["population"], **c}))
+    if missing:
+        print(f"{missing} jobs of the sweep not finished under {root}", file=sys.stderr)
+
+
 def main():
     if len(sys.argv) == 4 and sys.argv[1] == "reproduction":
         return reproduction_main(sys.argv[2], sys.argv[3])
+    if len(sys.argv) == 4 and sys.argv[1] == "categories":
+        return categories_main(sys.argv[2], sys.argv[3])
+    if len(sys.argv) == 4 and sys.argv[1] == "reproduction-speed":
+        return speed_main(sys.argv[2], sys.argv[3])
     if len(sys.argv) != 4 or sys.argv[1] not in KINDS:
         sys.exit(__doc__.split("\n\n")[1])
     task, label, measures = KINDS[sys.argv[1]]

@@ -475,3 +475,74 @@ fn mechanisms_scaling_from_reads_a_fresh_sweep() {
     assert!(scaling.is_file(), "{} missing", scaling.display());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `fingerprint --sweep` over the held-out study's sweep (two of its mechanisms at one of
+/// its seeds): each agent's line is the committed study's line for it (made by the study's
+/// earlier per-agent `fingerprint --run` loop), a rerun places the agents again from their
+/// folders without replaying them and gives the same lines, and a sweep output with no
+/// protocol condition is refused, naming the conditions.
+#[test]
+fn fingerprint_sweep_gives_the_held_out_study_lines_and_resumes() {
+    let dir = common::temp_dir("fingerprint-sweep");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let study = std::fs::read_to_string(root.join("sweeps/mechanisms-heldout.toml")).unwrap();
+    let mut sweep = String::new();
+    for line in study.lines() {
+        if line.starts_with("models =") {
+            sweep.push_str("models = [\"ddm\", \"timecells-ms\"]\n");
+        } else if line.starts_with("seeds =") {
+            sweep.push_str("seeds = [44]\n");
+        } else {
+            sweep.push_str(line);
+            sweep.push('\n');
+        }
+    }
+    let file = dir.join("heldout.toml");
+    std::fs::write(&file, sweep).unwrap();
+    let (f, out, fp) = (
+        file.to_str().unwrap(),
+        dir.join("sweep"),
+        dir.join("fingerprints"),
+    );
+    let (out, fp) = (out.to_str().unwrap(), fp.to_str().unwrap());
+    run_ok(&["sweep", f, "--out", out, "--workers", "2", "--no-report"]);
+    let committed =
+        std::fs::read_to_string(root.join("results/mechanisms-reference/heldout-fingerprints.txt"))
+            .unwrap();
+    let want: Vec<&str> = ["ddm seed 44:", "timecells-ms seed 44:"]
+        .iter()
+        .map(|p| committed.lines().find(|l| l.starts_with(p)).unwrap())
+        .collect();
+    let args = [
+        "fingerprint",
+        "--sweep",
+        out,
+        "--out",
+        fp,
+        "--resamples",
+        "200",
+    ];
+    let first = run_ok(&args);
+    let lines = std::fs::read_to_string(dir.join("fingerprints/fingerprints.txt")).unwrap();
+    assert_eq!(lines.lines().collect::<Vec<_>>(), want, "{first}");
+    assert!(first.contains("2 agents (2 played now"), "{first}");
+    let again = run_ok(&args);
+    assert!(again.contains("(0 played now, 2 placed again"), "{again}");
+    let lines = std::fs::read_to_string(dir.join("fingerprints/fingerprints.txt")).unwrap();
+    assert_eq!(lines.lines().collect::<Vec<_>>(), want);
+    // A sweep output without any protocol condition.
+    let empty = dir.join("empty");
+    std::fs::create_dir_all(empty.join("FixedInterval-v0")).unwrap();
+    let err = common::run_err(&[
+        "fingerprint",
+        "--sweep",
+        empty.to_str().unwrap(),
+        "--out",
+        fp,
+    ]);
+    assert!(
+        err.contains("no finished job of a fingerprint protocol condition"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -221,7 +221,7 @@ fn run_stage(
                 more_runs: vec![],
                 task: None,
                 tds: vec![],
-                repeats: 1,
+                repeats: sweep.record_repeats.unwrap_or(1),
                 seed: job.seed,
                 out: dir.join(job_folder::ACTIVITY),
                 summary: true,

@@ -16,8 +16,15 @@ pub struct FingerprintArgs {
     /// Run folders (or `zoo:<model>/<task>`) of one agent, one per protocol condition it
     /// has: fixed interval TD 6, fixed interval TD 12, bisection 4-12 (matched by each
     /// run's task and settings; missing conditions leave their features out).
-    #[arg(long, required = true, num_args = 1..)]
+    #[arg(long, required_unless_present = "sweep", num_args = 1..)]
     pub run: Vec<PathBuf>,
+    /// Instead of `--run`: every agent (model × seed) of a sweep's output folder, from its
+    /// finished jobs of the protocol's conditions (as `sweeps/mechanisms-heldout.toml`
+    /// trains them), each into `OUT/<model>-<seed>/` with the default seed, and one line per
+    /// agent in `OUT/fingerprints.txt`. Rerunning places finished agents again from their
+    /// recorded signatures.
+    #[arg(long, value_name = "SWEEP_OUT", conflicts_with_all = ["run", "name", "seed"])]
+    pub sweep: Option<PathBuf>,
     /// Output folder (condition folders, fingerprint.{md,html,png,json}).
     #[arg(long)]
     pub out: PathBuf,
@@ -34,6 +41,9 @@ pub struct FingerprintArgs {
 
 /// Runs `fingerprint`.
 pub fn run(args: FingerprintArgs) -> Result<()> {
+    if let Some(sweep) = &args.sweep {
+        return run_sweep(sweep, &args);
+    }
     let runs = args
         .run
         .iter()
@@ -69,5 +79,28 @@ pub fn run(args: FingerprintArgs) -> Result<()> {
     }
     println!("  {}.", chronocooked_present::fingerprint::agreement(f));
     println!("wrote {}", args.out.join("fingerprint.html").display());
+    Ok(())
+}
+
+/// `fingerprint --sweep`: every agent of a sweep's output, one line each.
+fn run_sweep(sweep: &std::path::Path, args: &FingerprintArgs) -> Result<()> {
+    use chronocooked_pipeline::stages::{fingerprint_sweep, sweep_line};
+    let agents = fingerprint_sweep(sweep, &args.out, args.resamples as usize)?;
+    let mut text = String::new();
+    for a in &agents {
+        let line = sweep_line(a);
+        println!("{line}");
+        text.push_str(&line);
+        text.push('\n');
+    }
+    let file = args.out.join("fingerprints.txt");
+    chronocooked_env::fs::write_atomic(&file, text.as_bytes())?;
+    let reused = agents.iter().filter(|a| a.reused).count();
+    println!(
+        "{} agents ({} played now, {reused} placed again from their folders) → {}",
+        agents.len(),
+        agents.len() - reused,
+        file.display()
+    );
     Ok(())
 }

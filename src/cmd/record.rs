@@ -39,7 +39,7 @@ pub struct RecordArgs {
     /// Repetitions of the every-start-cell protocol (different seeds for the model's noise),
     /// 1–100: a repeat of an SBF agent (1,000 oscillators) holds ≈ 2.5 MB of activity per TD
     /// in memory; 100 repeats (≈ 1,000 trials per TD) are well beyond what the summaries need.
-    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..=100))]
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..=chronocooked_pipeline::stages::record::MAX_REPEATS))]
     pub repeats: u64,
     /// Seed of the recording.
     #[arg(long, default_value_t = 0)]

@@ -130,3 +130,159 @@ pub fn fingerprint(req: &FingerprintRequest) -> Result<FingerprintOutcome, Pipel
         files,
     })
 }
+
+/// One agent of a sweep's output fingerprinted by [`fingerprint_sweep`].
+#[derive(Debug, Clone)]
+pub struct SweepFingerprint {
+    /// The agent's model.
+    pub model: String,
+    /// Its training seed.
+    pub seed: u64,
+    /// Its fingerprint's folder (`<out>/<model>-<seed>/`).
+    pub folder: PathBuf,
+    /// Its placement in both views.
+    pub placement: Fingerprint,
+    /// Whether the folder held a finished fingerprint already (placed again from its
+    /// recorded signature, nothing replayed).
+    pub reused: bool,
+}
+
+/// The finished jobs of a sweep's output whose runs are conditions of the fingerprint
+/// protocol, grouped into agents (model, seed), the [`MECHANISMS`] first in their order,
+/// then other models by name; seeds ascending.
+fn sweep_agents(sweep_out: &Path) -> Result<Vec<((String, u64), Vec<PathBuf>)>, PipelineError> {
+    use chronocooked_analysis::job_folder::{RUN, job_done, read_job};
+    use chronocooked_analysis::mechanisms::MECHANISMS;
+    if !sweep_out.is_dir() {
+        return Err(PipelineError::Invalid(format!(
+            "{}: no such sweep output folder (`chronocooked sweep FILE --out DIR` writes one)",
+            sweep_out.display()
+        )));
+    }
+    let mut agents: std::collections::BTreeMap<(usize, String, u64), Vec<PathBuf>> =
+        Default::default();
+    // Job folders: <out>/<task>/<row>/seed<N>/.
+    for task in chronocooked_env::fs::real_subdirs(sweep_out) {
+        for row in chronocooked_env::fs::real_subdirs(&task) {
+            for job in chronocooked_env::fs::real_subdirs(&row) {
+                if !job.join(chronocooked_analysis::job_folder::JOB).is_file() || !job_done(&job) {
+                    continue;
+                }
+                let record = read_job(&job).map_err(PipelineError::Invalid)?;
+                let run = job.join(RUN);
+                if condition_of(&run).is_err() {
+                    continue;
+                }
+                let rank = MECHANISMS
+                    .iter()
+                    .position(|m| *m == record.model)
+                    .unwrap_or(MECHANISMS.len());
+                agents
+                    .entry((rank, record.model.clone(), record.seed))
+                    .or_default()
+                    .push(run);
+            }
+        }
+    }
+    Ok(agents
+        .into_iter()
+        .map(|((_, model, seed), runs)| ((model, seed), runs))
+        .collect())
+}
+
+/// Fingerprints every agent (model × seed) of a sweep's output from its runs of the
+/// fingerprint protocol's conditions (fixed interval TD 6 and TD 12, bisection 4–12, as
+/// `sweeps/mechanisms-heldout.toml` trains them), each into `<out>/<model>-<seed>/` with
+/// the protocol's seed 0, as `chronocooked fingerprint --run …` with its defaults. Resumable:
+/// an agent whose folder holds a finished `fingerprint.json` is placed again from its
+/// recorded signature (the same placement: the bootstrap is seeded), not replayed.
+pub fn fingerprint_sweep(
+    sweep_out: &Path,
+    out: &Path,
+    resamples: usize,
+) -> Result<Vec<SweepFingerprint>, PipelineError> {
+    let agents = sweep_agents(sweep_out)?;
+    if agents.is_empty() {
+        return Err(PipelineError::Invalid(format!(
+            "{}: no finished job of a fingerprint protocol condition ({})",
+            sweep_out.display(),
+            PROTOCOL
+                .iter()
+                .map(|c| format!("{} {}", c.task, c.env.join(" ")))
+                .collect::<Vec<_>>()
+                .join("; ")
+        )));
+    }
+    let mut done = Vec::new();
+    for ((model, seed), runs) in agents {
+        let folder = out.join(format!("{model}-{seed}"));
+        let recorded = chronocooked_present::fingerprint::read_signature(&folder).ok();
+        let (placement, reused) = match recorded {
+            Some(mut signature) => {
+                signature.seed = seed;
+                let placement = Fingerprint::place(
+                    &signature,
+                    &chronocooked_present::fingerprint::reference_signatures(),
+                    resamples,
+                    0,
+                );
+                (placement, true)
+            }
+            None => {
+                let _ = std::fs::remove_dir_all(&folder);
+                let r = fingerprint(&FingerprintRequest {
+                    runs,
+                    name: None,
+                    seed: 0,
+                    resamples,
+                    out: folder.clone(),
+                })?;
+                (r.placement, false)
+            }
+        };
+        done.push(SweepFingerprint {
+            model,
+            seed,
+            folder,
+            placement,
+            reused,
+        });
+    }
+    Ok(done)
+}
+
+/// One line per agent of [`fingerprint_sweep`], per view: the nearest mechanism, its
+/// distance and identification limit, the verdict and the nearest other mechanism
+/// (`ddm seed 40: units: nearest ddm 0.84 (limit 2.47) identified; nearest other
+/// timecells-laplace 14.83 | dynamics: …`).
+pub fn sweep_line(agent: &SweepFingerprint) -> String {
+    let parts: Vec<String> = agent
+        .placement
+        .views()
+        .into_iter()
+        .map(|p| {
+            let mut d: Vec<_> = p.distances.iter().collect();
+            d.sort_by(|a, b| a.distance.total_cmp(&b.distance));
+            let Some(nearest) = &p.nearest else {
+                return format!("{}: no verdict (no feature shared)", p.view.key());
+            };
+            let own = d.iter().find(|x| &x.mechanism == nearest);
+            let other = d.iter().find(|x| &x.mechanism != nearest);
+            let fmt = |v: Option<f64>| v.map_or("–".to_string(), |v| format!("{v:.2}"));
+            format!(
+                "{}: nearest {nearest} {} (limit {}) {}; nearest other {} {}",
+                p.view.key(),
+                fmt(own.map(|x| x.distance)),
+                fmt(own.and_then(|x| x.limit)),
+                if p.identified {
+                    "identified"
+                } else {
+                    "not-identified"
+                },
+                other.map_or("–", |x| x.mechanism.as_str()),
+                fmt(other.map(|x| x.distance)),
+            )
+        })
+        .collect();
+    format!("{} seed {}: {}", agent.model, agent.seed, parts.join(" | "))
+}

@@ -27,7 +27,10 @@ pub use evaluate::{
     EvalOutcome, EvalRequest, EvalSubject, evaluate, evaluate_human, rescore_eval_folder,
 };
 pub use export::export;
-pub use fingerprint::{FingerprintOutcome, FingerprintRequest, fingerprint};
+pub use fingerprint::{
+    FingerprintOutcome, FingerprintRequest, SweepFingerprint, fingerprint, fingerprint_sweep,
+    sweep_line,
+};
 pub use record::{RecordOutcome, RecordRequest, record};
 pub use scaling::{ScalingJob, ScalingOutcome, record_scaling};
 pub use train::{Quiet, TrainObserver, TrainOutcome, TrainRequest, train};

@@ -47,6 +47,12 @@ pub struct RecordRequest {
     pub figures: Option<PathBuf>,
 }
 
+/// Most repetitions of the every-start-cell protocol one recording takes (`record
+/// --repeats`, a sweep's `record_repeats`): a repeat of an SBF agent (1,000 oscillators)
+/// holds ≈ 2.5 MB of activity per TD in memory; 100 repeats (≈ 1,000 trials per TD) are well
+/// beyond what the summaries need.
+pub const MAX_REPEATS: u64 = 100;
+
 /// What a recording wrote.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RecordOutcome {

@@ -4,6 +4,7 @@
 //! [`TimingRunConfig::validate`], every job's task through the env's task checks), so
 //! `sweep --dry-run` refuses everything a run would refuse, before anything starts.
 
+use crate::stages::record::MAX_REPEATS as MAX_RECORD_REPEATS;
 use crate::sweep::file::{Job, SweepFile, applies, refusal};
 use chronocooked_training::TrainError;
 use chronocooked_training::timing_run::TimingRunConfig;
@@ -27,6 +28,15 @@ pub fn check_jobs(sweep: &SweepFile) -> Result<(), TrainError> {
         if !used {
             return Err(refusal(sweep, "set", s));
         }
+    }
+    if let Some(r) = sweep.record_repeats
+        && !(1..=MAX_RECORD_REPEATS).contains(&r)
+    {
+        return Err(TrainError::InvalidParam {
+            field: "record_repeats".into(),
+            value: r.to_string(),
+            allowed: format!("1–{MAX_RECORD_REPEATS} repetitions of the recording protocol"),
+        });
     }
     for (field, zero) in [
         ("adapt_episodes", sweep.adapt_episodes == Some(0)),

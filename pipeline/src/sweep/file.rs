@@ -48,6 +48,10 @@ pub struct SweepFile {
     /// Record neural activity (+ neural summary, heat maps) of trained models (default true).
     #[serde(default = "yes")]
     pub record: bool,
+    /// Repetitions of the recording's every-start-cell protocol (1–100, default 1; each a
+    /// new draw of the model's noise), as `record --repeats`.
+    #[serde(default)]
+    pub record_repeats: Option<u64>,
     /// Export activity and records to NPZ/CSV (default true).
     #[serde(default = "yes")]
     pub export: bool,
