@@ -147,10 +147,13 @@ pub struct SweepFingerprint {
     pub reused: bool,
 }
 
+/// An agent of a sweep: (model, seed) and its runs of the protocol's conditions.
+type SweepAgentRuns = ((String, u64), Vec<PathBuf>);
+
 /// The finished jobs of a sweep's output whose runs are conditions of the fingerprint
 /// protocol, grouped into agents (model, seed), the [`MECHANISMS`] first in their order,
 /// then other models by name; seeds ascending.
-fn sweep_agents(sweep_out: &Path) -> Result<Vec<((String, u64), Vec<PathBuf>)>, PipelineError> {
+fn sweep_agents(sweep_out: &Path) -> Result<Vec<SweepAgentRuns>, PipelineError> {
     use chronocooked_analysis::job_folder::{RUN, job_done, read_job};
     use chronocooked_analysis::mechanisms::MECHANISMS;
     if !sweep_out.is_dir() {
