@@ -106,8 +106,15 @@ def load_eval(path):
     (condition kind/task/TD/factor/never_ready, start cell, seed, reward, success, steps,
     ``first_check`` = oven timer at the first oven check (−1 if none), ``oven_off_time``,
     ``counter``) and one row per condition of ``metrics.json`` (its summary fields).
+    ``ImportError`` naming the extra to install when pandas is missing.
     """
-    import pandas as pd
+    try:
+        import pandas as pd
+    except ImportError as e:
+        raise ImportError(
+            "load_eval returns pandas DataFrames: install pandas "
+            "(pip install 'chronocooked[analysis]', or './python[analysis]' from the clone)"
+        ) from e
 
     path = Path(path)
     rows = []

@@ -63,10 +63,14 @@ pub fn run(args: FingerprintArgs) -> Result<()> {
     for p in f.views() {
         println!("  {}", chronocooked_present::fingerprint::verdict(p));
         for d in &p.distances {
+            let distance = if d.distance.is_finite() {
+                format!("{:5.2}", d.distance)
+            } else {
+                "    –".to_string()
+            };
             println!(
-                "    {:<18} distance {:5.2}  its own seeds {}  limit {}  bootstrap share {:.2}",
+                "    {:<18} distance {distance}  its own seeds {}  limit {}  bootstrap share {:.2}",
                 d.mechanism,
-                d.distance,
                 d.self_range
                     .map_or("–".into(), |(lo, hi)| format!("{lo:.2}–{hi:.2}")),
                 d.limit.map_or("–".into(), |l| format!("{l:.2}")),

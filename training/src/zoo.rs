@@ -94,6 +94,9 @@ fn timing_tasks(name: &str) -> Vec<TaskAbility> {
         ("MultiTimer-v0", "MultiTimer-v0 mode=exact", true),
         ("DualTask-v0", "DualTask-v0", true),
         ("Uncertainty-v0", "Uncertainty-v0", false),
+        ("MultiAnchor-v0", "MultiAnchor-v0", false),
+        ("MultiOven-v0", "MultiOven-v0", false),
+        ("Reproduction-v0", "Reproduction-v0", false),
     ]
     .iter()
     .map(|&(id, label, exact)| TaskAbility {
