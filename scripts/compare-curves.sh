@@ -26,9 +26,12 @@ keep = [i for i, h in enumerate(rows[0]) if h not in drop]
 for r in rows:
     print(",".join(r[i] for i in keep))' "$1"
 }
-for model in cnn-mlp lstm125 ctrnn125 ddm; do
+for model in ${MODELS:-cnn-mlp lstm125 ctrnn125 ddm}; do
     steps=()
-    [[ $model == ddm ]] || steps=(--steps 3000)
+    case $model in
+        ddm | sbf* | timecells-*) ;;  # timing models: their default training
+        *) steps=(--steps 3000) ;;    # PPO: a few updates of the reference preset
+    esac
     run "$old" old "$model" "${steps[@]}"
     run "$new" new "$model" "${steps[@]}"
     a=$(ls "$out/old/$model"/curves.csv 2> /dev/null) b=$(ls "$out/new/$model"/curves.csv 2> /dev/null)
