@@ -83,27 +83,34 @@ pub struct TaskAbility {
     pub limit: Option<String>,
 }
 
-/// The task list of timing model `name`.
+/// The task list of timing model `name`: every registered task the timing models play (its
+/// family declares a response kind; a family registered at run time too), the multi-timer
+/// in both reward modes, the dual task with its default one-step windows.
 fn timing_tasks(name: &str) -> Vec<TaskAbility> {
     use chronocooked_models::timing::zoo::task_limit;
-    [
-        ("FixedInterval-v0", "FixedInterval-v0", false),
-        ("PeakInterval-v0", "PeakInterval-v0 (probe trials)", false),
-        ("Bisection-v0", "Bisection-v0", false),
-        ("MultiTimer-v0", "MultiTimer-v0 mode=lower_bounded", false),
-        ("MultiTimer-v0", "MultiTimer-v0 mode=exact", true),
-        ("DualTask-v0", "DualTask-v0", true),
-        ("Uncertainty-v0", "Uncertainty-v0", false),
-        ("MultiAnchor-v0", "MultiAnchor-v0", false),
-        ("MultiOven-v0", "MultiOven-v0", false),
-        ("Reproduction-v0", "Reproduction-v0", false),
-    ]
-    .iter()
-    .map(|&(id, label, exact)| TaskAbility {
-        task: label.into(),
-        limit: task_limit(name, id, exact).map(str::to_string),
-    })
-    .collect()
+    let mut out = Vec::new();
+    for spec in chronocooked_env::registry::all_tasks() {
+        let playable = chronocooked_env::Task::new(spec.id)
+            .and_then(|t| t.config())
+            .is_ok_and(|c| c.response_kind().is_some());
+        if !playable {
+            continue;
+        }
+        let rows: Vec<(String, bool)> = match spec.id {
+            "MultiTimer-v0" => vec![
+                (format!("{} mode=lower_bounded", spec.id), false),
+                (format!("{} mode=exact", spec.id), true),
+            ],
+            "PeakInterval-v0" => vec![(format!("{} (probe trials)", spec.id), false)],
+            "DualTask-v0" => vec![(spec.id.to_string(), true)],
+            _ => vec![(spec.id.to_string(), false)],
+        };
+        out.extend(rows.into_iter().map(|(task, exact)| TaskAbility {
+            limit: task_limit(name, spec.id, exact).map(str::to_string),
+            task,
+        }));
+    }
+    out
 }
 
 fn p(name: &str, value: impl ToString, meaning: &str) -> ZooParam {
