@@ -264,13 +264,12 @@ pub fn sweep_line(agent: &SweepFingerprint) -> String {
         .views()
         .into_iter()
         .map(|p| {
-            let mut d: Vec<_> = p.distances.iter().collect();
-            d.sort_by(|a, b| a.distance.total_cmp(&b.distance));
             let Some(nearest) = &p.nearest else {
                 return format!("{}: no verdict (no feature shared)", p.view.key());
             };
-            let own = d.iter().find(|x| &x.mechanism == nearest);
-            let other = d.iter().find(|x| &x.mechanism != nearest);
+            // The distances are nearest first: the first other mechanism is the nearest other.
+            let own = p.distances.iter().find(|x| &x.mechanism == nearest);
+            let other = p.distances.iter().find(|x| &x.mechanism != nearest);
             let fmt = |v: Option<f64>| v.map_or("–".to_string(), |v| format!("{v:.2}"));
             format!(
                 "{}: nearest {nearest} {} (limit {}) {}; nearest other {} {}",
