@@ -9,7 +9,11 @@
 //! polynomial learning rate `1/n(s, a)^ω`, ω ∈ (1/2, 1), per feature
 //! ([`SarsaLambda::set_visit_power`]); for one-hot features it is their per-pair rate.
 //! Weights are stored sparsely (only visited pairs), in a `BTreeMap` so that saved
-//! agents are byte-identical across runs.
+//! agents are byte-identical across runs. Each trace keeps the indices of its nonzero
+//! features, and `Q` sums only the nonzero features of `φ`: the time cells' conjunctive code
+//! on the reproduction task (`[cells²]` features, one or two of them nonzero for the delay
+//! line) is otherwise read whole by every trace on every step. Skipping a zero feature adds
+//! nothing a dense sum would not (`w + 0·e = w`), so the values are the same bit for bit.
 
 use rand::Rng;
 use serde::{Deserialize, Serialize};
@@ -54,7 +58,7 @@ pub struct SarsaLambda {
     #[serde(default)]
     pub q_init: f64,
     #[serde(skip)]
-    traces: Vec<(u32, Vec<f64>)>,
+    traces: Vec<Trace>,
     /// Exponent ω of the visit-count step floor (0 = off); set for a training run only.
     #[serde(skip)]
     visit_power: f64,
@@ -62,6 +66,35 @@ pub struct SarsaLambda {
     /// visits and the step floor `max(1, nᵢ)^−ω` it gives.
     #[serde(skip)]
     visits: BTreeMap<u32, Visits>,
+}
+
+/// The eligibility trace of one state–action pair: `e` (`[features]`) and the indices of
+/// its nonzero entries (every other entry is exactly 0, and decaying keeps it so).
+#[derive(Debug, Clone, PartialEq)]
+struct Trace {
+    /// The pair's key (`s · actions + a`).
+    key: u32,
+    /// `e`, `[features]`.
+    e: Vec<f64>,
+    /// Indices `i` with `e[i] ≠ 0`, increasing.
+    nonzero: Vec<u32>,
+}
+
+/// The indices of the nonzero entries of `phi` into `out` (cleared first), increasing.
+fn nonzero_into(phi: &[f64], out: &mut Vec<u32>) {
+    out.clear();
+    out.extend(
+        phi.iter()
+            .enumerate()
+            .filter(|(_, x)| **x != 0.0)
+            .map(|(i, _)| i as u32),
+    );
+}
+
+/// Whether a vector with these nonzero entries is better read whole than by index (more
+/// nonzero entries than zeros).
+fn is_dense(nonzero: &[u32], v: &[f64]) -> bool {
+    nonzero.len() * 2 > v.len()
 }
 
 /// How often each feature of one state–action pair was active ([`SarsaLambda::visit`]).
@@ -115,10 +148,27 @@ impl SarsaLambda {
             .unwrap_or_else(|| self.q_init * phi.first().copied().unwrap_or(0.0))
     }
 
-    /// `Q(s, ·)` into `out`.
+    /// `Q(s, ·)` into `out`, summing only the nonzero features of `phi` (the same values
+    /// as [`Self::q`]'s dense sum: a zero feature adds nothing to it).
     pub fn q_all(&self, state: u32, phi: &[f64], out: &mut Vec<f64>) {
+        let mut nonzero = Vec::new();
+        nonzero_into(phi, &mut nonzero);
+        if is_dense(&nonzero, phi) {
+            out.clear();
+            out.extend((0..self.actions).map(|a| self.q(state, a, phi)));
+            return;
+        }
         out.clear();
-        out.extend((0..self.actions).map(|a| self.q(state, a, phi)));
+        for a in 0..self.actions {
+            let q = match self.weights.get(&self.key(state, a)) {
+                Some(w) => nonzero
+                    .iter()
+                    .map(|&i| w[i as usize] * phi[i as usize])
+                    .sum(),
+                None => self.q_init * phi.first().copied().unwrap_or(0.0),
+            };
+            out.push(q);
+        }
     }
 
     /// ε-greedy choice among `allowed` actions (ties broken at random); greedy with the
@@ -159,7 +209,7 @@ impl SarsaLambda {
         let key = self.key(state, action);
         let base = state * self.actions as u32;
         self.traces
-            .retain(|(k, _)| *k == key || *k < base || *k >= base + self.actions as u32);
+            .retain(|t| t.key == key || t.key < base || t.key >= base + self.actions as u32);
         if self.visit_power > 0.0 {
             let (n, power) = (self.features, self.visit_power);
             let v = self.visits.entry(key).or_insert_with(|| Visits {
@@ -173,9 +223,20 @@ impl SarsaLambda {
                 }
             }
         }
-        match self.traces.iter_mut().find(|(k, _)| *k == key) {
-            Some((_, e)) => e.copy_from_slice(phi),
-            None => self.traces.push((key, phi.to_vec())),
+        match self.traces.iter_mut().find(|t| t.key == key) {
+            Some(t) => {
+                t.e.copy_from_slice(phi);
+                nonzero_into(phi, &mut t.nonzero);
+            }
+            None => {
+                let mut nonzero = Vec::new();
+                nonzero_into(phi, &mut nonzero);
+                self.traces.push(Trace {
+                    key,
+                    e: phi.to_vec(),
+                    nonzero,
+                });
+            }
         }
     }
 
@@ -187,7 +248,7 @@ impl SarsaLambda {
         let alpha = self.config.alpha;
         let step = alpha / norm * delta;
         let (n, q0) = (self.features, self.q_init);
-        for (key, e) in &self.traces {
+        for Trace { key, e, nonzero } in &self.traces {
             let w = self.weights.entry(*key).or_insert_with(|| {
                 let mut w = vec![0.0; n];
                 w[0] = q0;
@@ -199,27 +260,48 @@ impl SarsaLambda {
             } else {
                 None
             };
-            match floor {
-                Some(v) => {
+            // A trace with more nonzero entries than zeros is read whole (vectorised); the
+            // sum is the same either way.
+            let dense = is_dense(nonzero, e);
+            match (floor, dense) {
+                (Some(v), true) => {
                     for ((wi, ei), f) in w.iter_mut().zip(e).zip(&v.floor) {
                         if *ei != 0.0 {
                             *wi += f.max(alpha) / norm * delta * ei;
                         }
                     }
                 }
-                None => {
+                (Some(v), false) => {
+                    for &i in nonzero {
+                        let i = i as usize;
+                        w[i] += v.floor[i].max(alpha) / norm * delta * e[i];
+                    }
+                }
+                (None, true) => {
                     for (wi, ei) in w.iter_mut().zip(e) {
                         *wi += step * ei;
+                    }
+                }
+                (None, false) => {
+                    for &i in nonzero {
+                        let i = i as usize;
+                        w[i] += step * e[i];
                     }
                 }
             }
         }
         let decay = self.config.gamma * self.config.lambda;
-        for (_, e) in &mut self.traces {
-            e.iter_mut().for_each(|v| *v *= decay);
+        for t in &mut self.traces {
+            if is_dense(&t.nonzero, &t.e) {
+                t.e.iter_mut().for_each(|v| *v *= decay);
+            } else {
+                for &i in &t.nonzero {
+                    t.e[i as usize] *= decay;
+                }
+            }
         }
         self.traces
-            .retain(|(_, e)| e.iter().any(|v| v.abs() > 1e-4));
+            .retain(|t| t.nonzero.iter().any(|&i| t.e[i as usize].abs() > 1e-4));
     }
 }
 
@@ -323,5 +405,98 @@ mod tests {
         // Turning it off (or on again) forgets the counts.
         l.set_visit_power(0.0);
         assert!(l.visits.is_empty());
+    }
+
+    /// The textbook dense SARSA(λ) of the module's formulas (every trace read whole), the
+    /// reference the sparse learner must equal bit for bit.
+    struct Dense {
+        weights: BTreeMap<u32, Vec<f64>>,
+        traces: Vec<(u32, Vec<f64>)>,
+    }
+
+    impl Dense {
+        fn q(&self, key: u32, phi: &[f64], q_init: f64) -> f64 {
+            self.weights
+                .get(&key)
+                .map(|w| w.iter().zip(phi).map(|(a, b)| a * b).sum())
+                .unwrap_or(q_init * phi[0])
+        }
+    }
+
+    proptest::proptest! {
+        /// Random episodes over sparse and dense features (mostly zeros, or mostly not),
+        /// with and without the visit-count floor: the same `Q` and weights as the dense
+        /// reference, bit for bit.
+        #[test]
+        fn sparse_traces_equal_the_dense_reference_bit_for_bit(
+            steps in proptest::collection::vec(
+                (0u32..3, 0usize..2, proptest::collection::vec(
+                    proptest::prop_oneof![4 => proptest::strategy::Just(0.0), 1 => -1.0f64..1.0],
+                    7,
+                ), -1.0f64..1.0, proptest::bool::weighted(0.1)),
+                1..60,
+            ),
+            power in proptest::prop_oneof![proptest::strategy::Just(0.0), 0.5f64..1.0],
+        ) {
+            let config = SarsaConfig { alpha: 0.1, gamma: 0.9, lambda: 0.8 };
+            let mut l = SarsaLambda::new(config.clone(), 2, 8);
+            l.q_init = 0.25;
+            l.set_visit_power(power);
+            let mut d = Dense { weights: BTreeMap::new(), traces: Vec::new() };
+            let mut counts: BTreeMap<u32, Vec<f64>> = BTreeMap::new();
+            let mut q = Vec::new();
+            for (state, action, rest, delta, new_episode) in steps {
+                if new_episode {
+                    l.clear_traces();
+                    d.traces.clear();
+                }
+                let mut phi = vec![1.0];
+                phi.extend(rest);
+                l.q_all(state, &phi, &mut q);
+                for (a, q) in q.iter().enumerate() {
+                    let expected = d.q(state * 2 + a as u32, &phi, 0.25);
+                    proptest::prop_assert_eq!(q.to_bits(), expected.to_bits());
+                }
+                l.visit(state, action, &phi);
+                let key = state * 2 + action as u32;
+                d.traces.retain(|(k, _)| *k == key || *k / 2 != state);
+                match d.traces.iter_mut().find(|(k, _)| *k == key) {
+                    Some((_, e)) => e.copy_from_slice(&phi),
+                    None => d.traces.push((key, phi.clone())),
+                }
+                let c = counts.entry(key).or_insert_with(|| vec![0.0; 8]);
+                for (ci, x) in c.iter_mut().zip(&phi) {
+                    *ci += x * x;
+                }
+                let norm2: f64 = phi.iter().map(|v| v * v).sum();
+                l.apply(delta, norm2);
+                let norm = norm2.max(1.0);
+                for (k, e) in &d.traces {
+                    let w = d.weights.entry(*k).or_insert_with(|| {
+                        let mut w = vec![0.0; 8];
+                        w[0] = 0.25;
+                        w
+                    });
+                    for (i, (wi, ei)) in w.iter_mut().zip(e).enumerate() {
+                        let rate = if power > 0.0 {
+                            counts[k][i].max(1.0).powf(-power).max(config.alpha)
+                        } else {
+                            config.alpha
+                        };
+                        if *ei != 0.0 {
+                            *wi += rate / norm * delta * ei;
+                        }
+                    }
+                }
+                for (_, e) in &mut d.traces {
+                    e.iter_mut().for_each(|v| *v *= config.gamma * config.lambda);
+                }
+                d.traces.retain(|(_, e)| e.iter().any(|v| v.abs() > 1e-4));
+            }
+            let bits = |w: &BTreeMap<u32, Vec<f64>>| -> Vec<(u32, Vec<u64>)> {
+                w.iter().map(|(k, v)| (*k, v.iter().map(|x| x.to_bits()).collect())).collect()
+            };
+            proptest::prop_assert_eq!(bits(&l.weights), bits(&d.weights));
+        }
     }
 }
