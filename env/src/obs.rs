@@ -100,7 +100,7 @@ pub(crate) fn codes_high(spec: &Spec) -> u8 {
     if spec.config.debug_timer_channel {
         return 255;
     }
-    if matches!(spec.family, TaskFamily::MultiAnchor | TaskFamily::MultiOven) {
+    if spec.rules.extended_ovens().is_some() {
         // The reference's observation space for these tasks: Box(0, 20).
         return 20;
     }
@@ -139,17 +139,12 @@ impl OneHotEncoder {
             None => 0,
         };
         let debug = spec.config.debug_timer_channel;
-        let extended =
-            matches!(spec.family, TaskFamily::MultiAnchor | TaskFamily::MultiOven).then(|| {
-                let n = match spec.config.params {
-                    crate::task::TaskParams::MultiOven { ovens, .. } => ovens as usize,
-                    _ => 1,
-                };
-                spec.ovens[..n]
-                    .iter()
-                    .map(|&cell| (cell, spec.background[cell * CODE_CHANNELS]))
-                    .collect::<Vec<_>>()
-            });
+        let extended = spec.rules.extended_ovens().map(|n| {
+            spec.ovens[..n]
+                .iter()
+                .map(|&cell| (cell, spec.background[cell * CODE_CHANNELS]))
+                .collect::<Vec<_>>()
+        });
         let context = spec
             .rsg
             .as_ref()

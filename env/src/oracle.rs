@@ -30,6 +30,7 @@ use crate::env::ChronoEnv;
 use crate::info::Carry;
 use crate::kitchen::{Kitchen, KitchenState, MultiOvenState, RsgState};
 use crate::layout::{Layout, ObjectKind};
+use crate::rules::{RsgSpec, Rules};
 use crate::task::TaskParams;
 use std::collections::HashMap;
 
@@ -38,6 +39,10 @@ use std::collections::HashMap;
 pub struct Oracle {
     layout: Layout,
     params: TaskParams,
+    /// The kitchen's rules the task runs (the oracle's strategy follows their mechanics).
+    rules: Rules,
+    /// Reproduction: the gains of the production.
+    rsg: Option<RsgSpec>,
     /// All-pairs shortest path lengths between cells (moves).
     dist: Vec<Vec<u32>>,
     /// Free cells touching each object kind, indexed by [`ObjectKind::onehot_index`].
@@ -65,6 +70,8 @@ impl Oracle {
         Oracle {
             layout,
             params: env.config().params.clone(),
+            rules: env.spec().rules,
+            rsg: env.spec().rsg.clone(),
             dist,
             neighbours,
         }
@@ -123,7 +130,7 @@ impl Oracle {
     /// Dual task: the oven neighbour closest to a sink neighbour. Putting the onion in
     /// and taking the soup out there maximises the time left for the sink.
     fn dual_post(&self) -> Option<usize> {
-        if !matches!(self.params, TaskParams::Dual { .. }) {
+        if !matches!(self.rules, Rules::Dual { .. }) {
             return None;
         }
         let sinks = self.adjacent_to(ObjectKind::RewardSink);
@@ -199,15 +206,15 @@ impl Oracle {
         });
         let t = s.timer;
         let pick = self.pickup_timer(s.td).unwrap_or(i32::MAX);
-        match &self.params {
-            TaskParams::Bisection { .. } | TaskParams::MultiAnchor { .. } => {
+        match self.rules {
+            Rules::Bisection { .. } | Rules::Categories { .. } => {
                 if s.ready && a == post {
                     Action::Interact
                 } else {
                     self.step_towards(a, post)
                 }
             }
-            TaskParams::Uncertainty { .. } => {
+            Rules::Uncertainty { .. } => {
                 if s.ready {
                     self.go_and_interact(a, post)
                 } else if t >= pick {
@@ -217,7 +224,7 @@ impl Oracle {
                     self.step_towards(a, post)
                 }
             }
-            TaskParams::Dual { .. } => {
+            Rules::Dual { .. } => {
                 let sinks = self.adjacent_to(ObjectKind::RewardSink);
                 let sink = *sinks
                     .iter()
@@ -259,12 +266,11 @@ impl Oracle {
         if s.carry == Carry::Soup {
             return self.go_and_interact(a, self.nearest(a, counter));
         }
-        let gain = match &self.params {
-            TaskParams::Reproduction { gains, .. } => {
-                gains.get(rsg.gain as usize).copied().unwrap_or(1.0)
-            }
-            _ => 1.0,
-        };
+        let gain = self
+            .rsg
+            .as_ref()
+            .and_then(|r| r.gains.get(rsg.gain as usize).copied())
+            .unwrap_or(1.0);
         let target = ((f64::from(gain) * f64::from(s.td)).round() as i32).max(1);
         let post = *self
             .adjacent_to(ObjectKind::Oven)
@@ -289,10 +295,7 @@ impl Oracle {
 
     fn act_multi_oven(&self, s: &KitchenState, mo: &MultiOvenState) -> Action {
         let a = self.layout.index(s.agent.0, s.agent.1);
-        let n = match self.params {
-            TaskParams::MultiOven { ovens, .. } => ovens as usize,
-            _ => 1,
-        };
+        let n = self.rules.extended_ovens().unwrap_or(1);
         match s.carry {
             Carry::Soup => {
                 let kind = self.delivery_kind(mo.td[mo.soup_from as usize]);

@@ -55,8 +55,10 @@ pub(crate) enum Rules {
         overcooked: f32,
         manual: f32,
     },
-    /// Multi-anchor: the first `k` of `anchors` are active (counters 1…k).
-    MultiAnchor {
+    /// Categorisation by counter ([`crate::task::family::RuleSet::categories`]): the first
+    /// `k` of `anchors` are active (counters 1…k); delivery to counter `i` pays iff the
+    /// episode's TD is `anchors[i]`.
+    Categories {
         anchors: [u32; 4],
         k: u8,
     },
@@ -69,6 +71,18 @@ pub(crate) enum Rules {
         n: u8,
         asynchronous: bool,
     },
+}
+
+impl Rules {
+    /// The ovens the extended codes view shows (its own channel layout, `Box(0, 20)`, for
+    /// categorisation by counter and for several ovens), or `None` for the basic view.
+    pub(crate) fn extended_ovens(&self) -> Option<usize> {
+        match *self {
+            Rules::Categories { .. } => Some(1),
+            Rules::MultiOven { n, .. } => Some(usize::from(n)),
+            _ => None,
+        }
+    }
 }
 
 /// The reproduction task's draws and reward window.

@@ -255,3 +255,39 @@ fn a_scalar_judgment_has_the_same_weber_fraction_at_every_boundary() {
         );
     }
 }
+
+fn levels_config(task: &str, sets: &[&str]) -> chronocooked_env::TaskConfig {
+    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    chronocooked_env::make_config(task, &sets).unwrap()
+}
+
+/// The timing models' curricula (the reference's): a multi-anchor task grows one counter at
+/// a time from two, a multi-oven task one oven at a time from one; a task at its first size,
+/// or one that does not grow, is its only level.
+#[test]
+fn the_curricula_grow_counters_and_ovens_one_at_a_time() {
+    use chronocooked_models::timing::train::training_levels;
+    let levels = training_levels(&levels_config("MultiAnchor-v0", &["anchors=3,7,12,20"])).unwrap();
+    let active: Vec<Vec<u32>> = levels
+        .iter()
+        .map(|c| c.params.active_anchors().unwrap().to_vec())
+        .collect();
+    assert_eq!(active, vec![vec![3, 7], vec![3, 7, 12], vec![3, 7, 12, 20]]);
+    let levels = training_levels(&levels_config("MultiOven-v0", &["ovens=3"])).unwrap();
+    let ovens: Vec<u32> = levels
+        .iter()
+        .map(|c| match c.params {
+            chronocooked_env::TaskParams::MultiOven { ovens, .. } => ovens,
+            _ => unreachable!(),
+        })
+        .collect();
+    assert_eq!(ovens, vec![1, 2, 3]);
+    for (task, sets) in [
+        ("MultiAnchor-v0", &["anchors=4,9"][..]),
+        ("MultiOven-v0", &["ovens=1"][..]),
+        ("Bisection-v0", &[][..]),
+    ] {
+        let c = levels_config(task, sets);
+        assert_eq!(training_levels(&c).unwrap(), vec![c.clone()], "{task}");
+    }
+}

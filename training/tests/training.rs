@@ -432,6 +432,36 @@ fn cnn_mlp_and_lstm_learn_fixed_interval_td4() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// The preset files are listed from `training/presets/` by the build script: every built-in
+/// task has its file (and resolves its presets for every model), and every file but `common`
+/// is named by a registered task (a misspelt file would otherwise be compiled in unused).
+#[test]
+fn every_task_has_its_preset_file_and_every_preset_file_names_a_task() {
+    use chronocooked_training::ppo::presets::PRESET_FILES;
+    let names: Vec<&str> = PRESET_FILES.iter().map(|(n, _)| *n).collect();
+    assert!(names.contains(&"common"), "{names:?}");
+    for task in chronocooked_env::registry::all_tasks() {
+        if task.family == chronocooked_env::TaskFamily::External {
+            continue;
+        }
+        assert!(
+            names.contains(&task.id),
+            "no presets/{}.toml in {names:?}",
+            task.id
+        );
+        for arch in Architecture::all() {
+            resolve(task.id, arch, "fast", 1, &[] as &[&str])
+                .unwrap_or_else(|e| panic!("{} {arch:?}: {e}", task.id));
+        }
+    }
+    for name in names.iter().filter(|n| **n != "common") {
+        assert!(
+            chronocooked_env::registry::find_task(name).is_ok(),
+            "presets/{name}.toml names no registered task"
+        );
+    }
+}
+
 #[test]
 fn every_preset_survives_its_own_validation_and_settings_replay_exactly() {
     // `validate` replays every setting through `set`; a resolved preset must pass and the

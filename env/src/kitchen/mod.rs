@@ -157,7 +157,7 @@ impl Kitchen {
         let zero_ok = self.spec.config.reference_compat
             && matches!(
                 self.spec.rules,
-                Rules::MultiAnchor { .. } | Rules::MultiOven { .. }
+                Rules::Categories { .. } | Rules::MultiOven { .. }
             );
         if (td == 0 && !zero_ok) || td > 10_000 {
             let allowed = if zero_ok {
@@ -270,7 +270,7 @@ impl Kitchen {
                     }
                 }
                 Rules::Window { .. } => self.spec.tds[self.rng.random_range(0..self.num_timers)],
-                Rules::MultiAnchor { k, .. } => self.spec.tds[self.rng.random_range(0..k as usize)],
+                Rules::Categories { k, .. } => self.spec.tds[self.rng.random_range(0..k as usize)],
                 _ => self.spec.default_td,
             },
         };
@@ -357,7 +357,7 @@ impl Kitchen {
             Rules::Probe { factor } => factor > 0 && t >= factor as i64 * self.td as i64,
             Rules::Bisection { .. }
             | Rules::Uncertainty { .. }
-            | Rules::MultiAnchor { .. }
+            | Rules::Categories { .. }
             | Rules::MultiOven { .. } => self.ready,
             Rules::Reproduction => self.timer >= 0,
             Rules::Window { mode, .. } => match mode {
@@ -387,7 +387,7 @@ impl Kitchen {
                 Counter::Long if self.td == long => 1.0,
                 _ => 0.0,
             },
-            Rules::MultiAnchor { anchors, k } => match counter {
+            Rules::Categories { anchors, k } => match counter {
                 Counter::Anchor(i) if i >= 1 && i <= k && self.td == anchors[i as usize - 1] => 1.0,
                 _ => 0.0,
             },
@@ -476,7 +476,7 @@ impl Kitchen {
                 Carry::Soup,
             ) => {
                 let counter = match (kind, kind.anchor_index()) {
-                    (_, Some(i)) if matches!(self.spec.rules, Rules::MultiAnchor { .. }) => {
+                    (_, Some(i)) if matches!(self.spec.rules, Rules::Categories { .. }) => {
                         Counter::Anchor(i as u8 + 1)
                     }
                     (ObjectKind::ShortCounter, _) => Counter::Short,
@@ -524,7 +524,7 @@ impl Kitchen {
         !self.spec.config.reference_compat
             && matches!(
                 self.spec.rules,
-                Rules::MultiAnchor { .. } | Rules::MultiOven { .. }
+                Rules::Categories { .. } | Rules::MultiOven { .. }
             )
     }
 

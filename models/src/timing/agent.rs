@@ -85,14 +85,11 @@ pub const OVEN_LEVELS: u32 = 32;
 /// ([`judgment_features`]).
 pub const JUDGMENT_FEATURES: usize = 2;
 
-/// Judgment indicator features of an agent for tasks of `family`: one per category the
-/// family can ask for (multi-anchor: the most anchors a task may have, so a curriculum that
-/// adds anchors keeps the learner's size), otherwise [`JUDGMENT_FEATURES`].
-pub fn judgment_features(family: TaskFamily) -> usize {
-    match family {
-        TaskFamily::MultiAnchor => chronocooked_env::task::params::MAX_ANCHORS,
-        _ => JUDGMENT_FEATURES,
-    }
+/// Judgment indicator features of an agent for tasks with parameters `params`: one per
+/// category its family can ask for at its largest size (so a curriculum that adds counters
+/// keeps the learner's size), at least [`JUDGMENT_FEATURES`].
+pub fn judgment_features(params: &chronocooked_env::TaskParams) -> usize {
+    chronocooked_env::task::family::most_categories(params).max(JUDGMENT_FEATURES)
 }
 
 fn two() -> usize {
@@ -223,7 +220,7 @@ impl TimingAgent {
             matches!(k, ObjectKind::RewardSink | ObjectKind::OvenButton).then_some(0)
         })
         .is_empty();
-        let judgment_features = judgment_features(env.family());
+        let judgment_features = judgment_features(&env.config().params);
         let reproduction = ReproductionCues::of(env);
         let temporal = if reproduction.is_some() {
             Self::reproduction_features(&timer)

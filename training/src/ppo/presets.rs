@@ -5,46 +5,10 @@ use crate::error::TrainError;
 use crate::ppo::config::TrainConfig;
 use chronocooked_models::Architecture;
 
-/// Preset files: `(name, TOML text)`; `common` applies to every task.
-pub const PRESET_FILES: &[(&str, &str)] = &[
-    ("common", include_str!("../../presets/common.toml")),
-    (
-        "FixedInterval-v0",
-        include_str!("../../presets/FixedInterval-v0.toml"),
-    ),
-    (
-        "PeakInterval-v0",
-        include_str!("../../presets/PeakInterval-v0.toml"),
-    ),
-    (
-        "Bisection-v0",
-        include_str!("../../presets/Bisection-v0.toml"),
-    ),
-    (
-        "MultiTimer-v0",
-        include_str!("../../presets/MultiTimer-v0.toml"),
-    ),
-    (
-        "DualTask-v0",
-        include_str!("../../presets/DualTask-v0.toml"),
-    ),
-    (
-        "Uncertainty-v0",
-        include_str!("../../presets/Uncertainty-v0.toml"),
-    ),
-    (
-        "MultiAnchor-v0",
-        include_str!("../../presets/MultiAnchor-v0.toml"),
-    ),
-    (
-        "MultiOven-v0",
-        include_str!("../../presets/MultiOven-v0.toml"),
-    ),
-    (
-        "Reproduction-v0",
-        include_str!("../../presets/Reproduction-v0.toml"),
-    ),
-];
+/// Preset files: `(name, TOML text)`, one per `training/presets/<name>.toml` (sorted by
+/// name; listed by the crate's build script); `common` applies to every task, every other
+/// file is named by a task's id.
+pub const PRESET_FILES: &[(&str, &str)] = include!(concat!(env!("OUT_DIR"), "/presets.rs"));
 
 /// Preset names.
 pub const PRESETS: [&str; 2] = ["reference", "fast"];

@@ -14,186 +14,185 @@ use chronocooked_models::timing::judgment::DecisionRule;
 use chronocooked_models::timing::timers::Timer;
 use serde::{Deserialize, Serialize};
 
-/// Overrides of a timing agent's parameters, shared by every family (`None`: the model's
-/// default) plus its family's timer parameters.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct TimingAgentSettings {
+/// Declares [`TimingAgentSettings`] once: each setting shared by every family with its
+/// documentation, its type and where it lives inside a [`TimingAgent`]. Derives the struct,
+/// [`TimingAgentSettings::none`], [`TimingAgentSettings::of`] and the plain writes of
+/// [`TimingAgentSettings::apply`] (burn's `#[derive(Config)]` pattern, without a proc macro).
+macro_rules! agent_settings {
+    ($( $(#[doc = $doc:literal])+ $name:ident: $ty:ty => $($place:ident).+; )+) => {
+        /// Overrides of a timing agent's parameters, shared by every family (`None`: the
+        /// model's default) plus its family's timer parameters.
+        #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+        #[serde(deny_unknown_fields)]
+        pub struct TimingAgentSettings {
+            $(
+                $(#[doc = $doc])+
+                #[serde(default)]
+                pub $name: Option<$ty>,
+            )+
+            /// Bisection criterion between the remembered anchors.
+            #[serde(default)]
+            pub decision_rule: Option<DecisionRule>,
+            /// The timer's own parameters (by family).
+            pub timer: TimerSettings,
+        }
+
+        impl TimingAgentSettings {
+            /// No override, for a timer of the family of `timer`.
+            pub fn none(timer: TimerSettings) -> Self {
+                TimingAgentSettings {
+                    $($name: None,)+
+                    decision_rule: None,
+                    timer,
+                }
+            }
+
+            /// Every parameter's value in `agent` (its defaults, for a freshly built one).
+            pub fn of(agent: &TimingAgent) -> Self {
+                TimingAgentSettings {
+                    $($name: Some(agent.$($place).+),)+
+                    decision_rule: Some(agent.timer.decision().rule),
+                    timer: TimerSettings::of(&agent.timer),
+                }
+            }
+
+            /// Writes the shared overrides that need no check into `agent`.
+            fn apply_shared(&self, agent: &mut TimingAgent) {
+                $(
+                    if let Some(v) = self.$name {
+                        agent.$($place).+ = v;
+                    }
+                )+
+            }
+        }
+    };
+}
+
+/// Declares [`TimerSettings`] once: per timer family (a [`Timer`] variant of the same name),
+/// each parameter with its documentation and where it lives inside that timer. Derives the
+/// enum, [`TimerSettings::family_of`], and the reads and writes of
+/// [`TimingAgentSettings::of`] and [`TimingAgentSettings::apply`].
+macro_rules! timer_settings {
+    ($(
+        $(#[doc = $vdoc:literal])+
+        $variant:ident($timer:ident) {
+            $( $(#[doc = $doc:literal])+ $name:ident => $($place:ident).+; )+
+        }
+    )+) => {
+        /// Timer parameters of one model family (`None`: the model's default).
+        #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+        #[serde(tag = "family", rename_all = "snake_case", deny_unknown_fields)]
+        pub enum TimerSettings {
+            $(
+                $(#[doc = $vdoc])+
+                $variant {
+                    $(
+                        $(#[doc = $doc])+
+                        #[serde(default)]
+                        $name: Option<f64>,
+                    )+
+                },
+            )+
+        }
+
+        impl TimerSettings {
+            /// No override, for the family of `timer`.
+            pub fn family_of(timer: &Timer) -> Self {
+                match timer {
+                    $(Timer::$variant(_) => TimerSettings::$variant { $($name: None,)+ },)+
+                }
+            }
+
+            /// Every parameter's value in `timer`.
+            fn of(timer: &Timer) -> Self {
+                match timer {
+                    $(
+                        Timer::$variant($timer) => TimerSettings::$variant {
+                            $($name: Some($timer.$($place).+),)+
+                        },
+                    )+
+                }
+            }
+
+            /// Writes the overrides into `timer`; `false` (nothing written) for a timer of
+            /// another family.
+            fn apply_to(&self, timer: &mut Timer) -> bool {
+                match (self, timer) {
+                    $(
+                        (TimerSettings::$variant { $($name),+ }, Timer::$variant($timer)) => {
+                            $(
+                                if let Some(v) = *$name {
+                                    $timer.$($place).+ = v;
+                                }
+                            )+
+                            true
+                        }
+                    )+
+                    #[allow(unreachable_patterns)]
+                    _ => false,
+                }
+            }
+        }
+    };
+}
+
+agent_settings! {
     /// SARSA(λ) learning rate.
-    #[serde(default)]
-    pub alpha: Option<f64>,
+    alpha: f64 => learner.config.alpha;
     /// Discount per step.
-    #[serde(default)]
-    pub gamma: Option<f64>,
+    gamma: f64 => learner.config.gamma;
     /// Eligibility-trace decay.
-    #[serde(default)]
-    pub lambda: Option<f64>,
+    lambda: f64 => learner.config.lambda;
     /// Initial Q of unvisited state–action pairs.
-    #[serde(default)]
-    pub q_init: Option<f64>,
+    q_init: f64 => learner.q_init;
     /// Internal cost of one interact.
-    #[serde(default)]
-    pub response_cost: Option<f64>,
+    response_cost: f64 => config.response_cost;
     /// Probability of an exploratory check.
-    #[serde(default)]
-    pub probe: Option<f64>,
+    probe: f64 => config.probe;
     /// Step size of the learned reward rate charged per step (0 = off).
-    #[serde(default)]
-    pub opportunity_cost: Option<f64>,
+    opportunity_cost: f64 => config.opportunity_cost;
     /// Multiple of the expected time past which a missing ready cue is a category (0 = off).
-    #[serde(default)]
-    pub overdue_factor: Option<f64>,
+    overdue_factor: f64 => config.overdue_factor;
     /// While the oven runs, an empty-handed agent next to it waits or checks.
-    #[serde(default)]
-    pub wait_at_oven: Option<bool>,
+    wait_at_oven: bool => config.wait_at_oven;
     /// Time cells: once a check of the running oven failed, keep checking (break-and-run).
-    #[serde(default)]
-    pub break_and_run: Option<bool>,
+    break_and_run: bool => config.break_and_run;
     /// Time cells on reproduction: span of an exploratory delayed response, as a fraction
     /// of the production time (0 = off).
-    #[serde(default)]
-    pub response_delay: Option<f64>,
-    /// Bisection criterion between the remembered anchors.
-    #[serde(default)]
-    pub decision_rule: Option<DecisionRule>,
-    /// The timer's own parameters (by family).
-    pub timer: TimerSettings,
+    response_delay: f64 => config.response_delay;
 }
 
-/// Timer parameters of one model family (`None`: the model's default).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "family", rename_all = "snake_case", deny_unknown_fields)]
-pub enum TimerSettings {
+timer_settings! {
     /// Drift-diffusion timer.
-    Ddm {
+    Ddm(d) {
         /// Diffusion noise m.
-        #[serde(default)]
-        noise: Option<f64>,
+        noise => acc.noise;
         /// SD of the log of a per-trial factor on each remembered anchor drift.
-        #[serde(default)]
-        memory_noise: Option<f64>,
+        memory_noise => memory_noise;
         /// Drift learning rate at Set in the reproduction task (1 = one-shot).
-        #[serde(default)]
-        reproduction_rate: Option<f64>,
-    },
+        reproduction_rate => reproduction_rate;
+    }
     /// Striatal beat-frequency timer.
-    Sbf {
+    Sbf(s) {
         /// CV of the stored duration (κ).
-        #[serde(default)]
-        memory_noise: Option<f64>,
+        memory_noise => model.memory_noise;
         /// SD of the log of a per-trial oscillator-frequency factor.
-        #[serde(default)]
-        clock_noise: Option<f64>,
-    },
+        clock_noise => clock_noise;
+    }
     /// Time cells, microstimuli, CSC, presence.
-    TimeCells {
+    TimeCells(tc) {
         /// SD of the log of a factor on each stored anchor estimate.
-        #[serde(default)]
-        memory_noise: Option<f64>,
+        memory_noise => memory_noise;
         /// SD of the log of a per-trial clock-speed factor.
-        #[serde(default)]
-        clock_noise: Option<f64>,
-    },
-}
-
-impl TimerSettings {
-    /// No override, for the family of `timer`.
-    pub fn family_of(timer: &Timer) -> Self {
-        match timer {
-            Timer::Ddm(_) => TimerSettings::Ddm {
-                noise: None,
-                memory_noise: None,
-                reproduction_rate: None,
-            },
-            Timer::Sbf(_) => TimerSettings::Sbf {
-                memory_noise: None,
-                clock_noise: None,
-            },
-            Timer::TimeCells(_) => TimerSettings::TimeCells {
-                memory_noise: None,
-                clock_noise: None,
-            },
-        }
+        clock_noise => cells.clock_noise;
     }
 }
 
 impl TimingAgentSettings {
-    /// No override, for a timer of the family of `timer`.
-    pub fn none(timer: TimerSettings) -> Self {
-        TimingAgentSettings {
-            alpha: None,
-            gamma: None,
-            lambda: None,
-            q_init: None,
-            response_cost: None,
-            probe: None,
-            opportunity_cost: None,
-            overdue_factor: None,
-            wait_at_oven: None,
-            break_and_run: None,
-            response_delay: None,
-            decision_rule: None,
-            timer,
-        }
-    }
-
-    /// Every parameter's value in `agent` (its defaults, for a freshly built one).
-    pub fn of(agent: &TimingAgent) -> Self {
-        let timer = match &agent.timer {
-            Timer::Ddm(d) => TimerSettings::Ddm {
-                noise: Some(d.acc.noise),
-                memory_noise: Some(d.memory_noise),
-                reproduction_rate: Some(d.reproduction_rate),
-            },
-            Timer::Sbf(s) => TimerSettings::Sbf {
-                memory_noise: Some(s.model.memory_noise),
-                clock_noise: Some(s.clock_noise),
-            },
-            Timer::TimeCells(tc) => TimerSettings::TimeCells {
-                memory_noise: Some(tc.memory_noise),
-                clock_noise: Some(tc.cells.clock_noise),
-            },
-        };
-        let sarsa = &agent.learner.config;
-        TimingAgentSettings {
-            alpha: Some(sarsa.alpha),
-            gamma: Some(sarsa.gamma),
-            lambda: Some(sarsa.lambda),
-            q_init: Some(agent.learner.q_init),
-            response_cost: Some(agent.config.response_cost),
-            probe: Some(agent.config.probe),
-            opportunity_cost: Some(agent.config.opportunity_cost),
-            overdue_factor: Some(agent.config.overdue_factor),
-            wait_at_oven: Some(agent.config.wait_at_oven),
-            break_and_run: Some(agent.config.break_and_run),
-            response_delay: Some(agent.config.response_delay),
-            decision_rule: Some(agent.timer.decision().rule),
-            timer,
-        }
-    }
-
-    /// Writes the overrides into `agent`; an agent of another family is an error.
+    /// Writes the overrides into `agent`; an agent of another family is an error, and so is
+    /// the learned decision rule for a task with more than two categories.
     pub fn apply(&self, agent: &mut TimingAgent) -> Result<(), TrainError> {
-        let put = |slot: &mut f64, v: Option<f64>| {
-            if let Some(v) = v {
-                *slot = v;
-            }
-        };
-        put(&mut agent.learner.config.alpha, self.alpha);
-        put(&mut agent.learner.config.gamma, self.gamma);
-        put(&mut agent.learner.config.lambda, self.lambda);
-        put(&mut agent.learner.q_init, self.q_init);
-        put(&mut agent.config.response_cost, self.response_cost);
-        put(&mut agent.config.probe, self.probe);
-        put(&mut agent.config.opportunity_cost, self.opportunity_cost);
-        put(&mut agent.config.overdue_factor, self.overdue_factor);
-        put(&mut agent.config.response_delay, self.response_delay);
-        if let Some(w) = self.wait_at_oven {
-            agent.config.wait_at_oven = w;
-        }
-        if let Some(b) = self.break_and_run {
-            agent.config.break_and_run = b;
-        }
+        self.apply_shared(agent);
         if let Some(rule) = self.decision_rule {
             // The learned criterion moves after errors whose true category is known; with
             // more than two counters an unpaid choice says only "not this one"
@@ -212,46 +211,12 @@ impl TimingAgentSettings {
             }
             agent.timer.decision_mut().rule = rule;
         }
-        match (self.timer, &mut agent.timer) {
-            (
-                TimerSettings::Ddm {
-                    noise,
-                    memory_noise,
-                    reproduction_rate,
-                },
-                Timer::Ddm(d),
-            ) => {
-                put(&mut d.acc.noise, noise);
-                put(&mut d.memory_noise, memory_noise);
-                put(&mut d.reproduction_rate, reproduction_rate);
-            }
-            (
-                TimerSettings::Sbf {
-                    memory_noise,
-                    clock_noise,
-                },
-                Timer::Sbf(s),
-            ) => {
-                put(&mut s.model.memory_noise, memory_noise);
-                put(&mut s.clock_noise, clock_noise);
-            }
-            (
-                TimerSettings::TimeCells {
-                    memory_noise,
-                    clock_noise,
-                },
-                Timer::TimeCells(tc),
-            ) => {
-                put(&mut tc.memory_noise, memory_noise);
-                put(&mut tc.cells.clock_noise, clock_noise);
-            }
-            (settings, _) => {
-                return Err(TrainError::param(
-                    "agent.timer",
-                    format!("{settings:?}"),
-                    &format!("settings of the {} model's family", agent.name),
-                ));
-            }
+        if !self.timer.apply_to(&mut agent.timer) {
+            return Err(TrainError::param(
+                "agent.timer",
+                format!("{:?}", self.timer),
+                &format!("settings of the {} model's family", agent.name),
+            ));
         }
         Ok(())
     }

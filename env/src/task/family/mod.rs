@@ -138,7 +138,7 @@ impl RuleSet {
         let mut fixed = [0; 4];
         fixed[..anchors.len()].copy_from_slice(anchors);
         Ok(RuleSet::simple(
-            Rules::MultiAnchor {
+            Rules::Categories {
                 anchors: fixed,
                 k: anchors.len() as u8,
             },
@@ -242,6 +242,13 @@ pub trait Family: Sync + Send {
     /// Oracle: the counter a soup of an episode of duration `td` is delivered to.
     fn delivery_kind(&self, _params: &TaskParams, _td: u32) -> ObjectKind {
         ObjectKind::DeliveryCounter
+    }
+
+    /// The most categories a task of the family can ask an agent to tell apart, at the
+    /// largest size its parameters allow (a curriculum that adds counters keeps an agent's
+    /// size); 2 (short or long) by default, which agents of tasks without categories keep.
+    fn most_categories(&self) -> usize {
+        2
     }
 
     /// How the task grows during a curriculum; `None` for tasks that do not grow.
@@ -390,6 +397,12 @@ pub fn tasks_with_reset_option(option: ResetOption) -> Vec<&'static str> {
 /// The training presets the registered task `id` declares itself ([`Family::preset`]).
 pub fn declared_preset(id: &str) -> Option<&'static str> {
     by_id(id).preset()
+}
+
+/// The most categories a task with parameters `params` can ask for
+/// ([`Family::most_categories`]).
+pub fn most_categories(params: &TaskParams) -> usize {
+    of_params(params).most_categories()
 }
 
 /// The built-in implementation of `family` (`None` for [`TaskFamily::External`]).

@@ -168,7 +168,7 @@ the counter. Defaults: anchors=4,8,12 (the reference class; its scripts train 3,
         let mut anchors = [0; 4];
         anchors[..active.len()].copy_from_slice(active);
         Ok(RuleSet::simple(
-            Rules::MultiAnchor {
+            Rules::Categories {
                 anchors,
                 k: active.len() as u8,
             },
@@ -212,6 +212,10 @@ the counter. Defaults: anchors=4,8,12 (the reference class; its scripts train 3,
     }
 
     /// The reference's curriculum: 2, 3, … active anchors.
+    fn most_categories(&self) -> usize {
+        MAX_ANCHORS
+    }
+
     fn growth(&self, params: &TaskParams) -> Option<Growth> {
         let last = params.active_anchors()?.len();
         Some(Growth {
