@@ -69,7 +69,7 @@ use reproduction::LaterResponse;
 use crate::activity::{StepRecorder, oven_suffix};
 use crate::agent::{Agent, Percept, PerceptParser};
 use crate::timing::judgment::{LONG, SHORT};
-use crate::timing::sarsa::SarsaLambda;
+use crate::timing::sarsa::{Active, SarsaLambda};
 use crate::timing::timers::Timer;
 use chronocooked_env::TaskFamily;
 use chronocooked_env::{Action, ChronoEnv, ObjectKind};
@@ -125,7 +125,8 @@ struct EpisodeState {
     /// Reproduction, time cells, training: the production time at which a delayed
     /// (exploratory) response is made ([`TimingAgentConfig::response_delay`]).
     delayed_response: Option<u32>,
-    pending: Option<(u32, usize, Vec<f64>)>,
+    /// The last step's state, action and features, learned from at the next step.
+    pending: Option<(u32, usize, Active)>,
     reward: f64,
     value: f64,
     rpe: f64,
@@ -398,14 +399,14 @@ impl TimingAgent {
 
     fn learn(&mut self, next_q: Option<f64>) {
         if let Some((s, a, phi)) = self.ep.pending.take() {
-            let q_old = self.learner.q(s, a, &phi);
+            let q_old = self.learner.q_active(s, a, &phi);
             // `reward_rate` stays 0 unless the opportunity cost is on.
             let target = self.ep.reward - self.reward_rate
                 + next_q.map_or(0.0, |q| self.learner.config.gamma * q);
             let delta = target - q_old;
             self.ep.rpe = delta;
             if self.training {
-                let norm2: f64 = phi.iter().map(|v| v * v).sum();
+                let norm2 = phi.norm2();
                 self.learner.apply(delta, norm2);
                 let beta = self.config.opportunity_cost;
                 if beta > 0.0 {
@@ -477,8 +478,9 @@ impl Agent for TimingAgent {
         features.push(f64::from(overdue));
         features.insert(0, 1.0);
         let s = self.state_index(&p);
+        let active = Active::of(&features);
         let mut q = std::mem::take(&mut self.q);
-        self.learner.q_all(s, &features, &mut q);
+        self.learner.q_all_active(s, &active, &mut q);
         let gated = self.timer.has_gate()
             && self.ep.running
             && !self.ep.responding
@@ -536,7 +538,7 @@ impl Agent for TimingAgent {
         }
         self.ep.value = q[a];
         if self.training && delay.learns() {
-            self.learner.visit(s, a, &features);
+            self.learner.visit_active(s, a, &active);
         }
         let action = Action::ALL[a];
         self.ep.pressed_button |=
@@ -545,7 +547,7 @@ impl Agent for TimingAgent {
             && action == Action::Interact
             && p.carry == 0
             && self.parser.next_to_oven(p.cell);
-        self.ep.pending = delay.learns().then(|| (s, a, features.clone()));
+        self.ep.pending = delay.learns().then_some((s, a, active));
         self.ep.last = Some(p);
         self.phi = features;
         self.q = q;

@@ -9,11 +9,12 @@
 //! polynomial learning rate `1/n(s, a)^ω`, ω ∈ (1/2, 1), per feature
 //! ([`SarsaLambda::set_visit_power`]); for one-hot features it is their per-pair rate.
 //! Weights are stored sparsely (only visited pairs), in a `BTreeMap` so that saved
-//! agents are byte-identical across runs. Each trace keeps the indices of its nonzero
-//! features, and `Q` sums only the nonzero features of `φ`: the time cells' conjunctive code
-//! on the reproduction task (`[cells²]` features, one or two of them nonzero for the delay
-//! line) is otherwise read whole by every trace on every step. Skipping a zero feature adds
-//! nothing a dense sum would not (`w + 0·e = w`), so the values are the same bit for bit.
+//! agents are byte-identical across runs. Features travel as their nonzero entries
+//! ([`Active`]): traces store only those, and `Q`, the updates and the decay read only those.
+//! The time cells' conjunctive code on the reproduction task (`[cells²]` features, one or two
+//! of them nonzero for the delay line) is otherwise read whole by every trace on every step.
+//! Skipping a zero feature adds nothing a dense sum would not (`w + 0·e = w`, and the bias
+//! feature comes first), so the values are the same bit for bit.
 
 use rand::Rng;
 use serde::{Deserialize, Serialize};
@@ -68,33 +69,67 @@ pub struct SarsaLambda {
     visits: BTreeMap<u32, Visits>,
 }
 
-/// The eligibility trace of one state–action pair: `e` (`[features]`) and the indices of
-/// its nonzero entries (every other entry is exactly 0, and decaying keeps it so).
+/// The nonzero entries of a feature vector `φ` (`[features]`): their indices, increasing,
+/// and their values.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Active {
+    /// Indices `i` with `φᵢ ≠ 0`, increasing.
+    index: Vec<u32>,
+    /// `φᵢ` at those indices.
+    value: Vec<f64>,
+}
+
+impl Active {
+    /// The nonzero entries of `phi`.
+    pub fn of(phi: &[f64]) -> Self {
+        let mut active = Active::default();
+        active.fill(phi);
+        active
+    }
+
+    /// Replaces the entries with the nonzero entries of `phi` (keeping the allocations).
+    pub fn fill(&mut self, phi: &[f64]) {
+        self.index.clear();
+        self.value.clear();
+        for (i, &x) in phi.iter().enumerate() {
+            if x != 0.0 {
+                self.index.push(i as u32);
+                self.value.push(x);
+            }
+        }
+    }
+
+    /// `|φ|²`.
+    pub fn norm2(&self) -> f64 {
+        self.value.iter().map(|v| v * v).sum()
+    }
+
+    /// `w · φ` for weights `w` (`[features]`), summed in index order.
+    fn dot(&self, w: &[f64]) -> f64 {
+        self.index
+            .iter()
+            .zip(&self.value)
+            .map(|(&i, v)| w[i as usize] * v)
+            .sum()
+    }
+
+    /// The first feature's value (the bias), 0 when it is not active.
+    fn first(&self) -> f64 {
+        match self.index.first() {
+            Some(0) => self.value[0],
+            _ => 0.0,
+        }
+    }
+}
+
+/// The eligibility trace of one state–action pair: its nonzero entries (every other entry
+/// is exactly 0, and decaying keeps it so).
 #[derive(Debug, Clone, PartialEq)]
 struct Trace {
     /// The pair's key (`s · actions + a`).
     key: u32,
-    /// `e`, `[features]`.
-    e: Vec<f64>,
-    /// Indices `i` with `e[i] ≠ 0`, increasing.
-    nonzero: Vec<u32>,
-}
-
-/// The indices of the nonzero entries of `phi` into `out` (cleared first), increasing.
-fn nonzero_into(phi: &[f64], out: &mut Vec<u32>) {
-    out.clear();
-    out.extend(
-        phi.iter()
-            .enumerate()
-            .filter(|(_, x)| **x != 0.0)
-            .map(|(i, _)| i as u32),
-    );
-}
-
-/// Whether a vector with these nonzero entries is better read whole than by index (more
-/// nonzero entries than zeros).
-fn is_dense(nonzero: &[u32], v: &[f64]) -> bool {
-    nonzero.len() * 2 > v.len()
+    /// `e`'s nonzero entries.
+    e: Active,
 }
 
 /// How often each feature of one state–action pair was active ([`SarsaLambda::visit`]).
@@ -142,33 +177,26 @@ impl SarsaLambda {
 
     /// `Q(s, a)` for features `phi`.
     pub fn q(&self, state: u32, action: usize, phi: &[f64]) -> f64 {
-        self.weights
-            .get(&self.key(state, action))
-            .map(|w| w.iter().zip(phi).map(|(a, b)| a * b).sum())
-            .unwrap_or_else(|| self.q_init * phi.first().copied().unwrap_or(0.0))
+        self.q_active(state, action, &Active::of(phi))
     }
 
-    /// `Q(s, ·)` into `out`, summing only the nonzero features of `phi` (the same values
-    /// as [`Self::q`]'s dense sum: a zero feature adds nothing to it).
+    /// `Q(s, a)` for the features whose nonzero entries are `phi`.
+    pub fn q_active(&self, state: u32, action: usize, phi: &Active) -> f64 {
+        self.weights
+            .get(&self.key(state, action))
+            .map(|w| phi.dot(w))
+            .unwrap_or_else(|| self.q_init * phi.first())
+    }
+
+    /// `Q(s, ·)` into `out`.
     pub fn q_all(&self, state: u32, phi: &[f64], out: &mut Vec<f64>) {
-        let mut nonzero = Vec::new();
-        nonzero_into(phi, &mut nonzero);
-        if is_dense(&nonzero, phi) {
-            out.clear();
-            out.extend((0..self.actions).map(|a| self.q(state, a, phi)));
-            return;
-        }
+        self.q_all_active(state, &Active::of(phi), out);
+    }
+
+    /// `Q(s, ·)` into `out`, for the features whose nonzero entries are `phi`.
+    pub fn q_all_active(&self, state: u32, phi: &Active, out: &mut Vec<f64>) {
         out.clear();
-        for a in 0..self.actions {
-            let q = match self.weights.get(&self.key(state, a)) {
-                Some(w) => nonzero
-                    .iter()
-                    .map(|&i| w[i as usize] * phi[i as usize])
-                    .sum(),
-                None => self.q_init * phi.first().copied().unwrap_or(0.0),
-            };
-            out.push(q);
-        }
+        out.extend((0..self.actions).map(|a| self.q_active(state, a, phi)));
     }
 
     /// ε-greedy choice among `allowed` actions (ties broken at random); greedy with the
@@ -206,6 +234,12 @@ impl SarsaLambda {
 
     /// Marks `(s, a)` with features `phi` as just visited (replacing trace).
     pub fn visit(&mut self, state: u32, action: usize, phi: &[f64]) {
+        self.visit_active(state, action, &Active::of(phi));
+    }
+
+    /// Marks `(s, a)` with the features whose nonzero entries are `phi` as just visited
+    /// (replacing trace).
+    pub fn visit_active(&mut self, state: u32, action: usize, phi: &Active) {
         let key = self.key(state, action);
         let base = state * self.actions as u32;
         self.traces
@@ -216,27 +250,18 @@ impl SarsaLambda {
                 count: vec![0.0; n],
                 floor: vec![1.0; n],
             });
-            for ((c, f), x) in v.count.iter_mut().zip(&mut v.floor).zip(phi) {
-                if *x != 0.0 {
-                    *c += x * x;
-                    *f = c.max(1.0).powf(-power);
-                }
+            for (&i, x) in phi.index.iter().zip(&phi.value) {
+                let c = &mut v.count[i as usize];
+                *c += x * x;
+                v.floor[i as usize] = c.max(1.0).powf(-power);
             }
         }
         match self.traces.iter_mut().find(|t| t.key == key) {
-            Some(t) => {
-                t.e.copy_from_slice(phi);
-                nonzero_into(phi, &mut t.nonzero);
-            }
-            None => {
-                let mut nonzero = Vec::new();
-                nonzero_into(phi, &mut nonzero);
-                self.traces.push(Trace {
-                    key,
-                    e: phi.to_vec(),
-                    nonzero,
-                });
-            }
+            Some(t) => t.e.clone_from(phi),
+            None => self.traces.push(Trace {
+                key,
+                e: phi.clone(),
+            }),
         }
     }
 
@@ -248,7 +273,7 @@ impl SarsaLambda {
         let alpha = self.config.alpha;
         let step = alpha / norm * delta;
         let (n, q0) = (self.features, self.q_init);
-        for Trace { key, e, nonzero } in &self.traces {
+        for Trace { key, e } in &self.traces {
             let w = self.weights.entry(*key).or_insert_with(|| {
                 let mut w = vec![0.0; n];
                 w[0] = q0;
@@ -260,48 +285,33 @@ impl SarsaLambda {
             } else {
                 None
             };
-            // A trace with more nonzero entries than zeros is read whole (vectorised); the
-            // sum is the same either way.
-            let dense = is_dense(nonzero, e);
-            match (floor, dense) {
-                (Some(v), true) => {
-                    for ((wi, ei), f) in w.iter_mut().zip(e).zip(&v.floor) {
-                        if *ei != 0.0 {
-                            *wi += f.max(alpha) / norm * delta * ei;
-                        }
-                    }
-                }
-                (Some(v), false) => {
-                    for &i in nonzero {
+            let entries = e.index.iter().zip(&e.value);
+            match floor {
+                Some(v) => {
+                    for (&i, ei) in entries {
                         let i = i as usize;
-                        w[i] += v.floor[i].max(alpha) / norm * delta * e[i];
+                        w[i] += v.floor[i].max(alpha) / norm * delta * ei;
                     }
                 }
-                (None, true) => {
-                    for (wi, ei) in w.iter_mut().zip(e) {
+                // Every feature active: one pass over the block (vectorised).
+                None if e.index.len() == w.len() => {
+                    for (wi, ei) in w.iter_mut().zip(&e.value) {
                         *wi += step * ei;
                     }
                 }
-                (None, false) => {
-                    for &i in nonzero {
-                        let i = i as usize;
-                        w[i] += step * e[i];
+                None => {
+                    for (&i, ei) in entries {
+                        w[i as usize] += step * ei;
                     }
                 }
             }
         }
         let decay = self.config.gamma * self.config.lambda;
         for t in &mut self.traces {
-            if is_dense(&t.nonzero, &t.e) {
-                t.e.iter_mut().for_each(|v| *v *= decay);
-            } else {
-                for &i in &t.nonzero {
-                    t.e[i as usize] *= decay;
-                }
-            }
+            t.e.value.iter_mut().for_each(|v| *v *= decay);
         }
         self.traces
-            .retain(|t| t.nonzero.iter().any(|&i| t.e[i as usize].abs() > 1e-4));
+            .retain(|t| t.e.value.iter().any(|v| v.abs() > 1e-4));
     }
 }
 

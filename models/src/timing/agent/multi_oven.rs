@@ -5,6 +5,7 @@
 use super::TimingAgent;
 use crate::agent::Percept;
 use crate::timing::judgment::LONG;
+use crate::timing::sarsa::Active;
 use crate::timing::timers::Timer;
 use chronocooked_env::{Action, CODE_CHANNELS};
 
@@ -138,8 +139,9 @@ impl TimingAgent {
         }
         features.push(0.0);
         let s = self.multi_state_index(&p, &view);
+        let active = Active::of(&features);
         let mut q = std::mem::take(&mut self.q);
-        self.learner.q_all(s, &features, &mut q);
+        self.learner.q_all_active(s, &active, &mut q);
         let allowed: Vec<usize> = (0..Action::COUNT).collect();
         let eps = if self.training {
             self.config.epsilon
@@ -150,9 +152,9 @@ impl TimingAgent {
         self.learn(Some(q[a]));
         self.ep.value = q[a];
         if self.training {
-            self.learner.visit(s, a, &features);
+            self.learner.visit_active(s, a, &active);
         }
-        self.ep.pending = Some((s, a, features.clone()));
+        self.ep.pending = Some((s, a, active));
         self.ep.last = Some(p);
         self.phi = features;
         self.q = q;
