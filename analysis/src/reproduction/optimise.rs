@@ -1,6 +1,12 @@
 //! A bounded 2-D minimiser: a coarse grid, then Nelder–Mead from the best grid point,
 //! restarted once from its result. Candidate points outside the box are projected onto it
 //! (clamped coordinate-wise). Non-finite objective values count as `+∞`.
+//!
+//! Not `argmin`'s Nelder–Mead: measured 2026-12-03 (`benches/optimisers`, 240 observer fits
+//! to synthetic data with known parameters), the grid plus argmin reaches the same objective
+//! on all 240 (within 1e-6 log-units) with a similar number of evaluations (median 204 vs
+//! 211); argmin has no bounds or grid, so the box and the grid would stay here, and without
+//! the grid it ends higher on 3 of 80 maximum-likelihood fits.
 
 /// Grid points per axis of the coarse search.
 pub(crate) const GRID: usize = 9;
