@@ -5,6 +5,7 @@
 mod adaptation;
 mod faithful;
 mod native_engine;
+mod presets;
 mod reproduction_agents;
 mod run_folder;
 mod settings;
