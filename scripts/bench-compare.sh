@@ -12,6 +12,7 @@
 set -euo pipefail
 old=$1 new=$2 rounds=${3:-2}
 log=$(mktemp)
+trap 'rm -f "$log"' EXIT
 for ((r = 1; r <= rounds; r++)); do
     for side in old new; do
         bin=${!side}
@@ -33,10 +34,11 @@ v = collections.defaultdict(list)
 for line in open(sys.argv[1]):
     side, what, rate = line.split()
     v[(what, side)].append(float(rate))
-print(f"{'measurement':<14} {'old (mean)':>14} {'new (mean)':>14} {'new/old':>8}   runs")
+print(f"{'measurement':<14} {'old (mean)':>14} {'new (mean)':>14} {'new/old':>8}   runs   old min-max / new min-max")
 for what in dict.fromkeys(w for w, _ in v):
     o, n = v[(what, "old")], v[(what, "new")]
     mo, mn = sum(o) / len(o), sum(n) / len(n)
-    print(f"{what:<14} {mo:>14,.0f} {mn:>14,.0f} {mn / mo:>8.3f}   {len(o)}+{len(n)}")
+    print(f"{what:<14} {mo:>14,.0f} {mn:>14,.0f} {mn / mo:>8.3f}   {len(o)}+{len(n)}"
+          f"   {min(o):,.0f}-{max(o):,.0f} / {min(n):,.0f}-{max(n):,.0f}")
 PY
 rm -f "$log"

@@ -18,7 +18,7 @@
 //! * bad input gives typed errors naming the field.
 
 use chronocooked_analysis::reproduction::{
-    Observer, Prior, Record, ReproductionError, Rounding, TsMoments, W_MAX, W_MIN, fit_observers,
+    Observer, ObserverError, Prior, Record, Rounding, TsMoments, W_MAX, W_MIN, fit_observers,
     log_likelihood, ml_gain, predict, predict_at, predicted_summary, simulate, summarize,
     summary_from_moments,
 };
@@ -417,7 +417,7 @@ fn simulation_is_deterministic_given_the_seed() {
 
 #[test]
 fn bad_input_gives_typed_errors() {
-    use ReproductionError as E;
+    use ObserverError as E;
     let prior = Prior::new(&[10.0, 20.0]).unwrap();
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
     let ok = [Record { ts: 10.0, tp: 11.0 }, Record { ts: 20.0, tp: 19.0 }];

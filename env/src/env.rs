@@ -133,6 +133,12 @@ impl ChronoEnv {
         self.kitchen.spec.family
     }
 
+    /// The Ready-Set-Go mechanics of the task (priors, gains, reward window, cues), or
+    /// `None` for a task without them.
+    pub fn ready_set_go(&self) -> Option<&crate::rules::ReadySetGo> {
+        self.kitchen.spec.rsg.as_ref()
+    }
+
     /// Hidden state snapshot (oracles, tests; never given to agents as observation).
     pub fn state(&self) -> KitchenState {
         self.kitchen.state()

@@ -98,9 +98,9 @@ impl Events {
     pub const BUTTON: u16 = 1 << 7;
     /// An interact that changed nothing.
     pub const NO_EFFECT: u16 = 1 << 8;
-    /// Reproduction: the oven flashed a cue (Ready or Set) at the end of this step.
+    /// Ready-Set-Go: the oven flashed a cue (Ready or Set) at the end of this step.
     pub const CUE: u16 = 1 << 9;
-    /// Reproduction: the delivered soup was produced inside the reward window.
+    /// Ready-Set-Go: the delivered soup was produced inside the reward window.
     pub const IN_WINDOW: u16 = 1 << 10;
     /// Multi-oven: this delivery completed the episode with every oven's soup at the
     /// counter of its duration (each paid 1/n).

@@ -50,6 +50,8 @@ pub use layout::{Layout, ObjectKind};
 pub use obs::{BoxSpace, Discrete, OneHotEncoder};
 pub use oracle::{Oracle, optimal_return};
 pub use registry::{TaskSpec, all_tasks, find_task, tasks_with_tag};
+pub use rules::ReadySetGo;
+pub use task::family::ResponseKind;
 pub use task::reset_option::{BASIC_RESET_OPTIONS, ResetOption};
 pub use task::{
     CueMode, Growth, RewardMode, Task, TaskConfig, TaskFamily, TaskParams, make_config,

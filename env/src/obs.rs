@@ -123,7 +123,7 @@ pub struct OneHotEncoder {
     debug_channel: Option<usize>,
     /// Multi-anchor / multi-oven: the oven cells and each one's channel-0 code.
     extended: Option<Vec<(usize, u8)>>,
-    /// Reproduction: the counter cell and the number of cued contexts (one channel each,
+    /// Ready-Set-Go: the counter cell and the number of cued contexts (one channel each,
     /// after the base channels).
     context: Option<(usize, usize)>,
     /// Static object channels, `[C_onehot, R, C]`.

@@ -22,7 +22,7 @@
 //!   ready (the nearest ready oven first) and deliver it to the counter of its oven's
 //!   duration (geometric-mean boundary); while nothing is ready, wait next to the oven
 //!   that will be ready first.
-//! * Reproduction: wait next to the oven (its neighbour nearest the counter) and take the
+//! * Ready-Set-Go (reproduction): wait next to the oven (its neighbour nearest the counter) and take the
 //!   soup `round(g·ts)` steps after Set (the reward's peak; at least 1), then deliver.
 
 use crate::action::Action;
@@ -30,7 +30,7 @@ use crate::env::ChronoEnv;
 use crate::info::Carry;
 use crate::kitchen::{Kitchen, KitchenState, MultiOvenState, RsgState};
 use crate::layout::{Layout, ObjectKind};
-use crate::rules::{RsgSpec, Rules};
+use crate::rules::{ReadySetGo, Rules};
 use crate::task::TaskParams;
 use std::collections::HashMap;
 
@@ -41,8 +41,8 @@ pub struct Oracle {
     params: TaskParams,
     /// The kitchen's rules the task runs (the oracle's strategy follows their mechanics).
     rules: Rules,
-    /// Reproduction: the gains of the production.
-    rsg: Option<RsgSpec>,
+    /// Ready-Set-Go: the gains of the production.
+    rsg: Option<ReadySetGo>,
     /// All-pairs shortest path lengths between cells (moves).
     dist: Vec<Vec<u32>>,
     /// Free cells touching each object kind, indexed by [`ObjectKind::onehot_index`].
@@ -75,6 +75,16 @@ impl Oracle {
             dist,
             neighbours,
         }
+    }
+
+    /// Ready-Set-Go: this oracle producing `td` itself (gain 1 whatever the episode's
+    /// gain), for agents that decide a production's length and let the oracle walk and
+    /// take the soup. Other tasks: unchanged.
+    pub fn producing_td(mut self) -> Self {
+        if let Some(rsg) = self.rsg.as_mut() {
+            rsg.gains = vec![1.0];
+        }
+        self
     }
 
     /// Free cells from which `kind` can be used.

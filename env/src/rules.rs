@@ -62,8 +62,9 @@ pub(crate) enum Rules {
         anchors: [u32; 4],
         k: u8,
     },
-    /// Temporal reproduction (details in [`Spec::rsg`]).
-    Reproduction,
+    /// Ready-Set-Go (temporal reproduction): the oven flashes Ready and Set `ts` apart and a
+    /// production `g · ts` after Set is paid inside a window ([`ReadySetGo`]).
+    ReadySetGo,
     /// Multi-oven: `n` ovens, each soup short or long.
     MultiOven {
         short: u32,
@@ -85,37 +86,42 @@ impl Rules {
     }
 }
 
-/// The reproduction task's draws and reward window.
+/// The Ready-Set-Go mechanics of a task (temporal reproduction; Jazayeri & Shadlen 2010):
+/// what an episode draws, what the counter cues and which production is paid. A family
+/// declares them with [`crate::task::family::RuleSet::ready_set_go`]; the kitchen, the
+/// oracle, the Bayesian observers and the timing agents read them from the environment
+/// ([`crate::ChronoEnv::ready_set_go`]), never from a family's parameters.
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct RsgSpec {
-    /// Each prior's inclusive range of ts (steps).
-    pub(crate) priors: Vec<(u32, u32)>,
-    /// Gains of the production.
-    pub(crate) gains: Vec<f32>,
-    /// Window half-width: `tolerance · target + tolerance_steps` (the decimal values as
-    /// given, to 1e-6: an `f32` 0.2 would widen the window by 3e-9 and pay an edge response).
-    pub(crate) tolerance: f64,
-    /// Constant part of the window (steps).
-    pub(crate) tolerance_steps: f64,
-    /// Foreperiod range (steps).
-    pub(crate) foreperiod: (u32, u32),
-    /// Whether the counter shows the prior.
-    pub(crate) prior_cue: bool,
-    /// Counter cell (where the context cue is shown).
-    pub(crate) counter: usize,
+pub struct ReadySetGo {
+    /// Each prior's inclusive range of sample intervals `ts` (steps; `1 <= lo < hi`).
+    pub priors: Vec<(u32, u32)>,
+    /// Gains `g` of the production `tp = g · ts` (as the task stores them).
+    pub gains: Vec<f32>,
+    /// Relative half-width of the reward window: `tolerance · target + tolerance_steps`
+    /// (the decimal as given, to 1e-6: an `f32` 0.2 would widen the window by 3e-9 and pay
+    /// an edge response).
+    pub tolerance: f64,
+    /// Constant part of the window's half-width (steps).
+    pub tolerance_steps: f64,
+    /// Foreperiod range, Ready's delay after the episode starts (steps, inclusive).
+    pub foreperiod: (u32, u32),
+    /// Whether the counter cues the prior (as well as the gain).
+    pub prior_cue: bool,
+    /// Cell whose channel 4 shows the context cue (the delivery counter).
+    pub counter: usize,
 }
 
-impl RsgSpec {
+impl ReadySetGo {
     /// Contexts shown on the counter: `prior · gains + gain` (+1 in the observation), or
     /// none when there is nothing to cue.
-    pub(crate) fn cued_contexts(&self) -> usize {
+    pub fn cued_contexts(&self) -> usize {
         let priors = if self.prior_cue { self.priors.len() } else { 1 };
         let n = priors * self.gains.len();
         if n > 1 { n } else { 0 }
     }
 
     /// The cue value of `(prior, gain)` (0: no cue).
-    pub(crate) fn cue(&self, prior: u8, gain: u8) -> u8 {
+    pub fn cue(&self, prior: u8, gain: u8) -> u8 {
         if self.cued_contexts() == 0 {
             return 0;
         }
@@ -124,7 +130,7 @@ impl RsgSpec {
     }
 
     /// The target production `g · ts` and the window half-width (steps).
-    pub(crate) fn target(&self, ts: u32, gain: u8) -> (f64, f64) {
+    pub fn target(&self, ts: u32, gain: u8) -> (f64, f64) {
         let target = decimal(f64::from(self.gains[gain as usize])) * f64::from(ts);
         (target, self.tolerance * target + self.tolerance_steps)
     }

@@ -3,7 +3,7 @@
 
 use crate::error::EnvError;
 use crate::layout::{Layout, ObjectKind};
-use crate::rules::{CueMode, RsgSpec, Rules};
+use crate::rules::{CueMode, ReadySetGo, Rules};
 use crate::task::family::RuleSet;
 use crate::task::{TaskConfig, TaskFamily};
 use std::sync::Arc;
@@ -31,8 +31,8 @@ pub(crate) struct Spec {
     pub(crate) ovens: [usize; 3],
     /// Channel-0 codes of the empty grid (`[R, C, 6]`, other channels 0).
     pub(crate) background: Vec<u8>,
-    /// Reproduction: priors, gains, window and foreperiods.
-    pub(crate) rsg: Option<RsgSpec>,
+    /// Ready-Set-Go: priors, gains, window and foreperiods.
+    pub(crate) rsg: Option<ReadySetGo>,
 }
 
 impl Spec {

@@ -273,13 +273,37 @@ impl VecEnv {
         let mut config = self.config().clone();
         config.set(key, value)?;
         let spec = Spec::new(&config)?;
-        if spec.layout.to_text() != self.kitchens[0].spec.layout.to_text() {
+        if !self.keeps_layout(&spec) {
             return Err(EnvError::param(key, value, "a value that keeps the layout"));
         }
+        self.install(spec);
+        Ok(())
+    }
+
+    /// Runs every env on `config` from the next step on, keeping episodes in flight
+    /// (curricula that edit the task, e.g. a reward window). Its layout must be the envs'
+    /// own; an error names `layout` otherwise.
+    pub fn set_config(&mut self, config: &TaskConfig) -> Result<(), EnvError> {
+        let spec = Spec::new(config)?;
+        if !self.keeps_layout(&spec) {
+            return Err(EnvError::param(
+                "layout",
+                spec.layout.to_text(),
+                format!("the envs' own ({})", self.kitchens[0].spec.layout.to_text()),
+            ));
+        }
+        self.install(spec);
+        Ok(())
+    }
+
+    fn keeps_layout(&self, spec: &Spec) -> bool {
+        spec.layout.to_text() == self.kitchens[0].spec.layout.to_text()
+    }
+
+    fn install(&mut self, spec: Arc<Spec>) {
         for k in &mut self.kitchens {
             k.spec = spec.clone();
         }
-        Ok(())
     }
 
     /// Captures every env's dynamic state, observations and pending resets (checkpoints).

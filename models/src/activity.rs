@@ -45,9 +45,9 @@ pub enum Marker {
     OvenOn2,
     /// Oven 3 of a multi-oven task turned on.
     OvenOn3,
-    /// Reproduction: the oven flashed Ready (the measurement epoch begins).
+    /// Ready-Set-Go: the oven flashed Ready (the measurement epoch begins).
     Ready,
-    /// Reproduction: the oven flashed Set, `ts` steps after Ready (the production epoch
+    /// Ready-Set-Go: the oven flashed Set, `ts` steps after Ready (the production epoch
     /// begins; production time 0 is the step after).
     Set,
 }
@@ -76,7 +76,7 @@ impl Marker {
                 out.push(m);
             }
         }
-        // Reproduction: the Set flash starts the production timer (0 at the end of its
+        // Ready-Set-Go: the Set flash starts the production timer (0 at the end of its
         // step); Ready leaves it off.
         if info.events.has(E::CUE) {
             out.push(if info.oven_timer == 0 {
@@ -211,7 +211,7 @@ pub struct Trial {
     /// Multi-oven tasks: every oven's duration (steps; oven 1's is `td`); empty otherwise.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub oven_tds: Vec<u32>,
-    /// Reproduction: the episode's prior and gain (indices into the task's lists) and
+    /// Ready-Set-Go: the episode's prior and gain (indices into the task's lists) and
     /// foreperiod (`td` is its sample interval `ts`); absent for the other tasks.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reproduction: Option<chronocooked_env::RsgState>,

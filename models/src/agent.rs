@@ -405,25 +405,22 @@ pub fn record_dataset(
 }
 
 /// The reset options (without a start cell) a recording plays for `tds`: one per TD, and
-/// on the reproduction task one per (prior containing the `ts`, gain).
+/// on a Ready-Set-Go task one per (prior containing the `ts`, gain).
 fn recording_conditions(config: &TaskConfig, tds: &[u32]) -> Vec<ResetOptions> {
     let plain = |td: u32| ResetOptions {
         td: Some(td),
         ..ResetOptions::default()
     };
-    let chronocooked_env::TaskParams::Reproduction { priors, gains, .. } = &config.params else {
+    let Ok(Some(rsg)) = config.ready_set_go() else {
         return tds.iter().map(|&td| plain(td)).collect();
     };
-    let ranges: Vec<Option<(u32, u32)>> = priors
-        .iter()
-        .map(|p| chronocooked_env::task::parse_prior(p).ok())
-        .collect();
+    let (ranges, gains) = (&rsg.priors, &rsg.gains);
     let mut out = Vec::new();
     for &ts in tds {
         let holding: Vec<Option<u8>> = ranges
             .iter()
             .enumerate()
-            .filter(|(_, r)| r.is_some_and(|(lo, hi)| (lo..=hi).contains(&ts)))
+            .filter(|&(_, &(lo, hi))| (lo..=hi).contains(&ts))
             .map(|(i, _)| Some(i as u8))
             .collect();
         let prior_choices = if holding.is_empty() {

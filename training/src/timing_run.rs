@@ -14,7 +14,7 @@ use crate::settings::{
     self, timing::TIMING_SETTINGS, timing::TimerSettings, timing::TimingAgentSettings,
 };
 use chronocooked_env::fs::write_atomic;
-use chronocooked_env::{ChronoEnv, Task, TaskFamily, integrity, make_config};
+use chronocooked_env::{ChronoEnv, ResponseKind, Task, TaskFamily, integrity, make_config};
 use chronocooked_models::run_folder;
 use chronocooked_models::timing::agent::TimingAgent;
 use chronocooked_models::timing::zoo::{has_native_gate, make_timing_agent};
@@ -159,7 +159,7 @@ impl TimingRunConfig {
         if family == TaskFamily::Uncertainty {
             train.episodes = UNCERTAINTY_EPISODES;
         }
-        if family == TaskFamily::Reproduction {
+        if task.unchecked_config().response_kind() == Some(ResponseKind::Reproduce) {
             train.episodes = REPRODUCTION_EPISODES;
             train.alpha_end = Some(REPRODUCTION_ALPHA_END);
             if has_native_gate(model) == Some(false) {

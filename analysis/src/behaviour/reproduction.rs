@@ -160,12 +160,8 @@ fn context_summary(prior: u8, recs: &[&EvalRecord]) -> ContextSummary {
 /// The prior the observers assume: the task's prior of this context (every whole step).
 fn observer_choice(recs: &[&EvalRecord], points: &[Record]) -> Option<ObserverChoice> {
     let c = &recs.first()?.condition;
-    let config = c.task.config().ok()?;
-    let chronocooked_env::TaskParams::Reproduction { priors, .. } = &config.params else {
-        return None;
-    };
-    let name = priors.get(c.context.map_or(0, |x| x[0]) as usize)?;
-    let (lo, hi) = chronocooked_env::task::parse_prior(name).ok()?;
+    let rsg = c.task.config().ok()?.ready_set_go().ok()??;
+    let &(lo, hi) = rsg.priors.get(c.context.map_or(0, |x| x[0]) as usize)?;
     let values: Vec<f64> = (lo..=hi).map(f64::from).collect();
     let prior = Prior::new(&values).ok()?;
     let report = fit_observers(points, &prior, Rounding::WholeSteps).ok()?;

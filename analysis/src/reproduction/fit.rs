@@ -11,7 +11,7 @@
 use super::likelihood::Prepared;
 use super::observer::Observer;
 use super::optimise::minimise_box;
-use super::{Prior, Record, ReproductionError, Rounding, W_MAX, W_MIN};
+use super::{ObserverError, Prior, Record, Rounding, W_MAX, W_MIN};
 
 /// Free parameters of every observer model (`wm`, `wp`).
 pub const N_PARAMS: usize = 2;
@@ -70,7 +70,7 @@ pub fn fit_observer(
     records: &[Record],
     prior: &Prior,
     rounding: Rounding,
-) -> Result<ObserverFit, ReproductionError> {
+) -> Result<ObserverFit, ObserverError> {
     let data = Prepared::new(records, rounding)?;
     Ok(fit_prepared(observer, &data, prior))
 }
@@ -80,7 +80,7 @@ pub fn fit_observers(
     records: &[Record],
     prior: &Prior,
     rounding: Rounding,
-) -> Result<FitReport, ReproductionError> {
+) -> Result<FitReport, ObserverError> {
     let data = Prepared::new(records, rounding)?;
     let fits: Vec<ObserverFit> = Observer::ALL
         .iter()

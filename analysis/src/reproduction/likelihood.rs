@@ -11,8 +11,7 @@ use super::grid::te_distribution;
 use super::normal::{interval_mass, pdf};
 use super::observer::Observer;
 use super::{
-    Prior, Record, ReproductionError, Rounding, check_finite, check_interval, check_weber,
-    round_step,
+    ObserverError, Prior, Record, Rounding, check_finite, check_interval, check_weber, round_step,
 };
 
 /// Floor on one record's likelihood.
@@ -29,7 +28,7 @@ pub fn log_likelihood(
     records: &[Record],
     prior: &Prior,
     rounding: Rounding,
-) -> Result<f64, ReproductionError> {
+) -> Result<f64, ObserverError> {
     check_weber("wm", wm)?;
     check_weber("wp", wp)?;
     let data = Prepared::new(records, rounding)?;
@@ -45,9 +44,9 @@ pub(crate) struct Prepared {
 
 impl Prepared {
     /// Validates and groups the records.
-    pub(crate) fn new(records: &[Record], rounding: Rounding) -> Result<Self, ReproductionError> {
+    pub(crate) fn new(records: &[Record], rounding: Rounding) -> Result<Self, ObserverError> {
         if records.is_empty() {
-            return Err(ReproductionError::TooFew {
+            return Err(ObserverError::TooFew {
                 field: "records",
                 got: 0,
                 min: 1,
@@ -58,7 +57,7 @@ impl Prepared {
             check_interval("ts", r.ts)?;
             check_finite("tp", r.tp)?;
             if rounding == Rounding::WholeSteps && round_step(r.tp) != r.tp {
-                return Err(ReproductionError::NotWholeSteps { value: r.tp });
+                return Err(ObserverError::NotWholeSteps { value: r.tp });
             }
             sorted.push(*r);
         }

@@ -38,7 +38,7 @@ pub mod predict;
 pub mod summary;
 
 pub use chronocooked_models::bayes::{
-    Observer, ObserverAgent, Prior, Record, ReproductionError, Rounding, W_MAX, W_MIN, agent,
+    Observer, ObserverAgent, ObserverError, Prior, Record, Rounding, W_MAX, W_MIN, agent,
     check_finite, check_interval, check_weber, error, ml_gain, normal, observer, prior, round_step,
     simulate,
 };

@@ -13,7 +13,7 @@ use super::grid::te_distribution;
 use super::normal::interval_mass;
 use super::observer::Observer;
 use super::summary::{Summary, TsMoments, summary_from_moments};
-use super::{Prior, ReproductionError, Rounding, check_interval, check_weber, round_step};
+use super::{ObserverError, Prior, Rounding, check_interval, check_weber, round_step};
 
 /// An observer's predicted moments at one sample interval (steps, steps²).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -38,7 +38,7 @@ pub fn predict(
     wp: f64,
     prior: &Prior,
     rounding: Rounding,
-) -> Result<Vec<Prediction>, ReproductionError> {
+) -> Result<Vec<Prediction>, ObserverError> {
     prior
         .values()
         .iter()
@@ -55,7 +55,7 @@ pub fn predict_at(
     prior: &Prior,
     ts: f64,
     rounding: Rounding,
-) -> Result<Prediction, ReproductionError> {
+) -> Result<Prediction, ObserverError> {
     check_weber("wm", wm)?;
     check_weber("wp", wp)?;
     check_interval("ts", ts)?;
@@ -101,7 +101,7 @@ pub fn predicted_summary(
     wp: f64,
     prior: &Prior,
     rounding: Rounding,
-) -> Result<Summary, ReproductionError> {
+) -> Result<Summary, ObserverError> {
     let moments: Vec<TsMoments> = predict(observer, wm, wp, prior, rounding)?
         .into_iter()
         .map(|p| TsMoments {

@@ -15,7 +15,7 @@
 //!
 //! Per-interval variances from records are unbiased sample variances (divisor `n − 1`).
 
-use super::{Record, ReproductionError, check_finite, check_interval};
+use super::{ObserverError, Record, check_finite, check_interval};
 
 /// The moments of the productions at one sample interval.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -66,9 +66,9 @@ impl Summary {
 
 /// The summary of `records` from one prior condition: needs ≥ 2 distinct `ts` values and
 /// ≥ 2 trials at each; every `ts` finite and > 0, every `tp` finite (steps).
-pub fn summarize(records: &[Record]) -> Result<Summary, ReproductionError> {
+pub fn summarize(records: &[Record]) -> Result<Summary, ObserverError> {
     if records.is_empty() {
-        return Err(ReproductionError::TooFew {
+        return Err(ObserverError::TooFew {
             field: "records",
             got: 0,
             min: 2,
@@ -85,7 +85,7 @@ pub fn summarize(records: &[Record]) -> Result<Summary, ReproductionError> {
     for group in sorted.chunk_by(|a, b| a.ts == b.ts) {
         let n = group.len();
         if n < 2 {
-            return Err(ReproductionError::TooFewTrials {
+            return Err(ObserverError::TooFewTrials {
                 ts: group[0].ts,
                 got: n,
                 min: 2,
@@ -107,20 +107,20 @@ pub fn summarize(records: &[Record]) -> Result<Summary, ReproductionError> {
 /// `ts > 0`, `weight > 0`, `var ≥ 0`, all finite). The slope is the weighted least-squares
 /// slope of the means on `ts` with the weights (= the OLS slope over trials when the weights
 /// are trial counts).
-pub fn summary_from_moments(moments: &[TsMoments]) -> Result<Summary, ReproductionError> {
+pub fn summary_from_moments(moments: &[TsMoments]) -> Result<Summary, ObserverError> {
     for m in moments {
         check_interval("ts", m.ts)?;
         check_finite("weight", m.weight)?;
         check_finite("mean", m.mean)?;
         check_finite("var", m.var)?;
         if m.weight <= 0.0 {
-            return Err(ReproductionError::Negative {
+            return Err(ObserverError::Negative {
                 field: "weight",
                 value: m.weight,
             });
         }
         if m.var < 0.0 {
-            return Err(ReproductionError::Negative {
+            return Err(ObserverError::Negative {
                 field: "var",
                 value: m.var,
             });
@@ -129,10 +129,10 @@ pub fn summary_from_moments(moments: &[TsMoments]) -> Result<Summary, Reproducti
     let mut per_ts = moments.to_vec();
     per_ts.sort_by(|a, b| a.ts.total_cmp(&b.ts));
     if let Some(w) = per_ts.windows(2).find(|w| w[0].ts == w[1].ts) {
-        return Err(ReproductionError::DuplicateValue { value: w[0].ts });
+        return Err(ObserverError::DuplicateValue { value: w[0].ts });
     }
     if per_ts.len() < 2 {
-        return Err(ReproductionError::TooFew {
+        return Err(ObserverError::TooFew {
             field: "distinct ts values",
             got: per_ts.len(),
             min: 2,

@@ -237,7 +237,7 @@ pub fn run() {
         }
     }
     println!(
-        "## 3. Reproduction observer fit (`analysis/src/reproduction/optimise.rs` via `fit_observer`) vs `argmin` 0.11.0 Nelder–Mead\n"
+        "## 3. Bayesian observer fit (temporal reproduction; `analysis/src/reproduction/optimise.rs` via `fit_observer`) vs `argmin` 0.11.0 Nelder–Mead\n"
     );
     println!(
         "{} data sets (seed {SEED}), {PER_OBSERVER} per generating observer, fitted with \

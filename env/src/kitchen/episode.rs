@@ -23,9 +23,9 @@ pub struct ResetOptions {
     /// Asynchronous multi-oven task: the on-times of ovens 2…n (the step at whose end each
     /// starts by itself), one per oven after the first.
     pub on_times: Option<PerOven>,
-    /// Reproduction task: the index of the episode's prior (drawn when `None`).
+    /// Ready-Set-Go tasks: the index of the episode's prior (drawn when `None`).
     pub prior: Option<u8>,
-    /// Reproduction task: the index of the episode's gain (drawn when `None`).
+    /// Ready-Set-Go tasks: the index of the episode's gain (drawn when `None`).
     pub gain: Option<u8>,
 }
 

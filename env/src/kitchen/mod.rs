@@ -359,7 +359,7 @@ impl Kitchen {
             | Rules::Uncertainty { .. }
             | Rules::Categories { .. }
             | Rules::MultiOven { .. } => self.ready,
-            Rules::Reproduction => self.timer >= 0,
+            Rules::ReadySetGo => self.timer >= 0,
             Rules::Window { mode, .. } => match mode {
                 RewardMode::Exact => true,
                 RewardMode::LowerBounded => t >= self.td as i64,
@@ -392,7 +392,7 @@ impl Kitchen {
                 _ => 0.0,
             },
             // Paid per oven in `multi_oven`, by the production in `reproduction`.
-            Rules::MultiOven { .. } | Rules::Reproduction => 0.0,
+            Rules::MultiOven { .. } | Rules::ReadySetGo => 0.0,
             Rules::Window {
                 mode,
                 under,
@@ -701,6 +701,6 @@ pub struct KitchenState {
     pub done: bool,
     /// Multi-oven task: every oven's state (`None` elsewhere).
     pub multi_oven: Option<MultiOvenState>,
-    /// Reproduction task: the episode's prior, gain and foreperiod (`None` elsewhere).
+    /// Ready-Set-Go tasks: the episode's prior, gain and foreperiod (`None` elsewhere).
     pub reproduction: Option<RsgState>,
 }

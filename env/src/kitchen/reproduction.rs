@@ -46,7 +46,7 @@ impl Kitchen {
                     return Err(EnvError::reset_option(
                         field,
                         "given",
-                        "only the reproduction task has priors and gains",
+                        "only Ready-Set-Go (reproduction) tasks have priors and gains",
                     ));
                 }
             }

@@ -392,6 +392,38 @@ impl TaskConfig {
         family::of_params(&self.params).response_kind()
     }
 
+    /// The Ready-Set-Go mechanics this configuration runs (temporal reproduction: priors,
+    /// gains, reward window, cues), `None` for a task without them; an error when the
+    /// configuration is invalid.
+    pub fn ready_set_go(&self) -> Result<Option<crate::rules::ReadySetGo>, EnvError> {
+        let layout = self.validate()?;
+        Ok(family::of_params(&self.params).rules(self, &layout)?.rsg)
+    }
+
+    /// The reward window of a production, `(tolerance, tolerance_steps)` as the parameters
+    /// hold them (relative, steps); `None` for a task without one a curriculum may widen.
+    pub fn reward_window(&self) -> Option<(f32, f32)> {
+        family::of_params(&self.params).reward_window(&self.params)
+    }
+
+    /// This configuration with the reward window `(tolerance, steps)` (a typed edit of the
+    /// parameters [`TaskConfig::reward_window`] reads), checked; an error naming `tolerance`
+    /// for a task without one.
+    pub fn with_reward_window(&self, tolerance: f32, steps: f32) -> Result<TaskConfig, EnvError> {
+        let family = family::of_params(&self.params);
+        if family.reward_window(&self.params).is_none() {
+            return Err(EnvError::param(
+                "tolerance",
+                tolerance,
+                format!("a task with a reward window to set ({} has none)", self.id),
+            ));
+        }
+        let mut edited = self.clone();
+        family.set_reward_window(&mut edited.params, tolerance, steps);
+        edited.validate()?;
+        Ok(edited)
+    }
+
     /// The TDs a deterministic evaluation covers (steps): bisection and multi-oven → both
     /// anchors; multi-timer → the active TDs; multi-anchor → the active anchors;
     /// reproduction → every sample interval of its priors; other tasks → their TD.

@@ -13,9 +13,9 @@
 //! Jazayeri & Shadlen 2010's subjects: `wm` about 0.1, `wp` about 0.06 (their Fig. 4 range);
 //! those are the defaults.
 
-use super::{Observer, Prior, ReproductionError};
+use super::{Observer, ObserverError, Prior};
 use crate::Agent;
-use chronocooked_env::{Action, ChronoEnv, KitchenState, Oracle, TaskParams};
+use chronocooked_env::{Action, ChronoEnv, KitchenState, Oracle};
 use rand::SeedableRng;
 use rand_distr::{Distribution, StandardNormal};
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -56,10 +56,10 @@ impl ObserverAgent {
         observer: Observer,
         wm: f64,
         wp: f64,
-    ) -> Result<Self, ReproductionError> {
+    ) -> Result<Self, ObserverError> {
         for (field, w) in [("wm", wm), ("wp", wp)] {
             if !(super::W_MIN..=super::W_MAX).contains(&w) {
-                return Err(ReproductionError::OutOfRange {
+                return Err(ObserverError::OutOfRange {
                     field,
                     value: w,
                     min: super::W_MIN,
@@ -67,24 +67,15 @@ impl ObserverAgent {
                 });
             }
         }
-        let mut config = env.config().clone();
-        let TaskParams::Reproduction {
-            priors,
-            gains,
-            prior_cue,
-            ..
-        } = &mut config.params
-        else {
-            return Err(ReproductionError::Task(format!(
-                "task {} is not a reproduction task",
-                config.id
+        let Some(rsg) = env.ready_set_go() else {
+            return Err(ObserverError::Task(format!(
+                "task {} has no Ready-Set-Go mechanics (no prior of sample intervals to reproduce)",
+                env.config().id
             )));
         };
         let mut all = Vec::new();
         let mut out = Vec::new();
-        for p in priors.iter() {
-            let (lo, hi) = chronocooked_env::task::parse_prior(p)
-                .map_err(|e| ReproductionError::Task(e.to_string()))?;
+        for &(lo, hi) in &rsg.priors {
             let values: Vec<f64> = (lo..=hi).map(f64::from).collect();
             all.extend(values.iter().copied());
             out.push(Prior::new(&values)?);
@@ -92,11 +83,8 @@ impl ObserverAgent {
         all.sort_by(f64::total_cmp);
         all.dedup();
         out.push(Prior::new(&all)?);
-        let gain_values: Vec<f64> = gains.iter().map(|&g| f64::from(g)).collect();
-        let cue = *prior_cue;
-        *gains = vec![1.0];
-        let nav_env =
-            ChronoEnv::new(&config).map_err(|e| ReproductionError::Task(e.to_string()))?;
+        let gain_values: Vec<f64> = rsg.gains.iter().map(|&g| f64::from(g)).collect();
+        let cue = rsg.prior_cue;
         let layout = env.layout();
         let cell = |kind| layout.cells_of(kind)[0];
         Ok(ObserverAgent {
@@ -108,7 +96,7 @@ impl ObserverAgent {
             prior_cue: cue,
             oven: cell(chronocooked_env::ObjectKind::Oven),
             counter: cell(chronocooked_env::ObjectKind::DeliveryCounter),
-            nav: Oracle::new(&nav_env),
+            nav: Oracle::new(env).producing_td(),
             rng: Xoshiro256PlusPlus::seed_from_u64(0),
             steps: 0,
             ready: None,

@@ -1,12 +1,12 @@
-//! The typed errors of the reproduction analyses: every bad input names its field and the
-//! allowed values; nothing panics on bad input.
+//! The typed errors of the Bayesian observers and their fits (temporal reproduction): every
+//! bad input names its field and the allowed values; nothing panics on bad input.
 
-/// A rejected input to a reproduction analysis.
+/// A rejected input to an observer, its fit or its agent.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum ReproductionError {
-    /// The task is not one an observer agent can play (it needs `Reproduction-v0`'s
-    /// parameters), or its configuration does not build.
-    #[error("an observer agent plays the reproduction task: {0}")]
+pub enum ObserverError {
+    /// The task is not one an observer agent can play (it needs Ready-Set-Go mechanics:
+    /// a prior of sample intervals and the gains of the production).
+    #[error("an observer agent plays a Ready-Set-Go (reproduction) task: {0}")]
     Task(String),
     /// A value is NaN or infinite.
     #[error("{field} must be finite, got {value}")]

@@ -19,7 +19,7 @@
 //!   produces.
 //!
 //! `wm` and `wp` are restricted to `[W_MIN, W_MAX] = [0.01, 1]` everywhere (simulation,
-//! predictions and fits); values outside give [`ReproductionError::OutOfRange`].
+//! predictions and fits); values outside give [`ObserverError::OutOfRange`].
 //!
 //! # The observers (J&S Methods, Fig. 4)
 //!
@@ -68,7 +68,7 @@ pub mod prior;
 pub mod simulate;
 
 pub use agent::ObserverAgent;
-pub use error::ReproductionError;
+pub use error::ObserverError;
 pub use observer::{Observer, ml_gain};
 pub use prior::Prior;
 pub use simulate::simulate;
@@ -104,31 +104,31 @@ pub fn round_step(x: f64) -> f64 {
 }
 
 /// `value` must be finite.
-pub fn check_finite(field: &'static str, value: f64) -> Result<f64, ReproductionError> {
+pub fn check_finite(field: &'static str, value: f64) -> Result<f64, ObserverError> {
     if value.is_finite() {
         Ok(value)
     } else {
-        Err(ReproductionError::NotFinite { field, value })
+        Err(ObserverError::NotFinite { field, value })
     }
 }
 
 /// `value` must be a finite interval > 0 steps.
-pub fn check_interval(field: &'static str, value: f64) -> Result<f64, ReproductionError> {
+pub fn check_interval(field: &'static str, value: f64) -> Result<f64, ObserverError> {
     check_finite(field, value)?;
     if value > 0.0 {
         Ok(value)
     } else {
-        Err(ReproductionError::NotPositive { field, value })
+        Err(ObserverError::NotPositive { field, value })
     }
 }
 
 /// `value` must be a Weber fraction in `[W_MIN, W_MAX]`.
-pub fn check_weber(field: &'static str, value: f64) -> Result<f64, ReproductionError> {
+pub fn check_weber(field: &'static str, value: f64) -> Result<f64, ObserverError> {
     check_finite(field, value)?;
     if (W_MIN..=W_MAX).contains(&value) {
         Ok(value)
     } else {
-        Err(ReproductionError::OutOfRange {
+        Err(ObserverError::OutOfRange {
             field,
             value,
             min: W_MIN,

@@ -6,7 +6,7 @@
 //! argmax). See the module [`super`] for the definitions and their sources.
 
 use super::normal::interval_mass;
-use super::{Prior, ReproductionError, check_finite, check_weber};
+use super::{ObserverError, Prior, check_finite, check_weber};
 
 /// An observer model: how a measurement `tm` (steps) becomes an estimate `te` (steps).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -35,7 +35,7 @@ impl Observer {
 
     /// The estimate `te = f(tm)` (steps) of a measurement `tm` (steps, any finite value)
     /// by an observer with measurement Weber fraction `wm ∈ [0.01, 1]` and the given prior.
-    pub fn estimate(self, tm: f64, wm: f64, prior: &Prior) -> Result<f64, ReproductionError> {
+    pub fn estimate(self, tm: f64, wm: f64, prior: &Prior) -> Result<f64, ObserverError> {
         check_finite("tm", tm)?;
         check_weber("wm", wm)?;
         Ok(Estimator::new(self, wm, prior.values()).estimate(tm))
@@ -45,7 +45,7 @@ impl Observer {
 /// The ML gain `c = (−1 + √(1 + 4wm²)) / (2wm²)`: the unconstrained maximiser of the
 /// scalar likelihood is `te = c·tm` (dimensionless, `c < 1`; `c ≈ 1 − wm²` for small
 /// `wm`). Computed in the cancellation-free form `2 / (1 + √(1 + 4wm²))`.
-pub fn ml_gain(wm: f64) -> Result<f64, ReproductionError> {
+pub fn ml_gain(wm: f64) -> Result<f64, ObserverError> {
     check_weber("wm", wm)?;
     Ok(gain(wm))
 }

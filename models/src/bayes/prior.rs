@@ -1,7 +1,7 @@
 //! The prior over sample intervals: a discrete uniform distribution over ≥ 2 distinct
 //! positive values (steps), sorted ascending.
 
-use super::{Record, ReproductionError, check_interval};
+use super::{ObserverError, Record, check_interval};
 
 /// A discrete uniform prior over sample intervals: each of its values (steps) has
 /// probability `1/K`. Invariants: `K ≥ 2`, values finite, > 0, distinct, ascending.
@@ -12,9 +12,9 @@ pub struct Prior {
 
 impl Prior {
     /// The prior over `values` (steps, any order; `K ≥ 2`, finite, > 0, distinct).
-    pub fn new(values: &[f64]) -> Result<Self, ReproductionError> {
+    pub fn new(values: &[f64]) -> Result<Self, ObserverError> {
         if values.len() < 2 {
-            return Err(ReproductionError::TooFew {
+            return Err(ObserverError::TooFew {
                 field: "prior values",
                 got: values.len(),
                 min: 2,
@@ -26,15 +26,15 @@ impl Prior {
         let mut sorted = values.to_vec();
         sorted.sort_by(f64::total_cmp);
         if let Some(w) = sorted.windows(2).find(|w| w[0] == w[1]) {
-            return Err(ReproductionError::DuplicateValue { value: w[0] });
+            return Err(ObserverError::DuplicateValue { value: w[0] });
         }
         Ok(Prior { values: sorted })
     }
 
     /// The prior over the distinct sample intervals found in `records` (steps).
-    pub fn from_records(records: &[Record]) -> Result<Self, ReproductionError> {
+    pub fn from_records(records: &[Record]) -> Result<Self, ObserverError> {
         if records.is_empty() {
-            return Err(ReproductionError::TooFew {
+            return Err(ObserverError::TooFew {
                 field: "records",
                 got: 0,
                 min: 1,

@@ -1,7 +1,7 @@
 //! Seeded simulation of the observer models (J&S Fig. 3).
 
 use super::observer::{Estimator, Observer};
-use super::{Prior, Record, ReproductionError, Rounding, check_weber, round_step};
+use super::{ObserverError, Prior, Record, Rounding, check_weber, round_step};
 use rand::Rng;
 use rand_distr::StandardNormal;
 
@@ -19,11 +19,11 @@ pub fn simulate<R: Rng + ?Sized>(
     trials_per_ts: usize,
     rounding: Rounding,
     rng: &mut R,
-) -> Result<Vec<Record>, ReproductionError> {
+) -> Result<Vec<Record>, ObserverError> {
     check_weber("wm", wm)?;
     check_weber("wp", wp)?;
     if trials_per_ts == 0 {
-        return Err(ReproductionError::TooFew {
+        return Err(ObserverError::TooFew {
             field: "trials_per_ts",
             got: 0,
             min: 1,

@@ -61,7 +61,7 @@ mod multi_oven;
 mod reproduction;
 
 pub use config::{NOISE_DRAWS, OVERDUE_FACTOR, RESPONSE_DELAY, TimingAgentConfig};
-pub use reproduction::ReproductionCues;
+pub use reproduction::ReadySetGoCues;
 
 use multi_oven::{OvenClock, OvenView};
 use reproduction::LaterResponse;
@@ -115,14 +115,14 @@ struct EpisodeState {
     judgment: Option<u8>,
     overdue: bool,
     pressed_button: bool,
-    /// Reproduction: the epoch, the counter's cue, the temporal features at Set.
+    /// Ready-Set-Go: the epoch, the counter's cue, the temporal features at Set.
     epoch: reproduction::Epoch,
     cue: u8,
     measurement: Vec<f64>,
-    /// Reproduction, time cells: the conjunctive code `m ⊗ p` at the response, held while
+    /// Ready-Set-Go, time cells: the conjunctive code `m ⊗ p` at the response, held while
     /// the soup is carried to the counter.
     response_code: Vec<f64>,
-    /// Reproduction, time cells, training: the production time at which a delayed
+    /// Ready-Set-Go, time cells, training: the production time at which a delayed
     /// (exploratory) response is made ([`TimingAgentConfig::response_delay`]).
     delayed_response: Option<u32>,
     /// The last step's state, action and features, learned from at the next step.
@@ -165,10 +165,10 @@ pub struct TimingAgent {
     /// one-oven tasks.
     #[serde(default)]
     pub oven_cells: Vec<usize>,
-    /// Reproduction task (Ready-Set-Go): where its context cue is shown and its gains;
-    /// `None` in other tasks.
+    /// Ready-Set-Go tasks (temporal reproduction): where the context cue is shown and the
+    /// gains; `None` in other tasks.
     #[serde(default)]
-    pub reproduction: Option<ReproductionCues>,
+    pub reproduction: Option<ReadySetGoCues>,
     /// Cells from which the manual oven button is pressed (uncertainty task).
     #[serde(default)]
     pub button_cells: Vec<usize>,
@@ -222,7 +222,7 @@ impl TimingAgent {
         })
         .is_empty();
         let judgment_features = judgment_features(&env.config().params);
-        let reproduction = ReproductionCues::of(env);
+        let reproduction = ReadySetGoCues::of(env);
         let temporal = if reproduction.is_some() {
             Self::reproduction_features(&timer)
         } else {

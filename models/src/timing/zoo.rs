@@ -152,11 +152,11 @@ pub const LAPLACE_RESPONSE_COST: f64 = 0.05;
 /// cannot be optimistic per step; they keep 0.
 pub const CSC_Q_INIT: f64 = 1.0;
 
-/// Initial values in the reproduction task (every model): 0, no optimism. There a response
-/// ends the trial, so an optimistic value of responding explores by taking the soup at
-/// every (measurement, time) pair of the delay line's `N²` conjunctive code until each has
-/// been tried often enough to fall — measured with the CSC's 1.0: 13.7% success after 6000
-/// episodes, every production about half of `ts`.
+/// Initial values in Ready-Set-Go (reproduction) tasks (every model): 0, no optimism.
+/// There a response ends the trial, so an optimistic value of responding explores by
+/// taking the soup at every (measurement, time) pair of the delay line's `N²` conjunctive
+/// code until each has been tried often enough to fall — measured with the CSC's 1.0:
+/// 13.7% success after 6000 episodes, every production about half of `ts`.
 pub const REPRODUCTION_Q_INIT: f64 = 0.0;
 
 /// Initial value of every unvisited state–action pair of every timing agent on the
@@ -215,7 +215,7 @@ pub fn make_timing_agent(name: &str, env: &ChronoEnv, seed: u64) -> Result<Timin
     if env.family() == TaskFamily::MultiOven {
         agent.learner.q_init = MULTI_OVEN_Q_INIT;
     }
-    if env.family() == TaskFamily::Reproduction {
+    if env.ready_set_go().is_some() {
         agent.learner.q_init = REPRODUCTION_Q_INIT;
     }
     match &mut agent.timer {

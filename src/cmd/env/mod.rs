@@ -37,10 +37,10 @@ pub struct TaskArgs {
     /// Asynchronous multi-oven: the on-time of each oven after the first (steps, `3,7`).
     #[arg(long, value_name = "STEPS[,STEPS…]")]
     pub on_times: Option<String>,
-    /// Reproduction: the index of the episode's prior (in `priors`); drawn if omitted.
+    /// Ready-Set-Go tasks: the index of the episode's prior (in `priors`); drawn if omitted.
     #[arg(long)]
     pub prior: Option<u8>,
-    /// Reproduction: the index of the episode's gain (in `gains`); drawn if omitted.
+    /// Ready-Set-Go tasks: the index of the episode's gain (in `gains`); drawn if omitted.
     #[arg(long)]
     pub gain: Option<u8>,
     /// Uncertainty task: force a never-ready (true) or normal (false) episode.

@@ -194,9 +194,9 @@ pub enum Curriculum {
         /// Clear Adam's moments at a change (the reference's multi-oven scripts do not).
         clear_adam: bool,
     },
-    /// Reproduction: the reward window starts wide and narrows to the task's own in
-    /// `levels` steps (shaping, as the adaptive reward windows that trained monkeys in
-    /// Ready-Set-Go: Jazayeri & Shadlen 2015, Remington et al. 2018). Level `k` of `L`
+    /// Tasks with a reward window (Ready-Set-Go): the window starts wide and narrows to the
+    /// task's own in `levels` steps (shaping, as the adaptive reward windows that trained
+    /// monkeys in Ready-Set-Go: Jazayeri & Shadlen 2015, Remington et al. 2018). Level `k` of `L`
     /// pays inside `tolerance_k·g·ts + steps_k`, both interpolated linearly from
     /// (`tolerance_start`, `tolerance_steps_start`) at level 0 to the task's
     /// (`tolerance`, `tolerance_steps`) at level `L − 1`. Checked once `window` episodes
@@ -518,10 +518,13 @@ impl TrainConfig {
     }
 
     /// Tolerance curriculum: the reward window (`tolerance`, `tolerance_steps`) of the
-    /// configured reproduction task, its last level; `(0, 0)` under other curricula. An
-    /// error naming `curriculum` when the curriculum is set on another task, or naming
+    /// configured task ([`TaskConfig::reward_window`]: a Ready-Set-Go task's), its last
+    /// level; `(0, 0)` under other curricula. An error naming `curriculum` when the
+    /// curriculum is set on a task without a reward window, or naming
     /// `curriculum_tolerance_start` when its first window is narrower than the task's.
-    pub(crate) fn reproduction_window(&self) -> Result<(f64, f64), TrainError> {
+    ///
+    /// [`TaskConfig::reward_window`]: chronocooked_env::TaskConfig::reward_window
+    pub(crate) fn reward_window(&self) -> Result<(f64, f64), TrainError> {
         let Curriculum::Tolerance {
             tolerance_start,
             tolerance_steps_start,
@@ -531,12 +534,7 @@ impl TrainConfig {
             return Ok((0.0, 0.0));
         };
         let task = self.task.config()?;
-        let chronocooked_env::TaskParams::Reproduction {
-            tolerance,
-            tolerance_steps,
-            ..
-        } = task.params
-        else {
+        let Some((tolerance, tolerance_steps)) = task.reward_window() else {
             return Err(TrainError::InvalidParam {
                 field: "curriculum".into(),
                 value: "tolerance".into(),
@@ -547,8 +545,8 @@ impl TrainConfig {
             });
         };
         // Compared as the task stores them (f32), so a start equal to the task's passes.
-        if (tolerance_start as f32) < tolerance || (tolerance_steps_start as f32) < tolerance_steps
-        {
+        let start = (tolerance_start as f32, tolerance_steps_start as f32);
+        if start.0 < tolerance || start.1 < tolerance_steps {
             return Err(TrainError::InvalidParam {
                 field: "curriculum_tolerance_start".into(),
                 value: format!("{tolerance_start}, {tolerance_steps_start} steps"),
@@ -558,12 +556,7 @@ impl TrainConfig {
             });
         }
         // The first level's task must itself be valid (e.g. its window inside the time limit).
-        let first = [
-            format!("tolerance={}", tolerance_start as f32),
-            format!("tolerance_steps={}", tolerance_steps_start as f32),
-        ];
-        self.task
-            .with(&first)
+        task.with_reward_window(start.0, start.1)
             .map_err(|e| TrainError::InvalidParam {
                 field: "curriculum_tolerance_start".into(),
                 value: format!("{tolerance_start}, {tolerance_steps_start} steps"),
@@ -579,7 +572,7 @@ impl TrainConfig {
     pub fn validate(&self) -> Result<(), TrainError> {
         settings::check(PPO_SETTINGS, self)?;
         self.task.config()?;
-        self.reproduction_window()?;
+        self.reward_window()?;
         if let Some(window) = self.curriculum.window()
             && window > self.stats_window
         {

@@ -271,7 +271,7 @@ pub const TIMING_SETTINGS: &[Spec] = &[
             lo: 1,
             hi: MAX_EPISODES as u64,
         },
-        "training episodes (6,000; 40,000 on Uncertainty-v0; 60,000 on Reproduction-v0; per level where the reference trains a curriculum: multi-anchor 2, 3, … counters, multi-oven 1, 2, … ovens)",
+        "training episodes (6,000; 40,000 on Uncertainty-v0; 60,000 on Ready-Set-Go (reproduction) tasks; per level where the reference trains a curriculum: multi-anchor 2, 3, … counters, multi-oven 1, 2, … ovens)",
     ),
     spec(
         "epsilon_start",
@@ -316,13 +316,13 @@ pub const TIMING_SETTINGS: &[Spec] = &[
         "alpha_end",
         &["train", "alpha_end"],
         Rule::Optional(&STEP_SIZE),
-        "final SARSA(lambda) learning rate, annealed from alpha like epsilon (none = constant alpha; 0.005 on Reproduction-v0)",
+        "final SARSA(lambda) learning rate, annealed from alpha like epsilon (none = constant alpha; 0.005 on Ready-Set-Go tasks)",
     ),
     spec(
         "visit_power",
         &["train", "visit_power"],
         UNIT,
-        "exponent w of the per-feature step floor n^-w, n = the feature's visits in its state-action pair (Even-Dar & Mansour 2003; 0 = off, 0.85 for the time cells on Reproduction-v0)",
+        "exponent w of the per-feature step floor n^-w, n = the feature's visits in its state-action pair (Even-Dar & Mansour 2003; 0 = off, 0.85 for the time cells on Ready-Set-Go tasks)",
     ),
     spec("gamma", &["agent", "gamma"], UNIT, "discount per step"),
     spec(

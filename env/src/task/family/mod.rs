@@ -22,7 +22,7 @@ use super::condition::{Condition, ConditionKind};
 use super::{ExternalParams, Task, TaskConfig, TaskFamily, TaskParams};
 use crate::error::EnvError;
 use crate::layout::{Layout, ObjectKind};
-use crate::rules::{CueMode, RewardMode, RsgSpec, Rules};
+use crate::rules::{CueMode, ReadySetGo, RewardMode, Rules};
 use crate::settings::Spec;
 use crate::task::reset_option::{BASIC_RESET_OPTIONS, ResetOption};
 use serde::Serialize;
@@ -77,7 +77,7 @@ pub struct Growth {
 /// The kitchen's rules of one configuration, as the hot loop reads them. Built-in families
 /// build any of the kitchen's rules; a family defined outside this crate composes its task
 /// from the public constructors ([`RuleSet::fixed`], [`RuleSet::window`],
-/// [`RuleSet::categories`]), which are the kitchen's mechanics.
+/// [`RuleSet::categories`], [`RuleSet::ready_set_go`]), which are the kitchen's mechanics.
 pub struct RuleSet {
     /// The flattened rules.
     pub(crate) rules: Rules,
@@ -87,8 +87,8 @@ pub struct RuleSet {
     pub(crate) tds: Vec<u32>,
     /// What the oven's channel 4 shows while on (multi-timer).
     pub(crate) cue: Option<CueMode>,
-    /// Reproduction: priors, gains, window and foreperiods.
-    pub(crate) rsg: Option<RsgSpec>,
+    /// Ready-Set-Go: priors, gains, window and foreperiods.
+    pub(crate) rsg: Option<ReadySetGo>,
 }
 
 impl RuleSet {
@@ -147,7 +147,52 @@ impl RuleSet {
         ))
     }
 
-    /// Rules with one TD list and no cue or reproduction part.
+    /// Ready-Set-Go (temporal reproduction): no onion; the loaded oven flashes Ready after
+    /// a foreperiod and Set `ts` steps later (`ts` drawn uniformly from the episode's
+    /// prior), the counter cues the context (prior and gain), and a soup taken `tp` steps
+    /// after Set pays when `|tp − g · ts|` is inside the window (the layout needs the oven
+    /// and the delivery counter `D`, whose cell is `spec.counter`).
+    pub fn ready_set_go(spec: ReadySetGo) -> Result<Self, EnvError> {
+        let range = |lo: u32, hi: u32| 1 <= lo && lo < hi;
+        if spec.priors.is_empty() || spec.priors.iter().any(|&(lo, hi)| !range(lo, hi)) {
+            return Err(EnvError::param(
+                "priors",
+                format!("{:?}", spec.priors),
+                "at least one range (lo, hi) of whole steps, 1 <= lo < hi",
+            ));
+        }
+        if spec.gains.is_empty() || spec.gains.iter().any(|g| !(g.is_finite() && *g > 0.0)) {
+            return Err(EnvError::param(
+                "gains",
+                format!("{:?}", spec.gains),
+                "at least one finite gain > 0",
+            ));
+        }
+        for (field, value) in [
+            ("tolerance", spec.tolerance),
+            ("tolerance_steps", spec.tolerance_steps),
+        ] {
+            if !(value.is_finite() && value >= 0.0) {
+                return Err(EnvError::param(field, value, "a finite number >= 0"));
+            }
+        }
+        if spec.foreperiod.0 > spec.foreperiod.1 {
+            return Err(EnvError::param(
+                "foreperiod",
+                format!("{:?}", spec.foreperiod),
+                "a range (min, max) with min <= max (steps)",
+            ));
+        }
+        Ok(RuleSet {
+            rules: Rules::ReadySetGo,
+            default_td: spec.priors[0].0,
+            tds: Vec::new(),
+            cue: None,
+            rsg: Some(spec),
+        })
+    }
+
+    /// Rules with one TD list and no cue or Ready-Set-Go part.
     pub(crate) fn simple(rules: Rules, default_td: u32, tds: Vec<u32>) -> Self {
         RuleSet {
             rules,
@@ -258,6 +303,17 @@ pub trait Family: Sync + Send {
 
     /// Sets the growing parameter to `size` (a no-op for tasks that do not grow).
     fn grow(&self, _params: &mut TaskParams, _size: usize) {}
+
+    /// The reward window of a production, `(tolerance, tolerance_steps)` as the parameters
+    /// hold them (relative, steps), for families whose window a curriculum may widen
+    /// (`None`: no such window).
+    fn reward_window(&self, _params: &TaskParams) -> Option<(f32, f32)> {
+        None
+    }
+
+    /// Sets the reward window of [`Family::reward_window`] (a typed edit; a no-op for
+    /// families without one).
+    fn set_reward_window(&self, _params: &mut TaskParams, _tolerance: f32, _steps: f32) {}
 
     /// The TDs a deterministic evaluation covers (steps).
     fn evaluation_tds(&self, params: &TaskParams) -> Vec<u32>;

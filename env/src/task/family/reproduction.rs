@@ -5,7 +5,7 @@ use super::bisection::any_td;
 use super::{Family, ResponseKind, RuleSet, TaskSpec, condition, wrong_family};
 use crate::error::EnvError;
 use crate::layout::{Layout, ObjectKind};
-use crate::rules::{RsgSpec, Rules, decimal};
+use crate::rules::{ReadySetGo, decimal};
 use crate::settings::{self, Rule, Spec, UNIT};
 use crate::task::condition::{Condition, ConditionKind};
 use crate::task::params::{FIXED_TD_RULE, param};
@@ -268,24 +268,40 @@ reward at delivery.",
             .iter()
             .map(|p| parse_prior(p))
             .collect::<Result<Vec<_>, _>>()?;
-        Ok(RuleSet {
-            rules: Rules::Reproduction,
-            default_td: priors[0].0,
-            tds: Vec::new(),
-            cue: None,
-            rsg: Some(RsgSpec {
-                priors,
-                gains: gains.clone(),
-                tolerance: decimal(f64::from(*tolerance)),
-                tolerance_steps: decimal(f64::from(*tolerance_steps)),
-                foreperiod: (*foreperiod_min, *foreperiod_max),
-                prior_cue: *prior_cue,
-                counter: layout.cells_of(ObjectKind::DeliveryCounter)[0],
-            }),
+        RuleSet::ready_set_go(ReadySetGo {
+            priors,
+            gains: gains.clone(),
+            tolerance: decimal(f64::from(*tolerance)),
+            tolerance_steps: decimal(f64::from(*tolerance_steps)),
+            foreperiod: (*foreperiod_min, *foreperiod_max),
+            prior_cue: *prior_cue,
+            counter: layout.cells_of(ObjectKind::DeliveryCounter)[0],
         })
     }
 
-    /// Every sample interval of the priors, once each, in increasing order.
+    fn reward_window(&self, params: &TaskParams) -> Option<(f32, f32)> {
+        match params {
+            TaskParams::Reproduction {
+                tolerance,
+                tolerance_steps,
+                ..
+            } => Some((*tolerance, *tolerance_steps)),
+            _ => None,
+        }
+    }
+
+    fn set_reward_window(&self, params: &mut TaskParams, tol: f32, steps: f32) {
+        if let TaskParams::Reproduction {
+            tolerance,
+            tolerance_steps,
+            ..
+        } = params
+        {
+            *tolerance = tol;
+            *tolerance_steps = steps;
+        }
+    }
+
     fn response_kind(&self) -> Option<ResponseKind> {
         Some(ResponseKind::Reproduce)
     }
@@ -325,6 +341,7 @@ reward at delivery.",
         Ok(out)
     }
 
+    /// Every sample interval of the priors, once each, in increasing order.
     fn evaluation_tds(&self, params: &TaskParams) -> Vec<u32> {
         let mut ts: Vec<u32> = prior_ranges(params)
             .into_iter()

@@ -67,7 +67,7 @@ pub struct TimingAgentConfig {
     /// setting load with `false` (their behaviour unchanged).
     #[serde(default)]
     pub break_and_run: bool,
-    /// Reproduction task, time cells: exploration of later responses. When the learner is
+    /// Ready-Set-Go tasks, time cells: exploration of later responses. When the learner is
     /// about to take the soup during a production, with probability ε (the exploration
     /// rate) it waits instead and responds `z` steps later, `z` uniform on
     /// `1 ..= ⌈response_delay · t⌉` at production time `t` (a span that scales with the

@@ -1,4 +1,4 @@
-//! The timing agents on the reproduction task (Ready-Set-Go, `Reproduction-v0`).
+//! The timing agents on Ready-Set-Go (temporal reproduction) tasks.
 //!
 //! The oven flashes twice (Ready, Set: the value 2 for one step each) `ts` steps apart and
 //! then shows "on" until the soup is taken; the production `tp` is the number of steps from
@@ -47,39 +47,28 @@
 use super::TimingAgent;
 use crate::agent::Percept;
 use crate::timing::timers::Timer;
-use chronocooked_env::{Action, CODE_CHANNELS, ChronoEnv, ObjectKind, TaskFamily, TaskParams};
+use chronocooked_env::{Action, CODE_CHANNELS, ChronoEnv};
 use rand::Rng;
 use serde::{Deserialize, Serialize};
 
-/// What a timing agent knows of a reproduction task: where the context cue is shown and
+/// What a timing agent knows of a Ready-Set-Go task: where the context cue is shown and
 /// the gain each cue value asks for.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct ReproductionCues {
+pub struct ReadySetGoCues {
     /// Cell whose channel 4 shows the context cue (the delivery counter).
     pub cue_cell: usize,
     /// The task's gains `g` (`tp = g · ts`), in the task's order.
     pub gains: Vec<f64>,
 }
 
-impl ReproductionCues {
-    /// The cues of `env`'s task, or `None` for another family.
+impl ReadySetGoCues {
+    /// The cues of `env`'s task, or `None` for a task without Ready-Set-Go mechanics.
     pub fn of(env: &ChronoEnv) -> Option<Self> {
-        if env.family() != TaskFamily::Reproduction {
-            return None;
-        }
-        let gains = match &env.config().params {
-            TaskParams::Reproduction { gains, .. } => {
-                gains.iter().map(|&g| decimal(f64::from(g))).collect()
-            }
-            _ => vec![1.0],
-        };
-        let cue_cell = env
-            .layout()
-            .cells_of(ObjectKind::DeliveryCounter)
-            .first()
-            .copied()
-            .unwrap_or(0);
-        Some(ReproductionCues { cue_cell, gains })
+        let rsg = env.ready_set_go()?;
+        Some(ReadySetGoCues {
+            cue_cell: rsg.counter,
+            gains: rsg.gains.iter().map(|&g| decimal(f64::from(g))).collect(),
+        })
     }
 
     /// The gain asked for by cue value `cue` (`1 + prior · gains + gain`; 0 = no cue: the

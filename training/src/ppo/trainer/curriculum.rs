@@ -114,7 +114,7 @@ impl Trainer {
     /// rebuild only when it differs from the envs' own). Called where the level is set: at
     /// construction, at a restore and at a level change — not every update.
     pub(super) fn apply_tolerance(&mut self) -> Result<(), TrainError> {
-        let task = self.cfg.reproduction_window()?;
+        let task = self.cfg.reward_window()?;
         let Some((tol, steps)) = self
             .cfg
             .curriculum
@@ -122,18 +122,13 @@ impl Trainer {
         else {
             return Ok(());
         };
-        let now = match &self.envs.config().params {
-            TaskParams::Reproduction {
-                tolerance,
-                tolerance_steps,
-                ..
-            } => (f64::from(*tolerance), f64::from(*tolerance_steps)),
-            _ => return Ok(()),
+        let Some(now) = self.envs.config().reward_window() else {
+            return Ok(());
         };
-        let (tol, steps) = (tol as f32, steps as f32);
-        if now != (f64::from(tol), f64::from(steps)) {
-            self.envs.set_param("tolerance", &tol.to_string())?;
-            self.envs.set_param("tolerance_steps", &steps.to_string())?;
+        let level = (tol as f32, steps as f32);
+        if now != level {
+            let config = self.envs.config().with_reward_window(level.0, level.1)?;
+            self.envs.set_config(&config)?;
         }
         Ok(())
     }
