@@ -1,4 +1,5 @@
-//! The reproduction task's rules (Ready-Set-Go in the kitchen).
+//! The Ready-Set-Go rules (temporal reproduction in the kitchen), which the reproduction
+//! task and any family built with `RuleSet::ready_set_go` run.
 //!
 //! Reset draws, in order: the start cell, the prior (uniform over the priors), the gain
 //! (uniform over the gains), `ts` (uniform over the prior's whole steps) and the foreperiod
@@ -150,7 +151,7 @@ impl Kitchen {
     }
 
     /// One step of the reproduction task.
-    pub(crate) fn step_reproduction(&mut self, action: Action, obs: &mut [u8]) -> Transition {
+    pub(crate) fn step_ready_set_go(&mut self, action: Action, obs: &mut [u8]) -> Transition {
         let (old, timer_at_action, next_to_oven) = self.step_context();
         let mut events = 0u16;
         let reward = self.act_or_move(action, &mut events, Self::interact_rsg);
