@@ -82,14 +82,15 @@ pub fn print_dry_run(sweep: &SweepFile, jobs: &[Job], out: &Path, workers: usize
     }
     println!(
         "{} jobs ({todo} to do); estimated {:.1} core-hours of PPO training ({:.1} to do; \
-         ≈ {:.1} h with {workers} workers) at the reference preset's measured throughput \
+         ≈ {:.1} h with {workers} workers) at the {} preset's measured throughput \
          on the lab's 2-core machine (BENCHMARKS.md){}",
         jobs.len(),
         all_s / 3600.0,
         todo_s / 3600.0,
         todo_s / 3600.0 / workers as f64,
+        sweep.preset,
         if unknown > 0 {
-            format!("; {unknown} jobs of unmeasured models not counted")
+            format!("; {unknown} jobs of models unmeasured at this preset not counted")
         } else {
             String::new()
         }

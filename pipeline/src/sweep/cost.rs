@@ -26,17 +26,45 @@ pub const REFERENCE_THROUGHPUT: [(&str, f64); 10] = [
     ("ctrnn-reservoir256", 3_250.0),
 ];
 
+/// Measured training throughput of the fast preset (env steps per second, one core, native
+/// engine): each model's [`REFERENCE_THROUGHPUT`] times the fast/reference ratio that `bench
+/// train --preset P --updates 5` measured for it in one sitting (two alternations per preset,
+/// 2026-12-03; BENCHMARKS.md, "Study throughput"), so the same safety margin carries over.
+/// Checked against whole runs of the demo study (fast preset, evaluations included, two
+/// workers): CTRNN125 17,400–20,900 and LSTM125 8,900–9,600 steps/s.
+pub const FAST_THROUGHPUT: [(&str, f64); 10] = [
+    ("cnn-mlp", 43_000.0),
+    ("lstm8", 52_000.0),
+    ("lstm125", 9_300.0),
+    ("lstm256", 3_900.0),
+    ("ctrnn8", 82_000.0),
+    ("ctrnn125", 21_000.0),
+    ("ctrnn256", 9_000.0),
+    ("ctrnn-reservoir8", 63_000.0),
+    ("ctrnn-reservoir125", 22_000.0),
+    ("ctrnn-reservoir256", 9_500.0),
+];
+
+/// The measured throughput of `model` at `preset` (env steps per second, one core), `None`
+/// for a preset or model not measured.
+pub fn throughput(preset: &str, model: &str) -> Option<f64> {
+    let table: &[(&str, f64)] = match preset {
+        "reference" => &REFERENCE_THROUGHPUT,
+        "fast" => &FAST_THROUGHPUT,
+        _ => return None,
+    };
+    table.iter().find(|(m, _)| *m == model).map(|&(_, r)| r)
+}
+
 /// Estimated single-core training time of one job (seconds): its resolved step budget over
-/// the measured throughput of its model ([`REFERENCE_THROUGHPUT`]); `None` for jobs without
-/// PPO training (timing models train in seconds, baselines not at all) or unmeasured models.
+/// the measured throughput of its model at the sweep's preset ([`throughput`]); `None` for
+/// jobs without PPO training (timing models train in seconds, baselines not at all) or
+/// unmeasured models and presets.
 pub fn estimate_seconds(sweep: &SweepFile, job: &Job) -> Option<f64> {
     if job.family != Family::DeepRl {
         return None;
     }
-    let rate = REFERENCE_THROUGHPUT
-        .iter()
-        .find(|(m, _)| *m == job.model)?
-        .1;
+    let rate = throughput(&sweep.preset, &job.model)?;
     let arch = job.model.parse().ok()?;
     let cfg = chronocooked_training::ppo::presets::resolve(
         job.task.id(),
@@ -47,4 +75,22 @@ pub fn estimate_seconds(sweep: &SweepFile, job: &Job) -> Option<f64> {
     )
     .ok()?;
     Some(cfg.total_steps as f64 / rate)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_preset_has_a_rate_for_every_measured_model_and_fast_is_faster() {
+        assert_eq!(REFERENCE_THROUGHPUT.len(), FAST_THROUGHPUT.len());
+        for (model, reference) in REFERENCE_THROUGHPUT {
+            let fast = throughput("fast", model).expect(model);
+            // Bigger batches and fewer epochs per transition: at least 1.5× (measured 1.7–4.7×).
+            assert!(fast > 1.5 * reference, "{model}: {fast} vs {reference}");
+            assert_eq!(throughput("reference", model), Some(reference));
+        }
+        assert_eq!(throughput("custom", "lstm125"), None);
+        assert_eq!(throughput("fast", "gru125"), None);
+    }
 }

@@ -19,7 +19,7 @@ pub mod progress;
 pub mod slurm;
 pub mod stage;
 
-pub use cost::{REFERENCE_THROUGHPUT, estimate_seconds};
+pub use cost::{FAST_THROUGHPUT, REFERENCE_THROUGHPUT, estimate_seconds, throughput};
 pub use file::{Job, SweepFile, applies, variant_label};
 pub use progress::{JobProgress, finished_stages, job_dir, job_done, mark_stage};
 pub use slurm::{SlurmFiles, job_command, shell_quote, slurm_script};
