@@ -1,9 +1,8 @@
 //! Ready-Set-Go mechanics composed by a family defined outside the env crate
 //! ([`RuleSet::ready_set_go`]): the kitchen runs it, the oracle is paid at `g · ts`, and the
 //! agents that read the mechanics — the Bayesian observer and the timing agents — play it
-//! from the environment without knowing its family. A test binary of its own: the family
-//! is registered for the whole process, and the other binaries list only the built-in
-//! tasks.
+//! from the environment without knowing its family. The family is registered for the whole
+//! test process (no other test of this crate lists the registered tasks).
 
 use chronocooked_env::error::EnvError;
 use chronocooked_env::layout::{Layout, ObjectKind};

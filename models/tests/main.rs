@@ -3,6 +3,7 @@
 //! one topic; `cargo test --release -p chronocooked-models <file>` runs one of them.
 
 mod categories;
+mod external_ready_set_go;
 mod multi_oven_agents;
 mod recorded_markers;
 mod reproduction_timers;
