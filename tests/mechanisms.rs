@@ -546,3 +546,35 @@ fn fingerprint_sweep_gives_the_held_out_study_lines_and_resumes() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The committed mechanisms tables are what today's binary makes of the committed compact
+/// results: `mechanisms DIR --out TMP` on each study folder writes the same signatures,
+/// comparisons, pairwise distances and Markdown, byte for byte.
+#[test]
+fn the_committed_mechanisms_tables_regenerate_byte_for_byte() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    for study in ["results/mechanisms", "results/mechanisms-reference"] {
+        let dir = root.join(study);
+        let out = common::temp_dir(&format!("regen-{}", study.replace('/', "-")));
+        run_ok(&[
+            "mechanisms",
+            dir.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        for file in [
+            "signatures.csv",
+            "mechanisms.csv",
+            "pairwise.csv",
+            "mechanisms.md",
+        ] {
+            let committed = std::fs::read(dir.join(file)).unwrap();
+            let made = std::fs::read(out.join(file)).unwrap();
+            assert!(
+                committed == made,
+                "{study}/{file} differs from today's output"
+            );
+        }
+        std::fs::remove_dir_all(&out).unwrap();
+    }
+}

@@ -18,9 +18,12 @@ pub struct Written {
     pub signatures: usize,
     /// Agents compared.
     pub agents: usize,
-    /// The leave-one-seed-out identification in each view, unit view first (also in
-    /// `mechanisms.md`).
+    /// The leave-one-seed-out identification in each view compared, unit view first (also
+    /// in `mechanisms.md`).
     pub identifications: Vec<chronocooked_analysis::mechanisms::Identification>,
+    /// Views asked for but not compared: no signature holds any of their own features
+    /// (the study's activity was recorded before the view existed).
+    pub unrecorded: Vec<View>,
 }
 
 fn fmt(x: f64, digits: usize) -> String {
@@ -96,7 +99,19 @@ pub fn write_tables(
     }
     let mut identifications = Vec::new();
     let mut agents_compared = 0;
-    for &view in views {
+    let (views, unrecorded): (Vec<View>, Vec<View>) =
+        views.iter().partition(|v| v.recorded_in(&sigs));
+    for &view in &unrecorded {
+        md.push_str(&format!(
+            "\n# {}\n\nNot compared: no signature of this study holds any of its own \
+             features ({}); its activity was recorded before this view existed, and a \
+             comparison would be one of the behaviour alone. Rerunning the study's record \
+             stage (`chronocooked sweep FILE`) adds them.\n",
+            view.title(),
+            view.own_features().join(", ")
+        ));
+    }
+    for &view in &views {
         let comparisons = compare(&sigs, &MECHANISMS, resamples, seed, view);
         for c in &comparisons {
             mcsv.push_str(&format!(
@@ -148,7 +163,7 @@ pub fn write_tables(
         identifications.push(identification);
     }
     let mut pairs = String::from("view,model_a,seed_a,model_b,seed_b,distance\n");
-    for &view in views {
+    for &view in &views {
         for p in chronocooked_analysis::mechanisms::pairwise(&sigs, view) {
             pairs.push_str(&format!(
                 "{},{},{},{},{},{}\n",
@@ -173,6 +188,7 @@ pub fn write_tables(
         signatures: sigs.len(),
         agents: agents_compared,
         identifications,
+        unrecorded,
     })
 }
 

@@ -83,6 +83,14 @@ pub fn run(args: MechanismsArgs) -> Result<()> {
             .collect::<Vec<_>>()
             .join(", ")
     );
+    for view in &w.unrecorded {
+        println!(
+            "{}: not compared (no signature holds any of its own features: {}; the study was \
+             recorded before this view existed)",
+            view.title(),
+            view.own_features().join(", ")
+        );
+    }
     for id in &w.identifications {
         println!("{}:", id.view.title());
         print_identification(id);

@@ -169,6 +169,29 @@ impl View {
         }
     }
 
+    /// The view's own features: those the other view does not read (single-unit
+    /// categories and their scaling and decoding; the trajectory's `dyn_*`).
+    pub fn own_features(self) -> Vec<&'static str> {
+        let other = match self {
+            View::Units => View::Dynamics,
+            View::Dynamics => View::Units,
+        };
+        self.features()
+            .iter()
+            .copied()
+            .filter(|f| !other.features().contains(f))
+            .collect()
+    }
+
+    /// Whether any of `sigs` holds one of the view's own features: a study recorded before
+    /// the dynamics view has none of its features, and a comparison in that view would be
+    /// one of behaviour alone.
+    pub fn recorded_in(self, sigs: &[Signature]) -> bool {
+        let own = self.own_features();
+        sigs.iter()
+            .any(|s| own.iter().any(|f| s.features.contains_key(*f)))
+    }
+
     /// Heading with what the view depends on.
     pub fn title(self) -> &'static str {
         match self {
@@ -570,6 +593,25 @@ mod tests {
             seed,
             features: f.iter().map(|(k, v)| (k.to_string(), *v)).collect(),
         }
+    }
+
+    /// A view is recorded when some signature holds one of its own features: behaviour
+    /// alone (shared by both views) or `dyn_scaling` (recorded, not compared) does not make
+    /// the dynamics view; one `dyn_turning` does.
+    #[test]
+    fn a_view_is_recorded_only_with_its_own_features() {
+        assert_eq!(View::Dynamics.own_features().len(), 7);
+        assert!(!View::Units.own_features().contains(&"wf"));
+        let old = vec![
+            sig("ddm", 0, &[("wf", 0.1), ("frac_ramp", 1.0)]),
+            sig("sbf", 0, &[("wf", 0.1), ("dyn_scaling", 0.0)]),
+        ];
+        assert!(View::Units.recorded_in(&old));
+        assert!(!View::Dynamics.recorded_in(&old));
+        let mut new = old.clone();
+        new.push(sig("ddm", 1, &[("dyn_turning", 0.3)]));
+        assert!(View::Dynamics.recorded_in(&new));
+        assert!(!View::Units.recorded_in(&[sig("x", 0, &[("wf", 0.1)])]));
     }
 
     #[test]
