@@ -22,8 +22,9 @@
 //!   ready (the nearest ready oven first) and deliver it to the counter of its oven's
 //!   duration (geometric-mean boundary); while nothing is ready, wait next to the oven
 //!   that will be ready first.
-//! * Ready-Set-Go (reproduction): wait next to the oven (its neighbour nearest the counter) and take the
-//!   soup `round(g·ts)` steps after Set (the reward's peak; at least 1), then deliver.
+//! * Ready-Set-Go (reproduction): wait next to the oven (its neighbour nearest the
+//!   counter) and take the soup `round(g·ts)` steps after Set (the reward's peak; at least
+//!   1), then deliver.
 
 use crate::action::Action;
 use crate::env::ChronoEnv;

@@ -129,9 +129,15 @@ impl ReadySetGo {
         (1 + p * self.gains.len() + gain as usize) as u8
     }
 
+    /// Gain `gain` (an index into `gains`) as the decimal it was written as (an `f32` 1.1
+    /// is not 1.1: rounded to 1e-6).
+    pub fn gain(&self, gain: usize) -> f64 {
+        decimal(f64::from(self.gains[gain]))
+    }
+
     /// The target production `g · ts` and the window half-width (steps).
     pub fn target(&self, ts: u32, gain: u8) -> (f64, f64) {
-        let target = decimal(f64::from(self.gains[gain as usize])) * f64::from(ts);
+        let target = self.gain(usize::from(gain)) * f64::from(ts);
         (target, self.tolerance * target + self.tolerance_steps)
     }
 }

@@ -67,7 +67,7 @@ impl ReadySetGoCues {
         let rsg = env.ready_set_go()?;
         Some(ReadySetGoCues {
             cue_cell: rsg.counter,
-            gains: rsg.gains.iter().map(|&g| decimal(f64::from(g))).collect(),
+            gains: (0..rsg.gains.len()).map(|g| rsg.gain(g)).collect(),
         })
     }
 
@@ -79,11 +79,6 @@ impl ReadySetGoCues {
         }
         self.gains[(usize::from(cue) - 1) % self.gains.len()]
     }
-}
-
-/// An `f32` setting as the decimal it was written as (1.5f32 is exact; 1.1f32 is not).
-fn decimal(v: f64) -> f64 {
-    (v * 1e6).round() / 1e6
 }
 
 /// The exploration of later responses at one step of a production
