@@ -204,8 +204,13 @@ const DYNAMICS_TABLE: [&str; 8] = [
     "dyn_scaling",
 ];
 
-/// Mean ± SD over seeds of `features` per model, as a Markdown table.
+/// Mean ± SD over seeds of `features` per model, as a Markdown table. A feature no
+/// signature holds gets no column; the line under the table names it (a study recorded
+/// before the feature existed).
 fn spread_table(sigs: &[Signature], models: &[&str], features: &[&str]) -> String {
+    let (features, missing): (Vec<&str>, Vec<&str>) = features
+        .iter()
+        .partition(|f| sigs.iter().any(|s| s.features.contains_key(**f)));
     let mut table = Table::new(["model", "n"].into_iter().chain(features.iter().copied()));
     for m in models {
         let mine: Vec<&Signature> = sigs.iter().filter(|s| s.model == *m).collect();
@@ -228,7 +233,19 @@ fn spread_table(sigs: &[Signature], models: &[&str], features: &[&str]) -> Strin
                 .chain(cells),
         );
     }
-    table.render()
+    let mut md = table.render();
+    if !missing.is_empty() {
+        md.push_str(&format!(
+            "\nNot recorded in this study: {} (its activity was recorded before these \
+             features existed; rerunning its record stage adds them).\n",
+            missing
+                .iter()
+                .map(|f| format!("`{f}`"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
+    md
 }
 
 /// Every agent seed's own verdict (a verdict per model hides seeds that differ: Eissa et
@@ -495,11 +512,19 @@ pub fn placed_fingerprint_figure(
     })
 }
 
-/// The fingerprints as a heat map: one row per model (seed mean), one column per named
-/// feature, each cell the feature's value in SDs from its mean over all signatures
-/// (diverging colours, full at ±2 SD, the value printed); SVG and PNG at `stem`.
+/// The fingerprints as a heat map: one row per model (seed mean), one column per feature of
+/// the unit view then the dynamics view's own that any signature holds (a study recorded
+/// before the dynamics view draws the unit view alone), each cell the feature's value in
+/// SDs from its mean over all signatures (diverging colours, full at ±2 SD, the value
+/// printed); SVG and PNG at `stem`.
 pub fn fingerprint_figure(sigs: &[Signature], stem: &Path) -> Result<Vec<PathBuf>, MechanismError> {
     use crate::figures::{LabelledMatrix, write_matrix};
+    let mut columns: Vec<&'static str> = View::Units.features().to_vec();
+    for f in View::Dynamics.features() {
+        if !columns.contains(f) && sigs.iter().any(|s| s.features.contains_key(*f)) {
+            columns.push(f);
+        }
+    }
     let sds = feature_sds(sigs.iter());
     let all: Vec<&Signature> = sigs.iter().collect();
     let centre = mean_features(&all);
@@ -510,7 +535,7 @@ pub fn fingerprint_figure(sigs: &[Signature], stem: &Path) -> Result<Vec<PathBuf
         .map(|m| {
             let mine: Vec<&Signature> = sigs.iter().filter(|s| s.model == *m).collect();
             let mean = mean_features(&mine);
-            FEATURES
+            columns
                 .iter()
                 .map(|f| {
                     let z = (|| Some((mean.get(f)? - centre.get(f)?) / sds.get(f)?))();
@@ -522,7 +547,7 @@ pub fn fingerprint_figure(sigs: &[Signature], stem: &Path) -> Result<Vec<PathBuf
     let matrix = LabelledMatrix {
         title: "Mechanism fingerprints: seed means in SDs from the mean of all signatures".into(),
         rows: models.iter().map(|m| m.to_string()).collect(),
-        columns: FEATURES.iter().map(|f| f.to_string()).collect(),
+        columns: columns.iter().map(|f| f.to_string()).collect(),
         values,
         scale: 2.0,
     };
@@ -534,7 +559,7 @@ pub fn fingerprint_figure(sigs: &[Signature], stem: &Path) -> Result<Vec<PathBuf
 
 #[cfg(test)]
 mod tests {
-    use super::placed_fingerprint_figure;
+    use super::{fingerprint_figure, placed_fingerprint_figure, spread_table};
     use chronocooked_analysis::mechanisms::*;
 
     /// A report model whose seed mean is a mechanism's seed mean is drawn with that
@@ -580,5 +605,69 @@ mod tests {
             texts[i + 1..i + 1 + columns.len()].to_vec()
         };
         assert_eq!(row("ddm (study"), row("my-agent"));
+    }
+
+    /// A feature no signature holds gets no column and is named under the table; a feature
+    /// one model lacks keeps its column with "–" in that model's row; mean ± SD by hand.
+    #[test]
+    fn the_spread_table_drops_unrecorded_features_and_names_them() {
+        let sig = |model: &str, seed: u64, feats: &[(&str, f64)]| Signature {
+            model: model.into(),
+            seed,
+            features: feats.iter().map(|(k, v)| (k.to_string(), *v)).collect(),
+        };
+        let sigs = [
+            sig("a", 0, &[("x", 1.0), ("y", 2.0)]),
+            sig("a", 1, &[("x", 3.0), ("y", 2.0)]),
+            sig("b", 0, &[("x", 5.0)]),
+        ];
+        let md = spread_table(&sigs, &["a", "b"], &["x", "y", "z", "w"]);
+        let lines: Vec<&str> = md.lines().collect();
+        assert_eq!(lines[0], "| model | n | x | y |");
+        // x over seeds 1 and 3: mean 2, sample SD √2 = 1.414.
+        assert_eq!(lines[2], "| a | 2 | 2.000 ± 1.414 | 2.000 ± 0.000 |");
+        assert_eq!(lines[3], "| b | 1 | 5.000 ± – | – |");
+        assert!(md.contains("Not recorded in this study: `z`, `w`"), "{md}");
+        let full = spread_table(&sigs[..2], &["a"], &["x", "y"]);
+        assert!(!full.contains("Not recorded"), "{full}");
+    }
+
+    /// The study figure draws a dynamics column only when a signature holds the feature: the
+    /// unit view's columns always, `dyn_dimension` when recorded, never an empty one.
+    #[test]
+    fn the_study_figure_draws_the_dynamics_features_a_study_recorded() {
+        let dir = tempfile::tempdir().unwrap();
+        let draw = |with_dynamics: bool, name: &str| {
+            let sigs: Vec<Signature> = (0..2)
+                .map(|seed| {
+                    let mut features: std::collections::BTreeMap<String, f64> = FEATURES
+                        .iter()
+                        .map(|f| (f.to_string(), seed as f64))
+                        .collect();
+                    if with_dynamics {
+                        features.insert("dyn_dimension".into(), 2.0 + seed as f64);
+                    }
+                    Signature {
+                        model: format!("m{seed}"),
+                        seed,
+                        features,
+                    }
+                })
+                .collect();
+            let files = fingerprint_figure(&sigs, &dir.path().join(name)).unwrap();
+            std::fs::read_to_string(&files[0]).unwrap()
+        };
+        let label = |f: &str| format!(">\n{f}\n<");
+        let with = draw(true, "with");
+        let without = draw(false, "without");
+        for f in FEATURES {
+            assert!(
+                with.contains(&label(f)) && without.contains(&label(f)),
+                "{f}"
+            );
+        }
+        assert!(with.contains(&label("dyn_dimension")));
+        assert!(!without.contains(&label("dyn_dimension")));
+        assert!(!with.contains(&label("dyn_rotation")));
     }
 }
