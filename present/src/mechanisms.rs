@@ -206,7 +206,7 @@ const DYNAMICS_TABLE: [&str; 8] = [
 
 /// Mean ± SD over seeds of `features` per model, as a Markdown table. A feature no
 /// signature holds gets no column; the line under the table names it (a study recorded
-/// before the feature existed).
+/// before the feature existed, or read without its scaling runs).
 fn spread_table(sigs: &[Signature], models: &[&str], features: &[&str]) -> String {
     let (features, missing): (Vec<&str>, Vec<&str>) = features
         .iter()
@@ -236,8 +236,9 @@ fn spread_table(sigs: &[Signature], models: &[&str], features: &[&str]) -> Strin
     let mut md = table.render();
     if !missing.is_empty() {
         md.push_str(&format!(
-            "\nNot recorded in this study: {} (its activity was recorded before these \
-             features existed; rerunning its record stage adds them).\n",
+            "\nNot recorded in this study: {} (no signature holds them: the activity was \
+             recorded before these features existed, or, for the scaling features, the \
+             study was read without `--scaling-from`).\n",
             missing
                 .iter()
                 .map(|f| format!("`{f}`"))
