@@ -267,22 +267,9 @@ impl VecEnv {
         &self.kitchens[0].spec.config
     }
 
-    /// Changes one task parameter of every env between steps, keeping episodes in
-    /// flight (curricula: e.g. `never_ready_prob`). The layout may not change.
-    pub fn set_param(&mut self, key: &str, value: &str) -> Result<(), EnvError> {
-        let mut config = self.config().clone();
-        config.set(key, value)?;
-        let spec = Spec::new(&config)?;
-        if !self.keeps_layout(&spec) {
-            return Err(EnvError::param(key, value, "a value that keeps the layout"));
-        }
-        self.install(spec);
-        Ok(())
-    }
-
     /// Runs every env on `config` from the next step on, keeping episodes in flight
-    /// (curricula that edit the task, e.g. a reward window). Its layout must be the envs'
-    /// own; an error names `layout` otherwise.
+    /// (curricula that edit the task: the never-ready ramp, the multi-timer warm-up, a reward
+    /// window). Its layout must be the envs' own; an error names `layout` otherwise.
     pub fn set_config(&mut self, config: &TaskConfig) -> Result<(), EnvError> {
         let spec = Spec::new(config)?;
         if !self.keeps_layout(&spec) {

@@ -9,5 +9,6 @@ mod presets;
 mod reproduction_agents;
 mod run_folder;
 mod settings;
+mod task_curricula;
 mod tolerance_curriculum;
 mod training;

@@ -23,7 +23,14 @@ impl Trainer {
             // Quantised to 0.005 so the spec is rebuilt rarely.
             let p = ((start + (end - start) * frac) * 200.0).round() / 200.0;
             if (p - self.state.never_ready_prob).abs() > 1e-9 || self.state.updates == 0 {
-                self.envs.set_param("never_ready_prob", &format!("{p}"))?;
+                let mut config = self.envs.config().clone();
+                if let TaskParams::Uncertainty {
+                    never_ready_prob, ..
+                } = &mut config.params
+                {
+                    *never_ready_prob = p as f32;
+                }
+                self.envs.set_config(&config)?;
                 self.state.never_ready_prob = p;
             }
         }
@@ -190,31 +197,23 @@ pub(super) fn set_warmup(
     else {
         return Ok(());
     };
-    let settings = if on {
-        [
-            ("mode", "lower_bounded".to_string()),
-            ("reduced_reward", "0.1".into()),
-            ("under_buffer", "0".into()),
-            ("over_buffer", "0".into()),
-        ]
+    let rules = if on {
+        (chronocooked_env::RewardMode::LowerBounded, 0.1, 0, 0)
     } else {
-        [
-            (
-                "mode",
-                match mode {
-                    chronocooked_env::RewardMode::Exact => "exact",
-                    chronocooked_env::RewardMode::LowerBounded => "lower_bounded",
-                }
-                .to_string(),
-            ),
-            ("reduced_reward", reduced_reward.to_string()),
-            ("under_buffer", under_buffer.to_string()),
-            ("over_buffer", over_buffer.to_string()),
-        ]
+        (*mode, *reduced_reward, *under_buffer, *over_buffer)
     };
-    for (k, v) in settings {
-        envs.set_param(k, &v)?;
+    let mut config = envs.config().clone();
+    if let TaskParams::MultiTimer {
+        mode,
+        reduced_reward,
+        under_buffer,
+        over_buffer,
+        ..
+    } = &mut config.params
+    {
+        (*mode, *reduced_reward, *under_buffer, *over_buffer) = rules;
     }
+    envs.set_config(&config)?;
     Ok(())
 }
 
