@@ -2,8 +2,8 @@
 //! vectorised env's equivalence with scalar stepping.
 
 use chronocooked_env::{
-    Action, Autoreset, ChronoEnv, INFO_KEYS, ResetOptions, TaskConfig, TaskFamily, VecEnv,
-    all_tasks, derive_seed, make_config,
+    Action, Autoreset, ChronoEnv, INFO_KEYS, ResetOption, ResetOptions, TaskConfig, TaskFamily,
+    VecEnv, all_tasks, derive_seed, make_config,
 };
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
@@ -49,6 +49,35 @@ fn every_task_is_seed_and_step_deterministic() {
             "{}: 50 seeds should visit every start cell",
             spec.id
         );
+    }
+}
+
+/// Never-ready episodes are the families' own: a task has a share of them exactly when it
+/// declares the `never_ready` reset option; the uncertainty task's default share is the
+/// reference's 0.2, and a typed edit of the share reaches that task only.
+#[test]
+fn a_share_of_never_ready_episodes_belongs_to_the_tasks_that_declare_them() {
+    for spec in all_tasks() {
+        let mut config = spec.default_config();
+        let declares = config.reset_options().contains(&ResetOption::NeverReady);
+        assert_eq!(
+            declares,
+            spec.id == "Uncertainty-v0",
+            "{}: only the uncertainty task declares never-ready episodes",
+            spec.id
+        );
+        let default = if declares { 0.2 } else { 0.0 };
+        assert_eq!(config.never_ready_prob(), default, "{}", spec.id);
+        config.set_never_ready_prob(0.05);
+        let expected = if declares { 0.05 } else { 0.0 };
+        assert_eq!(config.never_ready_prob(), expected, "{}", spec.id);
+        assert_eq!(config, {
+            let mut c = spec.default_config();
+            if declares {
+                c.set("never_ready_prob", "0.05").unwrap();
+            }
+            c
+        });
     }
 }
 

@@ -264,12 +264,7 @@ pub fn run_adaptation(
         } else {
             run_training(Some(tc.check()?), &dir, "adapt", &mut Silent)?
         };
-        let p = match &task.params {
-            chronocooked_env::TaskParams::Uncertainty {
-                never_ready_prob, ..
-            } => f64::from(*never_ready_prob),
-            _ => 0.0,
-        };
+        let p = f64::from(task.never_ready_prob());
         let curve = curve_success(&summary.dir.join(run_folder::CURVES), p)?;
         let episodes = curve.last().map_or(0, |c| c.0);
         (

@@ -24,6 +24,7 @@ use crate::error::EnvError;
 use crate::layout::{Layout, ObjectKind};
 use crate::settings::{self, Spec};
 use params::MAX_TIMESTEPS;
+use reset_option::ResetOption;
 use serde::{Deserialize, Serialize};
 
 /// Reference FI / multi-timer layout (5×3): onion (0,1), delivery (0,2), oven (2,0).
@@ -429,6 +430,23 @@ impl TaskConfig {
     /// reproduction → every sample interval of its priors; other tasks → their TD.
     pub fn evaluation_tds(&self) -> Vec<u32> {
         family::of_params(&self.params).evaluation_tds(&self.params)
+    }
+
+    /// The share of never-ready episodes this configuration plays (a probability; 0 for a
+    /// family without them).
+    pub fn never_ready_prob(&self) -> f32 {
+        family::of_params(&self.params).never_ready_prob(&self.params)
+    }
+
+    /// Sets the share of never-ready episodes (a typed edit; a no-op for a family without
+    /// them).
+    pub fn set_never_ready_prob(&mut self, p: f32) {
+        family::of_params(&self.params).set_never_ready_prob(&mut self.params, p);
+    }
+
+    /// The options of `reset` this configuration's family declares.
+    pub fn reset_options(&self) -> &'static [ResetOption] {
+        family::of_params(&self.params).reset_options()
     }
 
     /// How this task grows during a curriculum (multi-anchor counters, multi-oven ovens);

@@ -4,7 +4,9 @@
 use crate::ppo::act::{argmax, policy_step};
 use crate::ppo::config::ObsEncoding;
 use crate::ppo::obs::ObsEncoder;
-use chronocooked_env::{Action, Autoreset, EnvError, ResetOptions, TaskConfig, TaskParams, VecEnv};
+use chronocooked_env::{
+    Action, Autoreset, EnvError, ResetOption, ResetOptions, TaskConfig, VecEnv,
+};
 use chronocooked_models::ActorCritic;
 use serde::{Deserialize, Serialize};
 
@@ -44,7 +46,11 @@ pub fn evaluate_policy(
         let opts = ResetOptions {
             start: Some(start),
             td: Some(td),
-            never_ready: matches!(config.params, TaskParams::Uncertainty { .. }).then_some(false),
+            // Normal episodes only, where the task has never-ready ones.
+            never_ready: config
+                .reset_options()
+                .contains(&ResetOption::NeverReady)
+                .then_some(false),
             ..ResetOptions::default()
         };
         envs.reset_one(i, Some(chronocooked_env::derive_seed(7, i as u64)), &opts)?;

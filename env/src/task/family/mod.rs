@@ -315,6 +315,16 @@ pub trait Family: Sync + Send {
     /// families without one).
     fn set_reward_window(&self, _params: &mut TaskParams, _tolerance: f32, _steps: f32) {}
 
+    /// The share of never-ready episodes the parameters ask for (a probability in
+    /// `[0, 1]`), for families with such episodes (0: none).
+    fn never_ready_prob(&self, _params: &TaskParams) -> f32 {
+        0.0
+    }
+
+    /// Sets the share of [`Family::never_ready_prob`] (a typed edit, e.g. a curriculum's
+    /// ramp; a no-op for families without never-ready episodes).
+    fn set_never_ready_prob(&self, _params: &mut TaskParams, _p: f32) {}
+
     /// The TDs a deterministic evaluation covers (steps).
     fn evaluation_tds(&self, params: &TaskParams) -> Vec<u32>;
 

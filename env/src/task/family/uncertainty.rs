@@ -123,6 +123,24 @@ oven until TD and, if the oven stays dark, presses the button.",
         Some(ResponseKind::Produce)
     }
 
+    fn never_ready_prob(&self, params: &TaskParams) -> f32 {
+        match params {
+            TaskParams::Uncertainty {
+                never_ready_prob, ..
+            } => *never_ready_prob,
+            _ => 0.0,
+        }
+    }
+
+    fn set_never_ready_prob(&self, params: &mut TaskParams, p: f32) {
+        if let TaskParams::Uncertainty {
+            never_ready_prob, ..
+        } = params
+        {
+            *never_ready_prob = p;
+        }
+    }
+
     /// The start cell, the duration, and whether the episode is never-ready.
     fn reset_options(&self) -> &'static [ResetOption] {
         &[ResetOption::Start, ResetOption::Td, ResetOption::NeverReady]

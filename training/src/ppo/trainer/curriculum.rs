@@ -24,12 +24,7 @@ impl Trainer {
             let p = ((start + (end - start) * frac) * 200.0).round() / 200.0;
             if (p - self.state.never_ready_prob).abs() > 1e-9 || self.state.updates == 0 {
                 let mut config = self.envs.config().clone();
-                if let TaskParams::Uncertainty {
-                    never_ready_prob, ..
-                } = &mut config.params
-                {
-                    *never_ready_prob = p as f32;
-                }
+                config.set_never_ready_prob(p as f32);
                 self.envs.set_config(&config)?;
                 self.state.never_ready_prob = p;
             }

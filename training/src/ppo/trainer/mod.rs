@@ -163,12 +163,7 @@ impl Trainer {
             envs.reset(chronocooked_env::derive_seed(cfg.seed, 0x5EED));
             state.envs = envs.snapshot();
         }
-        if let TaskParams::Uncertainty {
-            never_ready_prob, ..
-        } = &task.params
-        {
-            state.never_ready_prob = *never_ready_prob as f64;
-        }
+        state.never_ready_prob = f64::from(task.never_ready_prob());
         // Growing curricula start with the fewest counters / ovens.
         let grows = cfg.curriculum.growth().is_some();
         curriculum::growth_last_level(&cfg)?;
