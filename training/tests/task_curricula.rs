@@ -112,3 +112,45 @@ fn the_multi_timer_warm_up_switches_the_rules_and_restores_the_configured_ones()
         "the configured rules restored"
     );
 }
+
+/// The never-ready ramp and the multi-timer levels are refused on a task they cannot edit,
+/// naming the curriculum and the task (they would otherwise train without their curriculum).
+#[test]
+fn the_ramp_and_the_timer_levels_are_refused_on_other_tasks() {
+    let refused = |task: &str, curriculum: &str| {
+        resolve(
+            task,
+            "lstm8".parse().unwrap(),
+            "reference",
+            5,
+            &[format!("curriculum={curriculum}")],
+        )
+        .expect_err("refused")
+        .to_string()
+    };
+    for (task, curriculum, missing) in [
+        ("FixedInterval-v0", "uncertainty", "no never-ready episodes"),
+        ("MultiTimer-v0", "uncertainty", "no never-ready episodes"),
+        ("FixedInterval-v0", "multi_timer", "no timers to add"),
+        ("Uncertainty-v0", "multi_timer", "no timers to add"),
+    ] {
+        let err = refused(task, curriculum);
+        assert!(
+            err.contains("curriculum") && err.contains(task) && err.contains(missing),
+            "{task} with curriculum={curriculum}: {err}"
+        );
+    }
+    for (task, curriculum) in [
+        ("Uncertainty-v0", "uncertainty"),
+        ("MultiTimer-v0", "multi_timer"),
+    ] {
+        let cfg = resolve(
+            task,
+            "lstm8".parse().unwrap(),
+            "reference",
+            5,
+            &[format!("curriculum={curriculum}")],
+        );
+        assert!(cfg.is_ok(), "{task} with curriculum={curriculum}: {cfg:?}");
+    }
+}

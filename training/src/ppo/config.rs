@@ -565,6 +565,38 @@ impl TrainConfig {
         Ok((f64::from(tolerance), f64::from(tolerance_steps)))
     }
 
+    /// The never-ready ramp and the multi-timer levels edit a task of their kind: an error
+    /// naming `curriculum` when the task has no never-ready episodes (no `never_ready` reset
+    /// option) or no timers to add (not a multi-timer task), instead of a run without its
+    /// curriculum. (The growing and tolerance curricula check their tasks in
+    /// [`Curriculum::growth`]'s levels and [`TrainConfig::reward_window`].)
+    fn check_curriculum_task(&self) -> Result<(), TrainError> {
+        let task = self.task.config()?;
+        let (name, missing) = match self.curriculum {
+            Curriculum::Uncertainty { .. }
+                if !task
+                    .reset_options()
+                    .contains(&chronocooked_env::ResetOption::NeverReady) =>
+            {
+                ("uncertainty", "no never-ready episodes to ramp")
+            }
+            Curriculum::MultiTimer { .. }
+                if !matches!(task.params, chronocooked_env::TaskParams::MultiTimer { .. }) =>
+            {
+                ("multi_timer", "no timers to add")
+            }
+            _ => return Ok(()),
+        };
+        Err(TrainError::InvalidParam {
+            field: "curriculum".into(),
+            value: name.into(),
+            allowed: format!(
+                "a curriculum of the task's family (task {} has {missing})",
+                self.task
+            ),
+        })
+    }
+
     /// The one check of a configuration, however it was made (presets, `--set`, a
     /// hand-edited or resumed `config.json`): every setting's value against its rule in
     /// [`PPO_SETTINGS`] (the rule `--set` parses with), then the cross-field constraints
@@ -573,6 +605,7 @@ impl TrainConfig {
         settings::check(PPO_SETTINGS, self)?;
         self.task.config()?;
         self.reward_window()?;
+        self.check_curriculum_task()?;
         if let Some(window) = self.curriculum.window()
             && window > self.stats_window
         {
