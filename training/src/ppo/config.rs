@@ -570,8 +570,7 @@ impl TrainConfig {
     /// option) or no timers to add (not a multi-timer task), instead of a run without its
     /// curriculum. (The growing and tolerance curricula check their tasks in
     /// [`Curriculum::growth`]'s levels and [`TrainConfig::reward_window`].)
-    fn check_curriculum_task(&self) -> Result<(), TrainError> {
-        let task = self.task.config()?;
+    fn check_curriculum_task(&self, task: &chronocooked_env::TaskConfig) -> Result<(), TrainError> {
         let (name, missing) = match self.curriculum {
             Curriculum::Uncertainty { .. }
                 if !task
@@ -603,9 +602,9 @@ impl TrainConfig {
     /// and the task and overrides (a valid env).
     pub fn validate(&self) -> Result<(), TrainError> {
         settings::check(PPO_SETTINGS, self)?;
-        self.task.config()?;
+        let task = self.task.config()?;
         self.reward_window()?;
-        self.check_curriculum_task()?;
+        self.check_curriculum_task(&task)?;
         if let Some(window) = self.curriculum.window()
             && window > self.stats_window
         {
